@@ -1,0 +1,40 @@
+#include "sim/core/draw.hpp"
+
+#include <cmath>
+
+namespace formsim::sim {
+
+Color PaletteColor(int index) {
+  // Okabe-Ito, reordered so the first colours contrast most on a light background.
+  static const Color kPalette[] = {
+      {0.000f, 0.447f, 0.698f, 1}, {0.835f, 0.369f, 0.000f, 1}, {0.000f, 0.620f, 0.451f, 1},
+      {0.800f, 0.475f, 0.655f, 1}, {0.902f, 0.624f, 0.000f, 1}, {0.337f, 0.706f, 0.914f, 1},
+      {0.400f, 0.400f, 0.400f, 1}, {0.600f, 0.300f, 0.100f, 1}};
+  constexpr int n = sizeof(kPalette) / sizeof(kPalette[0]);
+  return kPalette[((index % n) + n) % n];
+}
+
+void DrawRobotBody(DrawSink& draw, const Pose2& pose, const std::vector<Vec2>& body_polygon,
+                   Color color, const std::string& name, bool ghost) {
+  std::vector<Vec2> world;
+  world.reserve(body_polygon.size());
+  double front = 0.0, half_width = 0.0;
+  for (const Vec2& b : body_polygon) {
+    world.push_back(pose.ToWorld(b));
+    front = std::max(front, b.x);
+    half_width = std::max(half_width, std::abs(b.y));
+  }
+  if (ghost) {
+    draw.Polygon(world, color.WithAlpha(0.0f), color.WithAlpha(0.55f));
+    return;
+  }
+  draw.Polygon(world, color.WithAlpha(0.85f), Color{0.1f, 0.1f, 0.1f, 1.0f});
+  // Heading wedge: a light triangle pointing forward inside the body.
+  const std::vector<Vec2> wedge = {pose.ToWorld({front * 0.9, 0.0}),
+                                   pose.ToWorld({front * 0.1, half_width * 0.6}),
+                                   pose.ToWorld({front * 0.1, -half_width * 0.6})};
+  draw.Polygon(wedge, Color{1, 1, 1, 0.9f}, Color{1, 1, 1, 0.0f});
+  if (!name.empty()) draw.Text(pose.p(), name, Color{0.1f, 0.1f, 0.1f, 1.0f}, 10.0f, -22.0f);
+}
+
+}  // namespace formsim::sim

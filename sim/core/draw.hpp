@@ -1,0 +1,49 @@
+#pragma once
+/// \file What the simulation wants drawn, described through an interface (the way Box2D's
+/// b2Draw works): sim calls these, app implements them with ImGui draw lists. Coordinates are
+/// world metres; sizes in pixels are marked `_px`.
+
+#include <string>
+#include <vector>
+
+#include "control/common/geometry.hpp"
+
+namespace formsim::sim {
+
+/// RGBA colour, components in [0, 1].
+struct Color {
+  float r = 1, g = 1, b = 1, a = 1;
+  Color WithAlpha(float alpha) const { return {r, g, b, alpha}; }
+};
+
+/// A qualitative palette (Okabe-Ito, colour-blind safe) used for robots and series.
+Color PaletteColor(int index);
+
+/// The draw interface. Every method has a world-space meaning; the implementation maps it to
+/// pixels with the current view (pan, zoom).
+class DrawSink {
+ public:
+  virtual ~DrawSink() = default;
+  /// Closed polygon; `fill.a == 0` draws only the outline.
+  virtual void Polygon(const std::vector<Vec2>& pts, Color fill, Color outline) = 0;
+  virtual void Circle(Vec2 center, double radius, Color fill, Color outline) = 0;
+  virtual void Segment(Vec2 a, Vec2 b, Color color, float thickness_px = 1.5f) = 0;
+  /// Open polyline; with `fade` the oldest point (first) is transparent and the newest opaque.
+  virtual void Polyline(const std::vector<Vec2>& pts, Color color, float thickness_px, bool fade) = 0;
+  /// Ellipse of a 2x2 covariance [sxx sxy; sxy syy] scaled to `n_sigma` standard deviations.
+  virtual void CovarianceEllipse(Vec2 center, double sxx, double sxy, double syy, double n_sigma,
+                                 Color color) = 0;
+  /// An 'x' marker of `size` metres (e.g. a rejected measurement).
+  virtual void Cross(Vec2 p, double size, Color color) = 0;
+  /// A label anchored at a world point, offset in pixels.
+  virtual void Text(Vec2 p, const std::string& text, Color color, float dx_px = 0, float dy_px = 0) = 0;
+  /// A ring that grows and fades, to flash an event (saturation, collision). `age` in [0,1].
+  virtual void Flash(Vec2 p, double radius, Color color, float age) = 0;
+};
+
+/// Draws a robot body (polygon in the body frame, metres) at `pose` with a heading wedge and
+/// its name. `ghost` draws it as a dashed-looking translucent outline (desired slots).
+void DrawRobotBody(DrawSink& draw, const Pose2& pose, const std::vector<Vec2>& body_polygon,
+                   Color color, const std::string& name, bool ghost = false);
+
+}  // namespace formsim::sim

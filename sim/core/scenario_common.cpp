@@ -1,0 +1,104 @@
+// Readers for the scenario blocks every experiment kind shares: world, obstacles, patches,
+// robot bodies.
+#include <string>
+
+#include "sim/core/world.hpp"
+#include "sim/core/yaml_reader.hpp"
+
+namespace formsim::sim {
+
+WorldDef ReadWorldDef(YamlReader& m) {
+  WorldDef def;
+  def.floor_friction = m.Double("floor_friction", def.floor_friction);
+  if (def.floor_friction < 0) m.Fail("floor_friction", "must be >= 0");
+  def.velocity_iterations = m.Int("velocity_iterations", def.velocity_iterations);
+  def.position_iterations = m.Int("position_iterations", def.position_iterations);
+  m.Finish();
+  return def;
+}
+
+std::vector<ObstacleDef> ReadObstacles(YamlReader& root) {
+  std::vector<ObstacleDef> out;
+  int index = 0;
+  for (YamlReader& o : root.MapList("obstacles")) {
+    ObstacleDef def = DefaultObstacleDef();
+    def.name = o.String("name", "obstacle" + std::to_string(index++));
+    const int shape = o.Choice("shape", {"box", "circle", "polygon", "wall"}, 0);
+    def.shape = static_cast<ObstacleDef::Shape>(shape);
+    def.friction = o.Double("friction", def.friction);
+    switch (def.shape) {
+      case ObstacleDef::Shape::kBox: {
+        const auto c = o.Doubles("center", {0, 0}, 2);
+        const auto size = o.Doubles("size", {1, 1}, 2);
+        if (size[0] <= 0 || size[1] <= 0) o.Fail("size", "must be positive");
+        def.pose = {c[0], c[1], o.Double("angle", 0.0)};
+        def.half_x = size[0] / 2;
+        def.half_y = size[1] / 2;
+        break;
+      }
+      case ObstacleDef::Shape::kCircle: {
+        const auto c = o.Doubles("center", {0, 0}, 2);
+        def.pose = {c[0], c[1], 0.0};
+        def.radius = o.RequiredDouble("radius");
+        if (def.radius <= 0) o.Fail("radius", "must be positive");
+        break;
+      }
+      case ObstacleDef::Shape::kPolygon: {
+        const auto c = o.Doubles("center", {0, 0}, 2);
+        def.pose = {c[0], c[1], o.Double("angle", 0.0)};
+        def.vertices = o.Points("vertices", 3);
+        if (def.vertices.size() > 8) o.Fail("vertices", "at most 8 vertices (convex polygon)");
+        break;
+      }
+      case ObstacleDef::Shape::kWall:
+        def.vertices = o.Points("points", 2);
+        break;
+    }
+    o.Finish();
+    out.push_back(def);
+  }
+  return out;
+}
+
+std::vector<PatchDef> ReadPatches(YamlReader& root) {
+  std::vector<PatchDef> out;
+  int index = 0;
+  for (YamlReader& p : root.MapList("patches")) {
+    PatchDef def;
+    def.name = p.String("name", "patch" + std::to_string(index++));
+    def.friction = p.RequiredDouble("friction");
+    if (def.friction < 0) p.Fail("friction", "must be >= 0");
+    if (p.Has("polygon")) {
+      def.polygon = p.Points("polygon", 3);
+    } else {
+      const auto c = p.Doubles("center", {0, 0}, 2);
+      if (!p.Has("size")) p.Fail("size", "a patch needs either polygon: [[x, y], ...] or center + size");
+      const auto s = p.Doubles("size", {1, 1}, 2);
+      if (s[0] <= 0 || s[1] <= 0) p.Fail("size", "must be positive");
+      def.polygon = {{c[0] - s[0] / 2, c[1] - s[1] / 2}, {c[0] + s[0] / 2, c[1] - s[1] / 2},
+                     {c[0] + s[0] / 2, c[1] + s[1] / 2}, {c[0] - s[0] / 2, c[1] + s[1] / 2}};
+    }
+    p.Finish();
+    out.push_back(def);
+  }
+  return out;
+}
+
+void ReadRobotBody(YamlReader& b, RobotDef& def) {
+  def.shape = static_cast<RobotDef::Shape>(b.Choice("shape", {"box", "circle"}, static_cast<int>(def.shape)));
+  if (def.shape == RobotDef::Shape::kBox) {
+    const auto size = b.Doubles("size", {2 * def.half_length, 2 * def.half_width}, 2);
+    if (size[0] <= 0 || size[1] <= 0) b.Fail("size", "must be positive");
+    def.half_length = size[0] / 2;
+    def.half_width = size[1] / 2;
+  } else {
+    def.radius = b.Double("radius", def.radius);
+    if (def.radius <= 0) b.Fail("radius", "must be positive");
+  }
+  def.mass = b.Double("mass", def.mass);
+  if (def.mass <= 0) b.Fail("mass", "must be positive");
+  def.collide_with_robots = b.Bool("collide_with_robots", def.collide_with_robots);
+  b.Finish();
+}
+
+}  // namespace formsim::sim

@@ -1,0 +1,341 @@
+#include "sim/core/world.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace formsim::sim {
+namespace {
+
+constexpr uint16 kObstacleCategory = 0x0001;
+constexpr uint16 kRobotCategory = 0x0002;
+
+b2Vec2 ToB2(Vec2 v) { return b2Vec2(static_cast<float>(v.x), static_cast<float>(v.y)); }
+Vec2 FromB2(const b2Vec2& v) { return {v.x, v.y}; }
+
+bool PointInPolygon(const std::vector<Vec2>& poly, Vec2 p) {
+  bool inside = false;
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    const Vec2 a = poly[i], b = poly[j];
+    if ((a.y > p.y) != (b.y > p.y) && p.x < (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x)
+      inside = !inside;
+  }
+  return inside;
+}
+
+// Strictly convex (all turns the same way, none straight), either winding.
+bool IsConvex(const std::vector<Vec2>& p) {
+  int sign = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Vec2 a = p[i], b = p[(i + 1) % p.size()], c = p[(i + 2) % p.size()];
+    const double cross = (b - a).Cross(c - b);
+    if (std::abs(cross) < 1e-9) return false;
+    const int s = cross > 0 ? 1 : -1;
+    if (sign != 0 && s != sign) return false;
+    sign = s;
+  }
+  return true;
+}
+
+}  // namespace
+
+// Logs the start of every contact between two named bodies.
+class World::ContactListener : public b2ContactListener {
+ public:
+  explicit ContactListener(World* world) : world_(world) {}
+  void BeginContact(b2Contact* contact) override {
+    const auto ia = contact->GetFixtureA()->GetBody()->GetUserData().pointer;
+    const auto ib = contact->GetFixtureB()->GetBody()->GetUserData().pointer;
+    if (ia == 0 || ib == 0) return;
+    b2WorldManifold wm;
+    contact->GetWorldManifold(&wm);
+    CollisionEvent e;
+    e.time = world_->time_;
+    e.a = world_->body_names_[ia - 1];
+    e.b = world_->body_names_[ib - 1];
+    e.point = FromB2(contact->GetManifold()->pointCount > 0 ? wm.points[0]
+                                                           : contact->GetFixtureA()->GetBody()->GetPosition());
+    world_->new_collisions_.push_back(e);
+  }
+
+ private:
+  World* world_;
+};
+
+// ---- Robot ----
+
+Pose2 Robot::pose() const {
+  const b2Vec2 p = body_->GetPosition();
+  return {p.x, p.y, body_->GetAngle()};
+}
+
+Vec2 Robot::world_velocity() const { return FromB2(body_->GetLinearVelocity()); }
+
+double Robot::forward_speed() const {
+  const double a = body_->GetAngle();
+  const Vec2 v = world_velocity();
+  return std::cos(a) * v.x + std::sin(a) * v.y;
+}
+
+double Robot::lateral_speed() const {
+  const double a = body_->GetAngle();
+  const Vec2 v = world_velocity();
+  return -std::sin(a) * v.x + std::cos(a) * v.y;
+}
+
+double Robot::yaw_rate() const { return body_->GetAngularVelocity(); }
+
+std::vector<Vec2> Robot::outline() const {
+  if (def_.shape == RobotDef::Shape::kCircle) {
+    std::vector<Vec2> pts;
+    for (int k = 0; k < 20; ++k) {
+      const double a = 2.0 * M_PI * k / 20.0;
+      pts.push_back({def_.radius * std::cos(a), def_.radius * std::sin(a)});
+    }
+    return pts;
+  }
+  const double hl = def_.half_length, hw = def_.half_width;
+  return {{hl, hw}, {-hl, hw}, {-hl, -hw}, {hl, -hw}};
+}
+
+void Robot::SetPose(const Pose2& pose) {
+  body_->SetTransform(b2Vec2(static_cast<float>(pose.x), static_cast<float>(pose.y)),
+                      static_cast<float>(pose.theta));
+  body_->SetLinearVelocity(b2Vec2(0, 0));
+  body_->SetAngularVelocity(0);
+}
+
+// ---- World ----
+
+World::World(const WorldDef& def)
+    : def_(def), b2_(std::make_unique<b2World>(b2Vec2(0.0f, 0.0f))),
+      listener_(std::make_unique<ContactListener>(this)) {
+  b2_->SetContactListener(listener_.get());
+}
+
+World::~World() {
+  // Bodies go with the b2World; drop the listener first so no callback sees a dead World.
+  b2_->SetContactListener(nullptr);
+}
+
+Robot& World::CreateRobot(const RobotDef& def) {
+  for (const auto& r : robots_)
+    if (r->name() == def.name) throw std::invalid_argument("duplicate robot name '" + def.name + "'");
+  auto robot = std::make_unique<Robot>();
+  robot->def_ = def;
+  b2BodyDef bd;
+  bd.type = b2_dynamicBody;
+  bd.position = b2Vec2(static_cast<float>(def.pose.x), static_cast<float>(def.pose.y));
+  bd.angle = static_cast<float>(def.pose.theta);
+  bd.allowSleep = false;
+  bd.bullet = false;
+  body_names_.push_back(def.name);
+  bd.userData.pointer = body_names_.size();
+  robot->body_ = b2_->CreateBody(&bd);
+
+  b2FixtureDef fd;
+  b2PolygonShape box;
+  b2CircleShape circle;
+  double area;
+  if (def.shape == RobotDef::Shape::kCircle) {
+    circle.m_radius = static_cast<float>(def.radius);
+    fd.shape = &circle;
+    area = M_PI * def.radius * def.radius;
+  } else {
+    box.SetAsBox(static_cast<float>(def.half_length), static_cast<float>(def.half_width));
+    fd.shape = &box;
+    area = 4.0 * def.half_length * def.half_width;
+  }
+  fd.density = static_cast<float>(def.mass / area);
+  fd.friction = 0.3f;
+  fd.restitution = 0.1f;
+  fd.filter.categoryBits = kRobotCategory;
+  fd.filter.maskBits = def.collide_with_robots ? (kRobotCategory | kObstacleCategory) : kObstacleCategory;
+  robot->body_->CreateFixture(&fd);
+  robots_.push_back(std::move(robot));
+  return *robots_.back();
+}
+
+void World::CreateObstacle(const ObstacleDef& def) {
+  b2BodyDef bd;
+  bd.type = b2_staticBody;
+  bd.position = b2Vec2(static_cast<float>(def.pose.x), static_cast<float>(def.pose.y));
+  bd.angle = static_cast<float>(def.pose.theta);
+  body_names_.push_back(def.name);
+  bd.userData.pointer = body_names_.size();
+  if (def.shape == ObstacleDef::Shape::kWall) {
+    bd.position = b2Vec2(0, 0);
+    bd.angle = 0;
+  }
+  b2Body* body = b2_->CreateBody(&bd);
+  b2FixtureDef fd;
+  fd.friction = static_cast<float>(def.friction);
+  fd.filter.categoryBits = kObstacleCategory;
+  switch (def.shape) {
+    case ObstacleDef::Shape::kBox: {
+      b2PolygonShape s;
+      s.SetAsBox(static_cast<float>(def.half_x), static_cast<float>(def.half_y));
+      fd.shape = &s;
+      body->CreateFixture(&fd);
+      break;
+    }
+    case ObstacleDef::Shape::kCircle: {
+      b2CircleShape s;
+      s.m_radius = static_cast<float>(def.radius);
+      fd.shape = &s;
+      body->CreateFixture(&fd);
+      break;
+    }
+    case ObstacleDef::Shape::kPolygon: {
+      std::vector<b2Vec2> v;
+      for (const Vec2& p : def.vertices) v.push_back(ToB2(p));
+      b2PolygonShape s;
+      if (v.size() < 3 || v.size() > b2_maxPolygonVertices || !IsConvex(def.vertices))
+        throw std::invalid_argument("obstacle '" + def.name +
+                                    "': polygon needs 3 to 8 vertices forming a convex shape");
+      s.Set(v.data(), static_cast<int>(v.size()));
+      fd.shape = &s;
+      body->CreateFixture(&fd);
+      break;
+    }
+    case ObstacleDef::Shape::kWall: {
+      if (def.vertices.size() < 2)
+        throw std::invalid_argument("obstacle '" + def.name + "': a wall needs at least 2 points");
+      for (std::size_t i = 0; i + 1 < def.vertices.size(); ++i) {
+        b2EdgeShape e;
+        e.SetTwoSided(ToB2(def.vertices[i]), ToB2(def.vertices[i + 1]));
+        fd.shape = &e;
+        body->CreateFixture(&fd);
+      }
+      break;
+    }
+  }
+  obstacle_defs_.push_back(def);
+  obstacle_bodies_.push_back(body);
+}
+
+void World::CreatePatch(const PatchDef& def) {
+  if (def.polygon.size() < 3)
+    throw std::invalid_argument("patch '" + def.name + "' needs at least 3 points");
+  patches_.push_back(def);
+}
+
+void World::Step(double dt) {
+  for (auto& r : robots_)
+    if (r->drive_) r->drive_->Apply(*r, *this, dt);
+  new_collisions_.clear();
+  b2_->Step(static_cast<float>(dt), def_.velocity_iterations, def_.position_iterations);
+  time_ += dt;
+  for (auto& e : new_collisions_) e.time = time_;
+  collisions_.insert(collisions_.end(), new_collisions_.begin(), new_collisions_.end());
+}
+
+double World::FrictionAt(Vec2 p) const {
+  for (auto it = patches_.rbegin(); it != patches_.rend(); ++it)
+    if (PointInPolygon(it->polygon, p)) return it->friction;
+  return def_.floor_friction;
+}
+
+const std::string& World::PatchNameAt(Vec2 p) const {
+  static const std::string kFloor = "floor";
+  for (auto it = patches_.rbegin(); it != patches_.rend(); ++it)
+    if (PointInPolygon(it->polygon, p)) return it->name;
+  return kFloor;
+}
+
+namespace {
+class ClosestRay : public b2RayCastCallback {
+ public:
+  ClosestRay(bool robots, const b2Body* ignore) : robots_(robots), ignore_(ignore) {}
+  float ReportFixture(b2Fixture* f, const b2Vec2& point, const b2Vec2&, float fraction) override {
+    if (f->GetBody() == ignore_) return -1.0f;
+    if (!robots_ && (f->GetFilterData().categoryBits & kRobotCategory)) return -1.0f;
+    hit = true;
+    this->point = point;
+    this->fraction = fraction;
+    body = f->GetBody();
+    return fraction;
+  }
+  bool hit = false;
+  b2Vec2 point;
+  float fraction = 1.0f;
+  const b2Body* body = nullptr;
+
+ private:
+  bool robots_;
+  const b2Body* ignore_;
+};
+}  // namespace
+
+RayHit World::RayCast(Vec2 from, Vec2 to, bool include_robots, const Robot* ignore) const {
+  RayHit out;
+  if ((to - from).Norm() < 1e-9) return out;
+  ClosestRay cb(include_robots, ignore ? ignore->body() : nullptr);
+  b2_->RayCast(&cb, ToB2(from), ToB2(to));
+  if (!cb.hit) return out;
+  out.hit = true;
+  out.point = FromB2(cb.point);
+  out.distance = (out.point - from).Norm();
+  const auto id = const_cast<b2Body*>(cb.body)->GetUserData().pointer;
+  if (id > 0) out.body_name = body_names_[id - 1];
+  return out;
+}
+
+Robot* World::FindRobot(const std::string& name) {
+  for (auto& r : robots_)
+    if (r->name() == name) return r.get();
+  return nullptr;
+}
+
+bool World::MoveObstacle(const std::string& name, Vec2 p) {
+  for (std::size_t i = 0; i < obstacle_defs_.size(); ++i) {
+    if (obstacle_defs_[i].name != name || obstacle_defs_[i].shape == ObstacleDef::Shape::kWall) continue;
+    obstacle_bodies_[i]->SetTransform(ToB2(p), obstacle_bodies_[i]->GetAngle());
+    obstacle_defs_[i].pose.x = p.x;
+    obstacle_defs_[i].pose.y = p.y;
+    return true;
+  }
+  return false;
+}
+
+void World::Draw(DrawSink& draw) const {
+  for (const auto& patch : patches_) {
+    // Low friction reads cold (blue), high friction warm (sand): the floor is the reference.
+    const float slip = static_cast<float>(std::clamp(1.0 - patch.friction / std::max(def_.floor_friction, 1e-3), -1.0, 1.0));
+    const Color fill = slip > 0 ? Color{0.55f, 0.75f, 0.95f, 0.25f + 0.35f * slip}
+                                : Color{0.85f, 0.75f, 0.55f, 0.25f - 0.15f * slip};
+    draw.Polygon(patch.polygon, fill, fill.WithAlpha(0.8f));
+    double cx = 0, cy = 0;
+    for (const Vec2& p : patch.polygon) { cx += p.x; cy += p.y; }
+    const double n = static_cast<double>(patch.polygon.size());
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%s μ=%.2f", patch.name.c_str(), patch.friction);
+    draw.Text({cx / n, cy / n}, buf, Color{0.2f, 0.3f, 0.45f, 1});
+  }
+  const Color fill{0.55f, 0.55f, 0.58f, 1}, edge{0.25f, 0.25f, 0.28f, 1};
+  for (const auto& o : obstacle_defs_) {
+    switch (o.shape) {
+      case ObstacleDef::Shape::kBox:
+        draw.Polygon({o.pose.ToWorld({o.half_x, o.half_y}), o.pose.ToWorld({-o.half_x, o.half_y}),
+                      o.pose.ToWorld({-o.half_x, -o.half_y}), o.pose.ToWorld({o.half_x, -o.half_y})},
+                     fill, edge);
+        break;
+      case ObstacleDef::Shape::kCircle:
+        draw.Circle(o.pose.p(), o.radius, fill, edge);
+        break;
+      case ObstacleDef::Shape::kPolygon: {
+        std::vector<Vec2> w;
+        for (const Vec2& v : o.vertices) w.push_back(o.pose.ToWorld(v));
+        draw.Polygon(w, fill, edge);
+        break;
+      }
+      case ObstacleDef::Shape::kWall:
+        for (std::size_t i = 0; i + 1 < o.vertices.size(); ++i)
+          draw.Segment(o.vertices[i], o.vertices[i + 1], edge, 4.0f);
+        break;
+    }
+  }
+}
+
+}  // namespace formsim::sim

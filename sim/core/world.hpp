@@ -1,0 +1,180 @@
+#pragma once
+/// \file The Box2D world, top-down (no gravity), with robots, static obstacles and ground
+/// patches of their own friction. Definition structs with defaults, Box2D style:
+///   RobotDef def = DefaultRobotDef(); def.name = "R1"; def.pose = {0, 0, 0}; world.CreateRobot(def);
+
+#include <box2d/box2d.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "control/common/geometry.hpp"
+#include "sim/core/draw.hpp"
+
+namespace formsim::sim {
+
+class World;
+class Robot;
+
+constexpr double kGravity = 9.81;  ///< m/s², for friction limits (the world itself has none)
+
+/// How a robot turns commands into motion. Each robot kind supplies one (unicycle, Mecanum,
+/// differential drive with motors, steered vehicle). Apply() runs before every world step.
+class DriveModel {
+ public:
+  virtual ~DriveModel() = default;
+  virtual void Apply(Robot& robot, World& world, double dt) = 0;
+  /// True when the last Apply had to limit the command (speed limits, traction).
+  virtual bool saturated() const { return false; }
+};
+
+/// A robot's body: a box (half extents) or a circle, and its mass properties.
+struct RobotDef {
+  std::string name = "robot";
+  Pose2 pose;
+  enum class Shape { kBox, kCircle } shape = Shape::kBox;
+  double half_length = 0.08;  ///< along the heading, m
+  double half_width = 0.06;   ///< m
+  double radius = 0.07;       ///< for circles, m
+  double mass = 2.0;          ///< kg
+  int color_index = 0;        ///< palette entry
+  bool collide_with_robots = true;
+};
+inline RobotDef DefaultRobotDef() { return RobotDef{}; }
+
+/// A static obstacle.
+struct ObstacleDef {
+  std::string name = "obstacle";
+  enum class Shape { kBox, kCircle, kPolygon, kWall } shape = Shape::kBox;
+  Pose2 pose;                    ///< centre and rotation (box, polygon), centre (circle)
+  double half_x = 0.5, half_y = 0.5;
+  double radius = 0.5;
+  std::vector<Vec2> vertices;  ///< polygon (local frame, convex, <= 8) or wall polyline (world)
+  double friction = 0.6;
+};
+inline ObstacleDef DefaultObstacleDef() { return ObstacleDef{}; }
+
+/// A region of floor with its own friction coefficient (slippery zones, gravel, ...).
+struct PatchDef {
+  std::string name = "patch";
+  std::vector<Vec2> polygon;  ///< world frame, any simple polygon
+  double friction = 0.8;
+};
+
+/// A collision between two named bodies (robots or obstacles), logged when contact begins.
+struct CollisionEvent {
+  double time = 0.0;
+  std::string a, b;
+  Vec2 point;
+};
+
+struct WorldDef {
+  double floor_friction = 0.8;  ///< μ where no patch lies
+  int velocity_iterations = 8;
+  int position_iterations = 3;
+};
+
+/// Result of a ray cast against obstacles (and optionally robots).
+struct RayHit {
+  bool hit = false;
+  double distance = 0.0;
+  Vec2 point;
+  std::string body_name;
+};
+
+class Robot {
+ public:
+  const std::string& name() const { return def_.name; }
+  const RobotDef& def() const { return def_; }
+  /// True pose from the physics body.
+  Pose2 pose() const;
+  /// Velocity in the body frame: forward, lateral (left), yaw rate.
+  double forward_speed() const;
+  double lateral_speed() const;
+  double yaw_rate() const;
+  Vec2 world_velocity() const;
+  b2Body* body() { return body_; }
+  const b2Body* body() const { return body_; }
+  double mass() const { return body_->GetMass(); }
+  double inertia() const { return body_->GetInertia(); }
+  /// Body outline in the body frame (for drawing).
+  std::vector<Vec2> outline() const;
+
+  void SetDrive(std::unique_ptr<DriveModel> drive) { drive_ = std::move(drive); }
+  DriveModel* drive() { return drive_.get(); }
+  const DriveModel* drive() const { return drive_.get(); }
+  /// Teleports (e.g. a drag in the GUI while paused); zeroes the velocity.
+  void SetPose(const Pose2& pose);
+
+ private:
+  friend class World;
+  RobotDef def_;
+  b2Body* body_ = nullptr;
+  std::unique_ptr<DriveModel> drive_;
+};
+
+class World {
+ public:
+  explicit World(const WorldDef& def = WorldDef{});
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  Robot& CreateRobot(const RobotDef& def);
+  void CreateObstacle(const ObstacleDef& def);
+  void CreatePatch(const PatchDef& def);
+
+  /// Applies every robot's drive, steps Box2D by dt, then collects collision events.
+  void Step(double dt);
+  double time() const { return time_; }
+
+  /// Friction coefficient of the ground at p (the last patch containing p, else the floor).
+  double FrictionAt(Vec2 p) const;
+  const std::string& PatchNameAt(Vec2 p) const;
+
+  /// First obstacle (and robot, if `include_robots`) hit along a ray, skipping `ignore`.
+  RayHit RayCast(Vec2 from, Vec2 to, bool include_robots = false, const Robot* ignore = nullptr) const;
+
+  std::vector<std::unique_ptr<Robot>>& robots() { return robots_; }
+  const std::vector<std::unique_ptr<Robot>>& robots() const { return robots_; }
+  Robot* FindRobot(const std::string& name);
+  const std::vector<ObstacleDef>& obstacles() const { return obstacle_defs_; }
+  const std::vector<PatchDef>& patches() const { return patches_; }
+  /// Moves a static obstacle (GUI drag while paused). Returns false if no such obstacle.
+  bool MoveObstacle(const std::string& name, Vec2 p);
+
+  /// Collision events that began during the last Step.
+  const std::vector<CollisionEvent>& new_collisions() const { return new_collisions_; }
+  /// All collision events since the start.
+  const std::vector<CollisionEvent>& collisions() const { return collisions_; }
+
+  /// Draws patches and obstacles (robots are drawn by their experiment, which knows colours).
+  void Draw(DrawSink& draw) const;
+
+  b2World& b2() { return *b2_; }
+
+ private:
+  class ContactListener;
+  WorldDef def_;
+  std::unique_ptr<b2World> b2_;
+  std::unique_ptr<ContactListener> listener_;
+  std::vector<std::unique_ptr<Robot>> robots_;
+  std::vector<ObstacleDef> obstacle_defs_;
+  std::vector<b2Body*> obstacle_bodies_;
+  std::vector<PatchDef> patches_;
+  std::vector<CollisionEvent> new_collisions_, collisions_;
+  std::vector<std::string> body_names_;  ///< indexed by b2Body user data
+  double time_ = 0.0;
+};
+
+/// Reads the shared scenario blocks into defs: `world:` (floor_friction), `obstacles:` and
+/// `patches:` lists. Defined in scenario_common.cpp. Declared here to keep one place for world setup.
+class YamlReader;
+WorldDef ReadWorldDef(YamlReader& world_map);
+std::vector<ObstacleDef> ReadObstacles(YamlReader& root);
+std::vector<PatchDef> ReadPatches(YamlReader& root);
+/// Reads a robot body block (shape, size, mass) into def, leaving name/pose to the caller.
+void ReadRobotBody(YamlReader& body_map, RobotDef& def);
+
+}  // namespace formsim::sim
