@@ -56,7 +56,9 @@ struct UkfScaling {
   double kappa = 0.0;  ///< used as given; see DefaultUkfScaling for κ = 3 − n
 };
 /// The paper's scaling for an n-dimensional state: a = 1, b = 2, κ = 3 − n.
-inline UkfScaling DefaultUkfScaling(int n) { return UkfScaling{1.0, 2.0, 3.0 - n}; }
+inline UkfScaling DefaultUkfScaling(int n) {
+  return UkfScaling{1.0, 2.0, 3.0 - n};
+}
 
 template <int N, int M>
 class Ukf {

@@ -9,15 +9,16 @@ namespace formsim::sim {
 
 int Recorder::AddColumn(const std::string& name) {
   if (rows_ > 0) throw std::logic_error("Recorder: column '" + name + "' declared after rows");
-  if (Column(name) >= 0) throw std::logic_error("Recorder: duplicate column '" + name + "'");
+  const int column = static_cast<int>(names_.size());
+  if (!index_.emplace(name, column).second)
+    throw std::logic_error("Recorder: duplicate column '" + name + "'");
   names_.push_back(name);
-  return static_cast<int>(names_.size()) - 1;
+  return column;
 }
 
 int Recorder::Column(const std::string& name) const {
-  for (std::size_t i = 0; i < names_.size(); ++i)
-    if (names_[i] == name) return static_cast<int>(i);
-  return -1;
+  const auto it = index_.find(name);
+  return it == index_.end() ? -1 : it->second;
 }
 
 void Recorder::BeginRow() {

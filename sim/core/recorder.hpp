@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace formsim::sim {
@@ -31,6 +32,7 @@ class Recorder {
 
  private:
   std::vector<std::string> names_;
+  std::unordered_map<std::string, int> index_;  ///< name -> column, so setup stays linear
   std::vector<double> data_;
   std::size_t rows_ = 0;
 };

@@ -121,6 +121,11 @@ class World {
   World(const World&) = delete;
   World& operator=(const World&) = delete;
 
+  /// Replaces the world settings (floor friction, solver iterations), e.g. after reading
+  /// `world:` in an experiment constructor. Call before the first Step.
+  void SetDef(const WorldDef& def) { def_ = def; }
+  const WorldDef& def() const { return def_; }
+
   Robot& CreateRobot(const RobotDef& def);
   void CreateObstacle(const ObstacleDef& def);
   void CreatePatch(const PatchDef& def);

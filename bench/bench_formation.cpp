@@ -1,0 +1,90 @@
+// Simulation speed of the formation experiments, no rendering (issue 2's performance goals):
+// the paper scenario with a UKF per follower, and generated cascades of 10, 100 and 1000 robots.
+// Counters: steps_per_s and realtime_x (simulated seconds per wall second). Where the time goes
+// is measured by the same cascades with the estimators off (truth) and with Box2D alone.
+#include <benchmark/benchmark.h>
+
+#include "sim/core/experiment.hpp"
+#include "sim/core/unicycle_drive.hpp"
+#include "sim/formation/cascade_generator.hpp"
+
+using namespace formsim;
+using namespace formsim::sim;
+
+namespace {
+
+void RunSteps(benchmark::State& state, Experiment& e, long steps) {
+  for (long k = 0; k < steps; ++k) e.Step();
+  // Per-iteration amounts divided by the time per iteration.
+  state.counters["steps_per_s"] =
+      benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["realtime_x"] =
+      benchmark::Counter(steps * e.dt(), benchmark::Counter::kIsIterationInvariantRate);
+}
+
+void BM_PaperScenarioUkf(benchmark::State& state) {
+  const std::string file = std::string(FORMSIM_SOURCE_DIR) + "/assets/scenarios/formation_traj2_ukf.yaml";
+  for (auto _ : state) {
+    state.PauseTiming();
+    auto e = LoadExperiment(file);
+    const long steps = static_cast<long>(e->setup().duration / e->dt() + 0.5);
+    state.ResumeTiming();
+    RunSteps(state, *e, steps);
+  }
+}
+BENCHMARK(BM_PaperScenarioUkf)->Unit(benchmark::kMillisecond);
+
+// Cascade of N robots, one simulated second (100 steps), estimator per follower as given.
+void BM_Cascade(benchmark::State& state, bool ukf) {
+  const int n = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    state.PauseTiming();
+    YAML::Node root = MakeCascadeScenario(n, ukf);
+    root["record_every"] = 100;  // recording is I/O, measured separately
+    auto e = LoadExperimentFromNode(root, "cascade");
+    state.ResumeTiming();
+    RunSteps(state, *e, 100);
+  }
+}
+void BM_CascadeUkf(benchmark::State& s) { BM_Cascade(s, true); }
+void BM_CascadeTruth(benchmark::State& s) { BM_Cascade(s, false); }
+BENCHMARK(BM_CascadeUkf)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CascadeTruth)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
+
+// Box2D alone: N robots with ideal drives in a loose grid, no controllers, no recording.
+void BM_Box2DOnly(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    state.PauseTiming();
+    World world;
+    std::vector<UnicycleDrive*> drives;
+    for (int i = 0; i < n; ++i) {
+      RobotDef def = DefaultRobotDef();
+      def.name = "R" + std::to_string(i);
+      def.pose = {0.5 * (i % 40), 0.5 * (i / 40), 0.0};
+      Robot& r = world.CreateRobot(def);
+      auto d = std::make_unique<UnicycleDrive>(UnicycleDriveDef{});
+      d->SetCommand(1.0, 0.2);
+      drives.push_back(d.get());
+      r.SetDrive(std::move(d));
+    }
+    state.ResumeTiming();
+    for (int k = 0; k < 100; ++k) world.Step(0.01);
+  }
+  state.counters["realtime_x"] = benchmark::Counter(1.0, benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_Box2DOnly)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
+
+// Recording and CSV writing of the paper scenario (the I/O share).
+void BM_PaperScenarioCsv(benchmark::State& state) {
+  const std::string file = std::string(FORMSIM_SOURCE_DIR) + "/assets/scenarios/formation_traj2_ukf.yaml";
+  auto e = LoadExperiment(file);
+  while (!e->finished()) e->Step();
+  for (auto _ : state) e->recorder().WriteCsv("/tmp/formsim_bench.csv");
+  state.counters["rows"] = static_cast<double>(e->recorder().rows());
+}
+BENCHMARK(BM_PaperScenarioCsv)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

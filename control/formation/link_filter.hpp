@@ -1,0 +1,80 @@
+#pragma once
+/// \file The per-link UKF of paper 000 (eq. 9-21): state x = [l, φ, α], inputs
+/// U = [v_i, ω_i, v_j, ω_j], process Γ(s, U) = s + Tc F(s) U (forward Euler of the output
+/// kinematics of link_kinematics.hpp), measurement y = D s with a selectable subset of s.
+///
+/// Measurement sets: the paper measures y = [φ, α] on l-φ links and only α on l-l links.
+/// With [α] alone, l and φ enter no measurement and α̇ = ω_i − ω_j does not depend on them, so
+/// they are unobservable: the filter only dead-reckons l and φ from the inputs and their
+/// variance grows with Q without bound. [φ, α] (the default for every link) makes l observable
+/// through φ̇ whenever the leader turns or the formation moves relative to the leader; [l, φ, α]
+/// measures everything.
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "control/common/ukf.hpp"
+#include "control/formation/link_kinematics.hpp"
+
+namespace formsim::control {
+
+/// Which components of [l, φ, α] a link's sensor reports to its filter.
+enum class MeasurementSet { kPhiAlpha, kLPhiAlpha, kAlpha };
+
+/// Names used in scenarios: [phi, alpha], [l, phi, alpha], [alpha].
+inline const char* MeasurementSetName(MeasurementSet m) {
+  switch (m) {
+    case MeasurementSet::kPhiAlpha:
+      return "[phi, alpha]";
+    case MeasurementSet::kLPhiAlpha:
+      return "[l, phi, alpha]";
+    case MeasurementSet::kAlpha:
+      return "[alpha]";
+  }
+  return "?";
+}
+
+/// Definition of a link filter (Box2D-style struct with defaults; the paper's h = 0.9186e-4 rad²).
+struct LinkFilterDef {
+  MeasurementSet measure = MeasurementSet::kPhiAlpha;
+  double Tc = 0.01;                                ///< filter period, s
+  double L = 0.15;                                 ///< follower's control point offset, m
+  Eigen::Vector3d q{1e-8, 0.9186e-4, 0.9186e-4};   ///< process noise variance per step
+  Eigen::Vector3d r{1e-4, 0.9186e-4, 0.9186e-4};   ///< measurement noise variance (l, φ, α)
+  Eigen::Vector3d p0{1e-4, 0.9186e-4, 0.9186e-4};  ///< initial covariance diagonal
+  UkfScaling scaling = DefaultUkfScaling(3);
+};
+
+/// A UKF over one link; the measurement dimension depends on the measurement set.
+class LinkFilter {
+ public:
+  virtual ~LinkFilter() = default;
+  /// Builds the filter for `def.measure`.
+  static std::unique_ptr<LinkFilter> Make(const LinkFilterDef& def);
+
+  virtual void Reset(const LinkState& x0, const Eigen::Matrix3d& P0) = 0;
+  /// Time update with the inputs applied during the last period.
+  virtual UkfStatus Predict(const Twist& leader, const Twist& follower) = 0;
+  /// Measurement update; `measured` holds all three components, only the set's are used.
+  virtual UkfStatus Update(const LinkState& measured) = 0;
+  virtual LinkState state() const = 0;
+  virtual Eigen::Matrix3d cov() const = 0;
+  virtual double nis() const = 0;
+  /// Live tuning: takes Q, R, L and Tc from `d` (the measurement set, P0 and the sigma-point
+  /// scaling are fixed at construction).
+  void Retune(const LinkFilterDef& d) {
+    def_.q = d.q;
+    def_.r = d.r;
+    def_.L = d.L;
+    def_.Tc = d.Tc;
+  }
+  const LinkFilterDef& def() const { return def_; }
+
+ protected:
+  explicit LinkFilter(const LinkFilterDef& def) : def_(def) {}
+  LinkFilterDef def_;
+};
+
+}  // namespace formsim::control

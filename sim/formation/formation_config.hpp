@@ -1,0 +1,107 @@
+#pragma once
+/// \file The parsed configuration of a `type: formation` scenario (definition structs with
+/// defaults) and its strict reader.
+///
+/// Scenario layout (every key optional unless marked; unknown keys are errors):
+///   formation: {L: 0.15, bearing: das|printed, gain_reading: printed|per_sample,
+///               control_period: dt, settle_time: 1.0, singular_threshold: 0.1}
+///   noise: {l_sigma|l_variance: 0, phi_sigma|phi_variance: 0, alpha_sigma|alpha_variance: 0}
+///   ukf:   {alpha: 1, beta: 2, kappa: 0, q_l: 1e-8, q_phi: 1e-6, q_alpha: 1e-6,
+///           r_l, r_phi, r_alpha (default: the sensor variances), p0_l: 1e-4,
+///           p0_phi: 1e-4, p0_alpha: 1e-4, l0_error: 0}
+///   draw:  {trail_length: 400, trail_every: 5}
+///   world, obstacles, patches: the shared blocks
+///   robots: (required, a list)
+///     - name: R1 (required)   pose: [x, y, theta]   body: {...}   drive: {...}
+///       schedule: {kind: segments|line_curve|figure_eight|spiral, v, omega, accel, r0, r_rate,
+///                  segments: [{until, v, w}, ...]}          # root leaders only
+///       follow:                                             # followers only
+///         law: l_phi|l_l (required)   leaders: [R1] or [R1, R2] (required)
+///         l_des: 0.3   phi_des: 5π/4 (l_phi)   l2_des: 0.3 (l_l)
+///         k_l: 0.15   k_phi: 0.08 (l_phi)   k_l2: 0.08 (l_l)
+///         estimator: truth|raw|ukf   measure: [phi, alpha] | [l, phi, alpha] | [alpha]
+///         noise: {...}   (per-follower override of the global noise block, key by key)
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "control/formation/formation_graph.hpp"
+#include "control/formation/leader_schedule.hpp"
+#include "control/formation/link_filter.hpp"
+#include "sim/core/unicycle_drive.hpp"
+#include "sim/core/world.hpp"
+#include "sim/core/yaml_reader.hpp"
+
+namespace formsim::sim {
+
+/// One noise component, given as σ or as a variance (the paper's h is a variance).
+struct NoiseValue {
+  double value = 0.0;
+  bool is_variance = false;
+  bool present = false;  ///< the key was in this block (else inherited)
+  double variance() const { return is_variance ? value : value * value; }
+  double sigma() const { return is_variance ? std::sqrt(std::max(0.0, value)) : value; }
+};
+
+/// Noise of a link sensor: l, φ, α.
+struct NoiseDef {
+  NoiseValue l, phi, alpha;
+};
+
+/// UKF settings shared by every link filter (Q per filter step, R, initial P).
+struct UkfDef {
+  double alpha = 1.0, beta = 2.0, kappa = 0.0;
+  double q_l = 1e-8, q_phi = 1e-6, q_alpha = 1e-6;
+  double r_l = -1, r_phi = -1, r_alpha = -1;  ///< < 0: use the sensor's variance
+  double p0_l = 1e-4, p0_phi = 1e-4, p0_alpha = 1e-4;
+  double l0_error = 0.0;  ///< initial error of the l estimate when l is not measured, m
+};
+
+enum class EstimatorMode { kTruth, kRaw, kUkf };
+
+/// Everything a follower needs beyond the graph node.
+struct FollowerDef {
+  double k1 = 0.15, k2 = 0.08;  ///< printed gains (k_l, k_phi) or (k_l, k_l2)
+  EstimatorMode estimator = EstimatorMode::kTruth;
+  control::MeasurementSet measure = control::MeasurementSet::kPhiAlpha;
+  NoiseDef noise;  ///< own block (components with present = false inherit the global one)
+};
+
+/// One robot of the scenario.
+struct FormationRobotDef {
+  RobotDef body;
+  UnicycleDriveDef drive;
+  control::FormationNodeDef node;
+  control::LeaderScheduleDef schedule;  ///< root leaders
+  FollowerDef follow;                   ///< followers
+};
+
+/// The whole formation scenario (beyond the loader's root keys).
+struct FormationConfig {
+  double L = 0.15;
+  control::BearingConvention bearing = control::BearingConvention::kDas;
+  control::GainReading gain_reading = control::GainReading::kPrinted;
+  double control_period = 0.01;
+  double settle_time = 1.0;
+  double singular_threshold = 0.1;
+  NoiseDef noise;
+  UkfDef ukf;
+  int trail_length = 400;
+  int trail_every = 5;
+  WorldDef world;
+  std::vector<ObstacleDef> obstacles;
+  std::vector<PatchDef> patches;
+  std::vector<FormationRobotDef> robots;
+  control::FormationGraph graph;
+};
+
+/// Reads the formation keys from the scenario root (strict). Validates the graph; graph errors
+/// are reported at the offending robot's key. Throws ScenarioError.
+FormationConfig ReadFormationConfig(YamlReader& root, double dt);
+
+/// The effective noise of a follower: its own components over the global ones.
+NoiseDef EffectiveNoise(const FormationConfig& cfg, const FollowerDef& f);
+
+}  // namespace formsim::sim

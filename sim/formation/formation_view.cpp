@@ -1,0 +1,254 @@
+// Figures, tables and the scene drawing of the formation experiment.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "sim/formation/formation_experiment.hpp"
+
+namespace formsim::sim {
+namespace {
+
+using control::FormationLaw;
+
+// Plots stay readable: at most this many series of one kind per figure.
+constexpr std::size_t kMaxSeries = 12;
+// Seconds an event flash stays visible.
+constexpr double kFlashSeconds = 1.0;
+// The view (Bounds) covers the robots plus this margin, m.
+constexpr double kBoundsMargin = 0.6;
+
+FigureSpec Figure(const std::string& id, const std::string& title, const std::string& x_label,
+                  const std::string& y_label) {
+  FigureSpec f;
+  f.id = id;
+  f.title = title;
+  f.x_label = x_label;
+  f.y_label = y_label;
+  return f;
+}
+
+SeriesSpec Series(const std::string& label, const std::string& column, int color,
+                  const std::string& x_column = "", bool dashed = false) {
+  SeriesSpec s;
+  s.label = label;
+  s.column = column;
+  s.x_column = x_column;
+  s.color_index = color;
+  s.dashed = dashed;
+  return s;
+}
+
+std::string Fmt(const char* fmt, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, fmt, v);
+  return buf;
+}
+
+}  // namespace
+
+std::vector<FigureSpec> FormationExperiment::Figures() const {
+  std::vector<FigureSpec> figs;
+  const std::size_t n_robots = std::min(agents_.size(), kMaxSeries);
+  const std::size_t n_links = std::min(links_.size(), kMaxSeries);
+
+  FigureSpec traj = Figure("trajectories", "(a) Robot trajectories", "x [m]", "y [m]");
+  traj.equal_aspect = true;
+  for (std::size_t i = 0; i < n_robots; ++i) {
+    const std::string& n = agents_[i].robot->name();
+    traj.series.push_back(Series(n, n + ".y", cfg_.robots[i].body.color_index, n + ".x"));
+  }
+  figs.push_back(traj);
+
+  FigureSpec phi = Figure("phi_error", "(b) Bearing error e_φ = φ_des − φ", "t [s]", "e_φ [rad]");
+  phi.reference_lines = {0.0};
+  FigureSpec dist =
+      Figure("distance_error", "(c) Distance errors e_l = l_des − l", "t [s]", "e_l [m]");
+  dist.reference_lines = {0.0};
+  FigureSpec alpha =
+      Figure("alpha_error", "(d) Heading differences e_α = θ_i − θ_j", "t [s]", "e_α [rad]");
+  alpha.reference_lines = {0.0};
+  FigureSpec est =
+      Figure("estimation_error", "(f) Estimation error φ_est − φ with ±2σ (UKF)", "t [s]", "[rad]");
+  est.reference_lines = {0.0};
+  int color = 0;
+  for (std::size_t k = 0; k < n_links; ++k) {
+    const Link& l = links_[k];
+    const std::string& n = l.name;
+    if (l.c_e_phi >= 0) phi.series.push_back(Series("e_φ " + n, n + ".e_phi", color));
+    dist.series.push_back(Series("e_l " + n, n + ".e_l", color));
+    alpha.series.push_back(Series("α " + n, n + ".alpha", color));
+    if (l.c_sd >= 0 && recorder_.rows() > 0) {
+      est.series.push_back(Series("φ_est − φ " + n, n + ".phi_est_err", color));
+      // ±2σ bands as inline data from the recorded standard deviations.
+      SeriesSpec hi = Series("±2σ " + n, "", color, "", true);
+      SeriesSpec lo = Series("", "", color, "", true);
+      for (std::size_t r = 0; r < recorder_.rows(); ++r) {
+        const double t = recorder_.At(r, 0), s2 = 2.0 * recorder_.At(r, l.c_sd + 1);
+        hi.x.push_back(t);
+        hi.y.push_back(s2);
+        lo.x.push_back(t);
+        lo.y.push_back(-s2);
+      }
+      est.series.push_back(std::move(hi));
+      est.series.push_back(std::move(lo));
+    }
+    ++color;
+  }
+  if (!phi.series.empty()) figs.push_back(phi);
+  figs.push_back(dist);
+  figs.push_back(alpha);
+
+  FigureSpec v = Figure("follower_v", "(e) Follower speeds v", "t [s]", "v [m/s]");
+  FigureSpec w = Figure("follower_w", "(e) Follower turn rates ω", "t [s]", "ω [rad/s]");
+  std::size_t shown = 0;
+  for (std::size_t i = 0; i < agents_.size() && shown < kMaxSeries; ++i) {
+    const std::string& n = agents_[i].robot->name();
+    // The root leader is drawn dashed, as the reference the followers are compared with.
+    const bool root = cfg_.robots[i].node.law == FormationLaw::kRoot;
+    const int c = cfg_.robots[i].body.color_index;
+    v.series.push_back(Series("v " + n, n + ".v_cmd", c, "", root));
+    w.series.push_back(Series("ω " + n, n + ".w_cmd", c, "", root));
+    ++shown;
+  }
+  figs.push_back(v);
+  figs.push_back(w);
+  if (!est.series.empty()) figs.push_back(est);
+  return figs;
+}
+
+std::vector<TableSpec> FormationExperiment::Tables() const {
+  TableSpec t;
+  t.title = "Links (errors after settle time " + Fmt("%.2g", cfg_.settle_time) + " s)";
+  t.header = {"link",
+              "law",
+              "estimator",
+              "max|e_l| [m]",
+              "max|e_φ| [rad]",
+              "max|e_α| [rad]",
+              "est. RMSE φ [rad]"};
+  static const char* kEst[] = {"truth", "raw", "ukf"};
+  for (const Link& l : links_) {
+    const FormationRobotDef& r = cfg_.robots[l.follower];
+    const EstimatorMode mode = r.follow.estimator;
+    t.rows.push_back({l.name, r.node.law == FormationLaw::kLPhi ? "l-φ" : "l-l",
+                      kEst[static_cast<int>(mode)], Fmt("%.2e", l.e_l.max_abs_settled),
+                      l.c_e_phi >= 0 ? Fmt("%.2e", l.e_phi.max_abs_settled) : "-",
+                      Fmt("%.2e", l.e_alpha.max_abs_settled),
+                      mode == EstimatorMode::kTruth ? "-" : Fmt("%.2e", l.est_phi.rms())});
+  }
+  return {t};
+}
+
+Pose2 FormationExperiment::DesiredPose(int j) const {
+  const FormationRobotDef& r = cfg_.robots[j];
+  const Agent& a = agents_[j];
+  const Pose2 p1 = agents_[links_[a.links[0]].leader].robot->pose();
+  const double L = cfg_.L;
+  Vec2 m;
+  if (r.node.law == FormationLaw::kLPhi) {
+    const double b = p1.theta + r.node.phi_des;
+    m = p1.p() + Vec2{std::cos(b), std::sin(b)} * r.node.l_des;
+  } else {
+    // The apex on the side the control point is on now (the law keeps it there).
+    const Pose2 p2 = agents_[links_[a.links[1]].leader].robot->pose();
+    const Vec2 mj = control::ControlPoint(a.robot->pose(), L);
+    const int side = (p2.p() - p1.p()).Cross(mj - p1.p()) >= 0.0 ? 1 : -1;
+    if (!control::TriangleApex(p1.p(), p2.p(), r.node.l_des, r.node.l2_des, side, m))
+      return {std::nan(""), std::nan(""), 0.0};
+  }
+  // The ghost keeps the follower's current heading, so it coincides with the robot exactly when
+  // the controlled outputs are at their desired values (α is not controlled).
+  const double th = a.robot->pose().theta;
+  return {m.x - L * std::cos(th), m.y - L * std::sin(th), th};
+}
+
+void FormationExperiment::DrawScene(DrawSink& draw) const {
+  const double now = time();
+  // Trails, oldest faded.
+  for (std::size_t i = 0; i < agents_.size(); ++i) {
+    const Agent& a = agents_[i];
+    if (a.trail.size() < 2) continue;
+    std::vector<Vec2> pts(a.trail.begin(), a.trail.end());
+    pts.push_back(a.robot->pose().p());
+    draw.Polyline(pts, PaletteColor(cfg_.robots[i].body.color_index).WithAlpha(0.8f), 2.0f, true);
+  }
+  // Desired slots (ghosts) and leader → control point links.
+  for (std::size_t j = 0; j < agents_.size(); ++j) {
+    const Agent& a = agents_[j];
+    if (a.links.empty()) continue;
+    const Color c = PaletteColor(cfg_.robots[j].body.color_index);
+    const Pose2 g = DesiredPose(static_cast<int>(j));
+    if (std::isfinite(g.x)) DrawRobotBody(draw, g, a.robot->outline(), c, "", true);
+    const Vec2 m = control::ControlPoint(a.robot->pose(), cfg_.L);
+    for (int li : a.links)
+      draw.Segment(agents_[links_[li].leader].robot->pose().p(), m,
+                   Color{0.35f, 0.35f, 0.35f, 0.7f}, 1.0f);
+  }
+  // Robots, then their control points and the link labels (l, and φ for l-φ links) on top.
+  for (std::size_t i = 0; i < agents_.size(); ++i) {
+    const Agent& a = agents_[i];
+    DrawRobotBody(draw, a.robot->pose(), a.robot->outline(),
+                  PaletteColor(cfg_.robots[i].body.color_index), a.robot->name());
+  }
+  for (std::size_t j = 0; j < agents_.size(); ++j) {
+    const Agent& a = agents_[j];
+    if (a.links.empty()) continue;
+    const Vec2 m = control::ControlPoint(a.robot->pose(), cfg_.L);
+    draw.Circle(m, 0.012, PaletteColor(cfg_.robots[j].body.color_index),
+                Color{0.1f, 0.1f, 0.1f, 1.0f});
+    for (int li : a.links) {
+      const Link& l = links_[li];
+      const Vec2 mid = (agents_[l.leader].robot->pose().p() + m) * 0.5;
+      std::string label = Fmt("%.3f m", l.truth.l);
+      if (l.c_e_phi >= 0)
+        label += Fmt(", %.1f°", control::WrapTo2Pi(l.truth.phi) * 180 / control::kPi);
+      draw.Text(mid, label, Color{0.25f, 0.25f, 0.25f, 0.9f}, 4.0f, 4.0f);
+    }
+  }
+  // Estimated poses with 2σ position ellipses. The link covariance P (over l, φ, α) is mapped
+  // to the follower's position through the Jacobian J of p_j(l, φ, α) at the leader's true
+  // pose: Σ = J P Jᵀ (first-order propagation; the leader's own uncertainty is not included).
+  for (std::size_t j = 0; j < agents_.size(); ++j) {
+    const Agent& a = agents_[j];
+    if (a.links.empty() || cfg_.robots[j].follow.estimator == EstimatorMode::kTruth) continue;
+    const Link& l = links_[a.links[0]];
+    const Color c = PaletteColor(cfg_.robots[j].body.color_index);
+    const Pose2 e = EstimatedPose(a);
+    draw.Cross(e.p(), 0.03, c);
+    if (cfg_.robots[j].follow.estimator == EstimatorMode::kUkf && l.filter_ready) {
+      const Eigen::Matrix<double, 2, 3> J =
+          control::FollowerPositionJacobian(agents_[l.leader].robot->pose(), l.used, cfg_.L);
+      const Eigen::Matrix2d S = J * l.filter->cov() * J.transpose();
+      draw.CovarianceEllipse(e.p(), S(0, 0), S(0, 1), S(1, 1), 2.0, c);
+    }
+  }
+  // Flashes for recent saturations, collisions, singularities and filter faults.
+  for (auto it = events_.rbegin(); it != events_.rend(); ++it) {
+    const double age = (now - it->time) / kFlashSeconds;
+    if (age > 1.0) break;
+    if (age < 0.0) continue;
+    const Color c = it->kind == "collision"  ? Color{0.85f, 0.1f, 0.1f, 1}
+                    : it->kind == "singular" ? Color{0.6f, 0.1f, 0.7f, 1}
+                                             : Color{0.95f, 0.55f, 0.0f, 1};
+    // The event's last robot is the one it concerns (follower of a singular triangle).
+    std::string name = it->robots.substr(it->robots.rfind(',') + 1);
+    for (const Agent& a : agents_)
+      if (a.robot->name() == name)
+        draw.Flash(a.robot->pose().p(), 0.25, c, static_cast<float>(age));
+  }
+}
+
+void FormationExperiment::Bounds(Vec2& lo, Vec2& hi) const {
+  // A camera on the formation: the robots with a margin, centred on them (not on their trails),
+  // so a video follows the robots at a scale where they, their ghosts and ellipses are readable;
+  // figure (a) shows the whole trajectories.
+  lo = {1e300, 1e300};
+  hi = {-1e300, -1e300};
+  for (const Agent& a : agents_) {
+    const Vec2 p = a.robot->pose().p();
+    lo = {std::min(lo.x, p.x - kBoundsMargin), std::min(lo.y, p.y - kBoundsMargin)};
+    hi = {std::max(hi.x, p.x + kBoundsMargin), std::max(hi.y, p.y + kBoundsMargin)};
+  }
+}
+
+}  // namespace formsim::sim

@@ -1,0 +1,28 @@
+#include "sim/formation/relative_sensor.hpp"
+
+namespace formsim::sim {
+
+std::uint64_t SensorStreamId(const std::string& name) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : name) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+control::LinkState RelativeSensor::Sample(const Pose2& leader, const Pose2& follower, double L,
+                                          control::BearingConvention convention, double sigma_l,
+                                          double sigma_phi, double sigma_alpha,
+                                          control::LinkState& truth) {
+  truth = control::ComputeLinkState(leader, follower, L, convention);
+  // Always draw three numbers so the stream does not depend on which σ are zero.
+  const double nl = rng_.Normal(), np = rng_.Normal(), na = rng_.Normal();
+  control::LinkState z = truth;
+  z.l = truth.l + sigma_l * nl;
+  z.phi = control::WrapToPi(truth.phi + sigma_phi * np);
+  z.alpha = control::WrapToPi(truth.alpha + sigma_alpha * na);
+  return z;
+}
+
+}  // namespace formsim::sim
