@@ -1,0 +1,60 @@
+#pragma once
+/// \file Run metrics of the Mecanum AGV experiment: error statistics of the tracking and of each
+/// localisation source, and beacon/gate counters.
+
+#include <algorithm>
+#include <cmath>
+
+#include "control/common/geometry.hpp"
+
+namespace formsim::sim {
+
+/// RMS and maximum of |e| over the samples added.
+struct RmsMax {
+  double sum_sq = 0.0;
+  double max_abs = 0.0;
+  long n = 0;
+  void Add(double e) {
+    sum_sq += e * e;
+    max_abs = std::max(max_abs, std::abs(e));
+    ++n;
+  }
+  double rms() const { return n ? std::sqrt(sum_sq / n) : 0.0; }
+};
+
+/// How well one estimate (odometry, beacon, fused) follows the true pose, sampled every control
+/// period while the AGV is tracking.
+struct EstimateStats {
+  RmsMax position;  ///< |p̂ − p|, m
+  RmsMax heading;   ///< wrap(θ̂ − θ), rad
+  double final_position_error = 0.0;
+  long jumps = 0;  ///< control periods in which the error vector changed by > jump_threshold
+  bool has_prev = false;
+  Vec2 prev_error;
+  void Add(const Pose2& estimate, const Pose2& truth, double heading_error, double jump_threshold) {
+    const Vec2 e = estimate.p() - truth.p();
+    position.Add(e.Norm());
+    heading.Add(heading_error);
+    final_position_error = e.Norm();
+    if (has_prev && (e - prev_error).Norm() > jump_threshold) ++jumps;
+    prev_error = e;
+    has_prev = true;
+  }
+};
+
+/// Beacon samples and what the filter's gate did with them (the simulator knows which samples
+/// were interference outliers, so it can score the gate).
+struct BeaconCounts {
+  long samples = 0;
+  long dropouts = 0;
+  long outliers = 0;  ///< valid samples that were outliers
+  long accepted = 0;
+  long rejected = 0;
+  long rejected_outliers = 0;  ///< rejected and truly outliers
+  long accepted_outliers = 0;  ///< outliers that got through
+  long reinitialisations = 0;
+  long faults = 0;
+  double nis_sum = 0.0;  ///< over accepted samples
+};
+
+}  // namespace formsim::sim
