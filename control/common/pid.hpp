@@ -80,6 +80,13 @@ class IncrementalPid {
     return u_;
   }
   double output() const { return u_; }
+  /// Adds `delta` to the stored past errors. When the feedback signal jumps by -delta between
+  /// two samples (e.g. an estimator update re-references it), the proportional and derivative
+  /// increments then see no jump; the integral term still acts on the new error.
+  void ShiftErrorHistory(double delta) {
+    e1_ += delta;
+    e2_ += delta;
+  }
 
  private:
   PidGains gains_;

@@ -1,5 +1,6 @@
 #include "sim/core/draw.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace formsim::sim {
@@ -34,7 +35,11 @@ void DrawRobotBody(DrawSink& draw, const Pose2& pose, const std::vector<Vec2>& b
                                    pose.ToWorld({front * 0.1, half_width * 0.6}),
                                    pose.ToWorld({front * 0.1, -half_width * 0.6})};
   draw.Polygon(wedge, Color{1, 1, 1, 0.9f}, Color{1, 1, 1, 0.0f});
-  if (!name.empty()) draw.Text(pose.p(), name, Color{0.1f, 0.1f, 0.1f, 1.0f}, 10.0f, -22.0f);
+  // The name sits just above the body's circumscribed circle, whatever the zoom.
+  double extent = 0.0;
+  for (const Vec2& b : body_polygon) extent = std::max(extent, b.Norm());
+  if (!name.empty())
+    draw.Text({pose.x, pose.y + extent}, name, Color{0.1f, 0.1f, 0.1f, 1.0f}, -6.0f, -16.0f);
 }
 
 }  // namespace formsim::sim

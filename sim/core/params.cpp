@@ -7,15 +7,23 @@
 
 namespace formsim::sim {
 
-Param& ParamTable::AddDouble(const std::string& key, const std::string& group,
-                             const std::string& label, double* value, double min, double max,
-                             const std::string& unit, bool log_scale) {
+namespace {
+Param Make(const std::string& key, const std::string& group, const std::string& label,
+           Param::Kind kind) {
   Param p;
   p.key = key;
   p.group = group;
   p.label = label;
+  p.kind = kind;
+  return p;
+}
+}  // namespace
+
+Param& ParamTable::AddDouble(const std::string& key, const std::string& group,
+                             const std::string& label, double* value, double min, double max,
+                             const std::string& unit, bool log_scale) {
+  Param p = Make(key, group, label, Param::Kind::kDouble);
   p.unit = unit;
-  p.kind = Param::Kind::kDouble;
   p.d = value;
   p.min = min;
   p.max = max;
@@ -26,11 +34,7 @@ Param& ParamTable::AddDouble(const std::string& key, const std::string& group,
 
 Param& ParamTable::AddInt(const std::string& key, const std::string& group,
                           const std::string& label, int* value, int min, int max) {
-  Param p;
-  p.key = key;
-  p.group = group;
-  p.label = label;
-  p.kind = Param::Kind::kInt;
+  Param p = Make(key, group, label, Param::Kind::kInt);
   p.i = value;
   p.min = min;
   p.max = max;
@@ -40,11 +44,7 @@ Param& ParamTable::AddInt(const std::string& key, const std::string& group,
 
 Param& ParamTable::AddBool(const std::string& key, const std::string& group,
                            const std::string& label, bool* value) {
-  Param p;
-  p.key = key;
-  p.group = group;
-  p.label = label;
-  p.kind = Param::Kind::kBool;
+  Param p = Make(key, group, label, Param::Kind::kBool);
   p.b = value;
   params_.push_back(p);
   return params_.back();
@@ -53,11 +53,7 @@ Param& ParamTable::AddBool(const std::string& key, const std::string& group,
 Param& ParamTable::AddChoice(const std::string& key, const std::string& group,
                              const std::string& label, int* index,
                              std::vector<std::string> choices) {
-  Param p;
-  p.key = key;
-  p.group = group;
-  p.label = label;
-  p.kind = Param::Kind::kChoice;
+  Param p = Make(key, group, label, Param::Kind::kChoice);
   p.i = index;
   p.choices = std::move(choices);
   p.max = static_cast<double>(p.choices.size()) - 1;

@@ -1,0 +1,210 @@
+#include "app/cli.hpp"
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <stdexcept>
+
+#include "app/export.hpp"
+#include "app/gui.hpp"
+#include "app/scenario_files.hpp"
+#include "app/session.hpp"
+#include "sim/core/experiment.hpp"
+#include "sim/core/run_output.hpp"
+
+namespace formsim::app {
+namespace {
+
+struct RunOptions {
+  std::string scenario;
+  long long seed = -1;
+  std::vector<std::string> sets;
+  std::string out_dir;
+  bool quiet = false;
+  ExportOptions exp;  // --frames, --snapshot, --plots, --video, --fps, --size, --ui
+  std::string size = "1280x720";
+  std::string plot_size = "960x600";
+  bool timing = false;
+};
+
+// Draws "[=====>    ] 42% t=4.20 s" on stderr, only when stderr is a terminal.
+class ProgressBar {
+ public:
+  explicit ProgressBar(bool enabled) : enabled_(enabled && isatty(STDERR_FILENO)) {}
+  void Update(double fraction, double t) {
+    if (!enabled_) return;
+    const int pct = static_cast<int>(fraction * 100.0);
+    if (pct == last_pct_) return;
+    last_pct_ = pct;
+    const int width = 30, filled = static_cast<int>(fraction * width);
+    std::fprintf(stderr, "\r[%s%s] %3d%% t=%.2f s", std::string(filled, '=').c_str(),
+                 std::string(width - filled, ' ').c_str(), pct, t);
+    std::fflush(stderr);
+  }
+  void Done() {
+    if (enabled_) std::fprintf(stderr, "\r%60s\r", "");
+  }
+
+ private:
+  bool enabled_;
+  int last_pct_ = -1;
+};
+
+// `formsim run` with pictures: the same steps as a plain run, rendered offscreen as they go.
+int RunExportCommand(RunOptions opt, const std::string& file, const std::string& out) {
+  ParseSize(opt.size, &opt.exp.width, &opt.exp.height);
+  ParseSize(opt.plot_size, &opt.exp.plot_width, &opt.exp.plot_height);
+  PrepareExport(opt.exp);  // a missing ffmpeg or bad folder fails before simulating
+  Session session(file, opt.sets, opt.seed);
+  ProgressBar bar(!opt.quiet);
+  const ExportStats st =
+      RunWithExport(session, opt.exp, [&](double f, double t) { bar.Update(f, t); });
+  bar.Done();
+  sim::WriteRunOutputs(session.exp(), out);
+  if (!opt.quiet) {
+    std::cout << session.exp().SummaryTable();
+    std::printf("wrote %s/timeseries.csv and %s/summary.json", out.c_str(), out.c_str());
+    if (!opt.exp.frames_dir.empty())
+      std::printf(", %ld frames in %s", st.frames, opt.exp.frames_dir.c_str());
+    if (!opt.exp.plots_dir.empty())
+      std::printf(", %ld figures in %s", st.figures, opt.exp.plots_dir.c_str());
+    if (!opt.exp.video.empty()) std::printf(", %s", opt.exp.video.c_str());
+    if (!opt.exp.snapshot.empty()) std::printf(", %s", opt.exp.snapshot.c_str());
+    std::printf("\n");
+  }
+  if (opt.timing) std::fputs(st.Report().c_str(), stderr);
+  return 0;
+}
+
+int RunCommand(const RunOptions& opt) {
+  const std::string file = ResolveScenario(opt.scenario);
+  const std::string out =
+      opt.out_dir.empty() ? "out/" + std::filesystem::path(file).stem().string() : opt.out_dir;
+  if (opt.exp.any()) {
+    sim::PrepareOutputDir(out);
+    return RunExportCommand(opt, file, out);
+  }
+  auto exp = sim::LoadExperiment(file, opt.sets, opt.seed);
+  sim::PrepareOutputDir(out);  // fail before simulating, not after
+
+  ProgressBar bar(!opt.quiet);
+  const auto t0 = std::chrono::steady_clock::now();
+  const double duration = exp->setup().duration;
+  while (!exp->finished()) {
+    exp->Step();
+    if ((exp->steps() & 63) == 0) bar.Update(exp->time() / duration, exp->time());
+  }
+  bar.Done();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  sim::WriteRunOutputs(*exp, out);
+
+  if (!opt.quiet) {
+    std::cout << exp->SummaryTable();
+    std::printf("%ld steps, %.2f s simulated in %.3f s wall (%.0fx real time)\n", exp->steps(),
+                exp->time(), wall, wall > 0 ? exp->time() / wall : 0.0);
+    std::printf("wrote %s/timeseries.csv and %s/summary.json\n", out.c_str(), out.c_str());
+  }
+  return 0;
+}
+
+int ListCommand() {
+  for (const auto& file : ShippedScenarios()) {
+    const std::string stem = std::filesystem::path(file).stem().string();
+    std::string type = "?", description;
+    try {
+      YAML::Node root = sim::LoadYamlFile(file);
+      if (root["type"]) type = root["type"].as<std::string>();
+      if (root["description"]) description = root["description"].as<std::string>();
+    } catch (const std::exception& e) {
+      description = std::string("(unreadable: ") + e.what() + ")";
+    }
+    std::printf("%-34s %-11s %s\n", stem.c_str(), type.c_str(), description.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+int Main(int argc, char** argv) {
+  CLI::App app{"formsim: multi-robot formation control and navigation simulator"};
+  app.require_subcommand(1);
+
+  RunOptions run;
+  CLI::App* run_cmd = app.add_subcommand("run", "Run a scenario headless and write CSV + summary");
+  run_cmd->add_option("scenario", run.scenario, "Scenario name (see `formsim list`) or YAML path")
+      ->required();
+  run_cmd->add_option("--seed", run.seed, "Random seed (overrides the scenario's)");
+  run_cmd->add_option("--set", run.sets, "Override a scenario value: path.to.key=value")
+      ->take_all();
+  run_cmd->add_option("--out", run.out_dir, "Output folder (default out/<scenario>)");
+  run_cmd->add_flag("--quiet,-q", run.quiet, "Print nothing but errors");
+
+  run_cmd->add_option("--frames", run.exp.frames_dir, "Write PNG frames frame_00000.png... here");
+  run_cmd->add_option("--fps", run.exp.fps, "Frames per second of simulated time (default 30)");
+  run_cmd->add_option("--size", run.size, "Frame size WIDTHxHEIGHT (default 1280x720)");
+  run_cmd->add_option("--snapshot", run.exp.snapshot, "Write the final view as a PNG");
+  run_cmd->add_option("--plots", run.exp.plots_dir, "Write one PNG per figure (file = figure id)");
+  run_cmd->add_option("--plot-size", run.plot_size, "Figure size WIDTHxHEIGHT (default 960x600)");
+  run_cmd->add_option("--video", run.exp.video, "Write an MP4 video (needs ffmpeg on PATH)");
+  run_cmd->add_flag("--ui", run.exp.ui, "Draw the GUI panels into frames and snapshot");
+  run_cmd->add_flag("--whole-run", run.exp.whole_run,
+                    "Camera keeps everything since the start in view (default: tracks the robots)");
+  run_cmd->add_flag("--timing", run.timing, "Print where the export time went (stderr)");
+
+  app.add_subcommand("list", "List the shipped scenarios");
+
+  GuiOptions gui;
+  std::string gui_size = "1600x900", gui_speed = "1";
+  CLI::App* gui_cmd = app.add_subcommand("gui", "Open the interactive window (live tuning)");
+  gui_cmd->add_option("scenario", gui.scenario,
+                      "Scenario name or YAML path (default: first formation_*)");
+  gui_cmd->add_option("--seed", gui.seed, "Random seed (overrides the scenario's)");
+  gui_cmd->add_option("--set", gui.sets, "Override a scenario value: path.to.key=value")
+      ->take_all();
+  gui_cmd->add_option("--size", gui_size, "Window size WIDTHxHEIGHT (default 1600x900)");
+  gui_cmd->add_option("--screenshot", gui.screenshot,
+                      "PNG written by 's' and after the last frame");
+  gui_cmd->add_option("--exit-after", gui.exit_after, "Exit after N frames");
+  gui_cmd->add_flag("--exit-when-finished", gui.exit_when_finished,
+                    "Exit when the run reaches its duration");
+  gui_cmd->add_flag("--paused", gui.paused, "Start paused");
+  gui_cmd->add_option("--speed", gui_speed, "Speed: 0.1, 0.25, 0.5, 1, 2, 5, 10 or max");
+  gui_cmd
+      ->add_option("--edit", gui.edits, "Scripted edit FRAME:key=value, as if made with a slider")
+      ->take_all();
+  gui_cmd->add_option("--out", gui.out_dir, "Write timeseries.csv and summary.json here on exit");
+  gui_cmd->add_flag("--timing", gui.timing, "Print frame-time statistics on exit (stderr)");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    if (run_cmd->parsed()) return RunCommand(run);
+    if (app.got_subcommand("list")) return ListCommand();
+    if (gui_cmd->parsed()) {
+      ParseSize(gui_size, &gui.width, &gui.height);
+      if (gui_speed == "max") {
+        gui.speed = 0.0;
+      } else {
+        char* end = nullptr;
+        gui.speed = std::strtod(gui_speed.c_str(), &end);
+        if (end == gui_speed.c_str() || *end != 0 || !(gui.speed > 0 && gui.speed <= 10))
+          throw std::runtime_error("--speed '" + gui_speed + "': expected 0.1 ... 10 or max");
+      }
+      return RunGui(gui);
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "formsim: error: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}
+
+}  // namespace formsim::app

@@ -1,0 +1,9 @@
+#pragma once
+/// \file The formsim command line: `formsim run`, `formsim list`, `formsim gui`.
+
+namespace formsim::app {
+
+/// Parses the command line and runs the chosen command. Returns the process exit code.
+int Main(int argc, char** argv);
+
+}  // namespace formsim::app

@@ -1,0 +1,25 @@
+#pragma once
+/// \file The few GL entry points formsim calls itself, loaded per context through a
+/// get-proc-address function (glfwGetProcAddress or OSMesaGetProcAddress). No GL header here:
+/// libOSMesa exports every gl* symbol, so a direct call would bind to OSMesa even in a window.
+
+#include <cstdint>
+#include <vector>
+
+namespace formsim::app {
+
+using GlProc = void (*)();
+using GlGetProcAddress = GlProc (*)(const char*);
+
+/// Loads the ImGui backend's GL pointers (imgl3wInit2) and ours for the current context.
+/// Throws std::runtime_error when the context is not OpenGL 3.x or a pointer is missing.
+void LoadGl(GlGetProcAddress get_proc, const char* context_name);
+
+/// Sets the viewport to the framebuffer and clears it with an sRGB colour in [0, 1].
+void GlClear(int width, int height, float r, float g, float b);
+/// Waits until every GL command has finished (the OSMesa buffer is then complete).
+void GlFinish();
+/// Reads the current framebuffer as RGBA, top row first.
+std::vector<std::uint8_t> GlReadRgba(int width, int height);
+
+}  // namespace formsim::app

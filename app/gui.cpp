@@ -1,0 +1,178 @@
+#include "app/gui.hpp"
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <stdexcept>
+#include <vector>
+
+#include "app/gl_api.hpp"
+#include "app/imgui_layer.hpp"
+#include "app/png_writer.hpp"
+#include "app/scenario_files.hpp"
+#include "app/ui.hpp"
+#include "sim/core/run_output.hpp"
+
+namespace formsim::app {
+namespace {
+
+void GlfwError(int code, const char* text) {
+  std::fprintf(stderr, "formsim: GLFW error %d: %s\n", code, text);
+}
+
+std::string DefaultScenario() {
+  const auto files = ShippedScenarios();
+  for (const auto& f : files)
+    if (std::filesystem::path(f).stem().string().rfind("formation_", 0) == 0) return f;
+  if (files.empty())
+    throw std::runtime_error("no scenario given and none shipped in " + ScenarioDir());
+  return files.front();
+}
+
+// "120:robots.R2.controller.k_l=0.3" -> frame 120, edit.
+std::multimap<long, std::pair<std::string, std::string>> ParseEdits(
+    const std::vector<std::string>& in) {
+  std::multimap<long, std::pair<std::string, std::string>> out;
+  for (const auto& e : in) {
+    const auto colon = e.find(':'), eq = e.find('=');
+    if (colon == std::string::npos || eq == std::string::npos || eq < colon)
+      throw std::runtime_error("--edit '" + e + "': expected FRAME:key=value");
+    char* end = nullptr;
+    const long frame = std::strtol(e.c_str(), &end, 10);
+    if (end != e.c_str() + colon || frame < 0)
+      throw std::runtime_error("--edit '" + e + "': FRAME must be a frame number");
+    out.emplace(frame, std::make_pair(e.substr(colon + 1, eq - colon - 1), e.substr(eq + 1)));
+  }
+  return out;
+}
+
+struct GlfwSession {
+  GlfwSession() {
+    glfwSetErrorCallback(GlfwError);
+    if (!glfwInit())
+      throw std::runtime_error(
+          "cannot open a window (no display? DISPLAY is unset or unreachable). "
+          "Use `formsim run SCENARIO --frames DIR` for headless pictures, or xvfb-run.");
+  }
+  ~GlfwSession() { glfwTerminate(); }
+};
+
+}  // namespace
+
+int RunGui(const GuiOptions& opt) {
+  const auto scripted = ParseEdits(opt.edits);
+  const std::string file = opt.scenario.empty() ? DefaultScenario() : ResolveScenario(opt.scenario);
+  auto session = std::make_unique<Session>(file, opt.sets, opt.seed);
+  if (!opt.out_dir.empty()) sim::PrepareOutputDir(opt.out_dir);
+
+  GlfwSession glfw;
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  const std::string title = "formsim — " + session->exp().setup().name;
+  GLFWwindow* window = glfwCreateWindow(opt.width, opt.height, title.c_str(), nullptr, nullptr);
+  if (window == nullptr) throw std::runtime_error("cannot create an OpenGL 3.3 core window");
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(1);
+  // The window's own pointers: glfwGetProcAddress, never the gl* symbols libOSMesa exports.
+  LoadGl(reinterpret_cast<GlGetProcAddress>(&glfwGetProcAddress), "GLFW window");
+
+  int exit_code = 0;
+  {
+    ImGuiLayer layer;
+    ImGui_ImplGlfw_InitForOpenGL(window, true);
+    AppUi ui(std::move(session));
+    const auto& speeds = SpeedChoices();
+    ui.state().speed_index = static_cast<int>(std::min_element(speeds.begin(), speeds.end(),
+                                                               [&](double a, double b) {
+                                                                 return std::abs(a - opt.speed) <
+                                                                        std::abs(b - opt.speed);
+                                                               }) -
+                                              speeds.begin());
+    ui.state().playing = !opt.paused;
+
+    using Clock = std::chrono::steady_clock;
+    auto last = Clock::now();
+    int shot_counter = 0;
+    std::vector<double> frame_ms, sim_ms, ui_ms, gl_ms;  // for --timing
+    for (long frame = 0; !glfwWindowShouldClose(window); ++frame) {
+      glfwPollEvents();
+      const auto now = Clock::now();
+      const double wall_dt = std::min(0.1, std::chrono::duration<double>(now - last).count());
+      last = now;
+      for (auto [it, end] = scripted.equal_range(frame); it != end; ++it)
+        ui.session().Edit(it->second.first, it->second.second);
+
+      ImGui_ImplGlfw_NewFrame();
+      layer.NewFrame();
+      ui.Advance(wall_dt);
+      const auto t_ui = Clock::now();
+      const ImVec2 display = ImGui::GetIO().DisplaySize;
+      ui.Draw(display, layer.fonts(), true);
+      int fw = 0, fh = 0;
+      glfwGetFramebufferSize(window, &fw, &fh);
+      const auto t_gl = Clock::now();
+      layer.Render(fw, fh, 0.96f, 0.96f, 0.95f);
+      if (opt.timing) {
+        GlFinish();  // attribute the rasterisation to this frame
+        sim_ms.push_back(ui.state().sim_ms);
+        ui_ms.push_back(1e3 * std::chrono::duration<double>(t_gl - t_ui).count());
+        gl_ms.push_back(1e3 * std::chrono::duration<double>(Clock::now() - t_gl).count());
+      }
+
+      const bool last_frame = opt.exit_after >= 0 && frame + 1 >= opt.exit_after;
+      const bool finished_exit = opt.exit_when_finished && ui.session().exp().finished();
+      if (ui.state().screenshot_requested ||
+          ((last_frame || finished_exit) && !opt.screenshot.empty())) {
+        std::string path = opt.screenshot;
+        if (path.empty() || (ui.state().screenshot_requested && !last_frame && !finished_exit)) {
+          char name[64];
+          std::snprintf(name, sizeof(name), "formsim_screenshot_%03d.png", shot_counter++);
+          path = opt.screenshot.empty() ? name : path;
+        }
+        try {
+          WritePng(path, fw, fh, GlReadRgba(fw, fh).data());
+          ui.state().status = "screenshot " + path;
+        } catch (const std::exception& e) {
+          ui.state().status = std::string("screenshot failed: ") + e.what();
+          if (last_frame) exit_code = 3;
+        }
+        ui.state().screenshot_requested = false;
+      }
+      glfwSwapBuffers(window);
+      ui.state().frame_ms = 1e3 * std::chrono::duration<double>(Clock::now() - now).count();
+      if (opt.timing) frame_ms.push_back(ui.state().frame_ms);
+      if (last_frame || finished_exit) break;
+    }
+    if (!opt.out_dir.empty()) sim::WriteRunOutputs(ui.session().exp(), opt.out_dir);
+    if (opt.timing && frame_ms.size() > 10) {
+      // Skip the first frames (font atlas upload, first layout).
+      auto mean = [](const std::vector<double>& v) {
+        double s = 0;
+        for (std::size_t i = 5; i < v.size(); ++i) s += v[i];
+        return s / static_cast<double>(v.size() - 5);
+      };
+      std::vector<double> sorted(frame_ms.begin() + 5, frame_ms.end());
+      std::sort(sorted.begin(), sorted.end());
+      std::fprintf(stderr,
+                   "gui: %zu frames at %dx%d: frame %.1f ms mean, %.1f ms median, %.1f ms p95 "
+                   "(sim %.1f, ImGui build %.1f, GL %.1f ms)\n",
+                   frame_ms.size(), opt.width, opt.height, mean(frame_ms),
+                   sorted[sorted.size() / 2], sorted[sorted.size() * 95 / 100], mean(sim_ms),
+                   mean(ui_ms), mean(gl_ms));
+    }
+    ImGui_ImplGlfw_Shutdown();
+  }
+  glfwDestroyWindow(window);
+  return exit_code;
+}
+
+}  // namespace formsim::app

@@ -1,0 +1,58 @@
+#include "app/imgui_layer.hpp"
+
+#include <imgui.h>
+#include <imgui_impl_opengl3.h>
+
+#include <stdexcept>
+
+#include "app/gl_api.hpp"
+
+namespace formsim::app {
+
+ImGuiLayer::ImGuiLayer() {
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;  // layout is computed, not remembered: same pictures every run
+  io.LogFilename = nullptr;
+  fonts_ = LoadFonts();
+
+  ImGui::StyleColorsLight();
+  ImGuiStyle& style = ImGui::GetStyle();
+  style.WindowRounding = 0.0f;
+  style.FrameRounding = 3.0f;
+  style.GrabRounding = 3.0f;
+  style.WindowBorderSize = 1.0f;
+  style.ItemSpacing = ImVec2(8, 5);
+  style.Colors[ImGuiCol_WindowBg] = ImVec4(0.96f, 0.96f, 0.95f, 1.0f);
+
+  if (!ImGui_ImplOpenGL3_Init("#version 330 core"))
+    throw std::runtime_error("ImGui OpenGL3 backend failed to initialise");
+}
+
+ImGuiLayer::~ImGuiLayer() {
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui::DestroyContext();
+}
+
+void ImGuiLayer::NewHeadlessFrame(int width, int height, float dt) {
+  ImGuiIO& io = ImGui::GetIO();
+  io.DisplaySize = ImVec2(static_cast<float>(width), static_cast<float>(height));
+  io.DisplayFramebufferScale = ImVec2(1, 1);
+  io.DeltaTime = dt > 0 ? dt : 1.0f / 30.0f;
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui::NewFrame();
+}
+
+void ImGuiLayer::NewFrame() {
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui::NewFrame();
+}
+
+void ImGuiLayer::Render(int fb_width, int fb_height, float r, float g, float b) {
+  ImGui::Render();
+  GlClear(fb_width, fb_height, r, g, b);
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+}  // namespace formsim::app

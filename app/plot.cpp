@@ -1,0 +1,493 @@
+#include "app/plot.hpp"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstdio>
+
+#include "app/imgui_draw_sink.hpp"
+#include "app/polyline_simplify.hpp"
+
+namespace formsim::app {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+ImFont* Or(ImFont* f) {
+  return f != nullptr ? f : ImGui::GetFont();
+}
+
+ImVec2 TextSize(ImFont* f, const std::string& s) {
+  return f->CalcTextSizeA(f->FontSize, FLT_MAX, 0.0f, s.c_str());
+}
+
+void Text(ImDrawList* dl, ImFont* f, ImVec2 pos, ImU32 col, const std::string& s) {
+  dl->AddText(f, f->FontSize, ImVec2(std::round(pos.x), std::round(pos.y)), col, s.c_str());
+}
+
+// Text rotated 90° counter-clockwise (reads bottom to top), centred on `center`: the usual
+// y-axis label. ImGui has no rotated text, so we rotate the glyph vertices after AddText.
+void TextVertical(ImDrawList* dl, ImFont* f, ImVec2 center, ImU32 col, const std::string& s) {
+  const ImVec2 ext = TextSize(f, s);
+  dl->PushClipRect(ImVec2(-1e5f, -1e5f), ImVec2(1e5f, 1e5f), false);  // no culling before rotating
+  const int v0 = dl->VtxBuffer.Size;
+  dl->AddText(f, f->FontSize,
+              ImVec2(std::round(center.x - ext.x / 2), std::round(center.y - ext.y / 2)), col,
+              s.c_str());
+  for (int i = v0; i < dl->VtxBuffer.Size; ++i) {
+    const ImVec2 p = dl->VtxBuffer[i].pos;
+    dl->VtxBuffer[i].pos = ImVec2(center.x + (p.y - center.y), center.y - (p.x - center.x));
+  }
+  dl->PopClipRect();
+}
+
+// "×10⁻⁴" with Unicode superscripts.
+std::string PowerLabel(int e) {
+  static const char* sup[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
+  std::string digits = std::to_string(std::abs(e)), out = "×10";
+  if (e < 0) out += "⁻";
+  for (char c : digits) out += sup[c - '0'];
+  return out;
+}
+
+// A shared power of ten for tick labels when the values are tiny or huge (distance errors of
+// order 1e-4 read better as "1.5" with "×10⁻⁴" than as "0.00015").
+int AxisExponent(double lo, double hi) {
+  const double m = std::max(std::abs(lo), std::abs(hi));
+  if (m == 0 || !std::isfinite(m)) return 0;
+  if (m < 1e-2 || m >= 1e5) return static_cast<int>(std::floor(std::log10(m)));
+  return 0;
+}
+
+struct Range {
+  double lo = kNaN, hi = kNaN;
+  void Add(double v) {
+    if (!std::isfinite(v)) return;
+    if (!(v >= lo)) lo = v;  // NaN-safe first value
+    if (!(v <= hi)) hi = v;
+  }
+  bool valid() const { return std::isfinite(lo) && std::isfinite(hi); }
+};
+
+// Screen points of a series. For x-sorted data with more points than pixels, each pixel column
+// keeps its first, min, max and last point (the shape is exact at screen resolution); otherwise
+// points closer than ~0.7 px are merged. Non-finite values split the line into runs.
+std::vector<std::vector<ImVec2>> ScreenRuns(const PlotSeries& s, double x0, double x1, double y0,
+                                            double y1, ImVec2 a, ImVec2 b) {
+  std::vector<std::vector<ImVec2>> runs;
+  const std::size_t n = std::min(s.x.size(), s.y.size());
+  const double sx = (b.x - a.x) / (x1 - x0), sy = (b.y - a.y) / (y1 - y0);
+  auto to_screen = [&](std::size_t i) {
+    return ImVec2(static_cast<float>(a.x + (s.x[i] - x0) * sx),
+                  static_cast<float>(b.y - (s.y[i] - y0) * sy));
+  };
+  bool sorted = true;
+  for (std::size_t i = 1; i < n && sorted; ++i) sorted = !(s.x[i] < s.x[i - 1]);
+  const bool bucket = sorted && n > static_cast<std::size_t>(2 * (b.x - a.x));
+  std::vector<ImVec2> run;
+  int col = INT32_MIN;
+  ImVec2 first, mn, mx, last;
+  std::size_t i_mn = 0, i_mx = 0;
+  // Emits the column's first, min, max and last points in the order they occurred, so the line
+  // never steps backwards (a 180° turn makes anti-aliased polyline joins blow up).
+  auto flush_col = [&]() {
+    if (col == INT32_MIN) return;
+    auto push = [&](ImVec2 p) {
+      if (run.empty() || run.back().x != p.x || run.back().y != p.y) run.push_back(p);
+    };
+    push(first);
+    if (i_mn < i_mx)
+      push(mn), push(mx);
+    else
+      push(mx), push(mn);
+    push(last);
+    col = INT32_MIN;
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) {
+      flush_col();
+      if (run.size() > 0) runs.push_back(std::move(run));
+      run.clear();
+      continue;
+    }
+    const ImVec2 p = to_screen(i);
+    if (bucket) {
+      const int c = static_cast<int>(std::floor(p.x));
+      if (c != col) {
+        flush_col();
+        col = c;
+        first = mn = mx = last = p;
+        i_mn = i_mx = i;
+      } else {
+        if (p.y < mn.y) mn = p, i_mn = i;
+        if (p.y > mx.y) mx = p, i_mx = i;
+        last = p;
+      }
+    } else if (run.empty() || std::abs(p.x - run.back().x) + std::abs(p.y - run.back().y) > 0.7f ||
+               i + 1 == n) {
+      run.push_back(p);
+    }
+  }
+  flush_col();
+  if (!run.empty()) runs.push_back(std::move(run));
+  if (!s.markers_only)
+    for (auto& r : runs) r = SimplifyPolyline(r);
+  return runs;
+}
+
+void DashedPolyline(ImDrawList* dl, const std::vector<ImVec2>& pts, ImU32 col, float th,
+                    float on = 8.0f, float off = 5.0f) {
+  float phase = 0;  // distance into the current on+off period
+  std::vector<ImVec2> dash;
+  for (std::size_t i = 1; i < pts.size(); ++i) {
+    ImVec2 a = pts[i - 1];
+    const ImVec2 b = pts[i];
+    float len = std::hypot(b.x - a.x, b.y - a.y);
+    while (len > 0) {
+      const bool drawing = phase < on;
+      const float left = drawing ? on - phase : on + off - phase;
+      const float step = std::min(left, len);
+      const ImVec2 c(a.x + (b.x - a.x) * step / len, a.y + (b.y - a.y) * step / len);
+      if (drawing) {
+        if (dash.empty()) dash.push_back(a);
+        dash.push_back(c);
+      }
+      phase += step;
+      if (drawing && phase >= on && dash.size() > 1) {
+        dl->AddPolyline(dash.data(), static_cast<int>(dash.size()), col, ImDrawFlags_None, th);
+        dash.clear();
+      }
+      if (phase >= on + off) phase = 0;
+      len -= step;
+      a = c;
+    }
+  }
+  if (dash.size() > 1)
+    dl->AddPolyline(dash.data(), static_cast<int>(dash.size()), col, ImDrawFlags_None, th);
+}
+
+void DashedLine(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 col, float th, float on, float off) {
+  DashedPolyline(dl, {a, b}, col, th, on, off);
+}
+
+}  // namespace
+
+std::vector<double> NiceTicks(double lo, double hi, int max_ticks, double* step_out) {
+  std::vector<double> ticks;
+  if (!(hi > lo) || !std::isfinite(lo) || !std::isfinite(hi)) return ticks;
+  max_ticks = std::max(2, max_ticks);
+  const double raw = (hi - lo) / max_ticks;
+  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+  const double norm = raw / mag;
+  const double step = (norm <= 1.0 ? 1.0 : norm <= 2.0 ? 2.0 : norm <= 5.0 ? 5.0 : 10.0) * mag;
+  for (double k = std::ceil(lo / step - 1e-9); k * step <= hi + 1e-9 * step; k += 1.0) {
+    double v = k * step;
+    if (std::abs(v) < 1e-12 * step) v = 0.0;  // no "-0"
+    ticks.push_back(v);
+  }
+  if (step_out != nullptr) *step_out = step;
+  return ticks;
+}
+
+std::string FormatTick(double value, double step, int exponent) {
+  const double scale = std::pow(10.0, -exponent);
+  const double v = value * scale, st = step * scale;
+  const int decimals = std::max(0, static_cast<int>(-std::floor(std::log10(st) + 1e-9)));
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "%.*f", std::min(decimals, 8), std::abs(v));
+  std::string s = buf;
+  const bool zero = std::abs(v) < 0.5 * std::pow(10.0, -decimals);
+  if (v < 0 && !zero) s = "−" + s;  // typographic minus
+  return s;
+}
+
+double SampleSeries(const PlotSeries& s, double x) {
+  const std::size_t n = std::min(s.x.size(), s.y.size());
+  if (n == 0 || !(x >= s.x.front()) || !(x <= s.x[n - 1])) return kNaN;
+  const auto it = std::lower_bound(s.x.begin(), s.x.begin() + static_cast<long>(n), x);
+  const std::size_t i = static_cast<std::size_t>(it - s.x.begin());
+  if (i == 0) return s.y[0];
+  const double t = (x - s.x[i - 1]) / (s.x[i] - s.x[i - 1]);
+  return s.y[i - 1] + t * (s.y[i] - s.y[i - 1]);
+}
+
+PlotLayout DrawPlot(ImDrawList* dl, ImVec2 min, ImVec2 max, const PlotData& data,
+                    const PlotStyle& st, double cursor_x) {
+  PlotLayout L;
+  ImFont* title_font = Or(st.title_font);
+  ImFont* label_font = Or(st.label_font);
+  ImFont* tick_font = Or(st.tick_font);
+  dl->AddRectFilled(min, max, st.background);
+
+  // ---- data ranges ----
+  Range rx, ry;
+  for (const auto& s : data.series) {
+    const std::size_t n = std::min(s.x.size(), s.y.size());
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+      rx.Add(s.x[i]);
+      ry.Add(s.y[i]);
+    }
+  }
+  for (double r : data.reference_lines) ry.Add(r);
+  if (std::isfinite(data.marker_x)) rx.Add(data.marker_x);
+  if (!rx.valid()) rx.lo = 0, rx.hi = 1;
+  if (!ry.valid()) ry.lo = 0, ry.hi = 1;
+  if (rx.hi - rx.lo < 1e-12) {
+    const double h = std::max(1e-9, std::abs(rx.lo) * 0.1) + (rx.lo == 0 ? 1 : 0);
+    rx.lo -= h, rx.hi += h;
+  }
+  if (ry.hi - ry.lo < 1e-300 || ry.hi - ry.lo < 1e-9 * std::max(std::abs(ry.lo), std::abs(ry.hi))) {
+    const double h = ry.lo == 0 ? 1.0 : std::abs(ry.lo) * 0.1;
+    ry.lo -= h, ry.hi += h;
+  }
+  double x0 = rx.lo, x1 = rx.hi;
+  const double ypad = 0.06 * (ry.hi - ry.lo);
+  double y0 = ry.lo - ypad, y1 = ry.hi + ypad;
+  if (data.equal_aspect) {
+    const double xpad = 0.06 * (x1 - x0);
+    x0 -= xpad, x1 += xpad;
+  }
+
+  // ---- frame layout (margins depend on tick label widths, so ticks first) ----
+  const float pad = st.padding;
+  const float title_h = (st.show_title && !data.title.empty()) ? title_font->FontSize + 8 : 0;
+  const float tick_h = tick_font->FontSize;
+  const float xlabel_h = data.x_label.empty() ? 0 : label_font->FontSize + 4;
+  const float ylabel_w = data.y_label.empty() ? 0 : label_font->FontSize + 6;
+  ImVec2 a, b;  // data area
+  int ex = 0, ey = 0;
+  double xstep = 1, ystep = 1;
+  float right_reserve = 0;  // room for a legend outside the axes, on the right
+  auto layout = [&]() {
+    const float top = min.y + pad + title_h + tick_h * 0.6f;
+    b.y = max.y - pad - xlabel_h - tick_h - 8;
+    a.y = top + (AxisExponent(y0, y1) != 0 ? tick_h + 2 : 0);
+    const int ny = std::max(2, static_cast<int>((b.y - a.y) / 45));
+    L.y_ticks = NiceTicks(y0, y1, ny, &ystep);
+    ey = AxisExponent(y0, y1);
+    float wmax = 0;
+    for (double t : L.y_ticks)
+      wmax = std::max(wmax, TextSize(tick_font, FormatTick(t, ystep, ey)).x);
+    a.x = min.x + pad + ylabel_w + wmax + 8;
+    b.x = max.x - pad - 14 - right_reserve;
+    // Whole pixels, so the frame, grid and ticks are crisp 1-px lines.
+    a = ImVec2(std::round(a.x), std::round(a.y));
+    b = ImVec2(std::round(b.x), std::round(b.y));
+    const int nx = std::max(2, static_cast<int>((b.x - a.x) / 90));
+    L.x_ticks = NiceTicks(x0, x1, nx, &xstep);
+    ex = AxisExponent(x0, x1);
+  };
+  // Same metres per pixel on both axes: widen whichever range is too narrow.
+  auto equalize = [&]() {
+    const double w = b.x - a.x, h = b.y - a.y;
+    const double sx = (x1 - x0) / w, sy = (y1 - y0) / h;
+    if (sx > sy) {
+      const double c = 0.5 * (y0 + y1), half = 0.5 * sx * h;
+      y0 = c - half, y1 = c + half;
+    } else {
+      const double c = 0.5 * (x0 + x1), half = 0.5 * sy * w;
+      x0 = c - half, x1 = c + half;
+    }
+    layout();
+  };
+  layout();
+  if (data.equal_aspect) equalize();
+
+  // ---- legend: pick the corner that covers the fewest data points; if all cover some, make
+  // headroom above the data (not for equal-aspect plots, which keep their scale) ----
+  std::vector<int> legend_items;
+  for (std::size_t i = 0; i < data.series.size(); ++i)
+    if (!data.series[i].label.empty()) legend_items.push_back(static_cast<int>(i));
+  ImVec2 leg_size(0, 0);
+  const float row_h = label_font->FontSize + 4, sample_w = 26;
+  int leg_cols = 1;
+  float col_w = 0;
+  if (!legend_items.empty()) {
+    float wmax = 0;
+    for (int i : legend_items) wmax = std::max(wmax, TextSize(label_font, data.series[i].label).x);
+    col_w = sample_w + 14 + wmax + 8;
+    // A tall legend goes to several columns, so it fits in a corner of a short plot.
+    const int n = static_cast<int>(legend_items.size());
+    while (leg_cols < 4 && leg_cols < n &&
+           row_h * ((n + leg_cols - 1) / leg_cols) + 8 > 0.4f * (b.y - a.y) &&
+           col_w * (leg_cols + 1) < 0.7f * (b.x - a.x))
+      ++leg_cols;
+    const int rows = (n + leg_cols - 1) / leg_cols;
+    leg_size = ImVec2(col_w * leg_cols, row_h * rows + 8);
+  }
+  auto corner_box = [&](int c, ImVec2& lo, ImVec2& hi) {
+    const float m = 6;
+    if (c < 0) {  // outside, right of the axes
+      lo = ImVec2(b.x + 10, a.y);
+      hi = ImVec2(lo.x + leg_size.x, lo.y + leg_size.y);
+      return;
+    }
+    lo.x = (c & 1) ? b.x - m - leg_size.x : a.x + m;
+    lo.y = (c & 2) ? b.y - m - leg_size.y : a.y + m;
+    hi = ImVec2(lo.x + leg_size.x, lo.y + leg_size.y);
+  };
+  auto count_inside = [&](ImVec2 lo, ImVec2 hi) {
+    long count = 0;
+    const double sx = (b.x - a.x) / (x1 - x0), sy = (b.y - a.y) / (y1 - y0);
+    for (const auto& s : data.series) {
+      const std::size_t n = std::min(s.x.size(), s.y.size());
+      const std::size_t stride = std::max<std::size_t>(1, n / 3000);
+      for (std::size_t i = 0; i < n; i += stride) {
+        const double px = a.x + (s.x[i] - x0) * sx, py = b.y - (s.y[i] - y0) * sy;
+        if (px >= lo.x - 4 && px <= hi.x + 4 && py >= lo.y - 4 && py <= hi.y + 4) ++count;
+      }
+    }
+    for (double r : data.reference_lines) {
+      const double py = b.y - (r - y0) * sy;
+      if (py >= lo.y - 3 && py <= hi.y + 3) count += 50;
+    }
+    return count;
+  };
+  int corner = 1;  // top-right
+  if (!legend_items.empty()) {
+    long best = -1;
+    for (int c : {1, 0, 3, 2}) {
+      ImVec2 lo, hi;
+      corner_box(c, lo, hi);
+      const long n = count_inside(lo, hi);
+      if (best < 0 || n < best) best = n, corner = c;
+    }
+    const float f = (leg_size.y + 12) / std::max(1.0f, b.y - a.y);
+    if (best > 0 && !data.equal_aspect && f < 0.45f) {
+      // Raise the top of the y range until the top band of height f is empty of data.
+      y1 = (ry.hi + ypad * 0.3 - y0 * f) / (1 - f);
+      layout();
+      long best2 = -1;
+      for (int c : {1, 0}) {
+        ImVec2 lo, hi;
+        corner_box(c, lo, hi);
+        const long n = count_inside(lo, hi);
+        if (best2 < 0 || n < best2) best2 = n, corner = c;
+      }
+    } else if (best > 0) {
+      // No free corner and no room above the data: the legend goes outside, right of the axes,
+      // in as many columns as its height needs.
+      const int n = static_cast<int>(legend_items.size());
+      const float avail_h = std::max(row_h, b.y - a.y - 8);
+      const int rows = std::max(1, static_cast<int>(avail_h / row_h));
+      const int cols = (n + rows - 1) / rows;
+      const float w = cols * col_w;
+      if (w < 0.4f * (max.x - min.x)) {
+        leg_cols = cols;
+        leg_size = ImVec2(w, row_h * ((n + cols - 1) / cols) + 8);
+        right_reserve = w + 4;
+        layout();
+        if (data.equal_aspect) equalize();
+        corner = -1;
+      }
+    }
+  }
+  L.area_min = a, L.area_max = b;
+  L.x0 = x0, L.x1 = x1, L.y0 = y0, L.y1 = y1;
+  auto X = [&](double v) { return static_cast<float>(a.x + (v - x0) * (b.x - a.x) / (x1 - x0)); };
+  auto Y = [&](double v) { return static_cast<float>(b.y - (v - y0) * (b.y - a.y) / (y1 - y0)); };
+
+  // ---- title, grid, ticks, labels ----
+  if (title_h > 0) {
+    const ImVec2 ts = TextSize(title_font, data.title);
+    Text(dl, title_font, ImVec2(0.5f * (a.x + b.x) - ts.x / 2, min.y + pad), st.text_color,
+         data.title);
+  }
+  // Grid and ticks as 1-px rectangles on whole pixels (sharp on screen and in PNGs).
+  auto px_col = [&](double v) { return std::floor(X(v)); };
+  auto px_row = [&](double v) { return std::floor(Y(v)); };
+  for (double t : L.x_ticks)
+    dl->AddRectFilled(ImVec2(px_col(t), a.y), ImVec2(px_col(t) + 1, b.y), st.grid_color);
+  for (double t : L.y_ticks)
+    dl->AddRectFilled(ImVec2(a.x, px_row(t)), ImVec2(b.x, px_row(t) + 1), st.grid_color);
+  for (double t : L.x_ticks) {
+    const float x = X(t);
+    dl->AddRectFilled(ImVec2(px_col(t), b.y - 5), ImVec2(px_col(t) + 1, b.y), st.axis_color);
+    const std::string s = FormatTick(t, xstep, ex);
+    const ImVec2 ts = TextSize(tick_font, s);
+    Text(dl, tick_font, ImVec2(x - ts.x / 2, b.y + 5), st.text_color, s);
+  }
+  for (double t : L.y_ticks) {
+    const float y = Y(t);
+    dl->AddRectFilled(ImVec2(a.x, px_row(t)), ImVec2(a.x + 5, px_row(t) + 1), st.axis_color);
+    const std::string s = FormatTick(t, ystep, ey);
+    const ImVec2 ts = TextSize(tick_font, s);
+    Text(dl, tick_font, ImVec2(a.x - 6 - ts.x, y - ts.y / 2), st.text_color, s);
+  }
+  if (ey != 0) Text(dl, tick_font, ImVec2(a.x, a.y - tick_h - 3), st.text_color, PowerLabel(ey));
+  if (ex != 0) {
+    const std::string s = PowerLabel(ex);
+    Text(dl, tick_font, ImVec2(b.x - TextSize(tick_font, s).x, b.y + 5 + tick_h + 2), st.text_color,
+         s);
+  }
+  if (!data.x_label.empty()) {
+    const ImVec2 ts = TextSize(label_font, data.x_label);
+    Text(dl, label_font, ImVec2(0.5f * (a.x + b.x) - ts.x / 2, max.y - pad - ts.y), st.text_color,
+         data.x_label);
+  }
+  if (!data.y_label.empty())
+    TextVertical(dl, label_font, ImVec2(min.x + pad + label_font->FontSize / 2, 0.5f * (a.y + b.y)),
+                 st.text_color, data.y_label);
+
+  // ---- data ----
+  dl->PushClipRect(a, b, true);
+  for (double r : data.reference_lines)
+    DashedLine(dl, ImVec2(a.x, Y(r)), ImVec2(b.x, Y(r)), IM_COL32(110, 110, 110, 255), 1.2f, 6, 4);
+  if (!data.error.empty()) {
+    Text(dl, label_font, ImVec2(a.x + 8, a.y + 8), IM_COL32(180, 30, 30, 255), data.error);
+  }
+  for (const auto& s : data.series) {
+    const ImU32 col = ToImColor(s.color);
+    for (const auto& run : ScreenRuns(s, x0, x1, y0, y1, a, b)) {
+      if (s.markers_only) {
+        for (const ImVec2& p : run) dl->AddCircleFilled(p, 2.6f, col, 8);
+      } else if (s.dashed) {
+        DashedPolyline(dl, run, col, st.line_width);
+      } else if (run.size() > 1) {
+        dl->AddPolyline(run.data(), static_cast<int>(run.size()), col, ImDrawFlags_None,
+                        st.line_width);
+      } else {
+        dl->AddCircleFilled(run[0], st.line_width, col, 8);
+      }
+    }
+  }
+  if (std::isfinite(data.marker_x))
+    DashedLine(dl, ImVec2(X(data.marker_x), a.y), ImVec2(X(data.marker_x), b.y),
+               IM_COL32(200, 40, 40, 255), 1.5f, 5, 3);
+  if (std::isfinite(cursor_x) && cursor_x >= x0 && cursor_x <= x1)
+    dl->AddLine(ImVec2(X(cursor_x), a.y), ImVec2(X(cursor_x), b.y), IM_COL32(60, 60, 60, 160),
+                1.0f);
+  dl->PopClipRect();
+  // The frame: 1-px lines on the pixel column/row just outside the data area on the left and
+  // top, and on the last column/row of it on the right and bottom (ImGui insets by 0.5 px).
+  dl->AddRect(ImVec2(a.x - 1, a.y - 1), ImVec2(b.x + 1, b.y + 1), st.axis_color, 0, 0, 1.0f);
+
+  // ---- legend ----
+  if (!legend_items.empty()) {
+    ImVec2 lo, hi;
+    corner_box(corner, lo, hi);
+    L.legend_min = lo, L.legend_max = hi;
+    dl->AddRectFilled(lo, hi, IM_COL32(255, 255, 255, 235), 3.0f);
+    dl->AddRect(lo, hi, IM_COL32(170, 170, 170, 255), 3.0f);
+    for (std::size_t k = 0; k < legend_items.size(); ++k) {
+      const auto& s = data.series[legend_items[k]];
+      const ImU32 col = ToImColor(s.color);
+      const float x = lo.x + col_w * static_cast<float>(k % leg_cols);
+      const float y = lo.y + 4 + row_h * static_cast<float>(k / leg_cols);
+      const float cy = y + row_h / 2;
+      const ImVec2 p0(x + 7, cy), p1(x + 7 + sample_w, cy);
+      if (s.markers_only) {
+        dl->AddCircleFilled(ImVec2(0.5f * (p0.x + p1.x), cy), 3.0f, col, 8);
+      } else if (s.dashed) {
+        DashedLine(dl, p0, p1, col, st.line_width, 7, 4);
+      } else {
+        dl->AddLine(p0, p1, col, st.line_width);
+      }
+      Text(dl, label_font, ImVec2(p1.x + 7, y + 2), st.text_color, s.label);
+    }
+  }
+  return L;
+}
+
+}  // namespace formsim::app

@@ -1,0 +1,70 @@
+#pragma once
+/// \file Our plot widget (ImPlot is not packaged in Debian): axes with ticks and units, grid,
+/// several series with a legend placed off the data, autoscale, a time cursor, horizontal
+/// reference lines, dashed and marker series and an equal-aspect mode. Drawn into any ImGui
+/// draw list: live in the GUI, and into white PNGs for exported figures.
+
+#include <imgui.h>
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "sim/core/draw.hpp"
+
+namespace formsim::app {
+
+struct PlotSeries {
+  std::string label;
+  std::vector<double> x, y;
+  sim::Color color;
+  bool dashed = false;
+  bool markers_only = false;
+};
+
+/// What to draw: a sim::FigureSpec resolved against recorded data (see figure_data.hpp).
+struct PlotData {
+  std::string title, x_label, y_label;
+  std::vector<PlotSeries> series;
+  std::vector<double> reference_lines;
+  bool equal_aspect = false;
+  double marker_x = std::numeric_limits<double>::quiet_NaN();
+  bool x_is_time = false;  ///< every series is plotted against "t" (a time cursor makes sense)
+  std::string error;       ///< shown instead of data when the figure could not be resolved
+};
+
+struct PlotStyle {
+  ImFont* title_font = nullptr;  ///< nullptr: ImGui's current font
+  ImFont* label_font = nullptr;
+  ImFont* tick_font = nullptr;
+  bool show_title = true;
+  float line_width = 2.0f;
+  ImU32 background = IM_COL32(255, 255, 255, 255);
+  ImU32 axis_color = IM_COL32(40, 40, 40, 255);
+  ImU32 grid_color = IM_COL32(225, 225, 225, 255);
+  ImU32 text_color = IM_COL32(20, 20, 20, 255);
+  float padding = 10.0f;
+};
+
+/// Where things ended up, for hit-testing and tests.
+struct PlotLayout {
+  ImVec2 area_min, area_max;  ///< the data area (inside the axes)
+  double x0 = 0, x1 = 1, y0 = 0, y1 = 1;
+  ImVec2 legend_min, legend_max;  ///< zero size when there is no legend
+  std::vector<double> x_ticks, y_ticks;
+};
+
+/// "Nice" tick values (1, 2, 5 × 10^k) covering [lo, hi] with at most about `max_ticks` ticks.
+std::vector<double> NiceTicks(double lo, double hi, int max_ticks, double* step = nullptr);
+/// Tick label for `value` given the tick step and a shared power of ten `exponent`.
+std::string FormatTick(double value, double step, int exponent);
+
+/// Draws the plot into `dl` inside [min, max]. `cursor_x` (NaN: none) draws a time cursor.
+PlotLayout DrawPlot(ImDrawList* dl, ImVec2 min, ImVec2 max, const PlotData& data,
+                    const PlotStyle& style,
+                    double cursor_x = std::numeric_limits<double>::quiet_NaN());
+
+/// Value of a series at x by linear interpolation (x ascending); NaN outside or when empty.
+double SampleSeries(const PlotSeries& s, double x);
+
+}  // namespace formsim::app

@@ -1,0 +1,343 @@
+#include "app/ui.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include "app/scenario_files.hpp"
+
+namespace fs = std::filesystem;
+
+namespace formsim::app {
+
+const std::vector<double>& SpeedChoices() {
+  static const std::vector<double> kSpeeds = {0.1, 0.25, 0.5, 1.0, 2.0, 5.0, 10.0, 0.0};
+  return kSpeeds;
+}
+
+namespace {
+
+std::string SpeedLabel(double s) {
+  if (s == 0.0) return "max";
+  char buf[16];
+  std::snprintf(buf, sizeof(buf), "%g×", s);
+  return buf;
+}
+
+void CopyString(char* dst, std::size_t n, const std::string& s) {
+  std::snprintf(dst, n, "%s", s.c_str());
+}
+
+}  // namespace
+
+AppUi::AppUi(std::unique_ptr<Session> session) : owned_(std::move(session)) {
+  session_ = owned_.get();
+  shipped_ = ShippedScenarios();
+  Open("");  // initialise the per-scenario fields for the loaded session
+}
+
+AppUi::AppUi(Session& borrowed) : session_(&borrowed) {
+  shipped_ = ShippedScenarios();
+  Open("");
+}
+
+void AppUi::Open(const std::string& file) {
+  if (!file.empty()) {
+    try {
+      owned_ = std::make_unique<Session>(file, std::vector<std::string>{}, -1);
+      session_ = owned_.get();
+      state_.status = "loaded " + file;
+    } catch (const std::exception& e) {
+      state_.status = std::string("cannot load: ") + e.what();
+      return;
+    }
+  }
+  const std::string current = session_->file();
+  for (std::size_t i = 0; i < shipped_.size(); ++i)
+    if (fs::path(shipped_[i]).filename() == fs::path(current).filename())
+      shipped_index_ = static_cast<int>(i);
+  CopyString(state_.open_path, sizeof(state_.open_path), current);
+  CopyString(state_.save_path, sizeof(state_.save_path),
+             fs::path(current).stem().string() + "_tuned.yaml");
+  state_.seed_input = static_cast<long long>(session_->seed());
+  state_.plot_open.assign(session_->exp().Figures().size(), 1);
+  state_.follow = -1;
+  state_.auto_fit = true;
+  state_.fit_now = true;
+  state_.step_budget = 0;
+  auto_fit_.Reset();
+}
+
+void AppUi::Advance(double wall_dt) {
+  using Clock = std::chrono::steady_clock;
+  sim::Experiment& exp = session_->exp();
+  const auto t0 = Clock::now();
+  int steps = 0;
+  // While paused, drags and edits still apply at once (between steps, as always).
+  session_->ApplyPending();
+  if (state_.playing && !exp.finished()) {
+    const double speed = SpeedChoices()[state_.speed_index];
+    if (speed == 0.0) {
+      // As fast as possible, but leave the frame responsive: ~15 ms of stepping per frame.
+      while (!session_->exp().finished()) {
+        session_->Step();
+        if ((++steps & 7) == 0 && std::chrono::duration<double>(Clock::now() - t0).count() > 0.015)
+          break;
+      }
+      state_.step_budget = 0;
+    } else {
+      state_.step_budget = std::min(state_.step_budget + wall_dt * speed, 0.25 * speed + exp.dt());
+      while (state_.step_budget >= 0.5 * exp.dt() && !session_->exp().finished()) {
+        session_->Step();
+        ++steps;
+        state_.step_budget -= session_->exp().dt();
+        if (std::chrono::duration<double>(Clock::now() - t0).count() > 0.05) {
+          state_.step_budget = 0;  // cannot keep up: slow down rather than freeze
+          break;
+        }
+      }
+    }
+    if (session_->exp().finished()) {
+      state_.playing = false;
+      state_.status = "finished at t = " + std::to_string(session_->exp().time()) + " s";
+    }
+  }
+  state_.steps_last_frame = steps;
+  state_.sim_ms = 1e3 * std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+void AppUi::HandleKeys() {
+  ImGuiIO& io = ImGui::GetIO();
+  if (io.WantTextInput) return;
+  // ImGui 1.86 maps only a few named keys, so shortcuts read the typed characters.
+  for (int i = 0; i < io.InputQueueCharacters.Size; ++i) {
+    switch (io.InputQueueCharacters[i]) {
+      case ' ':
+        state_.playing = !state_.playing;
+        break;
+      case '.':
+        state_.playing = false;
+        session_->Step();
+        break;
+      case 'r':
+        session_->Reset();
+        state_.status = "reset";
+        break;
+      case 's':
+        state_.screenshot_requested = true;
+        break;
+      case 'f':
+        state_.fit_now = true;
+        state_.follow = -1;
+        break;
+      default:
+        break;
+    }
+  }
+}
+
+void AppUi::Draw(ImVec2 display, const Fonts& fonts, bool interactive) {
+  if (interactive) HandleKeys();
+  const float left_w = std::clamp(display.x * 0.24f, 290.0f, 400.0f);
+  const float right_w = std::clamp(display.x * 0.34f, 340.0f, 640.0f);
+  const float mid_w = std::max(200.0f, display.x - left_w - right_w);
+
+  ImGui::SetNextWindowPos(ImVec2(0, 0));
+  ImGui::SetNextWindowSize(ImVec2(left_w, display.y));
+  ImGui::Begin("formsim", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+  DrawControlPanel(fonts, interactive);
+  ImGui::End();
+
+  DrawWorldWindow(ImVec2(left_w, 0), ImVec2(mid_w, display.y), fonts, interactive);
+  DrawPlotsWindow(ImVec2(left_w + mid_w, 0), ImVec2(display.x - left_w - mid_w, display.y), fonts);
+}
+
+void AppUi::DrawControlPanel(const Fonts& fonts, bool interactive) {
+  (void)fonts;
+  (void)interactive;
+  if (ImGui::CollapsingHeader("Scenario", ImGuiTreeNodeFlags_DefaultOpen)) DrawScenarioSection();
+  if (ImGui::CollapsingHeader("Run", ImGuiTreeNodeFlags_DefaultOpen)) DrawRunSection();
+  DrawParamSection();
+  if (ImGui::CollapsingHeader("View")) DrawViewSection();
+  DrawMessagesSection();
+}
+
+void AppUi::DrawScenarioSection() {
+  const sim::ExperimentSetup& setup = session_->exp().setup();
+  ImGui::TextWrapped("%s", setup.name.c_str());
+  if (!setup.description.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.35f, 0.35f, 0.35f, 1));
+    ImGui::TextWrapped("%s", setup.description.c_str());
+    ImGui::PopStyleColor();
+  }
+  if (!shipped_.empty()) {
+    const std::string preview = fs::path(shipped_[shipped_index_]).stem().string();
+    ImGui::SetNextItemWidth(-70);
+    if (ImGui::BeginCombo("##shipped", preview.c_str())) {
+      for (std::size_t i = 0; i < shipped_.size(); ++i) {
+        const std::string stem = fs::path(shipped_[i]).stem().string();
+        if (ImGui::Selectable(stem.c_str(), static_cast<int>(i) == shipped_index_))
+          shipped_index_ = static_cast<int>(i);
+      }
+      ImGui::EndCombo();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Load")) Open(shipped_[shipped_index_]);
+  }
+  ImGui::SetNextItemWidth(-70);
+  ImGui::InputText("##open", state_.open_path, sizeof(state_.open_path));
+  ImGui::SameLine();
+  if (ImGui::Button("Open")) Open(state_.open_path);
+  if (ImGui::Button("Reload file")) Open(session_->file());
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Reload from disk, dropping the tuned values");
+
+  ImGui::SetNextItemWidth(-70);
+  ImGui::InputText("##save", state_.save_path, sizeof(state_.save_path));
+  ImGui::SameLine();
+  if (ImGui::Button("Save")) {
+    try {
+      if (session_->Save(state_.save_path) == Session::SaveResult::kNeedsConfirmation)
+        confirm_overwrite_ = true;
+      else
+        state_.status = std::string("saved ") + state_.save_path;
+    } catch (const std::exception& e) {
+      state_.status = std::string("save failed: ") + e.what();
+    }
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Write the scenario with the tuned parameters as YAML");
+  if (confirm_overwrite_) ImGui::OpenPopup("Overwrite?");
+  if (ImGui::BeginPopupModal("Overwrite?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    const bool shipped = Session::IsShipped(state_.save_path);
+    ImGui::Text("%s already exists%s.", state_.save_path,
+                shipped ? " and is a shipped scenario" : "");
+    ImGui::Text("Overwrite it?");
+    if (ImGui::Button("Overwrite")) {
+      try {
+        session_->Save(state_.save_path, true);
+        state_.status = std::string("saved ") + state_.save_path;
+      } catch (const std::exception& e) {
+        state_.status = std::string("save failed: ") + e.what();
+      }
+      confirm_overwrite_ = false;
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel")) {
+      confirm_overwrite_ = false;
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::EndPopup();
+  }
+  if (session_->accepted_edits() > 0)
+    ImGui::TextDisabled("%d edit%s since loading (Save keeps them)", session_->accepted_edits(),
+                        session_->accepted_edits() == 1 ? "" : "s");
+}
+
+void AppUi::DrawRunSection() {
+  sim::Experiment& exp = session_->exp();
+  if (ImGui::Button(state_.playing ? "Pause" : "Play", ImVec2(70, 0)))
+    state_.playing = !state_.playing;
+  ImGui::SameLine();
+  if (ImGui::Button("Step")) {
+    state_.playing = false;
+    session_->Step();
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Reset")) {
+    session_->Reset();
+    state_.status = "reset";
+  }
+  ImGui::SameLine();
+  ImGui::TextDisabled("(space . r)");
+
+  const auto& speeds = SpeedChoices();
+  ImGui::SetNextItemWidth(120);
+  int si = state_.speed_index;
+  if (ImGui::SliderInt("speed", &si, 0, static_cast<int>(speeds.size()) - 1,
+                       SpeedLabel(speeds[si]).c_str(), ImGuiSliderFlags_AlwaysClamp))
+    state_.speed_index = std::clamp(si, 0, static_cast<int>(speeds.size()) - 1);
+
+  ImGui::SetNextItemWidth(120);
+  ImGui::InputScalar("seed", ImGuiDataType_S64, &state_.seed_input);
+  ImGui::SameLine();
+  if (ImGui::Button("Reset with seed")) {
+    if (state_.seed_input < 0) state_.seed_input = 0;
+    session_->Reset(state_.seed_input);
+    state_.status = "reset with seed " + std::to_string(state_.seed_input);
+  }
+
+  const double dur = exp.setup().duration;
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "t = %.2f / %.1f s", exp.time(), dur);
+  ImGui::ProgressBar(static_cast<float>(std::clamp(exp.time() / dur, 0.0, 1.0)), ImVec2(-1, 0),
+                     buf);
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+  ImGui::TextWrapped("%ld steps of %.3g s; last frame: %d steps, sim %.1f ms, frame %.1f ms",
+                     exp.steps(), exp.dt(), state_.steps_last_frame, state_.sim_ms,
+                     state_.frame_ms);
+  ImGui::PopStyleColor();
+}
+
+void AppUi::DrawViewSection() {
+  if (ImGui::Button("Fit all (f)")) {
+    state_.fit_now = true;
+    state_.follow = -1;
+  }
+  ImGui::SameLine();
+  ImGui::Checkbox("auto-fit", &state_.auto_fit);
+  ImGui::SameLine();
+  ImGui::Checkbox("whole run", &state_.whole_run);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "auto-fit keeps everything seen since the start in view\n(off: follows the robots)");
+  const auto& robots = session_->exp().world().robots();
+  std::string preview = state_.follow >= 0 && state_.follow < static_cast<int>(robots.size())
+                            ? robots[state_.follow]->name()
+                            : "nobody";
+  ImGui::SetNextItemWidth(140);
+  if (ImGui::BeginCombo("follow", preview.c_str())) {
+    if (ImGui::Selectable("nobody", state_.follow < 0)) state_.follow = -1;
+    for (std::size_t i = 0; i < robots.size(); ++i)
+      if (ImGui::Selectable(robots[i]->name().c_str(), state_.follow == static_cast<int>(i))) {
+        state_.follow = static_cast<int>(i);
+        state_.auto_fit = false;
+      }
+    ImGui::EndCombo();
+  }
+  float zoom = static_cast<float>(state_.view.scale);
+  ImGui::SetNextItemWidth(140);
+  if (ImGui::SliderFloat("px per m", &zoom, 2.0f, 2000.0f, "%.0f", ImGuiSliderFlags_Logarithmic)) {
+    state_.view.scale = std::max(0.5f, zoom);
+    state_.auto_fit = false;
+  }
+  ImGui::Checkbox("grid", &state_.grid);
+  ImGui::SameLine();
+  ImGui::Checkbox("coordinates", &state_.coordinates);
+  if (ImGui::Button("Screenshot (s)")) state_.screenshot_requested = true;
+  ImGui::TextDisabled("wheel: zoom, right-drag: pan,\nleft-drag a robot or obstacle while paused");
+}
+
+void AppUi::DrawMessagesSection() {
+  const auto& rejected = session_->rejected();
+  const auto& events = session_->exp().events();
+  char title[64];
+  std::snprintf(title, sizeof(title), "Messages (%zu rejected, %zu events)###messages",
+                rejected.size(), events.size());
+  if (!state_.status.empty()) ImGui::TextWrapped("%s", state_.status.c_str());
+  if (!ImGui::CollapsingHeader(title, rejected.empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen))
+    return;
+  ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.75f, 0.1f, 0.1f, 1));
+  for (auto it = rejected.rbegin(); it != rejected.rend() && it - rejected.rbegin() < 8; ++it)
+    ImGui::TextWrapped("%s", it->c_str());
+  ImGui::PopStyleColor();
+  const std::size_t first = events.size() > 12 ? events.size() - 12 : 0;
+  for (std::size_t i = events.size(); i-- > first;)
+    ImGui::TextWrapped("%.2f s %s %s: %s", events[i].time, events[i].kind.c_str(),
+                       events[i].robots.c_str(), events[i].message.c_str());
+}
+
+}  // namespace formsim::app

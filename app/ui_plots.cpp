@@ -1,0 +1,122 @@
+/// \file The right-hand window: live plots of the experiment's figures (our plot widget, with a
+/// time cursor), its tables (with firing-strength bars) and the summary with events.
+#include <algorithm>
+#include <cmath>
+
+#include "app/figure_data.hpp"
+#include "app/ui.hpp"
+
+namespace formsim::app {
+
+void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
+  ImGui::SetNextWindowPos(pos);
+  ImGui::SetNextWindowSize(size);
+  ImGui::Begin("Plots###plots", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoTitleBar);
+  const sim::Experiment& exp = session_->exp();
+  if (ImGui::BeginTabBar("tabs")) {
+    if (ImGui::BeginTabItem("Plots")) {
+      const auto figures = exp.Figures();
+      if (state_.plot_open.size() != figures.size()) state_.plot_open.assign(figures.size(), 1);
+      // Toggles for each figure, then the open ones stacked (scrolling when they do not fit).
+      for (std::size_t i = 0; i < figures.size(); ++i) {
+        if (i > 0) ImGui::SameLine();
+        bool open = state_.plot_open[i] != 0;
+        const std::string id = figures[i].id + "##toggle";
+        if (ImGui::Checkbox(id.c_str(), &open)) state_.plot_open[i] = open;
+        if (ImGui::GetContentRegionAvail().x < 120 && i + 1 < figures.size()) ImGui::NewLine();
+      }
+      ImGui::BeginChild("plot_list", ImVec2(0, 0), false);
+      int open_count = 0;
+      for (char c : state_.plot_open) open_count += c != 0;
+      const float avail_h = ImGui::GetContentRegionAvail().y;
+      const float h = std::max(220.0f, open_count > 0 ? avail_h / std::min(open_count, 3) - 6 : 0);
+      PlotStyle style;
+      style.title_font = fonts.label;
+      style.label_font = fonts.ui;
+      style.tick_font = fonts.small;
+      style.line_width = 1.6f;
+      style.padding = 6;
+      for (std::size_t i = 0; i < figures.size(); ++i) {
+        if (!state_.plot_open[i]) continue;
+        const ImVec2 p0 = ImGui::GetCursorScreenPos();
+        const float w = ImGui::GetContentRegionAvail().x;
+        ImGui::Dummy(ImVec2(w, h));
+        if (!ImGui::IsItemVisible()) continue;  // scrolled away: skip the work
+        const PlotData data = ResolveFigure(figures[i], exp.recorder());
+        const PlotLayout L = DrawPlot(ImGui::GetWindowDrawList(), p0, ImVec2(p0.x + w, p0.y + h),
+                                      data, style, data.x_is_time ? exp.time() : std::nan(""));
+        // Hovering shows each series' value under the mouse.
+        if (ImGui::IsItemHovered() && !data.equal_aspect) {
+          const ImVec2 m = ImGui::GetIO().MousePos;
+          if (m.x >= L.area_min.x && m.x <= L.area_max.x) {
+            const double x =
+                L.x0 + (m.x - L.area_min.x) / (L.area_max.x - L.area_min.x) * (L.x1 - L.x0);
+            ImGui::BeginTooltip();
+            ImGui::Text("%s = %.4g", data.x_label.c_str(), x);
+            for (const auto& s : data.series) {
+              const double y = SampleSeries(s, x);
+              if (std::isfinite(y))
+                ImGui::TextColored(ImVec4(s.color.r, s.color.g, s.color.b, 1), "%s: %.5g",
+                                   s.label.c_str(), y);
+            }
+            ImGui::EndTooltip();
+          }
+        }
+      }
+      ImGui::EndChild();
+      ImGui::EndTabItem();
+    }
+    const auto tables = exp.Tables();
+    if (!tables.empty() && ImGui::BeginTabItem("Tables")) {
+      for (std::size_t t = 0; t < tables.size(); ++t) {
+        const sim::TableSpec& spec = tables[t];
+        ImGui::TextUnformatted(spec.title.c_str());
+        const int cols = static_cast<int>(spec.header.size()) + (spec.row_strength.empty() ? 0 : 1);
+        if (cols == 0) continue;
+        ImGui::PushID(static_cast<int>(t));
+        if (ImGui::BeginTable("tbl", cols,
+                              ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg |
+                                  ImGuiTableFlags_SizingStretchProp)) {
+          for (const auto& h : spec.header) ImGui::TableSetupColumn(h.c_str());
+          if (!spec.row_strength.empty()) ImGui::TableSetupColumn("strength");
+          ImGui::TableHeadersRow();
+          for (std::size_t r = 0; r < spec.rows.size(); ++r) {
+            ImGui::TableNextRow();
+            for (std::size_t c = 0; c < spec.header.size(); ++c) {
+              ImGui::TableSetColumnIndex(static_cast<int>(c));
+              if (c < spec.rows[r].size()) ImGui::TextUnformatted(spec.rows[r][c].c_str());
+            }
+            if (!spec.row_strength.empty()) {
+              ImGui::TableSetColumnIndex(static_cast<int>(spec.header.size()));
+              const double s = r < spec.row_strength.size() ? spec.row_strength[r] : 0.0;
+              ImGui::ProgressBar(
+                  static_cast<float>(std::clamp(std::isfinite(s) ? s : 0.0, 0.0, 1.0)),
+                  ImVec2(-1, 0));
+            }
+          }
+          ImGui::EndTable();
+        }
+        ImGui::PopID();
+        ImGui::Spacing();
+      }
+      ImGui::EndTabItem();
+    }
+    if (ImGui::BeginTabItem("Summary")) {
+      ImGui::PushFont(fonts.mono);
+      ImGui::TextUnformatted(exp.SummaryTable().c_str());
+      ImGui::PopFont();
+      ImGui::Separator();
+      ImGui::Text("%zu events", exp.events().size());
+      for (const auto& e : exp.events())
+        ImGui::TextWrapped("%.2f s  %s  %s: %s", e.time, e.kind.c_str(), e.robots.c_str(),
+                           e.message.c_str());
+      ImGui::EndTabItem();
+    }
+    ImGui::EndTabBar();
+  }
+  ImGui::End();
+}
+
+}  // namespace formsim::app

@@ -1,0 +1,117 @@
+/// \file The world-view window of the interface: view updates (auto-fit, follow), drawing, and
+/// the mouse: wheel zoom, right/middle-drag pan, left-drag of robots and obstacles while paused.
+#include <algorithm>
+#include <cmath>
+
+#include "app/ui.hpp"
+#include "app/world_view.hpp"
+
+namespace formsim::app {
+
+void AppUi::UpdateView(ImVec2 min, ImVec2 max) {
+  View& v = state_.view;
+  v.min = min, v.max = max;
+  const sim::Experiment& exp = session_->exp();
+  Vec2 lo, hi;
+  exp.Bounds(lo, hi);
+  auto_fit_.set_mode(state_.whole_run ? AutoFit::Mode::kGrow : AutoFit::Mode::kTrack);
+  if (state_.fit_now) {
+    if (!state_.whole_run) auto_fit_.Reset();
+    state_.auto_fit = true;
+    state_.fit_now = false;
+    auto_fit_.Update(v, lo, hi, 1.0);
+  } else if (state_.auto_fit) {
+    auto_fit_.Update(v, lo, hi, 0.15);
+  }
+  const auto& robots = exp.world().robots();
+  if (state_.follow >= 0 && state_.follow < static_cast<int>(robots.size()))
+    v.center = robots[state_.follow]->pose().p();
+}
+
+void AppUi::TrackBounds() {
+  if (!state_.whole_run) return;
+  Vec2 lo, hi;
+  session_->exp().Bounds(lo, hi);
+  auto_fit_.Include(lo, hi);
+}
+
+void AppUi::DrawWorldMouse(const View& view) {
+  ImGuiIO& io = ImGui::GetIO();
+  const bool hovered = ImGui::IsItemHovered();
+  sim::Experiment& exp = session_->exp();
+  if (hovered && io.MouseWheel != 0) {
+    state_.view.ZoomAt(io.MousePos, std::pow(1.15, io.MouseWheel));
+    state_.auto_fit = false;
+  }
+  if (ImGui::IsItemActive() && (ImGui::IsMouseDragging(ImGuiMouseButton_Right) ||
+                                ImGui::IsMouseDragging(ImGuiMouseButton_Middle))) {
+    state_.view.Pan(io.MouseDelta);
+    state_.auto_fit = false;
+    state_.follow = -1;
+  }
+  // Picking: the nearest robot (or obstacle centre) within a few pixels of its outline.
+  if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+    state_.drag_name.clear();
+    const Vec2 m = view.ToWorld(io.MousePos);
+    double best = 1e300;
+    for (const auto& r : exp.world().robots()) {
+      const double reach = std::max(r->def().half_length, r->def().radius) + 8.0 / view.scale;
+      const double d = (r->pose().p() - m).Norm();
+      if (d < reach && d < best) best = d, state_.drag_name = r->name();
+    }
+    if (state_.drag_name.empty()) {
+      for (const auto& o : exp.world().obstacles()) {
+        if (o.shape == sim::ObstacleDef::Shape::kWall) continue;
+        const double reach =
+            (o.shape == sim::ObstacleDef::Shape::kCircle ? o.radius
+                                                         : std::max(o.half_x, o.half_y)) +
+            4.0 / view.scale;
+        const double d = (o.pose.p() - m).Norm();
+        if (d < reach && d < best) best = d, state_.drag_name = o.name;
+      }
+    }
+    if (!state_.drag_name.empty() && state_.playing)
+      state_.status = "pause (space) to drag " + state_.drag_name;
+  }
+  if (!state_.drag_name.empty() && ImGui::IsMouseDown(ImGuiMouseButton_Left) && !state_.playing &&
+      ImGui::IsMouseDragging(ImGuiMouseButton_Left, 2.0f)) {
+    const Vec2 p = view.ToWorld(io.MousePos);
+    session_->Move(state_.drag_name, p.x, p.y);
+    state_.status = "moved " + state_.drag_name;
+  }
+  if (ImGui::IsMouseReleased(ImGuiMouseButton_Left)) state_.drag_name.clear();
+  if (hovered) {
+    const Vec2 m = view.ToWorld(io.MousePos);
+    char buf[64];
+    std::snprintf(buf, sizeof(buf), "x %.3f m, y %.3f m", m.x, m.y);
+    ImGui::GetWindowDrawList()->AddText(ImVec2(view.min.x + 44, view.max.y - 42),
+                                        IM_COL32(90, 90, 90, 255), buf);
+  }
+}
+
+void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool interactive) {
+  ImGui::SetNextWindowPos(pos);
+  ImGui::SetNextWindowSize(size);
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
+  const std::string title = session_->exp().setup().name + "###world";
+  ImGui::Begin(title.c_str(), nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse |
+                   ImGuiWindowFlags_NoBackground);  // the world view paints it
+  const ImVec2 min = ImGui::GetCursorScreenPos();
+  const ImVec2 avail = ImGui::GetContentRegionAvail();
+  const ImVec2 max(min.x + std::max(avail.x, 10.0f), min.y + std::max(avail.y, 10.0f));
+  UpdateView(min, max);
+  ImGui::InvisibleButton("world", ImVec2(max.x - min.x, max.y - min.y),
+                         ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
+                             ImGuiButtonFlags_MouseButtonMiddle);
+  WorldViewOptions opt;
+  opt.grid = state_.grid;
+  opt.coordinates = state_.coordinates;
+  DrawWorldView(ImGui::GetWindowDrawList(), state_.view, session_->exp(), fonts, opt);
+  if (interactive) DrawWorldMouse(state_.view);
+  ImGui::End();
+  ImGui::PopStyleVar();
+}
+
+}  // namespace formsim::app

@@ -1,0 +1,76 @@
+#include "app/video_writer.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdlib>
+#include <sstream>
+#include <stdexcept>
+
+namespace formsim::app {
+namespace {
+
+std::string ShellQuote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+}  // namespace
+
+std::string FindOnPath(const std::string& program) {
+  const char* path = std::getenv("PATH");
+  if (path == nullptr) return "";
+  std::stringstream ss(path);
+  std::string dir;
+  while (std::getline(ss, dir, ':')) {
+    if (dir.empty()) dir = ".";
+    const std::string full = dir + "/" + program;
+    if (access(full.c_str(), X_OK) == 0) return full;
+  }
+  return "";
+}
+
+void VideoWriter::CheckAvailable(int width, int height) {
+  if (FindOnPath("ffmpeg").empty())
+    throw std::runtime_error(
+        "--video needs the program 'ffmpeg', which is not on PATH (Debian: apt-get install "
+        "ffmpeg)");
+  if (width % 2 != 0 || height % 2 != 0)
+    throw std::runtime_error("--video needs an even width and height (H.264 yuv420p), got " +
+                             std::to_string(width) + "x" + std::to_string(height));
+}
+
+VideoWriter::VideoWriter(const std::string& path, int width, int height, double fps)
+    : path_(path), frame_bytes_(static_cast<std::size_t>(width) * height * 4) {
+  CheckAvailable(width, height);
+  std::signal(SIGPIPE, SIG_IGN);  // a dying ffmpeg becomes a write error, not a crash
+  std::ostringstream cmd;
+  cmd << "ffmpeg -y -loglevel error -f rawvideo -pix_fmt rgba -s " << width << "x" << height
+      << " -r " << fps << " -i - -c:v libx264 -preset veryfast -crf 20 -pix_fmt yuv420p "
+      << "-movflags +faststart " << ShellQuote(path);
+  pipe_ = popen(cmd.str().c_str(), "w");
+  if (pipe_ == nullptr) throw std::runtime_error("cannot start ffmpeg for " + path);
+}
+
+VideoWriter::~VideoWriter() {
+  if (pipe_ != nullptr) pclose(pipe_);
+}
+
+void VideoWriter::Write(const std::vector<std::uint8_t>& rgba) {
+  if (rgba.size() != frame_bytes_) throw std::runtime_error("video frame has the wrong size");
+  if (std::fwrite(rgba.data(), 1, rgba.size(), pipe_) != rgba.size())
+    throw std::runtime_error("ffmpeg stopped accepting frames for " + path_ +
+                             " (see its message above)");
+}
+
+void VideoWriter::Close() {
+  if (pipe_ == nullptr) return;
+  const int status = pclose(pipe_);
+  pipe_ = nullptr;
+  if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw std::runtime_error("ffmpeg failed writing " + path_);
+}
+
+}  // namespace formsim::app

@@ -1,0 +1,124 @@
+#include "app/plot.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "app/polyline_simplify.hpp"
+#include "app/world_view.hpp"
+
+namespace formsim::app {
+namespace {
+
+TEST(NiceTicks, OneTwoFiveSteps) {
+  double step = 0;
+  const auto t = NiceTicks(0.0, 11.0, 6, &step);
+  EXPECT_DOUBLE_EQ(step, 2.0);
+  ASSERT_EQ(t.size(), 6u);
+  EXPECT_DOUBLE_EQ(t.front(), 0.0);
+  EXPECT_DOUBLE_EQ(t.back(), 10.0);
+}
+
+TEST(NiceTicks, TinyAndNegativeRanges) {
+  double step = 0;
+  const auto t = NiceTicks(-3.2e-4, 1.1e-4, 5, &step);
+  EXPECT_NEAR(step, 1e-4, 1e-18);
+  ASSERT_FALSE(t.empty());
+  EXPECT_NEAR(t.front(), -3e-4, 1e-12);
+  for (double v : t) EXPECT_TRUE(v >= -3.2e-4 && v <= 1.1e-4);
+  for (double v : t) EXPECT_FALSE(std::signbit(v) && v == 0.0) << "no negative zero";
+}
+
+TEST(NiceTicks, DegenerateRangeGivesNothing) {
+  EXPECT_TRUE(NiceTicks(1.0, 1.0, 5).empty());
+  EXPECT_TRUE(NiceTicks(0.0, NAN, 5).empty());
+}
+
+TEST(FormatTick, DecimalsFollowTheStep) {
+  EXPECT_EQ(FormatTick(0.5, 0.5, 0), "0.5");
+  EXPECT_EQ(FormatTick(2.0, 2.0, 0), "2");
+  EXPECT_EQ(FormatTick(0.02, 0.01, 0), "0.02");
+  EXPECT_EQ(FormatTick(-1.0, 0.5, 0), "−1.0");
+  EXPECT_EQ(FormatTick(-0.0, 0.5, 0), "0.0");
+  // With a shared exponent the label is the mantissa.
+  EXPECT_EQ(FormatTick(1.5e-4, 5e-5, -4), "1.5");
+}
+
+TEST(SampleSeries, InterpolatesInsideAndNaNOutside) {
+  PlotSeries s;
+  s.x = {0, 1, 2};
+  s.y = {0, 10, 30};
+  EXPECT_DOUBLE_EQ(SampleSeries(s, 0.5), 5.0);
+  EXPECT_DOUBLE_EQ(SampleSeries(s, 1.5), 20.0);
+  EXPECT_TRUE(std::isnan(SampleSeries(s, 2.5)));
+}
+
+TEST(GridStep, AtLeastTheMinimumSpacing) {
+  EXPECT_DOUBLE_EQ(GridStep(100.0, 70.0), 1.0);
+  EXPECT_DOUBLE_EQ(GridStep(30.0, 70.0), 5.0);
+  EXPECT_DOUBLE_EQ(GridStep(1000.0, 70.0), 0.1);
+}
+
+TEST(View, FitShowsTheWholeBoxAndMapsBack) {
+  View v;
+  v.min = ImVec2(0, 0);
+  v.max = ImVec2(800, 400);
+  v.Fit({-1, -2}, {3, 2}, 20.0f);
+  for (Vec2 corner : {Vec2{-1, -2}, Vec2{3, 2}}) {
+    const ImVec2 s = v.ToScreen(corner);
+    EXPECT_GE(s.x, 19.0f);
+    EXPECT_LE(s.x, 781.0f);
+    EXPECT_GE(s.y, 19.0f);
+    EXPECT_LE(s.y, 381.0f);
+    const Vec2 back = v.ToWorld(s);
+    EXPECT_NEAR(back.x, corner.x, 1e-4);
+    EXPECT_NEAR(back.y, corner.y, 1e-4);
+  }
+  // Zooming about a point keeps that point fixed.
+  const ImVec2 p(600, 100);
+  const Vec2 before = v.ToWorld(p);
+  v.ZoomAt(p, 2.5);
+  const Vec2 after = v.ToWorld(p);
+  EXPECT_NEAR(before.x, after.x, 1e-9);
+  EXPECT_NEAR(before.y, after.y, 1e-9);
+}
+
+}  // namespace
+}  // namespace formsim::app
+
+namespace formsim::app {
+namespace {
+
+TEST(SimplifyPolyline, StraightLineBecomesOneSegmentCurveStaysClose) {
+  std::vector<ImVec2> line;
+  for (int i = 0; i <= 1000; ++i) line.emplace_back(0.5f * i, 100.0f);
+  const auto s = SimplifyPolyline(line);
+  ASSERT_EQ(s.size(), 2u);
+  EXPECT_EQ(s.back().x, 500.0f);
+
+  std::vector<ImVec2> arc;
+  for (int i = 0; i <= 2000; ++i) {
+    const double t = i * 0.001 * 3.14159;
+    arc.emplace_back(static_cast<float>(200 + 150 * std::cos(t)),
+                     static_cast<float>(200 + 150 * std::sin(t)));
+  }
+  const auto a = SimplifyPolyline(arc, 0.35f);
+  EXPECT_LT(a.size(), arc.size() / 10);
+  EXPECT_GT(a.size(), 10u);
+  // Every original point lies within the tolerance (plus rounding) of the simplified polyline.
+  for (const ImVec2& p : arc) {
+    double best = 1e9;
+    for (std::size_t k = 1; k < a.size(); ++k) {
+      const double dx = a[k].x - a[k - 1].x, dy = a[k].y - a[k - 1].y;
+      const double len2 = dx * dx + dy * dy;
+      double t = len2 > 0 ? ((p.x - a[k - 1].x) * dx + (p.y - a[k - 1].y) * dy) / len2 : 0;
+      t = std::clamp(t, 0.0, 1.0);
+      best = std::min(best, std::hypot(p.x - (a[k - 1].x + t * dx), p.y - (a[k - 1].y + t * dy)));
+    }
+    ASSERT_LT(best, 0.5);
+  }
+}
+
+}  // namespace
+}  // namespace formsim::app
