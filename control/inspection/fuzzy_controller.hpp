@@ -1,0 +1,87 @@
+#pragma once
+/// \file The paper's two-input, three-output fuzzy controller (section 2), built on fuzzylite
+/// from an FLL file the user can edit and reload (assets/fuzzy/inspection.fll).
+///
+/// Inputs: `s` (lateral offset, m) and `dphi` (heading error, degrees). Outputs: `u1`, `u2`
+/// (left / right drive speed levels) and `u3` (steering servo command). Defuzzification is the
+/// paper's weighted average; fuzzylite's WeightedAverage evaluates Takagi-Sugeno terms, so on
+/// loading every output term is replaced by a Constant at its centroid (computed over the
+/// term's support, the range widened by one span each side so end terms keep their peak). The
+/// original shapes are kept for the membership plots.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace fl {
+class Engine;
+}
+
+namespace formsim::control::inspection {
+
+/// One control decision.
+struct FuzzyOutputs {
+  double u1 = 0.0;    ///< left drive level
+  double u2 = 0.0;    ///< right drive level
+  double u3 = 360.0;  ///< steering servo command
+  bool ok = false;    ///< false when no rule fired (the outputs are then the safe stop values)
+};
+
+/// A membership function sampled for plotting.
+struct FuzzyTermCurve {
+  std::string name;
+  std::vector<double> x, y;
+  double centroid = 0.0;  ///< the constant used by the weighted average (outputs)
+};
+
+/// A linguistic variable with its terms and its current value.
+struct FuzzyVariableInfo {
+  std::string name;
+  bool input = true;
+  double min = 0.0, max = 1.0;
+  double value = 0.0;
+  std::vector<FuzzyTermCurve> terms;
+};
+
+/// A rule and how strongly it fired in the last Process().
+struct FuzzyRuleInfo {
+  std::string text;
+  std::string s, dphi, u1, u2, u3;  ///< term names when the rule uses that variable
+  double strength = 0.0;
+};
+
+class FuzzyController {
+ public:
+  FuzzyController();
+  ~FuzzyController();
+  FuzzyController(const FuzzyController&) = delete;
+  FuzzyController& operator=(const FuzzyController&) = delete;
+
+  /// Loads (or reloads) the engine from an FLL file. On any error, throws std::runtime_error
+  /// naming the file and the problem, and the previously loaded engine stays in use.
+  void LoadFile(const std::string& path);
+  /// Same from FLL text; `origin` names it in messages.
+  void LoadText(const std::string& fll, const std::string& origin);
+  bool loaded() const { return engine_ != nullptr; }
+  const std::string& origin() const { return origin_; }
+
+  /// Evaluates the rule base. `s` in metres, `dphi_deg` in degrees; inputs outside the ranges
+  /// are clamped to them. Never returns NaN: when no rule fires, ok = false and the outputs
+  /// are the stop command (u1 = u2 = 0, u3 = mid-range).
+  FuzzyOutputs Process(double s, double dphi_deg);
+
+  /// The rules with their firing strengths from the last Process().
+  const std::vector<FuzzyRuleInfo>& rules() const { return rules_; }
+  /// Inputs s, dphi and outputs u1, u2, u3 with their (original) membership functions and the
+  /// values of the last Process().
+  const std::vector<FuzzyVariableInfo>& variables() const { return variables_; }
+  double u3_center() const;
+
+ private:
+  std::unique_ptr<fl::Engine> engine_;
+  std::string origin_;
+  std::vector<FuzzyRuleInfo> rules_;
+  std::vector<FuzzyVariableInfo> variables_;
+};
+
+}  // namespace formsim::control::inspection
