@@ -22,6 +22,18 @@ for f in "$TMP"/plots/*.png; do cp "$f" "$OUT/traj2_ukf_$(basename "$f")"; done
 # The interface drawn headless (--ui) into a frame, as a video made with --ui would show it.
 run formation_traj2 --set duration=6 --out "$TMP/d" --snapshot "$OUT/ui_headless_traj2.png" \
   --ui --size 1600x900
+# Mecanum AGV (paper 002): world view at the end of the fused run and the Fig. 6-style tracks of
+# the fused and odometry-only runs.
+run agv_fused --out "$TMP/agv" --snapshot "$OUT/agv_world.png" --plots "$TMP/agv_plots"
+cp "$TMP/agv_plots/trajectory.png" "$OUT/agv_fused_trajectory.png"
+run agv_odometry_only --out "$TMP/agv_odo" --plots "$TMP/agv_odo_plots"
+cp "$TMP/agv_odo_plots/trajectory.png" "$OUT/agv_odometry_trajectory.png"
+# Inspection robot (paper 003): laser rays and posts mid-run, Fig. 8 style X coordinates, and the
+# lateral-offset membership functions with the current input marked.
+run inspection_u_route --set duration=20 --out "$TMP/insp_mid" --snapshot "$OUT/inspection_world.png"
+run inspection_u_route --out "$TMP/insp" --plots "$TMP/insp_plots"
+cp "$TMP/insp_plots/fig8_x.png" "$OUT/inspection_fig8_x.png"
+cp "$TMP/insp_plots/mf_s.png" "$OUT/inspection_mf_s.png"
 # The GUI itself under Xvfb, 7 robots, every plot open, a gain changed live at frame 60.
 if command -v xvfb-run >/dev/null; then
   xvfb-run -a -s "-screen 0 1600x900x24" "$BIN" gui formation_cascade7 --size 1600x900 \

@@ -10,7 +10,8 @@ Color PaletteColor(int index) {
   static const Color kPalette[] = {
       {0.000f, 0.447f, 0.698f, 1}, {0.835f, 0.369f, 0.000f, 1}, {0.000f, 0.620f, 0.451f, 1},
       {0.800f, 0.475f, 0.655f, 1}, {0.902f, 0.624f, 0.000f, 1}, {0.337f, 0.706f, 0.914f, 1},
-      {0.400f, 0.400f, 0.400f, 1}, {0.600f, 0.300f, 0.100f, 1}};
+      {0.400f, 0.400f, 0.400f, 1}, {0.600f, 0.300f, 0.100f, 1}, {0.100f, 0.100f, 0.100f, 1},
+      {0.550f, 0.600f, 0.100f, 1}};
   constexpr int n = sizeof(kPalette) / sizeof(kPalette[0]);
   return kPalette[((index % n) + n) % n];
 }

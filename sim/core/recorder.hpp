@@ -26,7 +26,8 @@ class Recorder {
   /// Copies one column out.
   std::vector<double> Series(int column) const;
 
-  /// Writes CSV with a header; numbers with 17 significant digits so runs compare bit for bit.
+  /// Writes CSV with a header; each number as the shortest text that reads back to the same
+  /// double, so runs compare bit for bit. Unsampled (NaN) cells are empty.
   /// Throws std::runtime_error naming the file when it cannot be written.
   void WriteCsv(const std::string& file) const;
 
