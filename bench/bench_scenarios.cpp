@@ -34,6 +34,21 @@ void BM_PaperScenarioUkf(benchmark::State& state) {
 }
 BENCHMARK(BM_PaperScenarioUkf)->Unit(benchmark::kMillisecond);
 
+// Any shipped scenario run to its end (the AGV and inspection scenarios of issues 4 and 5).
+void BM_ShippedScenario(benchmark::State& state, const std::string& name) {
+  const std::string file = std::string(FORMSIM_SOURCE_DIR) + "/assets/scenarios/" + name + ".yaml";
+  for (auto _ : state) {
+    state.PauseTiming();
+    auto e = LoadExperiment(file);
+    const long steps = static_cast<long>(e->setup().duration / e->dt() + 0.5);
+    state.ResumeTiming();
+    RunSteps(state, *e, steps);
+  }
+}
+BENCHMARK_CAPTURE(BM_ShippedScenario, agv_fused, std::string("agv_fused"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ShippedScenario, inspection_u_route, std::string("inspection_u_route"))
+    ->Unit(benchmark::kMillisecond);
+
 // Cascade of N robots, one simulated second (100 steps), estimator per follower as given.
 void BM_Cascade(benchmark::State& state, bool ukf) {
   const int n = static_cast<int>(state.range(0));
