@@ -2,6 +2,8 @@
 // the invalid scenario fixtures.
 #include <gtest/gtest.h>
 
+#include "tests/support/invalid_fixtures.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -203,32 +205,7 @@ TEST(InspectionExperiment, DrawsRaysFiguresAndTheRuleTable) {
 // Every tests/fixtures/invalid/inspection_*.yaml starts with "# expect: <text>"; loading it
 // must throw a ScenarioError containing the text and pointing at the offending key's line.
 TEST(InspectionExperiment, InvalidFixturesAreRejectedWithTheRightMessage) {
-  const std::filesystem::path dir = std::string(FORMSIM_SOURCE_DIR) + "/tests/fixtures/invalid";
-  int checked = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-    const std::string file = entry.path().string(), stem = entry.path().filename().string();
-    if (stem.rfind("inspection_", 0) != 0 || entry.path().extension() != ".yaml") continue;
-    std::ifstream in(file);
-    std::string first;
-    std::getline(in, first);
-    ASSERT_EQ(first.rfind("# expect: ", 0), 0u) << file;
-    const std::string expect = first.substr(10);
-    try {
-      LoadExperiment(file);
-      ADD_FAILURE() << file << " was accepted";
-    } catch (const ScenarioError& e) {
-      const std::string what = e.what();
-      EXPECT_NE(what.find(expect), std::string::npos) << file << "\n  got: " << what;
-      EXPECT_EQ(what.rfind(file + ":", 0), 0u) << what;
-      ASSERT_GT(e.line(), 0) << what;
-      std::ifstream again(file);
-      std::string line;
-      for (int k = 0; k < e.line(); ++k) std::getline(again, line);
-      const std::string key = e.key().substr(e.key().rfind('.') + 1);
-      EXPECT_NE(line.find(key), std::string::npos) << what << "\n  line: " << line;
-    }
-    ++checked;
-  }
+  const int checked = formsim::testing::CheckInvalidFixtures("inspection_");
   EXPECT_GE(checked, 9);
 }
 

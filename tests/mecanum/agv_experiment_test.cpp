@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/invalid_fixtures.hpp"
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -157,33 +159,7 @@ TEST(AgvExperiment, ShippedScenariosLoadAndFinish) {
 // Every tests/fixtures/invalid/agv_*.yaml starts with "# expect: <text>"; loading it must throw
 // a ScenarioError that contains the text and points at a line holding the offending key.
 TEST(AgvExperiment, InvalidFixturesAreRejectedWithTheRightMessage) {
-  const std::filesystem::path dir = std::string(FORMSIM_SOURCE_DIR) + "/tests/fixtures/invalid";
-  int checked = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-    const std::string file = entry.path().string(), stem = entry.path().filename().string();
-    if (stem.rfind("agv_", 0) != 0) continue;
-    std::ifstream in(file);
-    std::string first;
-    std::getline(in, first);
-    ASSERT_EQ(first.rfind("# expect: ", 0), 0u) << file;
-    const std::string expect = first.substr(10);
-    try {
-      LoadExperiment(file);
-      ADD_FAILURE() << file << " was accepted";
-    } catch (const ScenarioError& e) {
-      const std::string what = e.what();
-      EXPECT_NE(what.find(expect), std::string::npos) << file << "\n  got: " << what;
-      EXPECT_EQ(what.rfind(file + ":", 0), 0u) << what;
-      ASSERT_GT(e.line(), 0) << what;
-      std::ifstream again(file);
-      std::string line;
-      for (int k = 0; k < e.line(); ++k) std::getline(again, line);
-      const std::string key = e.key().substr(e.key().rfind('.') + 1);
-      EXPECT_NE(line.find(key.substr(0, key.find('['))), std::string::npos)
-          << what << "\n  line: " << line;
-    }
-    ++checked;
-  }
+  const int checked = formsim::testing::CheckInvalidFixtures("agv_");
   EXPECT_GE(checked, 8);
 }
 
