@@ -34,7 +34,7 @@ void BM_PaperScenarioUkf(benchmark::State& state) {
 }
 BENCHMARK(BM_PaperScenarioUkf)->Unit(benchmark::kMillisecond);
 
-// Any shipped scenario run to its end (the AGV and inspection scenarios of issues 4 and 5).
+// Any shipped scenario run to its end (the AGV, inspection and velocity scenarios, issues 4-6).
 void BM_ShippedScenario(benchmark::State& state, const std::string& name) {
   const std::string file = std::string(FORMSIM_SOURCE_DIR) + "/assets/scenarios/" + name + ".yaml";
   for (auto _ : state) {
@@ -46,6 +46,8 @@ void BM_ShippedScenario(benchmark::State& state, const std::string& name) {
   }
 }
 BENCHMARK_CAPTURE(BM_ShippedScenario, agv_fused, std::string("agv_fused"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ShippedScenario, velocity_constant, std::string("velocity_constant"))
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_ShippedScenario, inspection_u_route, std::string("inspection_u_route"))
     ->Unit(benchmark::kMillisecond);
 

@@ -34,6 +34,11 @@ run inspection_u_route --set duration=20 --out "$TMP/insp_mid" --snapshot "$OUT/
 run inspection_u_route --out "$TMP/insp" --plots "$TMP/insp_plots"
 cp "$TMP/insp_plots/fig8_x.png" "$OUT/inspection_fig8_x.png"
 cp "$TMP/insp_plots/mf_s.png" "$OUT/inspection_mf_s.png"
+# Velocity control (paper 004): two robots crossing floors of different friction, keyframes and
+# tracked features; the speed of the robot whose loop is fed by the fused estimate.
+run velocity_constant --out "$TMP/vel" --snapshot "$OUT/velocity_world.png" --plots "$TMP/vel_plots"
+cp "$TMP/vel_plots/speed_R_fused.png" "$OUT/velocity_speed_fused.png"
+cp "$TMP/vel_plots/speed_R_odo.png" "$OUT/velocity_speed_odo.png"
 # The GUI itself under Xvfb, 7 robots, every plot open, a gain changed live at frame 60.
 if command -v xvfb-run >/dev/null; then
   xvfb-run -a -s "-screen 0 1600x900x24" "$BIN" gui formation_cascade7 --size 1600x900 \
