@@ -35,41 +35,13 @@
 
 #include "control/formation/formation_laws.hpp"
 #include "control/formation/link_filter.hpp"
+#include "sim/core/error_stats.hpp"
 #include "sim/core/experiment.hpp"
 #include "sim/core/unicycle_drive.hpp"
 #include "sim/formation/formation_config.hpp"
 #include "sim/formation/relative_sensor.hpp"
 
 namespace formsim::sim {
-
-/// Error statistics of one quantity over a run.
-struct ErrorStats {
-  double max_abs = 0.0;          ///< over the whole run
-  double max_abs_settled = 0.0;  ///< after settle_time
-  double sum_sq_settled = 0.0;
-  long n_settled = 0;
-  void Add(double e, bool settled) {
-    const double a = std::abs(e);
-    max_abs = std::max(max_abs, a);
-    if (settled) {
-      max_abs_settled = std::max(max_abs_settled, a);
-      sum_sq_settled += e * e;
-      ++n_settled;
-    }
-  }
-  double rmse_settled() const { return n_settled ? std::sqrt(sum_sq_settled / n_settled) : 0.0; }
-};
-
-/// Root-mean-square of an estimation error.
-struct RmsStats {
-  double sum_sq = 0.0;
-  long n = 0;
-  void Add(double e) {
-    sum_sq += e * e;
-    ++n;
-  }
-  double rms() const { return n ? std::sqrt(sum_sq / n) : 0.0; }
-};
 
 class FormationExperiment : public Experiment {
  public:
@@ -86,8 +58,8 @@ class FormationExperiment : public Experiment {
     std::string name;  ///< "R1-R2"
     int leader = -1, follower = -1;
     control::LinkState truth, measured, used;
-    ErrorStats e_l, e_phi, e_alpha;
-    RmsStats est_l, est_phi, est_alpha;
+    SettledErrorStats e_l, e_phi, e_alpha;
+    ErrorStats est_l, est_phi, est_alpha;
     bool has_phi_target = false;
     const control::LinkFilter* filter = nullptr;
     double nees = 0.0;
@@ -118,8 +90,8 @@ class FormationExperiment : public Experiment {
     control::LinkState truth_conv;  ///< under the sensor's convention
     control::LinkState measured, used;
     double nees = 0.0;
-    ErrorStats e_l, e_phi, e_alpha;
-    RmsStats est_l, est_phi, est_alpha;
+    SettledErrorStats e_l, e_phi, e_alpha;
+    ErrorStats est_l, est_phi, est_alpha;
     // Recorder columns.
     int c_l = -1, c_phi = -1, c_alpha = -1, c_l_des = -1, c_phi_des = -1, c_e_l = -1, c_e_phi = -1,
         c_e_alpha = -1;

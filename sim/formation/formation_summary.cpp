@@ -75,9 +75,10 @@ Json FormationExperiment::Summary() const {
       b["alpha"] = get(l.e_alpha);
       return b;
     };
-    j["max_abs_error"] = block([](const ErrorStats& s) { return s.max_abs; });
-    j["max_abs_error_after_settle"] = block([](const ErrorStats& s) { return s.max_abs_settled; });
-    j["rmse_after_settle"] = block([](const ErrorStats& s) { return s.rmse_settled(); });
+    j["max_abs_error"] = block([](const SettledErrorStats& s) { return s.max_abs; });
+    j["max_abs_error_after_settle"] =
+        block([](const SettledErrorStats& s) { return s.max_abs_settled(); });
+    j["rmse_after_settle"] = block([](const SettledErrorStats& s) { return s.rmse_settled(); });
     if (r.follow.estimator != EstimatorMode::kTruth) {
       Json e = Json::Object();
       e["l"] = l.est_l.rms();
@@ -124,13 +125,13 @@ std::string FormationExperiment::SummaryTable() const {
   for (const Link& l : links_) {
     const FormationRobotDef& r = cfg_.robots[l.follower];
     char phi[32] = "-", est[32] = "-";
-    if (l.c_e_phi >= 0) std::snprintf(phi, sizeof phi, "%.3e", l.e_phi.max_abs_settled);
+    if (l.c_e_phi >= 0) std::snprintf(phi, sizeof phi, "%.3e", l.e_phi.max_abs_settled());
     if (r.follow.estimator != EstimatorMode::kTruth)
       std::snprintf(est, sizeof est, "%.3e", l.est_phi.rms());
     std::snprintf(buf, sizeof buf, "%-10s %-5s %-5s %11.3e %11s %11.3e %11.3e %11s\n",
                   l.name.c_str(), r.node.law == FormationLaw::kLPhi ? "l-phi" : "l-l",
-                  EstimatorName(r.follow.estimator), l.e_l.max_abs_settled, phi,
-                  l.e_alpha.max_abs_settled, l.e_l.rmse_settled(), est);
+                  EstimatorName(r.follow.estimator), l.e_l.max_abs_settled(), phi,
+                  l.e_alpha.max_abs_settled(), l.e_l.rmse_settled(), est);
     out += buf;
   }
   std::map<std::string, int> counts;

@@ -131,9 +131,9 @@ std::vector<TableSpec> FormationExperiment::Tables() const {
     const FormationRobotDef& r = cfg_.robots[l.follower];
     const EstimatorMode mode = r.follow.estimator;
     t.rows.push_back({l.name, r.node.law == FormationLaw::kLPhi ? "l-φ" : "l-l",
-                      kEst[static_cast<int>(mode)], Fmt("%.2e", l.e_l.max_abs_settled),
-                      l.c_e_phi >= 0 ? Fmt("%.2e", l.e_phi.max_abs_settled) : "-",
-                      Fmt("%.2e", l.e_alpha.max_abs_settled),
+                      kEst[static_cast<int>(mode)], Fmt("%.2e", l.e_l.max_abs_settled()),
+                      l.c_e_phi >= 0 ? Fmt("%.2e", l.e_phi.max_abs_settled()) : "-",
+                      Fmt("%.2e", l.e_alpha.max_abs_settled()),
                       mode == EstimatorMode::kTruth ? "-" : Fmt("%.2e", l.est_phi.rms())});
   }
   return {t};

@@ -41,6 +41,7 @@
 #include "control/inspection/post_detector.hpp"
 #include "control/inspection/route.hpp"
 #include "control/inspection/trilateration.hpp"
+#include "sim/core/error_stats.hpp"
 #include "sim/core/experiment.hpp"
 #include "sim/inspection/inspection_config.hpp"
 #include "sim/inspection/laser_scanner.hpp"
@@ -48,19 +49,6 @@
 #include "sim/inspection/wheel_odometry.hpp"
 
 namespace formsim::sim {
-
-/// RMS and maximum of a stream of errors.
-struct ErrorStats {
-  long n = 0;
-  double sum_sq = 0.0;
-  double max = 0.0;
-  void Add(double e) {
-    ++n;
-    sum_sq += e * e;
-    if (std::abs(e) > max) max = std::abs(e);
-  }
-  double rms() const { return n > 0 ? std::sqrt(sum_sq / static_cast<double>(n)) : 0.0; }
-};
 
 class InspectionExperiment : public Experiment {
  public:

@@ -12,7 +12,7 @@ namespace {
 Json Stats(const ErrorStats& s) {
   Json j = Json::Object();
   j["rms"] = s.rms();
-  j["max"] = s.max;
+  j["max"] = s.max_abs;
   j["samples"] = s.n;
   return j;
 }
@@ -60,7 +60,7 @@ Json InspectionExperiment::Summary() const {
   tr["lateral_offset_after_transient_m"] = Stats(lateral_tracking_);
   tr["heading_error_after_transient_deg"] = Stats(dphi_tracking_);
   tr["lateral_bound_m"] = cfg_.lateral_bound;
-  tr["within_bound"] = lateral_tracking_.n > 0 && lateral_tracking_.max <= cfg_.lateral_bound;
+  tr["within_bound"] = lateral_tracking_.n > 0 && lateral_tracking_.max_abs <= cfg_.lateral_bound;
   j["tracking"] = tr;
 
   Json ctl = Json::Object();
@@ -82,7 +82,7 @@ std::string InspectionExperiment::SummaryTable() const {
   char line[200];
   auto row = [&](const char* name, const ErrorStats& s, const char* unit) {
     std::snprintf(line, sizeof line, "  %-28s RMS %7.3f  max %7.3f %s  (n=%ld)\n", name, s.rms(),
-                  s.max, unit, s.n);
+                  s.max_abs, unit, s.n);
     out += line;
   };
   std::snprintf(line, sizeof line, "inspection robot, controller uses the %s estimate\n",

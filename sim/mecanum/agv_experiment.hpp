@@ -58,7 +58,7 @@ class AgvExperiment : public Experiment {
   const control::PoseFilter& filter() const { return filter_; }
   const control::PathTracker& tracker() const { return tracker_; }
   const MecanumDrive& drive() const { return *drive_; }
-  const RmsMax& cross_track() const { return cross_track_; }
+  const ErrorStats& cross_track() const { return cross_track_; }
   const EstimateStats& odometry_stats() const { return stats_odo_; }
   const EstimateStats& beacon_stats() const { return stats_beacon_; }
   const EstimateStats& fused_stats() const { return stats_fused_; }
@@ -102,7 +102,7 @@ class AgvExperiment : public Experiment {
   double last_nis_ = 0.0;
 
   // Metrics.
-  RmsMax cross_track_;
+  ErrorStats cross_track_;
   double true_cross_ = 0.0, true_s_ = 0.0;
   EstimateStats stats_odo_, stats_beacon_, stats_fused_;
   BeaconCounts counts_;

@@ -6,27 +6,15 @@
 #include <cmath>
 
 #include "control/common/geometry.hpp"
+#include "sim/core/error_stats.hpp"
 
 namespace formsim::sim {
-
-/// RMS and maximum of |e| over the samples added.
-struct RmsMax {
-  double sum_sq = 0.0;
-  double max_abs = 0.0;
-  long n = 0;
-  void Add(double e) {
-    sum_sq += e * e;
-    max_abs = std::max(max_abs, std::abs(e));
-    ++n;
-  }
-  double rms() const { return n ? std::sqrt(sum_sq / n) : 0.0; }
-};
 
 /// How well one estimate (odometry, beacon, fused) follows the true pose, sampled every control
 /// period while the AGV is tracking.
 struct EstimateStats {
-  RmsMax position;  ///< |p̂ − p|, m
-  RmsMax heading;   ///< wrap(θ̂ − θ), rad
+  ErrorStats position;  ///< |p̂ − p|, m
+  ErrorStats heading;   ///< wrap(θ̂ − θ), rad
   double final_position_error = 0.0;
   long jumps = 0;  ///< control periods in which the error vector changed by > jump_threshold
   bool has_prev = false;

@@ -35,23 +35,11 @@
 #include "control/vio/speed_loop.hpp"
 #include "sim/core/experiment.hpp"
 #include "sim/vio/diff_drive.hpp"
+#include "sim/core/error_stats.hpp"
 #include "sim/vio/velocity_config.hpp"
 #include "sim/vio/vio_sensors.hpp"
 
 namespace formsim::sim::vio {
-
-/// Root-mean-square and mean of an error signal.
-struct ErrorStats {
-  double sum = 0.0, sum2 = 0.0;
-  long n = 0;
-  void Add(double e) {
-    sum += e;
-    sum2 += e * e;
-    ++n;
-  }
-  double rms() const { return n ? std::sqrt(sum2 / n) : 0.0; }
-  double mean() const { return n ? sum / n : 0.0; }
-};
 
 /// Speed-estimate and control errors of one robot on one floor (or overall).
 struct FloorStats {

@@ -40,14 +40,14 @@ TEST(FormationExperiment, ConvergesOnPaperTrajectoriesWithPerSampleGains) {
     const auto links = Formation(exp).Links();
     ASSERT_EQ(links.size(), 3u);
     for (const auto& l : links) {
-      EXPECT_LT(l.e_l.max_abs_settled, 1e-3) << name << " " << l.name;
+      EXPECT_LT(l.e_l.max_abs_settled(), 1e-3) << name << " " << l.name;
       if (l.has_phi_target) {
-        EXPECT_LT(l.e_phi.max_abs_settled, 1e-3) << name << " " << l.name;
+        EXPECT_LT(l.e_phi.max_abs_settled(), 1e-3) << name << " " << l.name;
       }
       // The transient really happened: the paper's initial poses are far from s_des.
       EXPECT_GT(l.e_l.max_abs, 0.05) << name << " " << l.name;
       // α is not controlled; it stays bounded (|α| < π/2) as Theorem 1 predicts.
-      EXPECT_LT(l.e_alpha.max_abs_settled, 1.5707963267948966) << name << " " << l.name;
+      EXPECT_LT(l.e_alpha.max_abs_settled(), 1.5707963267948966) << name << " " << l.name;
     }
   }
 }
@@ -56,8 +56,8 @@ TEST(FormationExperiment, PrintedGainsAreTooSlowForThePapersErrors) {
   // k as printed gives time constants of 7-12 s: after 1 s the errors are still centimetres.
   auto exp = RunScenario(Scenario("formation_traj2"));
   for (const auto& l : Formation(exp).Links()) {
-    EXPECT_GT(l.e_l.max_abs_settled, 0.05) << l.name;
-    EXPECT_LT(l.e_l.max_abs_settled, 0.2) << l.name;  // but it does converge slowly, not diverge
+    EXPECT_GT(l.e_l.max_abs_settled(), 0.05) << l.name;
+    EXPECT_LT(l.e_l.max_abs_settled(), 0.2) << l.name;  // but it does converge slowly, not diverge
   }
 }
 
@@ -66,7 +66,7 @@ TEST(FormationExperiment, PrintedBearingConventionDestabilisesTheFormation) {
   // linearisation is wrong and the formation falls apart (distance errors of metres).
   auto exp = RunScenario(Scenario("formation_traj2_per_sample"), {"formation.bearing=printed"});
   double worst = 0.0;
-  for (const auto& l : Formation(exp).Links()) worst = std::max(worst, l.e_l.max_abs_settled);
+  for (const auto& l : Formation(exp).Links()) worst = std::max(worst, l.e_l.max_abs_settled());
   EXPECT_GT(worst, 1.0);
 }
 
@@ -75,9 +75,9 @@ TEST(FormationExperiment, SevenRobotCascadeConverges) {
   const auto links = Formation(exp).Links();
   ASSERT_EQ(links.size(), 9u);  // 3 l-φ followers + 3 l-l followers × 2
   for (const auto& l : links) {
-    EXPECT_LT(l.e_l.max_abs_settled, 1e-3) << l.name;
+    EXPECT_LT(l.e_l.max_abs_settled(), 1e-3) << l.name;
     if (l.has_phi_target) {
-      EXPECT_LT(l.e_phi.max_abs_settled, 1e-3) << l.name;
+      EXPECT_LT(l.e_phi.max_abs_settled(), 1e-3) << l.name;
     }
   }
   for (const auto& e : exp->events()) EXPECT_NE(e.kind, "singular") << e.message;
@@ -95,7 +95,7 @@ TEST(FormationExperiment, UkfFiltersThePapersAngleNoise) {
     EXPECT_LT(lu[k].est_alpha.rms(), 0.45 * sigma) << lu[k].name;
     // l is only weakly observable from angles: millimetres, not the noise-free 1e-4.
     EXPECT_LT(lu[k].est_l.rms(), 0.01) << lu[k].name;
-    EXPECT_LT(lu[k].e_l.max_abs_settled, 0.02) << lu[k].name;
+    EXPECT_LT(lu[k].e_l.max_abs_settled(), 0.02) << lu[k].name;
     ASSERT_NE(lu[k].filter, nullptr);
   }
   for (const auto& e : ukf->events()) EXPECT_NE(e.kind, "filter_fault") << e.message;
@@ -260,7 +260,7 @@ TEST(CascadeGenerator, BuildsValidCascadesThatHoldTheirShape) {
     ASSERT_EQ(exp->world().robots().size(), static_cast<std::size_t>(n));
     while (!exp->finished()) exp->Step();
     for (const auto& l : Formation(exp).Links()) {
-      EXPECT_LT(l.e_l.max_abs_settled, n == 10 ? 0.03 : 2e-3) << n << " " << l.name;
+      EXPECT_LT(l.e_l.max_abs_settled(), n == 10 ? 0.03 : 2e-3) << n << " " << l.name;
     }
     for (const auto& e : exp->events()) {
       EXPECT_NE(e.kind, "collision") << e.message;

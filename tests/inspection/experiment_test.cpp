@@ -44,14 +44,14 @@ TEST(InspectionExperiment, CompletesTheURouteWithinTheLateralBound) {
   EXPECT_TRUE(x.completed());
   EXPECT_LT(x.completion_time(), e->setup().duration);
   ASSERT_GT(x.lateral_tracking().n, 1000);
-  EXPECT_LT(x.lateral_tracking().max, x.config().lateral_bound);
-  EXPECT_LT(x.lateral_tracking().max, 0.1);
+  EXPECT_LT(x.lateral_tracking().max_abs, x.config().lateral_bound);
+  EXPECT_LT(x.lateral_tracking().max_abs, 0.1);
   EXPECT_LT(x.lateral_tracking().rms(), 0.03);
   EXPECT_GT(x.fixes(), 0.95 * x.scans());
   EXPECT_LT(x.error_kalman().rms(), 0.05);
   EXPECT_LT(x.error_kalman().rms(), x.error_raw().rms());
-  EXPECT_LT(x.error_kalman().max, x.error_raw().max);
-  EXPECT_GT(x.error_dead_reckoning().max, 0.5);  // what the laser fixes are there for
+  EXPECT_LT(x.error_kalman().max_abs, x.error_raw().max_abs);
+  EXPECT_GT(x.error_dead_reckoning().max_abs, 0.5);  // what the laser fixes are there for
   EXPECT_NEAR(static_cast<double>(x.control_updates()) / e->time(), 5.0, 0.05);
   EXPECT_FALSE(HasEvent(*e, "filter_fault"));
   EXPECT_FALSE(HasEvent(*e, "fuzzy_no_rule"));
@@ -65,7 +65,7 @@ TEST(InspectionExperiment, WithoutKalmanTheClassicalChainDrives) {
   auto& x = AsInspection(e);
   RunToEnd(*e);
   EXPECT_TRUE(x.completed());
-  EXPECT_LT(x.lateral_tracking().max, x.config().lateral_bound);
+  EXPECT_LT(x.lateral_tracking().max_abs, x.config().lateral_bound);
   // The classical filter smooths the raw fixes, the Kalman filter (running alongside) more.
   EXPECT_LT(x.error_classical().rms(), x.error_raw().rms());
   EXPECT_LT(x.error_kalman().rms(), x.error_classical().rms());
