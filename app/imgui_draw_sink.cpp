@@ -184,8 +184,9 @@ void ImDrawSink::Text(Vec2 p, const std::string& text, sim::Color color, float d
 
 void ImDrawSink::Flash(Vec2 p, double radius, sim::Color color, float age) {
   age = std::clamp(age, 0.0f, 1.0f);
-  const float r = static_cast<float>(radius * view_.scale) * (1.0f + 1.5f * age) + 4.0f;
-  dl_->AddCircle(view_.ToScreen(p), r, ToImColor(color.WithAlpha(color.a * (1.0f - age))), 32,
+  const float r = static_cast<float>(radius * view_.scale) * (1.0f + 0.5f * age) + 4.0f;
+  // num_segments 0: ImGui picks enough segments for a smooth ring at any radius.
+  dl_->AddCircle(view_.ToScreen(p), r, ToImColor(color.WithAlpha(color.a * (1.0f - age))), 0,
                  3.0f * line_scale_);
 }
 

@@ -233,8 +233,12 @@ void FormationExperiment::DrawScene(DrawSink& draw) const {
     // The event's last robot is the one it concerns (follower of a singular triangle).
     std::string name = it->robots.substr(it->robots.rfind(',') + 1);
     for (const Agent& a : agents_)
-      if (a.robot->name() == name)
-        draw.Flash(a.robot->pose().p(), 0.25, c, static_cast<float>(age));
+      if (a.robot->name() == name) {
+        // A ring just around the body, so it marks the robot without hiding its neighbours.
+        double extent = 0.0;
+        for (const Vec2& v : a.robot->outline()) extent = std::max(extent, v.Norm());
+        draw.Flash(a.robot->pose().p(), extent + 0.02, c, static_cast<float>(age));
+      }
   }
 }
 
