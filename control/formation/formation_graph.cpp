@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <map>
 
-namespace formsim::control {
+namespace formsim::control::formation {
 namespace {
 
 std::string Fmt(double v) {
@@ -172,4 +172,4 @@ FormationGraph BuildFormationGraph(const std::vector<FormationNodeDef>& nodes,
   return g;
 }
 
-}  // namespace formsim::control
+}  // namespace formsim::control::formation

@@ -11,7 +11,7 @@
 #include "control/common/geometry.hpp"
 #include "control/formation/formation_laws.hpp"
 
-namespace formsim::control {
+namespace formsim::control::formation {
 
 enum class FormationLaw { kRoot, kLPhi, kLL };
 
@@ -67,4 +67,4 @@ FormationGraph BuildFormationGraph(const std::vector<FormationNodeDef>& nodes,
 /// p1 and l2 around p2 on `side` (+1 left of p1 → p2). Returns false when they do not intersect.
 bool TriangleApex(const Vec2& p1, const Vec2& p2, double l1, double l2, int side, Vec2& apex);
 
-}  // namespace formsim::control
+}  // namespace formsim::control::formation

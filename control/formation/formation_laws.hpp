@@ -17,7 +17,7 @@
 
 #include "control/formation/link_kinematics.hpp"
 
-namespace formsim::control {
+namespace formsim::control::formation {
 
 /// Continuous-time gains (1/s) of a follower's two outputs.
 struct FormationGains {
@@ -88,4 +88,4 @@ inline LLCommand LLControl(const LinkState& s1, const LinkState& s2, const Twist
   return out;
 }
 
-}  // namespace formsim::control
+}  // namespace formsim::control::formation

@@ -15,7 +15,7 @@
 
 #include "control/formation/link_kinematics.hpp"
 
-namespace formsim::control {
+namespace formsim::control::formation {
 
 /// One constant piece of a segments schedule.
 struct ScheduleSegment {
@@ -70,4 +70,4 @@ inline std::vector<std::string> ScheduleKindNames() {
   return {"segments", "line_curve", "figure_eight", "spiral"};
 }
 
-}  // namespace formsim::control
+}  // namespace formsim::control::formation

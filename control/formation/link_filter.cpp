@@ -2,7 +2,7 @@
 
 #include <array>
 
-namespace formsim::control {
+namespace formsim::control::formation {
 namespace {
 
 // A link UKF measuring the components `idx` (indices into [l, φ, α]) of the state.
@@ -69,4 +69,4 @@ std::unique_ptr<LinkFilter> LinkFilter::Make(const LinkFilterDef& def) {
   return nullptr;
 }
 
-}  // namespace formsim::control
+}  // namespace formsim::control::formation

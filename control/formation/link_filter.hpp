@@ -18,7 +18,7 @@
 #include "control/common/ukf.hpp"
 #include "control/formation/link_kinematics.hpp"
 
-namespace formsim::control {
+namespace formsim::control::formation {
 
 /// Which components of [l, φ, α] a link's sensor reports to its filter.
 enum class MeasurementSet { kPhiAlpha, kLPhiAlpha, kAlpha };
@@ -77,4 +77,4 @@ class LinkFilter {
   LinkFilterDef def_;
 };
 
-}  // namespace formsim::control
+}  // namespace formsim::control::formation

@@ -19,7 +19,7 @@
 #include "control/common/angle.hpp"
 #include "control/common/geometry.hpp"
 
-namespace formsim::control {
+namespace formsim::control::formation {
 
 /// Which formula gives the bearing φ.
 enum class BearingConvention {
@@ -102,4 +102,4 @@ inline Eigen::Matrix<double, 2, 3> FollowerPositionJacobian(const Pose2& leader,
   return J;
 }
 
-}  // namespace formsim::control
+}  // namespace formsim::control::formation

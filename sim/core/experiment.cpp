@@ -5,12 +5,14 @@
 
 namespace formsim::sim {
 
-Experiment::Experiment(const ExperimentSetup& setup) : setup_(setup), rng_(setup.seed) {}
+Experiment::Experiment(const ExperimentSetup& setup) : setup_(setup), rng_(setup.seed) {
+  recorder_.Add("t", [this] { return time_; });
+}
 Experiment::~Experiment() = default;
 
 void Experiment::Start() {
   Sense(0.0);
-  RecordRow();
+  recorder_.Sample();
 }
 
 void Experiment::Step() {
@@ -20,41 +22,22 @@ void Experiment::Step() {
   // Integer step count times dt, so time does not drift by accumulated rounding.
   time_ = static_cast<double>(steps_) * setup_.dt;
   for (const auto& c : world_.new_collisions())
-    AddEvent("collision", c.a + "," + c.b, c.a + " hit " + c.b);
+    events_.Add(time_, event::kCollision, c.a + "," + c.b, c.a + " hit " + c.b);
   Sense(time_);
-  if (steps_ % setup_.record_every == 0) RecordRow();
+  if (steps_ % setup_.record_every == 0) recorder_.Sample();
 }
 
-void Experiment::RecordRow() {
-  recorder_.BeginRow();
-  Record(recorder_);
-}
-
-std::vector<std::string> Experiment::Apply(const PendingChanges& changes) {
-  std::vector<std::string> errors;
-  bool changed = false;
-  for (const auto& e : changes.edits) {
-    Param* p = params_.Find(e.key);
-    if (!p) {
-      errors.push_back("unknown parameter '" + e.key + "'");
-      continue;
-    }
-    const std::string err = ParamTable::SetFromString(*p, e.value);
-    if (!err.empty()) errors.push_back(err);
-    else changed = true;
+std::string Experiment::Move(const std::string& name, Vec2 p) {
+  if (!std::isfinite(p.x) || !std::isfinite(p.y)) return "cannot move '" + name + "' to a non-finite position";
+  if (Robot* r = world_.FindRobot(name)) {
+    Pose2 pose = r->pose();
+    pose.x = p.x;
+    pose.y = p.y;
+    r->SetPose(pose);
+    return "";
   }
-  for (const auto& m : changes.moves) {
-    if (Robot* r = world_.FindRobot(m.name)) {
-      Pose2 pose = r->pose();
-      pose.x = m.x;
-      pose.y = m.y;
-      r->SetPose(pose);
-    } else if (!world_.MoveObstacle(m.name, {m.x, m.y})) {
-      errors.push_back("nothing named '" + m.name + "' to move");
-    }
-  }
-  if (changed) OnParamsChanged();
-  return errors;
+  if (world_.MoveObstacle(name, p)) return "";
+  return "nothing named '" + name + "' to move";
 }
 
 void Experiment::Draw(DrawSink& draw) const {
@@ -81,83 +64,77 @@ void Experiment::Bounds(Vec2& lo, Vec2& hi) const {
   }
   for (const auto& p : world_.patches())
     for (const Vec2& v : p.polygon) grow(v, 0.0);
-  if (lo.x > hi.x) {
+  if (!(lo.x <= hi.x) || !(lo.y <= hi.y)) {
     lo = {-1, -1};
     hi = {1, 1};
   }
 }
 
-void Experiment::AddEvent(const std::string& kind, const std::string& robots,
-                          const std::string& message) {
-  events_.push_back({time_, kind, robots, message});
+Json Experiment::Summary() const {
+  Json j = Json::Object();
+  const ExperimentSetup& s = setup_;
+  j["scenario"] = s.name;
+  j["file"] = s.file;
+  j["type"] = s.type;
+  j["seed"] = static_cast<unsigned long long>(s.seed);
+  j["dt"] = s.dt;
+  j["steps"] = static_cast<long long>(steps_);
+  j["time"] = time_;
+  j["provenance"] = s.provenance.ToJson();
+  j["results"] = Results().ToJson();
+  Json counts = Json::Object();
+  for (const auto& [kind, n] : events_.counts()) counts[kind] = static_cast<long long>(n);
+  j["event_counts"] = counts;
+  Json list = Json::Array();
+  constexpr std::size_t kMaxListed = 200;
+  const auto& events = events_.list();
+  for (std::size_t i = 0; i < events.size() && i < kMaxListed; ++i) {
+    const Event& e = events[i];
+    Json ev = Json::Object();
+    ev["t"] = e.time;
+    ev["kind"] = e.kind;
+    ev["robots"] = e.robots;
+    if (!e.subject.empty()) ev["subject"] = e.subject;
+    ev["message"] = e.message;
+    list.Push(ev);
+  }
+  j["events"] = list;
+  return j;
+}
+
+std::string Experiment::SummaryText() const {
+  std::string out = Results().Text();
+  if (!events_.counts().empty()) {
+    out += "events:";
+    for (const auto& [kind, n] : events_.counts()) out += " " + kind + " " + std::to_string(n);
+    out += "\n";
+  }
+  return out;
 }
 
 // ---- registry ----
 
 namespace {
-std::map<std::string, ExperimentFactory>& Factories() {
-  static std::map<std::string, ExperimentFactory> f;
-  return f;
+std::map<std::string, ExperimentKind>& Kinds() {
+  static std::map<std::string, ExperimentKind> k;
+  return k;
 }
 }  // namespace
 
-bool ExperimentRegistry::Register(const std::string& type, ExperimentFactory factory) {
-  Factories()[type] = std::move(factory);
+bool ExperimentRegistry::Register(const ExperimentKind& kind) {
+  Kinds()[kind.type] = kind;
   return true;
 }
 
 std::vector<std::string> ExperimentRegistry::Types() {
   std::vector<std::string> out;
-  for (const auto& kv : Factories()) out.push_back(kv.first);
+  for (const auto& kv : Kinds()) out.push_back(kv.first);
   return out;
 }
 
-const ExperimentFactory* ExperimentRegistry::Find(const std::string& type) {
-  auto it = Factories().find(type);
-  return it == Factories().end() ? nullptr : &it->second;
-}
-
-std::unique_ptr<Experiment> LoadExperimentFromNode(YAML::Node root, const std::string& file,
-                                                   long long seed_override) {
-  if (!root.IsMap()) throw ScenarioError(file, 0, 0, "", "a scenario must be a YAML map");
-  YamlReader r(root, file);
-  ExperimentSetup s;
-  s.file = file;
-  s.type = r.RequiredString("type");
-  const ExperimentFactory* factory = ExperimentRegistry::Find(s.type);
-  if (!factory) {
-    std::string known;
-    for (const auto& t : ExperimentRegistry::Types()) known += (known.empty() ? "" : ", ") + t;
-    r.Fail("type", "unknown experiment type '" + s.type + "' (known: " + known + ")");
-  }
-  s.name = r.String("name", file);
-  s.description = r.String("description", "");
-  const double seed = r.Double("seed", 1.0);
-  if (seed < 0 || seed != static_cast<double>(static_cast<long long>(seed)))
-    r.Fail("seed", "must be a non-negative integer");
-  s.seed = seed_override >= 0 ? static_cast<std::uint64_t>(seed_override) : static_cast<std::uint64_t>(seed);
-  s.dt = r.Double("dt", s.dt);
-  if (s.dt <= 0 || s.dt > 0.1) r.Fail("dt", "must be in (0, 0.1] s");
-  s.duration = r.Double("duration", s.duration);
-  if (s.duration <= 0) r.Fail("duration", "must be positive");
-  s.record_every = r.Int("record_every", 1);
-  if (s.record_every < 1) r.Fail("record_every", "must be >= 1");
-  s.scenario = YAML::Clone(root);
-  if (seed_override >= 0) s.scenario["seed"] = static_cast<long long>(s.seed);
-  std::unique_ptr<Experiment> exp = (*factory)(s, r);
-  r.Finish();
-  return exp;
-}
-
-std::unique_ptr<Experiment> LoadExperiment(const std::string& file,
-                                           const std::vector<std::string>& sets,
-                                           long long seed_override) {
-  YAML::Node root = LoadYamlFile(file);
-  for (const auto& a : sets) {
-    const std::string err = ApplySet(root, a);
-    if (!err.empty()) throw ScenarioError(file, 0, 0, "", err);
-  }
-  return LoadExperimentFromNode(root, file, seed_override);
+const ExperimentKind* ExperimentRegistry::Find(const std::string& type) {
+  auto it = Kinds().find(type);
+  return it == Kinds().end() ? nullptr : &it->second;
 }
 
 }  // namespace formsim::sim

@@ -1,20 +1,34 @@
 #pragma once
-/// \file An experiment: one scenario kind (formation, Mecanum AGV, inspection robot, velocity
-/// control) built from a YAML file, stepped at a fixed rate, and described for drawing, plotting
-/// and tuning without knowing anything about GL. Like Box2D's testbed samples, each kind
-/// registers itself with FORMSIM_REGISTER_EXPERIMENT.
+/// \file An experiment: one scenario kind (formation, AGV, inspection robot, velocity control)
+/// built from a checked configuration, stepped at a fixed rate, and described for drawing,
+/// plotting and tuning without knowing anything about GL.
+///
+/// A kind is one self-contained, self-registering unit (like a Box2D testbed sample):
+///
+///   class FooExperiment : public ExperimentOf<FooConfig> {
+///    public:
+///     static FooConfig ReadConfig(YamlReader& root, const ExperimentSetup& setup);  // strict
+///     FooExperiment(const ExperimentSetup& setup, const FooConfig& config);  // ends with Start()
+///    protected:
+///     void Control(double t) override;  void Sense(double t) override;
+///     void ApplyTunables(const FooConfig& next) override;  // live edits
+///     ...
+///   };
+///   FORMSIM_REGISTER_EXPERIMENT("foo", FooExperiment);
 
 #include <cmath>
 #include <cstdint>
-#include <functional>
-#include <limits>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "sim/core/draw.hpp"
+#include "sim/core/event_log.hpp"
+#include "sim/core/figure_spec.hpp"
 #include "sim/core/json.hpp"
-#include "sim/core/params.hpp"
+#include "sim/core/metrics.hpp"
+#include "sim/core/provenance.hpp"
 #include "sim/core/recorder.hpp"
 #include "sim/core/rng.hpp"
 #include "sim/core/world.hpp"
@@ -22,48 +36,10 @@
 
 namespace formsim::sim {
 
-/// One line of a figure: a recorded column against time (or against `x_column`), or inline data.
-struct SeriesSpec {
-  std::string label;
-  std::string column;    ///< recorder column for y; empty when x/y inline data are given
-  std::string x_column;  ///< empty: time ("t")
-  std::vector<double> x, y;  ///< inline data (e.g. a membership function)
-  int color_index = -1;      ///< palette index; -1 = by series order
-  bool dashed = false;
-  bool markers_only = false;  ///< scatter (e.g. raw beacon fixes)
-};
-
-/// A figure, as exported by --plots and drawn live in the GUI.
-struct FigureSpec {
-  std::string id;     ///< file name stem: "phi_error" -> phi_error.png
-  std::string title;  ///< e.g. "(b) Bearing error φ12"
-  std::string x_label = "t [s]";
-  std::string y_label;
-  std::vector<SeriesSpec> series;
-  std::vector<double> reference_lines;  ///< horizontal lines (targets, bounds)
-  bool equal_aspect = false;            ///< trajectories: 1 m is 1 m on both axes
-  double marker_x = std::numeric_limits<double>::quiet_NaN();  ///< a vertical marker (current input)
-};
-
-/// A table the GUI shows (e.g. fuzzy rules with their firing strengths).
-struct TableSpec {
-  std::string title;
-  std::vector<std::string> header;
-  std::vector<std::vector<std::string>> rows;
-  std::vector<double> row_strength;  ///< optional bar in [0, 1] per row
-};
-
-/// Something that happened: a collision, saturation, singular formation, filter fault.
-struct Event {
-  double time = 0.0;
-  std::string kind;     ///< "collision", "saturation", "singular", "filter_fault", ...
-  std::string robots;   ///< e.g. "R3" or "R1,R2"
-  std::string message;
-};
-
 /// Values every experiment shares, read from the scenario's root by the loader.
 struct ExperimentSetup {
   std::string file;         ///< scenario path (for messages)
+  std::string dir;          ///< its folder (relative paths in the scenario resolve here)
   std::string name;         ///< scenario name
   std::string description;  ///< one line, for `formsim list`
   std::string type;         ///< experiment kind
@@ -71,21 +47,37 @@ struct ExperimentSetup {
   double dt = 0.01;          ///< fixed world step, s
   double duration = 10.0;    ///< run length, s
   int record_every = 1;      ///< record one row every N steps
-  YAML::Node scenario;       ///< the tree the experiment was built from (after --set), for saving
+  Provenance provenance;     ///< what produced this run
+};
+
+/// A kind's parsed configuration, type-erased so the core can carry it.
+struct ExperimentConfig {
+  virtual ~ExperimentConfig() = default;
+};
+template <class C>
+struct ConfigOf : ExperimentConfig {
+  explicit ConfigOf(C v) : value(std::move(v)) {}
+  C value;
 };
 
 class Experiment {
  public:
   explicit Experiment(const ExperimentSetup& setup);
   virtual ~Experiment();
+  Experiment(const Experiment&) = delete;
+  Experiment& operator=(const Experiment&) = delete;
 
   /// One fixed step, always in this order: Control (controllers and estimators read the sensors
   /// and command the drives), world step (drives apply, Box2D integrates), Sense (sensors
   /// sample), then a recorded row every `record_every` steps.
   void Step();
-  /// Applies UI edits and drags between steps. Reset requests are handled by the owner, which
-  /// rebuilds the experiment from the (edited) scenario. Returns messages for rejected edits.
-  std::vector<std::string> Apply(const PendingChanges& changes);
+  /// Takes the live tunables of `config`, a configuration of this kind read from the scenario
+  /// with the user's edits (the session has checked it). Call between two steps.
+  void Retune(const ExperimentConfig& config) { OnRetune(config); }
+  /// A drag while paused: moves robot or obstacle `name` to p. Returns "" or why not.
+  std::string Move(const std::string& name, Vec2 p);
+  /// Adds a mid-run change to the run's provenance.
+  void NoteOverride(const Override& o) { setup_.provenance.overrides.push_back(o); }
 
   double time() const { return time_; }
   double dt() const { return setup_.dt; }
@@ -95,73 +87,105 @@ class Experiment {
 
   World& world() { return world_; }
   const World& world() const { return world_; }
-  ParamTable& params() { return params_; }
   const Recorder& recorder() const { return recorder_; }
-  const std::vector<Event>& events() const { return events_; }
+  const EventLog& events() const { return events_; }
 
   /// Figures in the style of the paper (exported by --plots, drawn live in the GUI).
   virtual std::vector<FigureSpec> Figures() const = 0;
-  /// Extra tables for the GUI (rules, per-link metrics...).
+  /// Extra tables for the GUI beyond the results (rules with firing strengths...).
   virtual std::vector<TableSpec> Tables() const { return {}; }
   /// Draws the whole scene: world (patches, obstacles) then the experiment's own layers.
   void Draw(DrawSink& draw) const;
   /// Axis-aligned box that should be visible (for fit-all).
   virtual void Bounds(Vec2& lo, Vec2& hi) const;
-  /// Metrics over the run so far (summary.json).
-  virtual Json Summary() const = 0;
-  /// A short human-readable table of the main metrics, printed by `formsim run`.
-  virtual std::string SummaryTable() const = 0;
+  /// Metrics over the run so far: summary.json's `results`, the printed and GUI tables.
+  virtual Metrics Results() const = 0;
+  /// summary.json: scenario, provenance, steps, results, event counts and the first events.
+  Json Summary() const;
+  /// What `formsim run` prints: the results' tables and the event counts.
+  std::string SummaryText() const;
 
  protected:
   virtual void Control(double t) = 0;
   virtual void Sense(double t) = 0;
-  virtual void Record(Recorder& rec) = 0;
   virtual void DrawScene(DrawSink& draw) const = 0;
-  /// Called after Apply() changed parameters, so derived classes can refresh derived values.
-  virtual void OnParamsChanged() {}
-  /// Call at the end of the derived constructor: samples the sensors at t = 0 and records row 0.
+  virtual void OnRetune(const ExperimentConfig& config) = 0;
+  /// Call at the end of the derived constructor, after declaring the recorder's channels:
+  /// samples the sensors at t = 0 and records row 0.
   void Start();
-  void AddEvent(const std::string& kind, const std::string& robots, const std::string& message);
+  /// Records an event now.
+  void AddEvent(const std::string& kind, const std::string& robots, const std::string& message,
+                const std::string& subject = "") {
+    events_.Add(time_, kind, robots, message, subject);
+  }
 
   ExperimentSetup setup_;
   World world_;
-  ParamTable params_;
-  Recorder recorder_;
+  Recorder recorder_;  ///< "t" is declared first by the base
   Rng rng_;
-  std::vector<Event> events_;
+  EventLog events_;
 
  private:
-  void RecordRow();
   double time_ = 0.0;
   long steps_ = 0;
 };
 
-using ExperimentFactory =
-    std::function<std::unique_ptr<Experiment>(const ExperimentSetup&, YamlReader& root)>;
+/// Base of a kind with configuration type C: keeps the configuration and routes Retune to
+/// ApplyTunables with the right type.
+template <class C>
+class ExperimentOf : public Experiment {
+ public:
+  using Config = C;
+  ExperimentOf(const ExperimentSetup& setup, const C& config) : Experiment(setup), cfg_(config) {}
+  const C& config() const { return cfg_; }
+
+ protected:
+  /// Takes the live tunables of `next` (read from the edited scenario; everything that applies
+  /// only on reset is unchanged).
+  virtual void ApplyTunables(const C& next) = 0;
+  C cfg_;
+
+ private:
+  void OnRetune(const ExperimentConfig& config) final {
+    const auto* c = dynamic_cast<const ConfigOf<C>*>(&config);
+    if (c == nullptr) throw std::logic_error("Retune with a configuration of another kind");
+    ApplyTunables(c->value);
+  }
+};
+
+/// One kind of experiment: how to read its configuration and how to build it.
+struct ExperimentKind {
+  std::string type;
+  std::shared_ptr<const ExperimentConfig> (*read)(YamlReader& root, const ExperimentSetup& setup) = nullptr;
+  std::unique_ptr<Experiment> (*build)(const ExperimentSetup& setup, const ExperimentConfig& config) = nullptr;
+};
 
 /// Registry of experiment kinds (the `type:` of a scenario).
 class ExperimentRegistry {
  public:
-  static bool Register(const std::string& type, ExperimentFactory factory);
+  static bool Register(const ExperimentKind& kind);
   static std::vector<std::string> Types();
-  static const ExperimentFactory* Find(const std::string& type);
+  static const ExperimentKind* Find(const std::string& type);
 };
 
-/// Loads a scenario file, applies `--set` assignments, reads the shared root keys (type, name,
-/// description, seed, dt, duration, record_every), builds the experiment and checks that every
-/// key was used. `seed_override` < 0 keeps the file's seed. Throws ScenarioError.
-std::unique_ptr<Experiment> LoadExperiment(const std::string& file,
-                                           const std::vector<std::string>& sets = {},
-                                           long long seed_override = -1);
-/// Same from an in-memory tree (the GUI's edited scenario); `file` is used in messages.
-std::unique_ptr<Experiment> LoadExperimentFromNode(YAML::Node root, const std::string& file,
-                                                   long long seed_override = -1);
+template <class E>
+bool RegisterExperimentKind(const char* type) {
+  using C = typename E::Config;
+  ExperimentKind k;
+  k.type = type;
+  k.read = [](YamlReader& root, const ExperimentSetup& setup) -> std::shared_ptr<const ExperimentConfig> {
+    return std::make_shared<ConfigOf<C>>(E::ReadConfig(root, setup));
+  };
+  k.build = [](const ExperimentSetup& setup, const ExperimentConfig& config) -> std::unique_ptr<Experiment> {
+    const auto* c = dynamic_cast<const ConfigOf<C>*>(&config);
+    if (c == nullptr) throw std::logic_error("build with a configuration of another kind");
+    return std::make_unique<E>(setup, c->value);
+  };
+  return ExperimentRegistry::Register(k);
+}
 
-/// Registers `Class` (constructible from (const ExperimentSetup&, YamlReader&)) as `type`.
-#define FORMSIM_REGISTER_EXPERIMENT(type, Class)                                          \
-  static const bool formsim_registered_##Class = ::formsim::sim::ExperimentRegistry::Register( \
-      type, [](const ::formsim::sim::ExperimentSetup& s, ::formsim::sim::YamlReader& r) {  \
-        return std::unique_ptr<::formsim::sim::Experiment>(new Class(s, r));              \
-      })
+/// Registers `Class` (an ExperimentOf<Config> with a static ReadConfig) as `type`.
+#define FORMSIM_REGISTER_EXPERIMENT(type, Class) \
+  static const bool formsim_registered_##Class = ::formsim::sim::RegisterExperimentKind<Class>(type)
 
 }  // namespace formsim::sim

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "sim/core/number_format.hpp"
+
 namespace formsim::sim {
 
 Json& Json::operator[](const std::string& key) {
@@ -24,21 +26,52 @@ const Json* Json::Get(const std::string& key) const {
   return nullptr;
 }
 
+// Length of the valid UTF-8 sequence starting at s[i], or 0 when the byte starts none.
+static std::size_t Utf8Length(const std::string& s, std::size_t i) {
+  const auto b = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
+  const unsigned char c = b(i);
+  std::size_t n = 0;
+  unsigned cp = 0;
+  if (c >= 0xc2 && c <= 0xdf) n = 2, cp = c & 0x1f;
+  else if (c >= 0xe0 && c <= 0xef) n = 3, cp = c & 0x0f;
+  else if (c >= 0xf0 && c <= 0xf4) n = 4, cp = c & 0x07;
+  else return 0;
+  if (i + n > s.size()) return 0;
+  for (std::size_t k = 1; k < n; ++k) {
+    if ((b(i + k) & 0xc0) != 0x80) return 0;
+    cp = (cp << 6) | (b(i + k) & 0x3f);
+  }
+  // Overlong forms, surrogates and code points past U+10FFFF are not valid UTF-8.
+  if ((n == 3 && cp < 0x800) || (n == 4 && (cp < 0x10000 || cp > 0x10ffff)) ||
+      (cp >= 0xd800 && cp <= 0xdfff))
+    return 0;
+  return n;
+}
+
 static void Escape(std::string& out, const std::string& s) {
   out += '"';
-  for (char c : s) {
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
     switch (c) {
       case '"': out += "\\\""; break;
       case '\\': out += "\\\\"; break;
       case '\n': out += "\\n"; break;
       case '\t': out += "\\t"; break;
       default:
-        if (static_cast<unsigned char>(c) < 0x20) {
+        if (c < 0x20 || c == 0x7f) {
           char buf[8];
           std::snprintf(buf, sizeof buf, "\\u%04x", c);
           out += buf;
+        } else if (c < 0x80) {
+          out += static_cast<char>(c);
+        } else if (const std::size_t n = Utf8Length(s, i)) {
+          out.append(s, i, n);
+          i += n - 1;
         } else {
-          out += c;
+          // Not UTF-8: keep the byte visible as the Latin-1 character of the same value.
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", c);
+          out += buf;
         }
     }
   }
@@ -52,14 +85,10 @@ void Json::DumpTo(std::string& out, int indent, int depth) const {
     case Type::kNull: out += "null"; break;
     case Type::kBool: out += bool_ ? "true" : "false"; break;
     case Type::kNumber:
-      if (std::isfinite(number_)) {
-        char buf[32];
-        std::snprintf(buf, sizeof buf, "%.10g", number_);
-        out += buf;
-      } else {
-        out += "null";
-      }
+      if (std::isfinite(number_)) AppendDouble(out, number_);
+      else out += "null";
       break;
+    case Type::kInteger: out += integer_; break;
     case Type::kString: Escape(out, string_); break;
     case Type::kArray:
       if (array_.empty()) { out += "[]"; break; }

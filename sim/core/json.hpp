@@ -1,6 +1,8 @@
 #pragma once
 /// \file A minimal ordered JSON value for summaries (objects keep insertion order, so the
-/// same run writes the same bytes). Non-finite numbers are written as null.
+/// same run writes the same bytes). Numbers are written as the shortest text that reads back
+/// to the same double; integers (seeds, counts) exactly; non-finite numbers as null. Strings
+/// are escaped so that any bytes give valid JSON (invalid UTF-8 bytes become \u00XX).
 
 #include <map>
 #include <memory>
@@ -12,11 +14,14 @@ namespace formsim::sim {
 
 class Json {
  public:
-  enum class Type { kNull, kBool, kNumber, kString, kArray, kObject };
+  enum class Type { kNull, kBool, kNumber, kInteger, kString, kArray, kObject };
   Json() = default;
   Json(double v) : type_(Type::kNumber), number_(v) {}
   Json(int v) : type_(Type::kNumber), number_(v) {}
-  Json(long v) : type_(Type::kNumber), number_(static_cast<double>(v)) {}
+  Json(long v) : Json(static_cast<long long>(v)) {}
+  Json(long long v) : type_(Type::kInteger), number_(static_cast<double>(v)), integer_(std::to_string(v)) {}
+  Json(unsigned long long v) : type_(Type::kInteger), number_(static_cast<double>(v)), integer_(std::to_string(v)) {}
+  Json(unsigned long v) : Json(static_cast<unsigned long long>(v)) {}
   Json(bool v) : type_(Type::kBool), bool_(v) {}
   Json(const char* s) : type_(Type::kString), string_(s) {}
   Json(std::string s) : type_(Type::kString), string_(std::move(s)) {}
@@ -40,6 +45,7 @@ class Json {
   double number_ = 0.0;
   bool bool_ = false;
   std::string string_;
+  std::string integer_;  ///< exact digits of an integer
   std::vector<Json> array_;
   std::vector<std::pair<std::string, Json>> object_;
 };

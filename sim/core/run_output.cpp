@@ -41,37 +41,7 @@ void WriteRunOutputs(const Experiment& exp, const std::string& dir) {
   std::error_code ec;
   fs::rename(csv + ".tmp", csv, ec);
   if (ec) throw std::runtime_error("cannot write '" + csv + "': " + ec.message());
-
-  Json j = Json::Object();
-  const ExperimentSetup& s = exp.setup();
-  j["scenario"] = s.name;
-  j["file"] = s.file;
-  j["type"] = s.type;
-  j["seed"] = static_cast<double>(s.seed);
-  j["dt"] = s.dt;
-  j["steps"] = exp.steps();
-  j["time"] = exp.time();
-  j["results"] = exp.Summary();
-  // Count every event by kind; list the first ones in full.
-  Json counts = Json::Object();
-  Json list = Json::Array();
-  constexpr std::size_t kMaxListed = 200;
-  for (std::size_t i = 0; i < exp.events().size(); ++i) {
-    const Event& e = exp.events()[i];
-    Json& c = counts[e.kind];
-    c = Json(c.type() == Json::Type::kNumber ? c.number() + 1.0 : 1.0);
-    if (i < kMaxListed) {
-      Json ev = Json::Object();
-      ev["t"] = e.time;
-      ev["kind"] = e.kind;
-      ev["robots"] = e.robots;
-      ev["message"] = e.message;
-      list.Push(ev);
-    }
-  }
-  j["event_counts"] = counts;
-  j["events"] = list;
-  WriteFileAtomic((fs::path(dir) / "summary.json").string(), j.Dump());
+  WriteFileAtomic((fs::path(dir) / "summary.json").string(), exp.Summary().Dump());
 }
 
 }  // namespace formsim::sim

@@ -12,7 +12,11 @@ WorldDef ReadWorldDef(YamlReader& m) {
   def.floor_friction = m.Double("floor_friction", def.floor_friction);
   if (def.floor_friction < 0) m.Fail("floor_friction", "must be >= 0");
   def.velocity_iterations = m.Int("velocity_iterations", def.velocity_iterations);
+  if (def.velocity_iterations < 1 || def.velocity_iterations > 100)
+    m.Fail("velocity_iterations", "must be in [1, 100] (Box2D's default is 8)");
   def.position_iterations = m.Int("position_iterations", def.position_iterations);
+  if (def.position_iterations < 1 || def.position_iterations > 100)
+    m.Fail("position_iterations", "must be in [1, 100] (Box2D's default is 3)");
   m.Finish();
   return def;
 }

@@ -62,15 +62,15 @@ void UnicycleDrive::Apply(Robot& robot, World& world, double dt) {
   body->ApplyTorque(static_cast<float>(tau_out), true);
 }
 
-UnicycleDriveDef ReadUnicycleDrive(YamlReader& d) {
+UnicycleDriveDef ReadUnicycleDrive(YamlReader& d, const std::string& group) {
   UnicycleDriveDef def = DefaultUnicycleDriveDef();
-  def.mode = static_cast<UnicycleDriveDef::Mode>(d.Choice("mode", {"ideal", "traction"}, 0));
-  def.v_max = d.Double("v_max", def.v_max);
-  def.omega_max = d.Double("omega_max", def.omega_max);
+  def.mode = static_cast<UnicycleDriveDef::Mode>(
+      d.Pick("mode", {"ideal", "traction"}, 0, Tune("mode").Group(group)));
+  def.v_max = d.Real("v_max", def.v_max, Tune("v max", "m/s").Above(0).Slider(0.1, 10.0).Group(group));
+  def.omega_max =
+      d.Real("omega_max", def.omega_max, Tune("ω max", "rad/s").Above(0).Slider(0.1, 20.0).Group(group));
   def.accel_max = d.Double("accel_max", def.accel_max);
   def.track_half_width = d.Double("track_half_width", def.track_half_width);
-  if (def.v_max <= 0) d.Fail("v_max", "must be positive");
-  if (def.omega_max <= 0) d.Fail("omega_max", "must be positive");
   if (def.accel_max <= 0) d.Fail("accel_max", "must be positive");
   if (def.track_half_width <= 0) d.Fail("track_half_width", "must be positive");
   d.Finish();

@@ -7,6 +7,7 @@
 ///    the robot slides when asked for more than the ground gives.
 
 #include <limits>
+#include <string>
 
 #include "sim/core/world.hpp"
 
@@ -42,7 +43,8 @@ class UnicycleDrive : public DriveModel {
   bool saturated_v_ = false, saturated_omega_ = false, slipping_ = false;
 };
 
-/// Reads `drive: {mode: ideal|traction, v_max, omega_max, accel_max}`.
-UnicycleDriveDef ReadUnicycleDrive(class YamlReader& drive_map);
+/// Reads `drive: {mode: ideal|traction, v_max, omega_max, accel_max, track_half_width}`; mode,
+/// v_max and omega_max are tunables shown in GUI group `group`.
+UnicycleDriveDef ReadUnicycleDrive(class YamlReader& drive_map, const std::string& group);
 
 }  // namespace formsim::sim

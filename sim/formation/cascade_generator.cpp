@@ -1,10 +1,12 @@
 #include "sim/formation/cascade_generator.hpp"
 
+#include <yaml-cpp/yaml.h>
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-namespace formsim::sim {
+namespace formsim::sim::formation {
 namespace {
 
 YAML::Node Flow(std::initializer_list<double> v) {
@@ -20,7 +22,7 @@ std::string Name(int index) {
 
 }  // namespace
 
-YAML::Node MakeCascadeScenario(int n_robots, bool ukf, double spacing) {
+YAML::Node MakeCascadeTree(int n_robots, bool ukf, double spacing) {
   if (n_robots < 1) throw std::invalid_argument("MakeCascadeScenario: n_robots must be >= 1");
   const double L = 0.15, d = spacing, h = 0.9186e-4;
   const int cols = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n_robots))));
@@ -91,4 +93,14 @@ YAML::Node MakeCascadeScenario(int n_robots, bool ukf, double spacing) {
   return root;
 }
 
-}  // namespace formsim::sim
+}  // namespace formsim::sim::formation
+
+namespace formsim::sim::formation {
+
+std::string MakeCascadeScenario(int n_robots, bool ukf, double spacing) {
+  YAML::Emitter out;
+  out << MakeCascadeTree(n_robots, ukf, spacing);
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace formsim::sim::formation

@@ -10,13 +10,13 @@
 /// runs the line-curve schedule at 2.5 m/s with a gentle ω = 0.05 rad/s (turn radius 50 m, wide
 /// enough for a 1000-robot grid of about 16 m).
 
-#include <yaml-cpp/yaml.h>
+#include <string>
 
-namespace formsim::sim {
+namespace formsim::sim::formation {
 
-/// A `type: formation` scenario tree with `n_robots` robots (≥ 1); with `ukf` every follower
+/// The YAML text of a `type: formation` scenario with `n_robots` robots (≥ 1); with `ukf` every follower
 /// runs a UKF per link on noisy angle measurements (the paper's noise), otherwise it uses the
 /// true link state. dt = Tc = 0.01 s, duration 10 s, per-sample gains, record_every 10.
-YAML::Node MakeCascadeScenario(int n_robots, bool ukf, double spacing = 0.5);
+std::string MakeCascadeScenario(int n_robots, bool ukf, double spacing = 0.5);
 
-}  // namespace formsim::sim
+}  // namespace formsim::sim::formation

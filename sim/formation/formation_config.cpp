@@ -1,84 +1,85 @@
 #include "sim/formation/formation_config.hpp"
 
-#include <algorithm>
 #include <map>
 #include <set>
 
-namespace formsim::sim {
+#include "sim/core/multirate.hpp"
+
+namespace formsim::sim::formation {
 namespace {
 
-using control::FormationLaw;
-using control::LeaderScheduleDef;
+using cf::FormationLaw;
+using cf::LeaderScheduleDef;
 
-// Reads `<name>_sigma` or `<name>_variance` (not both) into v.
-void ReadNoiseValue(YamlReader& m, const std::string& name, NoiseValue& v) {
+// Reads `<name>_sigma` or `<name>_variance` (not both) into v. The one present (σ when
+// neither is) becomes a tunable of GUI group `group`; `inherit` leaves an absent pair unset.
+void ReadNoiseValue(YamlReader& m, const std::string& name, NoiseValue& v, const std::string& group,
+                    bool inherit) {
   const std::string ks = name + "_sigma", kv = name + "_variance";
   const bool has_s = m.Has(ks), has_v = m.Has(kv);
   if (has_s && has_v) m.Fail(kv, "give either " + ks + " or " + kv + ", not both");
-  if (has_s) {
-    v = {m.Double(ks, 0.0), false, true};
-    if (v.value < 0) m.Fail(ks, "must be >= 0");
-  } else if (has_v) {
-    v = {m.Double(kv, 0.0), true, true};
-    if (v.value < 0) m.Fail(kv, "must be >= 0");
+  const bool angle = name != "l";
+  if (has_v) {
+    m.Double(ks, 0.0);  // mark the other spelling as allowed
+    v = {m.Real(kv, 0.0, Tune(name + " variance", angle ? "rad²" : "m²").AtLeast(0).Slider(0.0, 1e-2).Group(group)),
+         true, true};
+  } else if (has_s || !inherit) {
+    m.Double(kv, 0.0);
+    v = {m.Real(ks, 0.0, Tune(name + " σ", angle ? "rad" : "m").AtLeast(0).Slider(0.0, 0.1).Group(group)), false,
+         has_s};
   } else {
-    // Mark both as read so Finish() accepts an absent pair.
     m.Double(ks, 0.0);
     m.Double(kv, 0.0);
   }
 }
 
-NoiseDef ReadNoise(YamlReader& m) {
+NoiseDef ReadNoise(YamlReader& m, const std::string& group, bool inherit) {
   NoiseDef n;
-  ReadNoiseValue(m, "l", n.l);
-  ReadNoiseValue(m, "phi", n.phi);
-  ReadNoiseValue(m, "alpha", n.alpha);
+  ReadNoiseValue(m, "l", n.l, group, inherit);
+  ReadNoiseValue(m, "phi", n.phi, group, inherit);
+  ReadNoiseValue(m, "alpha", n.alpha, group, inherit);
   m.Finish();
   return n;
 }
 
-double Positive(YamlReader& m, const std::string& key, double def) {
-  const double v = m.Double(key, def);
-  if (!(v > 0.0)) m.Fail(key, "must be > 0");
-  return v;
-}
-double NonNegative(YamlReader& m, const std::string& key, double def) {
-  const double v = m.Double(key, def);
-  if (v < 0.0) m.Fail(key, "must be >= 0");
-  return v;
-}
-
 UkfDef ReadUkf(YamlReader& m) {
+  const std::string g = "Estimation/UKF";
   UkfDef u;
-  u.alpha = Positive(m, "alpha", u.alpha);
-  u.beta = NonNegative(m, "beta", u.beta);
-  u.kappa = m.Double("kappa", u.kappa);
+  u.alpha = m.Real("alpha", u.alpha, Tune("sigma spread a").Above(0).Slider(1e-3, 1.0).Group(g).OnReset());
+  u.beta = m.Real("beta", u.beta, Tune("b").AtLeast(0).Slider(0.0, 4.0).Group(g).OnReset());
+  u.kappa = m.Real("kappa", u.kappa, Tune("κ").Above(-3).Slider(-2.0, 3.0).Group(g).OnReset());
   if (u.alpha * u.alpha * (3.0 + u.kappa) <= 0.0)
     m.Fail("kappa", "alpha² (3 + kappa) must be > 0 (sigma point spread)");
-  u.q_l = NonNegative(m, "q_l", u.q_l);
-  u.q_phi = NonNegative(m, "q_phi", u.q_phi);
-  u.q_alpha = NonNegative(m, "q_alpha", u.q_alpha);
-  u.r_l = m.Has("r_l") ? Positive(m, "r_l", 1.0) : m.Double("r_l", -1.0);
-  u.r_phi = m.Has("r_phi") ? Positive(m, "r_phi", 1.0) : m.Double("r_phi", -1.0);
-  u.r_alpha = m.Has("r_alpha") ? Positive(m, "r_alpha", 1.0) : m.Double("r_alpha", -1.0);
-  u.p0_l = Positive(m, "p0_l", u.p0_l);
-  u.p0_phi = Positive(m, "p0_phi", u.p0_phi);
-  u.p0_alpha = Positive(m, "p0_alpha", u.p0_alpha);
+  u.q_l = m.Real("q_l", u.q_l, Tune("Q l", "m²").AtLeast(0).Slider(1e-12, 1e-2, kLog).Group(g));
+  u.q_phi = m.Real("q_phi", u.q_phi, Tune("Q φ", "rad²").AtLeast(0).Slider(1e-12, 1e-2, kLog).Group(g));
+  u.q_alpha = m.Real("q_alpha", u.q_alpha, Tune("Q α", "rad²").AtLeast(0).Slider(1e-12, 1e-2, kLog).Group(g));
+  // R defaults to the sensor variance; given explicitly it is a tunable of its own.
+  auto r = [&](const std::string& key, const std::string& label, const std::string& unit) {
+    if (!m.Has(key)) return m.Double(key, -1.0);
+    return m.Real(key, 1.0, Tune(label, unit).Above(0).Slider(1e-12, 1e-2, kLog).Group(g));
+  };
+  u.r_l = r("r_l", "R l", "m²");
+  u.r_phi = r("r_phi", "R φ", "rad²");
+  u.r_alpha = r("r_alpha", "R α", "rad²");
+  u.p0_l = m.Real("p0_l", u.p0_l, Tune("P0 l", "m²").Above(0).Slider(1e-12, 1.0, kLog).Group(g).OnReset());
+  u.p0_phi = m.Real("p0_phi", u.p0_phi, Tune("P0 φ", "rad²").Above(0).Slider(1e-12, 1.0, kLog).Group(g).OnReset());
+  u.p0_alpha =
+      m.Real("p0_alpha", u.p0_alpha, Tune("P0 α", "rad²").Above(0).Slider(1e-12, 1.0, kLog).Group(g).OnReset());
   u.l0_error = m.Double("l0_error", u.l0_error);
   m.Finish();
   return u;
 }
 
-LeaderScheduleDef ReadSchedule(YamlReader& m) {
+LeaderScheduleDef ReadSchedule(YamlReader& m, const std::string& group) {
   LeaderScheduleDef d;
   d.kind = static_cast<LeaderScheduleDef::Kind>(
-      m.Choice("kind", control::ScheduleKindNames(), static_cast<int>(d.kind)));
+      m.Choice("kind", cf::ScheduleKindNames(), static_cast<int>(d.kind)));
   if (d.kind == LeaderScheduleDef::Kind::kFigureEight) d.omega = control::kPi / 3.0;
   if (d.kind == LeaderScheduleDef::Kind::kSegments) {
     if (!m.Has("segments")) m.Fail("segments", "kind: segments needs a segments list");
     double last = -1e300;
     for (YamlReader& s : m.MapList("segments")) {
-      control::ScheduleSegment seg;
+      cf::ScheduleSegment seg;
       seg.until = s.RequiredDouble("until");
       seg.v = s.Double("v", 0.0);
       seg.w = s.Double("w", 0.0);
@@ -89,54 +90,65 @@ LeaderScheduleDef ReadSchedule(YamlReader& m) {
     }
     if (d.segments.empty()) m.Fail("segments", "needs at least one segment");
   } else {
-    d.v = m.Double("v", d.v);
+    d.v = m.Real("v", d.v, Tune("leader v", "m/s").AtLeast(-10).AtMost(10).Slider(0.0, 5.0).Group(group));
     if (d.kind == LeaderScheduleDef::Kind::kSpiral) {
-      d.accel = m.Double("accel", d.accel);
-      d.r0 = Positive(m, "r0", d.r0);
-      d.r_rate = NonNegative(m, "r_rate", d.r_rate);
+      d.accel = m.Real("accel", d.accel, Tune("spiral dv/dt", "m/s²").In(-10, 10).Slider(-0.5, 0.5).Group(group));
+      d.r0 = m.Real("r0", d.r0, Tune("spiral R0", "m").Above(0).Slider(0.2, 10.0).Group(group));
+      d.r_rate = m.Real("r_rate", d.r_rate, Tune("spiral dR/dt", "m/s").AtLeast(0).Slider(0.0, 2.0).Group(group));
     } else {
-      d.omega = m.Double("omega", d.omega);
+      d.omega = m.Real("omega", d.omega,
+                       Tune("leader ω amplitude", "rad/s").In(-20, 20).Slider(0.0, 3.0).Group(group));
     }
   }
   m.Finish();
   return d;
 }
 
-control::MeasurementSet ReadMeasure(YamlReader& m) {
+cf::MeasurementSet ReadMeasure(YamlReader& m) {
   const auto items = m.Strings("measure", {"phi", "alpha"});
   const std::set<std::string> s(items.begin(), items.end());
   if (s.size() != items.size()) m.Fail("measure", "a component is listed twice");
-  if (s == std::set<std::string>{"phi", "alpha"}) return control::MeasurementSet::kPhiAlpha;
-  if (s == std::set<std::string>{"l", "phi", "alpha"}) return control::MeasurementSet::kLPhiAlpha;
-  if (s == std::set<std::string>{"alpha"}) return control::MeasurementSet::kAlpha;
+  if (s == std::set<std::string>{"phi", "alpha"}) return cf::MeasurementSet::kPhiAlpha;
+  if (s == std::set<std::string>{"l", "phi", "alpha"}) return cf::MeasurementSet::kLPhiAlpha;
+  if (s == std::set<std::string>{"alpha"}) return cf::MeasurementSet::kAlpha;
   m.Fail("measure", "must be one of [phi, alpha], [l, phi, alpha], [alpha]");
 }
 
 void ReadFollow(YamlReader& f, FormationRobotDef& r) {
-  control::FormationNodeDef& n = r.node;
+  cf::FormationNodeDef& n = r.node;
+  const std::string gains = "Gains/" + r.body.name;
   const int law = f.Choice("law", {"l_phi", "l_l"}, -1);
   if (law < 0) f.Fail("law", "required: l_phi (one leader) or l_l (two leaders)");
   n.law = law == 0 ? FormationLaw::kLPhi : FormationLaw::kLL;
   if (!f.Has("leaders")) f.Fail("leaders", "required list of leader names");
   n.leaders = f.Strings("leaders", {});
-  n.l_des = f.Double("l_des", n.l_des);
-  r.follow.k1 = Positive(f, "k_l", r.follow.k1);
-  if (n.law == FormationLaw::kLPhi) {
-    n.phi_des = f.Double("phi_des", n.phi_des);
-    r.follow.k2 = Positive(f, "k_phi", r.follow.k2);
+  const bool lphi = n.law == FormationLaw::kLPhi;
+  n.l_des = f.Real("l_des", n.l_des,
+                   Tune(lphi ? "l desired" : "l1 desired", "m").Above(0).Slider(0.1, 2.0).Group(gains));
+  r.follow.k1 = f.Real("k_l", r.follow.k1, Tune(lphi ? "k l" : "k l1").Above(0).Slider(1e-3, 1.0, kLog).Group(gains));
+  if (lphi) {
+    n.phi_des = f.Real("phi_des", n.phi_des,
+                       Tune("φ desired", "rad").In(-2 * control::kPi, 2 * control::kPi)
+                           .Slider(-control::kPi, 2 * control::kPi).Group(gains));
+    r.follow.k2 = f.Real("k_phi", r.follow.k2, Tune("k φ").Above(0).Slider(1e-3, 1.0, kLog).Group(gains));
   } else {
-    n.l2_des = f.Double("l2_des", n.l2_des);
-    r.follow.k2 = Positive(f, "k_l2", r.follow.k2);
+    n.l2_des = f.Real("l2_des", n.l2_des, Tune("l2 desired", "m").Above(0).Slider(0.1, 2.0).Group(gains));
+    r.follow.k2 = f.Real("k_l2", r.follow.k2, Tune("k l2").Above(0).Slider(1e-3, 1.0, kLog).Group(gains));
   }
-  r.follow.estimator =
-      static_cast<EstimatorMode>(f.Choice("estimator", {"truth", "raw", "ukf"}, 0));
+  r.follow.estimator = static_cast<EstimatorMode>(
+      f.Pick("estimator", EstimatorModeNames(), 0, Tune("estimator").Group("Estimation/" + r.body.name)));
   r.follow.measure = ReadMeasure(f);
   YamlReader nm = f.Map("noise");
-  r.follow.noise = ReadNoise(nm);
+  r.follow.noise = ReadNoise(nm, "Noise/" + r.body.name, true);
   f.Finish();
 }
 
 }  // namespace
+
+const std::vector<std::string>& EstimatorModeNames() {
+  static const std::vector<std::string> names = {"truth", "raw", "ukf"};
+  return names;
+}
 
 NoiseDef EffectiveNoise(const FormationConfig& cfg, const FollowerDef& f) {
   NoiseDef n = cfg.noise;
@@ -151,23 +163,23 @@ FormationConfig ReadFormationConfig(YamlReader& root, double dt) {
   cfg.control_period = dt;
   {
     YamlReader f = root.Map("formation");
-    cfg.L = Positive(f, "L", cfg.L);
-    cfg.bearing =
-        static_cast<control::BearingConvention>(f.Choice("bearing", {"das", "printed"}, 0));
-    cfg.gain_reading =
-        static_cast<control::GainReading>(f.Choice("gain_reading", {"printed", "per_sample"}, 0));
-    cfg.control_period = Positive(f, "control_period", cfg.control_period);
-    const double ratio = cfg.control_period / dt;
-    if (std::abs(ratio - std::round(ratio)) > 1e-9 || ratio < 1.0 - 1e-9)
-      f.Fail("control_period", "must be a whole multiple of dt");
-    cfg.settle_time = NonNegative(f, "settle_time", cfg.settle_time);
-    cfg.singular_threshold = Positive(f, "singular_threshold", cfg.singular_threshold);
-    if (cfg.singular_threshold >= 1.0) f.Fail("singular_threshold", "must be < 1 (a |sine|)");
+    const std::string g = "Gains";
+    cfg.gain_reading = static_cast<cf::GainReading>(
+        f.Pick("gain_reading", {"printed", "per_sample"}, 0, Tune("gain reading").Group(g)));
+    cfg.bearing = static_cast<cf::BearingConvention>(
+        f.Pick("bearing", {"das", "printed"}, 0, Tune("bearing convention").Group(g)));
+    cfg.singular_threshold = f.Real("singular_threshold", cfg.singular_threshold,
+                                    Tune("l-l singular |sin|").Above(0).Below(1).Slider(0.01, 0.5).Group(g));
+    cfg.L = f.Real("L", cfg.L, Tune("control point L", "m").Above(0).Slider(0.05, 0.5).Group(g));
+    cfg.settle_time = f.Real("settle_time", cfg.settle_time,
+                             Tune("settle time", "s").AtLeast(0).Slider(0.0, 10.0).Group(g).OnReset());
+    cfg.control_period = f.Double("control_period", cfg.control_period);
+    cfg.control_every = ReadPeriodSteps(f, "control_period", dt, dt, true);
     f.Finish();
   }
   {
     YamlReader n = root.Map("noise");
-    cfg.noise = ReadNoise(n);
+    cfg.noise = ReadNoise(n, "Noise/all links", false);
   }
   {
     YamlReader u = root.Map("ukf");
@@ -177,7 +189,7 @@ FormationConfig ReadFormationConfig(YamlReader& root, double dt) {
     YamlReader d = root.Map("draw");
     cfg.trail_length = d.Int("trail_length", cfg.trail_length);
     cfg.trail_every = d.Int("trail_every", cfg.trail_every);
-    if (cfg.trail_length < 0) d.Fail("trail_length", "must be >= 0");
+    if (cfg.trail_length < 0 || cfg.trail_length > 100000) d.Fail("trail_length", "must be in [0, 100000]");
     if (cfg.trail_every < 1) d.Fail("trail_every", "must be >= 1");
     d.Finish();
   }
@@ -198,13 +210,15 @@ FormationConfig ReadFormationConfig(YamlReader& root, double dt) {
     r.body = DefaultRobotDef();
     r.body.name = m.RequiredString("name");
     if (names.count(r.body.name)) m.Fail("name", "duplicate robot name '" + r.body.name + "'");
+    if (r.body.name.find_first_of(".,") != std::string::npos)
+      m.Fail("name", "a robot name must not contain '.' or ',' (names address keys and events)");
     names[r.body.name] = static_cast<int>(i);
     r.body.pose = m.Pose("pose", Pose2{});
     r.body.color_index = static_cast<int>(i);
     YamlReader b = m.Map("body");
     ReadRobotBody(b, r.body);
     YamlReader dr = m.Map("drive");
-    r.drive = ReadUnicycleDrive(dr);
+    r.drive = ReadUnicycleDrive(dr, "Drive/" + r.body.name);
     r.node.name = r.body.name;
     r.node.initial_pose = r.body.pose;
     r.node.L = cfg.L;
@@ -216,23 +230,23 @@ FormationConfig ReadFormationConfig(YamlReader& root, double dt) {
       ReadFollow(f, r);
     } else {
       YamlReader s = m.Map("schedule");
-      r.schedule = ReadSchedule(s);
+      r.schedule = ReadSchedule(s, "Gains/" + r.body.name);
     }
     m.Finish();
     cfg.robots.push_back(std::move(r));
   }
 
-  std::vector<control::FormationNodeDef> nodes;
+  std::vector<cf::FormationNodeDef> nodes;
   for (const auto& r : cfg.robots) nodes.push_back(r.node);
   try {
-    cfg.graph = control::BuildFormationGraph(nodes, cfg.singular_threshold);
-  } catch (const control::FormationGraphError& e) {
+    cfg.graph = cf::BuildFormationGraph(nodes, cfg.singular_threshold);
+  } catch (const cf::FormationGraphError& e) {
     // Re-locate the error at the robot's follow block key.
-    YAML::Node follow = items[e.robot()].node()["follow"];
-    YamlReader at(follow, items[e.robot()].file(), items[e.robot()].KeyPath("follow"));
+    YamlReader at(items[e.robot()].node()["follow"], items[e.robot()].shared_context(),
+                  items[e.robot()].KeyPath("follow"));
     at.Fail(e.key(), e.what());
   }
   return cfg;
 }
 
-}  // namespace formsim::sim
+}  // namespace formsim::sim::formation

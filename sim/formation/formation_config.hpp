@@ -1,6 +1,6 @@
 #pragma once
 /// \file The parsed configuration of a `type: formation` scenario (definition structs with
-/// defaults) and its strict reader.
+/// defaults) and its strict reader, which also declares every tunable of the kind.
 ///
 /// Scenario layout (every key optional unless marked; unknown keys are errors):
 ///   formation: {L: 0.15, bearing: das|printed, gain_reading: printed|per_sample,
@@ -34,7 +34,9 @@
 #include "sim/core/world.hpp"
 #include "sim/core/yaml_reader.hpp"
 
-namespace formsim::sim {
+namespace formsim::sim::formation {
+
+namespace cf = control::formation;
 
 /// One noise component, given as σ or as a variance (the paper's h is a variance).
 struct NoiseValue {
@@ -60,12 +62,13 @@ struct UkfDef {
 };
 
 enum class EstimatorMode { kTruth, kRaw, kUkf };
+const std::vector<std::string>& EstimatorModeNames();
 
 /// Everything a follower needs beyond the graph node.
 struct FollowerDef {
   double k1 = 0.15, k2 = 0.08;  ///< printed gains (k_l, k_phi) or (k_l, k_l2)
   EstimatorMode estimator = EstimatorMode::kTruth;
-  control::MeasurementSet measure = control::MeasurementSet::kPhiAlpha;
+  cf::MeasurementSet measure = cf::MeasurementSet::kPhiAlpha;
   NoiseDef noise;  ///< own block (components with present = false inherit the global one)
 };
 
@@ -73,17 +76,18 @@ struct FollowerDef {
 struct FormationRobotDef {
   RobotDef body;
   UnicycleDriveDef drive;
-  control::FormationNodeDef node;
-  control::LeaderScheduleDef schedule;  ///< root leaders
-  FollowerDef follow;                   ///< followers
+  cf::FormationNodeDef node;
+  cf::LeaderScheduleDef schedule;  ///< root leaders
+  FollowerDef follow;              ///< followers
 };
 
 /// The whole formation scenario (beyond the loader's root keys).
 struct FormationConfig {
   double L = 0.15;
-  control::BearingConvention bearing = control::BearingConvention::kDas;
-  control::GainReading gain_reading = control::GainReading::kPrinted;
+  cf::BearingConvention bearing = cf::BearingConvention::kDas;
+  cf::GainReading gain_reading = cf::GainReading::kPrinted;
   double control_period = 0.01;
+  int control_every = 1;  ///< world steps per control period
   double settle_time = 1.0;
   double singular_threshold = 0.1;
   NoiseDef noise;
@@ -94,14 +98,15 @@ struct FormationConfig {
   std::vector<ObstacleDef> obstacles;
   std::vector<PatchDef> patches;
   std::vector<FormationRobotDef> robots;
-  control::FormationGraph graph;
+  cf::FormationGraph graph;
 };
 
-/// Reads the formation keys from the scenario root (strict). Validates the graph; graph errors
-/// are reported at the offending robot's key. Throws ScenarioError.
+/// Reads the formation keys from the scenario root (strict) and declares the tunables.
+/// Validates the graph; graph errors are reported at the offending robot's key. Throws
+/// ScenarioError.
 FormationConfig ReadFormationConfig(YamlReader& root, double dt);
 
 /// The effective noise of a follower: its own components over the global ones.
 NoiseDef EffectiveNoise(const FormationConfig& cfg, const FollowerDef& f);
 
-}  // namespace formsim::sim
+}  // namespace formsim::sim::formation

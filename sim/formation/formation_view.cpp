@@ -5,10 +5,10 @@
 
 #include "sim/formation/formation_experiment.hpp"
 
-namespace formsim::sim {
+namespace formsim::sim::formation {
 namespace {
 
-using control::FormationLaw;
+using cf::FormationLaw;
 
 // Plots stay readable: at most this many series of one kind per figure.
 constexpr std::size_t kMaxSeries = 12;
@@ -16,27 +16,6 @@ constexpr std::size_t kMaxSeries = 12;
 constexpr double kFlashSeconds = 1.0;
 // The view (Bounds) covers the robots plus this margin, m.
 constexpr double kBoundsMargin = 0.6;
-
-FigureSpec Figure(const std::string& id, const std::string& title, const std::string& x_label,
-                  const std::string& y_label) {
-  FigureSpec f;
-  f.id = id;
-  f.title = title;
-  f.x_label = x_label;
-  f.y_label = y_label;
-  return f;
-}
-
-SeriesSpec Series(const std::string& label, const std::string& column, int color,
-                  const std::string& x_column = "", bool dashed = false) {
-  SeriesSpec s;
-  s.label = label;
-  s.column = column;
-  s.x_column = x_column;
-  s.color_index = color;
-  s.dashed = dashed;
-  return s;
-}
 
 std::string Fmt(const char* fmt, double v) {
   char buf[64];
@@ -51,39 +30,39 @@ std::vector<FigureSpec> FormationExperiment::Figures() const {
   const std::size_t n_robots = std::min(agents_.size(), kMaxSeries);
   const std::size_t n_links = std::min(links_.size(), kMaxSeries);
 
-  FigureSpec traj = Figure("trajectories", "(a) Robot trajectories", "x [m]", "y [m]");
-  traj.equal_aspect = true;
+  FigureSpec traj = PlaneFigure("trajectories", "(a) Robot trajectories", {});
   for (std::size_t i = 0; i < n_robots; ++i) {
     const std::string& n = agents_[i].robot->name();
-    traj.series.push_back(Series(n, n + ".y", cfg_.robots[i].body.color_index, n + ".x"));
+    traj.series.push_back(Path(n, n + ".x", n + ".y", cfg_.robots[i].body.color_index));
   }
   figs.push_back(traj);
 
-  FigureSpec phi = Figure("phi_error", "(b) Bearing error e_φ = φ_des − φ", "t [s]", "e_φ [rad]");
-  phi.reference_lines = {0.0};
-  FigureSpec dist =
-      Figure("distance_error", "(c) Distance errors e_l = l_des − l", "t [s]", "e_l [m]");
-  dist.reference_lines = {0.0};
+  FigureSpec phi = TimeFigure("phi_error", "(b) Bearing error e_φ = φ_des − φ", "e_φ [rad]", {});
+  FigureSpec dist = TimeFigure("distance_error", "(c) Distance errors e_l = l_des − l", "e_l [m]", {});
   FigureSpec alpha =
-      Figure("alpha_error", "(d) Heading differences e_α = θ_i − θ_j", "t [s]", "e_α [rad]");
-  alpha.reference_lines = {0.0};
+      TimeFigure("alpha_error", "(d) Heading differences e_α = θ_i − θ_j", "e_α [rad]", {});
   FigureSpec est =
-      Figure("estimation_error", "(f) Estimation error φ_est − φ with ±2σ (UKF)", "t [s]", "[rad]");
-  est.reference_lines = {0.0};
+      TimeFigure("estimation_error", "(f) Estimation error φ_est − φ with ±2σ (UKF)", "[rad]", {});
+  for (FigureSpec* f : {&phi, &dist, &alpha, &est}) f->reference_lines = {0.0};
   int color = 0;
+  const int c_t = recorder_.Column("t");
   for (std::size_t k = 0; k < n_links; ++k) {
     const Link& l = links_[k];
     const std::string& n = l.name;
-    if (l.c_e_phi >= 0) phi.series.push_back(Series("e_φ " + n, n + ".e_phi", color));
-    dist.series.push_back(Series("e_l " + n, n + ".e_l", color));
-    alpha.series.push_back(Series("α " + n, n + ".alpha", color));
-    if (l.c_sd >= 0 && recorder_.rows() > 0) {
-      est.series.push_back(Series("φ_est − φ " + n, n + ".phi_est_err", color));
+    if (cfg_.robots[l.follower].node.law == FormationLaw::kLPhi)
+      phi.series.push_back(Line("e_φ " + n, n + ".e_phi", color));
+    dist.series.push_back(Line("e_l " + n, n + ".e_l", color));
+    alpha.series.push_back(Line("α " + n, n + ".alpha", color));
+    // The estimation figure shows every link whose UKF ran at some time of the run (the
+    // estimator can be switched live).
+    if (l.ever_ukf && recorder_.rows() > 0) {
+      est.series.push_back(Line("φ_est − φ " + n, n + ".phi_est_err", color));
       // ±2σ bands as inline data from the recorded standard deviations.
-      SeriesSpec hi = Series("±2σ " + n, "", color, "", true);
-      SeriesSpec lo = Series("", "", color, "", true);
+      SeriesSpec hi = Line("±2σ " + n, "", color, true);
+      SeriesSpec lo = Line("", "", color, true);
+      const int c_sd = recorder_.Column(n + ".phi_sd");
       for (std::size_t r = 0; r < recorder_.rows(); ++r) {
-        const double t = recorder_.At(r, 0), s2 = 2.0 * recorder_.At(r, l.c_sd + 1);
+        const double t = recorder_.At(r, c_t), s2 = 2.0 * recorder_.At(r, c_sd);
         hi.x.push_back(t);
         hi.y.push_back(s2);
         lo.x.push_back(t);
@@ -98,45 +77,20 @@ std::vector<FigureSpec> FormationExperiment::Figures() const {
   figs.push_back(dist);
   figs.push_back(alpha);
 
-  FigureSpec v = Figure("follower_v", "(e) Follower speeds v", "t [s]", "v [m/s]");
-  FigureSpec w = Figure("follower_w", "(e) Follower turn rates ω", "t [s]", "ω [rad/s]");
-  std::size_t shown = 0;
-  for (std::size_t i = 0; i < agents_.size() && shown < kMaxSeries; ++i) {
+  FigureSpec v = TimeFigure("follower_v", "(e) Follower speeds v", "v [m/s]", {});
+  FigureSpec w = TimeFigure("follower_w", "(e) Follower turn rates ω", "ω [rad/s]", {});
+  for (std::size_t i = 0; i < n_robots; ++i) {
     const std::string& n = agents_[i].robot->name();
     // The root leader is drawn dashed, as the reference the followers are compared with.
     const bool root = cfg_.robots[i].node.law == FormationLaw::kRoot;
     const int c = cfg_.robots[i].body.color_index;
-    v.series.push_back(Series("v " + n, n + ".v_cmd", c, "", root));
-    w.series.push_back(Series("ω " + n, n + ".w_cmd", c, "", root));
-    ++shown;
+    v.series.push_back(Line("v " + n, n + ".v_cmd", c, root));
+    w.series.push_back(Line("ω " + n, n + ".w_cmd", c, root));
   }
   figs.push_back(v);
   figs.push_back(w);
   if (!est.series.empty()) figs.push_back(est);
   return figs;
-}
-
-std::vector<TableSpec> FormationExperiment::Tables() const {
-  TableSpec t;
-  t.title = "Links (errors after settle time " + Fmt("%.2g", cfg_.settle_time) + " s)";
-  t.header = {"link",
-              "law",
-              "estimator",
-              "max|e_l| [m]",
-              "max|e_φ| [rad]",
-              "max|e_α| [rad]",
-              "est. RMSE φ [rad]"};
-  static const char* kEst[] = {"truth", "raw", "ukf"};
-  for (const Link& l : links_) {
-    const FormationRobotDef& r = cfg_.robots[l.follower];
-    const EstimatorMode mode = r.follow.estimator;
-    t.rows.push_back({l.name, r.node.law == FormationLaw::kLPhi ? "l-φ" : "l-l",
-                      kEst[static_cast<int>(mode)], Fmt("%.2e", l.e_l.max_abs_settled()),
-                      l.c_e_phi >= 0 ? Fmt("%.2e", l.e_phi.max_abs_settled()) : "-",
-                      Fmt("%.2e", l.e_alpha.max_abs_settled()),
-                      mode == EstimatorMode::kTruth ? "-" : Fmt("%.2e", l.est_phi.rms())});
-  }
-  return {t};
 }
 
 Pose2 FormationExperiment::DesiredPose(int j) const {
@@ -151,9 +105,9 @@ Pose2 FormationExperiment::DesiredPose(int j) const {
   } else {
     // The apex on the side the control point is on now (the law keeps it there).
     const Pose2 p2 = agents_[links_[a.links[1]].leader].robot->pose();
-    const Vec2 mj = control::ControlPoint(a.robot->pose(), L);
+    const Vec2 mj = cf::ControlPoint(a.robot->pose(), L);
     const int side = (p2.p() - p1.p()).Cross(mj - p1.p()) >= 0.0 ? 1 : -1;
-    if (!control::TriangleApex(p1.p(), p2.p(), r.node.l_des, r.node.l2_des, side, m))
+    if (!cf::TriangleApex(p1.p(), p2.p(), r.node.l_des, r.node.l2_des, side, m))
       return {std::nan(""), std::nan(""), 0.0};
   }
   // The ghost keeps the follower's current heading, so it coincides with the robot exactly when
@@ -179,7 +133,7 @@ void FormationExperiment::DrawScene(DrawSink& draw) const {
     const Color c = PaletteColor(cfg_.robots[j].body.color_index);
     const Pose2 g = DesiredPose(static_cast<int>(j));
     if (std::isfinite(g.x)) DrawRobotBody(draw, g, a.robot->outline(), c, "", true);
-    const Vec2 m = control::ControlPoint(a.robot->pose(), cfg_.L);
+    const Vec2 m = cf::ControlPoint(a.robot->pose(), cfg_.L);
     for (int li : a.links)
       draw.Segment(agents_[links_[li].leader].robot->pose().p(), m,
                    Color{0.35f, 0.35f, 0.35f, 0.7f}, 1.0f);
@@ -193,14 +147,14 @@ void FormationExperiment::DrawScene(DrawSink& draw) const {
   for (std::size_t j = 0; j < agents_.size(); ++j) {
     const Agent& a = agents_[j];
     if (a.links.empty()) continue;
-    const Vec2 m = control::ControlPoint(a.robot->pose(), cfg_.L);
+    const Vec2 m = cf::ControlPoint(a.robot->pose(), cfg_.L);
     draw.Circle(m, 0.012, PaletteColor(cfg_.robots[j].body.color_index),
                 Color{0.1f, 0.1f, 0.1f, 1.0f});
     for (int li : a.links) {
       const Link& l = links_[li];
       const Vec2 mid = (agents_[l.leader].robot->pose().p() + m) * 0.5;
       std::string label = Fmt("%.3f m", l.truth.l);
-      if (l.c_e_phi >= 0)
+      if (cfg_.robots[l.follower].node.law == FormationLaw::kLPhi)
         label += Fmt(", %.1f°", control::WrapTo2Pi(l.truth.phi) * 180 / control::kPi);
       draw.Text(mid, label, Color{0.25f, 0.25f, 0.25f, 0.9f}, 4.0f, 4.0f);
     }
@@ -210,20 +164,21 @@ void FormationExperiment::DrawScene(DrawSink& draw) const {
   // pose: Σ = J P Jᵀ (first-order propagation; the leader's own uncertainty is not included).
   for (std::size_t j = 0; j < agents_.size(); ++j) {
     const Agent& a = agents_[j];
-    if (a.links.empty() || cfg_.robots[j].follow.estimator == EstimatorMode::kTruth) continue;
+    if (a.links.empty() || Mode(static_cast<int>(j)) == EstimatorMode::kTruth) continue;
     const Link& l = links_[a.links[0]];
     const Color c = PaletteColor(cfg_.robots[j].body.color_index);
     const Pose2 e = EstimatedPose(a);
     draw.Cross(e.p(), 0.03, c);
-    if (cfg_.robots[j].follow.estimator == EstimatorMode::kUkf && l.filter_ready) {
+    if (Mode(static_cast<int>(j)) == EstimatorMode::kUkf && l.filter_ready) {
       const Eigen::Matrix<double, 2, 3> J =
-          control::FollowerPositionJacobian(agents_[l.leader].robot->pose(), l.used, cfg_.L);
+          cf::FollowerPositionJacobian(agents_[l.leader].robot->pose(), l.used, cfg_.L);
       const Eigen::Matrix2d S = J * l.filter->cov() * J.transpose();
       draw.CovarianceEllipse(e.p(), S(0, 0), S(0, 1), S(1, 1), 2.0, c);
     }
   }
   // Flashes for recent saturations, collisions, singularities and filter faults.
-  for (auto it = events_.rbegin(); it != events_.rend(); ++it) {
+  const auto& events = events_.list();
+  for (auto it = events.rbegin(); it != events.rend(); ++it) {
     const double age = (now - it->time) / kFlashSeconds;
     if (age > 1.0) break;
     if (age < 0.0) continue;
@@ -255,4 +210,4 @@ void FormationExperiment::Bounds(Vec2& lo, Vec2& hi) const {
   }
 }
 
-}  // namespace formsim::sim
+}  // namespace formsim::sim::formation

@@ -1,6 +1,6 @@
 #include "sim/formation/relative_sensor.hpp"
 
-namespace formsim::sim {
+namespace formsim::sim::formation {
 
 std::uint64_t SensorStreamId(const std::string& name) {
   std::uint64_t h = 1469598103934665603ull;
@@ -11,18 +11,18 @@ std::uint64_t SensorStreamId(const std::string& name) {
   return h;
 }
 
-control::LinkState RelativeSensor::Sample(const Pose2& leader, const Pose2& follower, double L,
-                                          control::BearingConvention convention, double sigma_l,
+control::formation::LinkState RelativeSensor::Sample(const Pose2& leader, const Pose2& follower, double L,
+                                          control::formation::BearingConvention convention, double sigma_l,
                                           double sigma_phi, double sigma_alpha,
-                                          control::LinkState& truth) {
-  truth = control::ComputeLinkState(leader, follower, L, convention);
+                                          control::formation::LinkState& truth) {
+  truth = control::formation::ComputeLinkState(leader, follower, L, convention);
   // Always draw three numbers so the stream does not depend on which σ are zero.
   const double nl = rng_.Normal(), np = rng_.Normal(), na = rng_.Normal();
-  control::LinkState z = truth;
+  control::formation::LinkState z = truth;
   z.l = truth.l + sigma_l * nl;
   z.phi = control::WrapToPi(truth.phi + sigma_phi * np);
   z.alpha = control::WrapToPi(truth.alpha + sigma_alpha * na);
   return z;
 }
 
-}  // namespace formsim::sim
+}  // namespace formsim::sim::formation

@@ -8,7 +8,7 @@
 #include "control/formation/link_kinematics.hpp"
 #include "sim/core/rng.hpp"
 
-namespace formsim::sim {
+namespace formsim::sim::formation {
 
 /// Stable stream id for a named sensor (FNV-1a of the name), so adding a robot does not change
 /// the noise of the others.
@@ -20,12 +20,12 @@ class RelativeSensor {
       : rng_(parent.Fork(SensorStreamId(link_name))) {}
   /// Samples the link: `truth` receives the exact state, the return value the noisy one
   /// (angles wrapped). σ of zero adds nothing.
-  control::LinkState Sample(const Pose2& leader, const Pose2& follower, double L,
-                            control::BearingConvention convention, double sigma_l, double sigma_phi,
-                            double sigma_alpha, control::LinkState& truth);
+  control::formation::LinkState Sample(const Pose2& leader, const Pose2& follower, double L,
+                            control::formation::BearingConvention convention, double sigma_l, double sigma_phi,
+                            double sigma_alpha, control::formation::LinkState& truth);
 
  private:
   Rng rng_;
 };
 
-}  // namespace formsim::sim
+}  // namespace formsim::sim::formation

@@ -1,6 +1,7 @@
 // The formation experiment end to end: scenarios, closed-loop convergence, estimation, events,
 // determinism and the rejection of invalid scenario files.
-#include "sim/core/experiment.hpp"
+#include "sim/core/scenario.hpp"
+#include "sim/core/session.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +15,7 @@
 #include "sim/formation/cascade_generator.hpp"
 #include "sim/formation/formation_experiment.hpp"
 
-namespace formsim::sim {
+namespace formsim::sim::formation {
 namespace {
 
 std::string Scenario(const std::string& name) {
@@ -80,7 +81,7 @@ TEST(FormationExperiment, SevenRobotCascadeConverges) {
       EXPECT_LT(l.e_phi.max_abs_settled(), 1e-3) << l.name;
     }
   }
-  for (const auto& e : exp->events()) EXPECT_NE(e.kind, "singular") << e.message;
+  for (const auto& e : exp->events().list()) EXPECT_NE(e.kind, "singular") << e.message;
 }
 
 TEST(FormationExperiment, UkfFiltersThePapersAngleNoise) {
@@ -98,7 +99,7 @@ TEST(FormationExperiment, UkfFiltersThePapersAngleNoise) {
     EXPECT_LT(lu[k].e_l.max_abs_settled(), 0.02) << lu[k].name;
     ASSERT_NE(lu[k].filter, nullptr);
   }
-  for (const auto& e : ukf->events()) EXPECT_NE(e.kind, "filter_fault") << e.message;
+  for (const auto& e : ukf->events().list()) EXPECT_NE(e.kind, "filter_fault") << e.message;
 }
 
 TEST(FormationExperiment, UkfEstimateStaysInsideItsCovarianceMostOfTheTime) {
@@ -130,7 +131,7 @@ TEST(FormationExperiment, FilterFaultsAreReportedNotPropagated) {
   auto exp = RunScenario(Scenario("formation_traj2_ukf"),
                          {"ukf.kappa=-2.5", "ukf.p0_phi=3", "ukf.p0_alpha=3", "duration=1"});
   int events = 0;
-  for (const auto& e : exp->events())
+  for (const auto& e : exp->events().list())
     if (e.kind == "filter_fault") {
       ++events;
       EXPECT_TRUE(e.robots == "R2" || e.robots == "R3") << e.robots;
@@ -169,10 +170,10 @@ robots:
     pose: [-0.45, -0.04432801011886646, 0.3]
     follow: {law: l_l, leaders: [R1, R2], l_des: 0.4, l2_des: 0.4}
 )";
-  auto exp = LoadExperimentFromNode(YAML::Load(yaml), "singular.yaml");
+  auto exp = LoadExperimentFromText(yaml, "singular.yaml");
   while (!exp->finished()) exp->Step();
   std::vector<Event> singular;
-  for (const auto& e : exp->events())
+  for (const auto& e : exp->events().list())
     if (e.kind == "singular") singular.push_back(e);
   ASSERT_EQ(singular.size(), 1u);
   EXPECT_EQ(singular[0].robots, "R1,R2,R3");
@@ -190,7 +191,7 @@ robots:
 TEST(FormationExperiment, SaturationIsReportedOnEntry) {
   auto exp = RunScenario(Scenario("formation_traj2_per_sample"), {"robots.R2.drive.omega_max=2"});
   int sat = 0;
-  for (const auto& e : exp->events()) sat += e.kind == "saturation" && e.robots == "R2";
+  for (const auto& e : exp->events().list()) sat += e.kind == "saturation" && e.robots == "R2";
   EXPECT_GE(sat, 1);
   EXPECT_LT(sat, 20);  // once per entry, not once per step
   const Recorder& rec = exp->recorder();
@@ -235,34 +236,32 @@ TEST(FormationExperiment, EveryShippedScenarioLoadsAndHasADescription) {
 }
 
 TEST(FormationExperiment, ParamsAreYamlPathsThatSetAccepts) {
-  auto exp = LoadExperiment(Scenario("formation_traj2_ukf"));
+  Session s(Scenario("formation_traj2_ukf"), {}, -1);
   for (const char* key :
        {"robots.R2.follow.k_l", "robots.R2.follow.phi_des", "robots.R3.follow.l2_des",
         "noise.phi_variance", "ukf.q_phi", "robots.R1.schedule.omega", "robots.R2.follow.estimator",
         "robots.R3.drive.v_max", "formation.gain_reading"}) {
-    ASSERT_NE(exp->params().Find(key), nullptr) << key;
+    ASSERT_NE(s.params().Find(key), nullptr) << key;
   }
   // Each key also works through --set (same YAML path).
-  auto edited = LoadExperiment(Scenario("formation_traj2_ukf"), {"robots.R2.follow.k_l=0.2"});
-  EXPECT_EQ(*edited->params().Find("robots.R2.follow.k_l")->d, 0.2);
-  // A live edit takes effect.
-  PendingChanges ch;
-  ch.edits.push_back({"robots.R2.follow.estimator", "truth"});
-  EXPECT_TRUE(exp->Apply(ch).empty());
-  EXPECT_EQ(Formation(exp).config().robots[1].follow.estimator, EstimatorMode::kTruth);
+  Session edited(Scenario("formation_traj2_ukf"), {"robots.R2.follow.k_l=0.2"}, -1);
+  EXPECT_EQ(edited.params().Find("robots.R2.follow.k_l")->value, 0.2);
+  // A live edit takes effect between two steps.
+  EXPECT_EQ(s.Edit("robots.R2.follow.estimator", "truth"), "");
+  s.Step();
+  EXPECT_EQ(dynamic_cast<const FormationExperiment&>(s.exp()).config().robots[1].follow.estimator,
+            EstimatorMode::kTruth);
 }
 
 TEST(CascadeGenerator, BuildsValidCascadesThatHoldTheirShape) {
   for (int n : {1, 10, 40}) {
-    YAML::Node tree = MakeCascadeScenario(n, n == 10);
-    tree["duration"] = 3.0;
-    auto exp = LoadExperimentFromNode(tree, "generated");
+    auto exp = LoadExperimentFromText(MakeCascadeScenario(n, n == 10), "generated", {"duration=3"});
     ASSERT_EQ(exp->world().robots().size(), static_cast<std::size_t>(n));
     while (!exp->finished()) exp->Step();
     for (const auto& l : Formation(exp).Links()) {
       EXPECT_LT(l.e_l.max_abs_settled(), n == 10 ? 0.03 : 2e-3) << n << " " << l.name;
     }
-    for (const auto& e : exp->events()) {
+    for (const auto& e : exp->events().list()) {
       EXPECT_NE(e.kind, "collision") << e.message;
       EXPECT_NE(e.kind, "singular") << e.message;
     }
@@ -278,4 +277,4 @@ TEST(FormationExperiment, InvalidFixturesAreRejectedWithTheRightMessage) {
 }
 
 }  // namespace
-}  // namespace formsim::sim
+}  // namespace formsim::sim::formation

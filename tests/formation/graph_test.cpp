@@ -4,7 +4,7 @@
 #include "control/formation/formation_graph.hpp"
 #include "control/formation/leader_schedule.hpp"
 
-namespace formsim::control {
+namespace formsim::control::formation {
 namespace {
 
 FormationNodeDef Root(const std::string& n) {
@@ -152,4 +152,4 @@ TEST(LeaderSchedule, PaperTrajectories) {
 }
 
 }  // namespace
-}  // namespace formsim::control
+}  // namespace formsim::control::formation

@@ -5,7 +5,7 @@
 #include "control/formation/link_kinematics.hpp"
 #include "sim/core/rng.hpp"
 
-namespace formsim::control {
+namespace formsim::control::formation {
 namespace {
 
 // Exact unicycle motion over h with constant (v, ω) (arc), so the finite difference measures
@@ -167,4 +167,4 @@ TEST(FormationLaws, GainReadings) {
 }
 
 }  // namespace
-}  // namespace formsim::control
+}  // namespace formsim::control::formation

@@ -7,7 +7,7 @@
 #include "control/formation/link_filter.hpp"
 #include "sim/core/rng.hpp"
 
-namespace formsim::control {
+namespace formsim::control::formation {
 namespace {
 
 TEST(Ukf, EqualsTheKalmanFilterOnALinearModel) {
@@ -156,4 +156,4 @@ TEST(LinkFilter, AlphaOnlyLeavesLUnobservable) {
 }
 
 }  // namespace
-}  // namespace formsim::control
+}  // namespace formsim::control::formation

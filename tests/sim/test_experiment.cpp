@@ -1,70 +1,23 @@
-// Tests of the experiment loop, loader, parameters and outputs with a minimal experiment kind
-// defined here: one unicycle with a noisy speed sensor.
+// Tests of the experiment loop, the one load path, tunables and outputs with the minimal
+// experiment kind of test_kind.hpp.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
-#include "sim/core/experiment.hpp"
 #include "sim/core/run_output.hpp"
-#include "sim/core/unicycle_drive.hpp"
+#include "sim/core/scenario.hpp"
+#include "tests/sim/test_kind.hpp"
 
 using namespace formsim;
 using namespace formsim::sim;
+using testkind::kScenario;
+using testkind::NoisyCircle;
 
-namespace {
-
-class NoisyCircle : public Experiment {
- public:
-  NoisyCircle(const ExperimentSetup& s, YamlReader& root) : Experiment(s) {
-    v_ = root.Double("v", 1.0);
-    omega_ = root.Double("omega", 0.5);
-    sigma_ = root.Double("sigma", 0.1);
-    YamlReader drive = root.Map("drive");
-    RobotDef def = DefaultRobotDef();
-    def.name = "R1";
-    robot_ = &world_.CreateRobot(def);
-    auto d = std::make_unique<UnicycleDrive>(ReadUnicycleDrive(drive));
-    drive_ = d.get();
-    robot_->SetDrive(std::move(d));
-    sensor_ = rng_.Fork(1);
-    params_.AddDouble("v", "Gains/R1", "v", &v_, 0, 3, "m/s");
-    params_.AddDouble("sigma", "Noise/R1", "σ", &sigma_, 0, 1, "m/s");
-    for (const char* c : {"t", "x", "y", "measured_v"}) recorder_.AddColumn(c);
-    Start();
-  }
-  std::vector<FigureSpec> Figures() const override { return {}; }
-  Json Summary() const override {
-    Json j = Json::Object();
-    j["x"] = robot_->pose().x;
-    return j;
-  }
-  std::string SummaryTable() const override { return "ok\n"; }
-  double v() const { return v_; }
-
- protected:
-  void Control(double) override { drive_->SetCommand(v_, omega_); }
-  void Sense(double) override { measured_ = robot_->forward_speed() + sensor_.Normal(0, sigma_); }
-  void Record(Recorder& rec) override {
-    rec.Set(0, time());
-    rec.Set(1, robot_->pose().x);
-    rec.Set(2, robot_->pose().y);
-    rec.Set(3, measured_);
-  }
-  void DrawScene(DrawSink&) const override {}
-
- private:
-  Robot* robot_ = nullptr;
-  UnicycleDrive* drive_ = nullptr;
-  Rng sensor_;
-  double v_ = 1, omega_ = 0.5, sigma_ = 0.1, measured_ = 0;
-};
 FORMSIM_REGISTER_EXPERIMENT("test_noisy_circle", NoisyCircle);
 
-const char* kScenario =
-    "type: test_noisy_circle\nname: circle\nseed: 3\ndt: 0.01\nduration: 1.0\n"
-    "v: 1.2\nomega: 0.5\nsigma: 0.1\ndrive: {mode: ideal}\n";
+namespace {
 
 std::string Csv(Experiment& e) {
   while (!e.finished()) e.Step();
@@ -76,9 +29,9 @@ std::string Csv(Experiment& e) {
   return ss.str();
 }
 
-std::string LoadError(const std::string& yaml) {
+std::string LoadError(const std::string& yaml, const std::vector<std::string>& sets = {}) {
   try {
-    LoadExperimentFromNode(YAML::Load(yaml), "x.yaml");
+    LoadExperimentFromText(yaml, "x.yaml", sets);
   } catch (const ScenarioError& e) {
     return e.what();
   }
@@ -88,12 +41,13 @@ std::string LoadError(const std::string& yaml) {
 }  // namespace
 
 TEST(Experiment, SameSeedGivesIdenticalCsvAndOtherSeedDiffers) {
-  auto a = LoadExperimentFromNode(YAML::Load(kScenario), "a.yaml");
-  auto b = LoadExperimentFromNode(YAML::Load(kScenario), "a.yaml");
-  auto c = LoadExperimentFromNode(YAML::Load(kScenario), "a.yaml", 4);
+  auto a = LoadExperimentFromText(kScenario, "a.yaml");
+  auto b = LoadExperimentFromText(kScenario, "a.yaml");
+  auto c = LoadExperimentFromText(kScenario, "a.yaml", {}, 4);
   const std::string ca = Csv(*a), cb = Csv(*b), cc = Csv(*c);
   EXPECT_EQ(ca, cb);
   EXPECT_NE(ca, cc);
+  EXPECT_EQ(ca.substr(0, ca.find('\n')), "t,x,y,measured_v");
   EXPECT_EQ(a->recorder().rows(), 101u) << "row 0 plus one per step";
   EXPECT_EQ(a->steps(), 100);
   EXPECT_DOUBLE_EQ(a->time(), 1.0);
@@ -109,24 +63,70 @@ TEST(Experiment, LoaderRejectsBadRootsWithKeyAndLine) {
   const std::string bad_dt = "type: test_noisy_circle\ndt: -1\n";
   EXPECT_NE(LoadError(bad_dt).find("x.yaml:2:"), std::string::npos) << LoadError(bad_dt);
   EXPECT_NE(LoadError("type: test_noisy_circle\nv: .nan\n").find("finite"), std::string::npos);
+  EXPECT_NE(LoadError("type: test_noisy_circle\nv: -1\n").find("key 'v': must be >= 0"),
+            std::string::npos);
+  // A duplicate key is an error at the second occurrence (yaml-cpp would keep the first).
+  const std::string dup = LoadError("type: test_noisy_circle\nv: 1\nv: 2\n");
+  EXPECT_NE(dup.find("x.yaml:3:1: key 'v': duplicate key"), std::string::npos) << dup;
 }
 
-TEST(Experiment, PendingEditsApplyBetweenStepsAndBadValuesAreRejected) {
-  auto e = LoadExperimentFromNode(YAML::Load(kScenario), "a.yaml");
-  auto* nc = static_cast<NoisyCircle*>(e.get());
-  PendingChanges pc;
-  pc.edits.push_back({"v", "2.0"});
-  pc.edits.push_back({"sigma", "nan"});
-  pc.edits.push_back({"nope", "1"});
-  const auto errors = e->Apply(pc);
-  EXPECT_DOUBLE_EQ(nc->v(), 2.0);
-  ASSERT_EQ(errors.size(), 2u);
-  EXPECT_NE(errors[0].find("finite"), std::string::npos);
-  EXPECT_NE(errors[1].find("unknown parameter 'nope'"), std::string::npos);
+TEST(Experiment, OverridesAreNamedInMessages) {
+  // A bad --set value is reported at the --set, not at a file position.
+  const std::string e1 = LoadError(kScenario, {"v=-0.5"});
+  EXPECT_NE(e1.find("--set v=-0.5: key 'v': must be >= 0"), std::string::npos) << e1;
+  EXPECT_NE(LoadError(kScenario, {"v="}).find("empty value"), std::string::npos);
+  EXPECT_NE(LoadError(kScenario, {"seed=1e19"}).find("--set seed=1e19"), std::string::npos);
+  // A rule across keys broken by an override says which override was in force.
+  const std::string e2 = LoadError(kScenario, {"v=3.6"});
+  EXPECT_NE(e2.find("x.yaml:"), std::string::npos) << e2;
+  EXPECT_NE(e2.find("(with --set v=3.6)"), std::string::npos) << e2;
+}
+
+TEST(Experiment, TunablesAreDeclaredOnceWithTheirValues) {
+  const ParsedScenario p = ParseScenario(ScenarioSource::FromText(kScenario, "a.yaml", ""), {});
+  const Param* v = p.params.Find("v");
+  ASSERT_NE(v, nullptr);
+  EXPECT_EQ(v->value, 1.2);
+  EXPECT_TRUE(v->in_file);
+  EXPECT_EQ(v->tune.unit, "m/s");
+  EXPECT_EQ(v->slider_min(), 0.0);
+  EXPECT_EQ(v->slider_max(), 3.0);
+  const Param* mode = p.params.Find("drive.mode");
+  ASSERT_NE(mode, nullptr);
+  EXPECT_EQ(mode->kind, Param::Kind::kChoice);
+  EXPECT_EQ(mode->Text(), "ideal");
+  EXPECT_FALSE(p.params.Find("sigma")->tune.live);
+  // Every slider end is accepted by the loader.
+  for (const Param& q : p.params.all()) {
+    if (q.kind != Param::Kind::kDouble) continue;
+    std::string canonical;
+    EXPECT_EQ(q.Parse(std::to_string(q.slider_min()), &canonical), "") << q.key;
+    EXPECT_EQ(q.Parse(std::to_string(q.slider_max()), &canonical), "") << q.key;
+  }
+}
+
+TEST(Experiment, SeedRoundTripsExactlyUpTo64Bits) {
+  auto e = LoadExperimentFromText(kScenario, "a.yaml", {"seed=18446744073709551615"});
+  EXPECT_EQ(e->setup().seed, 18446744073709551615ULL);
+  const std::string json = e->Summary().Dump();
+  EXPECT_NE(json.find("\"seed\": 18446744073709551615"), std::string::npos);
+  auto f = LoadExperimentFromText(kScenario, "a.yaml", {"seed=12345678901"});
+  EXPECT_NE(f->Summary().Dump().find("\"seed\": 12345678901,"), std::string::npos);
+}
+
+TEST(Experiment, ProvenanceRecordsFileHashOverridesAndVersion) {
+  auto e = LoadExperimentFromText(kScenario, "a.yaml", {"v=0.7"}, 9);
+  const std::string json = e->Summary().Dump();
+  EXPECT_NE(json.find("\"scenario_sha256\": \"" + ScenarioSource::FromText(kScenario, "", "").sha256()),
+            std::string::npos) << json;
+  EXPECT_NE(json.find("\"origin\": \"--set\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"key\": \"v\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"origin\": \"--seed\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"formsim_version\""), std::string::npos) << json;
 }
 
 TEST(RunOutput, WritesFilesAndRejectsUnwritableFolder) {
-  auto e = LoadExperimentFromNode(YAML::Load(kScenario), "a.yaml");
+  auto e = LoadExperimentFromText(kScenario, "a.yaml");
   while (!e->finished()) e->Step();
   const std::string dir = std::string(FORMSIM_BINARY_DIR) + "/run_output_test";
   WriteRunOutputs(*e, dir);
@@ -135,5 +135,6 @@ TEST(RunOutput, WritesFilesAndRejectsUnwritableFolder) {
   std::stringstream ss;
   ss << in.rdbuf();
   EXPECT_NE(ss.str().find("\"scenario\": \"circle\""), std::string::npos) << ss.str();
+  EXPECT_NE(ss.str().find("\"mode\": \"circle\""), std::string::npos) << ss.str();
   EXPECT_THROW(PrepareOutputDir("/proc/formsim_cannot_write_here"), std::runtime_error);
 }

@@ -10,7 +10,7 @@
 #include <fstream>
 #include <string>
 
-#include "sim/core/experiment.hpp"
+#include "sim/core/scenario.hpp"
 
 namespace formsim::testing {
 

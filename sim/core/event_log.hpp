@@ -1,0 +1,78 @@
+#pragma once
+/// \file Events: things that happened to robots (collisions, saturations, singular formations,
+/// filter faults, numerical faults), with time, robots and the subject they concern (a link, a
+/// filter). Conditions that last (a saturated drive) raise one event on entry, not one per
+/// step. Counts are exact and indexed by kind, robot and subject, so summaries are linear in
+/// the number of links plus events.
+
+#include <cstddef>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace formsim::sim {
+
+/// Kinds used by more than one experiment (an experiment may add its own strings).
+namespace event {
+inline constexpr const char* kCollision = "collision";
+inline constexpr const char* kSaturation = "saturation";
+inline constexpr const char* kSingular = "singular";
+inline constexpr const char* kFilterFault = "filter_fault";
+inline constexpr const char* kNumericalFault = "numerical_fault";
+}  // namespace event
+
+/// Something that happened.
+struct Event {
+  double time = 0.0;
+  std::string kind;     ///< "collision", "saturation", "singular", "filter_fault", ...
+  std::string robots;   ///< e.g. "R3" or "R1,R2"
+  std::string subject;  ///< what it concerns beyond the robots, e.g. link "R1-R2"; may be empty
+  std::string message;
+};
+
+class EventLog {
+ public:
+  /// Records an event at time `t`. `robots` is a comma-separated list of robot names.
+  void Add(double t, const std::string& kind, const std::string& robots, const std::string& message,
+           const std::string& subject = "");
+  /// A lasting condition (a drive saturating, a follower near its singular line), declared
+  /// once; Update() then raises one event on each entry into it and costs nothing per step
+  /// otherwise (no allocation: `message` is only called when an event is raised).
+  using ConditionId = int;
+  ConditionId DeclareCondition(const std::string& kind, const std::string& robots,
+                               const std::string& subject = "");
+  template <class MessageFn>
+  bool Update(ConditionId id, double t, bool active, MessageFn&& message) {
+    Cond& c = conditions_[static_cast<std::size_t>(id)];
+    const bool raise = active && !c.active;
+    c.active = active;
+    if (raise) Add(t, c.kind, c.robots, message(), c.subject);
+    return raise;
+  }
+  bool IsActive(ConditionId id) const { return conditions_[static_cast<std::size_t>(id)].active; }
+
+  const std::vector<Event>& list() const { return events_; }
+  std::size_t size() const { return events_.size(); }
+  bool empty() const { return events_.empty(); }
+  /// Events of `kind` so far (exact).
+  long Count(const std::string& kind) const;
+  /// Events of `kind` whose robots include `robot`.
+  long CountForRobot(const std::string& kind, const std::string& robot) const;
+  /// Events of `kind` about `subject`.
+  long CountForSubject(const std::string& kind, const std::string& subject) const;
+  /// Every kind seen, with its count, sorted by kind.
+  const std::map<std::string, long>& counts() const { return by_kind_; }
+
+ private:
+  std::vector<Event> events_;
+  std::map<std::string, long> by_kind_;
+  std::map<std::pair<std::string, std::string>, long> by_robot_, by_subject_;
+  struct Cond {
+    std::string kind, robots, subject;
+    bool active = false;
+  };
+  std::vector<Cond> conditions_;
+};
+
+}  // namespace formsim::sim

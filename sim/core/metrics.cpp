@@ -1,0 +1,120 @@
+#include "sim/core/metrics.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "sim/core/number_format.hpp"
+
+namespace formsim::sim {
+
+Metrics::Entry* Metrics::Slot(const std::string& path) {
+  const auto [it, added] = index_.emplace(path, entries_.size());
+  if (added) entries_.push_back({path, false, 0.0, ""});
+  return &entries_[it->second];
+}
+
+const Metrics::Entry* Metrics::Lookup(const std::string& path) const {
+  const auto it = index_.find(path);
+  return it == index_.end() ? nullptr : &entries_[it->second];
+}
+
+void Metrics::Set(const std::string& path, double value) {
+  Entry* e = Slot(path);
+  e->is_text = false;
+  e->value = value;
+}
+
+void Metrics::SetText(const std::string& path, const std::string& text) {
+  Entry* e = Slot(path);
+  e->is_text = true;
+  e->text = text;
+}
+
+Json Metrics::ToJson() const {
+  Json root = Json::Object();
+  for (const Entry& e : entries_) {
+    Json* node = &root;
+    std::size_t start = 0;
+    while (true) {
+      const std::size_t dot = e.path.find('.', start);
+      const std::string seg = e.path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+      if (dot == std::string::npos) {
+        (*node)[seg] = e.is_text ? Json(e.text) : Json(e.value);
+        break;
+      }
+      node = &(*node)[seg];
+      start = dot + 1;
+    }
+  }
+  return root;
+}
+
+std::vector<std::pair<std::string, double>> Metrics::Scalars() const {
+  std::vector<std::pair<std::string, double>> out;
+  for (const Entry& e : entries_)
+    if (!e.is_text) out.emplace_back(e.path, e.value);
+  return out;
+}
+
+const double* Metrics::Find(const std::string& path) const {
+  const Entry* e = Lookup(path);
+  return e != nullptr && !e->is_text ? &e->value : nullptr;
+}
+
+std::string Metrics::Cell(const std::string& path, const std::string& format) const {
+  const Entry* e = Lookup(path);
+  if (e == nullptr) return "-";
+  if (e->is_text) return e->text;
+  if (format.empty()) return FormatDouble(e->value);
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format.c_str(), e->value);
+  return buf;
+}
+
+std::vector<TableSpec> Metrics::GuiTables() const {
+  std::vector<TableSpec> out;
+  for (const Table& t : tables_) {
+    TableSpec s;
+    s.title = t.title;
+    s.header.push_back(t.row_header);
+    for (const Column& c : t.columns) s.header.push_back(c.header);
+    for (const auto& [label, prefix] : t.rows) {
+      std::vector<std::string> row = {label};
+      for (const Column& c : t.columns)
+        row.push_back(Cell(prefix.empty() ? c.path : prefix + "." + c.path, c.format));
+      s.rows.push_back(std::move(row));
+    }
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+std::string Metrics::Text() const {
+  std::string out;
+  for (const auto& n : notes_) out += n + "\n";
+  for (const TableSpec& t : GuiTables()) {
+    std::vector<std::size_t> width(t.header.size(), 0);
+    auto grow = [&](const std::vector<std::string>& row) {
+      for (std::size_t i = 0; i < row.size() && i < width.size(); ++i)
+        width[i] = std::max(width[i], row[i].size());
+    };
+    grow(t.header);
+    for (const auto& r : t.rows) grow(r);
+    auto line = [&](const std::vector<std::string>& row) {
+      std::string l;
+      for (std::size_t i = 0; i < row.size(); ++i) {
+        const std::string pad(width[i] - std::min(width[i], row[i].size()), ' ');
+        // First column left-aligned (names), numbers right-aligned.
+        l += i == 0 ? row[i] + pad : pad + row[i];
+        if (i + 1 < row.size()) l += "  ";
+      }
+      return l + "\n";
+    };
+    if (!t.title.empty()) out += t.title + "\n";
+    out += line(t.header);
+    for (const auto& r : t.rows) out += line(r);
+  }
+  return out;
+}
+
+}  // namespace formsim::sim

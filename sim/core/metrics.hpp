@@ -1,0 +1,68 @@
+#pragma once
+/// \file The results of a run, declared once: a tree of named values (dotted paths, e.g.
+/// "links.R1-R2.max_abs_error_after_settle.phi") that is rendered as summary.json's `results`,
+/// as the table `formsim run` prints, as the GUI's summary tables, and flattened into the
+/// columns of a sweep's runs.csv under the same names.
+
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "sim/core/figure_spec.hpp"
+#include "sim/core/json.hpp"
+
+namespace formsim::sim {
+
+class Metrics {
+ public:
+  /// A number at a dotted path (set again: replaced in place).
+  void Set(const std::string& path, double value);
+  /// A text value (a mode, an estimator name).
+  void SetText(const std::string& path, const std::string& text);
+  /// A line printed above the tables ("formation: bearing das, gains per sample").
+  void AddNote(const std::string& line) { notes_.push_back(line); }
+
+  /// A table view over the tree: one row per path prefix, one column per sub-path.
+  struct Column {
+    std::string header;
+    std::string path;    ///< below the row's prefix, e.g. "max_abs_error_after_settle.l"
+    std::string format;  ///< printf format for numbers ("%.3e"); empty: shortest round-trip
+  };
+  struct Table {
+    std::string title;
+    std::string row_header;                               ///< e.g. "link"
+    std::vector<std::pair<std::string, std::string>> rows;  ///< label, path prefix ("links.R1-R2")
+    std::vector<Column> columns;
+  };
+  void AddTable(Table table) { tables_.push_back(std::move(table)); }
+
+  /// `results` of summary.json: nested objects in the order the values were set.
+  Json ToJson() const;
+  /// The printed summary: notes, then each table as aligned text.
+  std::string Text() const;
+  /// The same tables for the GUI.
+  std::vector<TableSpec> GuiTables() const;
+  /// Every number with its dotted path, in the order set.
+  std::vector<std::pair<std::string, double>> Scalars() const;
+  /// The value at `path` (a number), or nullptr.
+  const double* Find(const std::string& path) const;
+  /// A cell as text: the number with `format`, the text value, or "-" when absent.
+  std::string Cell(const std::string& path, const std::string& format) const;
+
+ private:
+  struct Entry {
+    std::string path;
+    bool is_text = false;
+    double value = 0.0;
+    std::string text;
+  };
+  Entry* Slot(const std::string& path);
+  const Entry* Lookup(const std::string& path) const;
+  std::vector<Entry> entries_;
+  std::unordered_map<std::string, std::size_t> index_;  ///< path -> entry, linear summaries
+  std::vector<std::string> notes_;
+  std::vector<Table> tables_;
+};
+
+}  // namespace formsim::sim

@@ -1,0 +1,62 @@
+#include "sim/core/number_format.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <system_error>
+
+namespace formsim::sim {
+
+void AppendDouble(std::string& out, double v) {
+  if (std::isnan(v)) {
+    out += "nan";
+    return;
+  }
+  if (std::isinf(v)) {
+    out += v > 0 ? "inf" : "-inf";
+    return;
+  }
+  char buf[32];
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, res.ptr);
+}
+
+std::string FormatDouble(double v) {
+  std::string s;
+  AppendDouble(s, v);
+  return s;
+}
+
+bool ParseFiniteDouble(const std::string& text, double* out) {
+  if (text.empty()) return false;
+  const char* first = text.data();
+  const char* last = first + text.size();
+  if (*first == '+') ++first;  // from_chars refuses a leading '+', YAML and users write it
+  double v = 0;
+  const auto res = std::from_chars(first, last, v);
+  if (res.ec != std::errc() || res.ptr != last || !std::isfinite(v)) return false;
+  *out = v;
+  return true;
+}
+
+bool ParseInteger(const std::string& text, long long lo, long long hi, long long* out) {
+  if (text.empty()) return false;
+  const char* first = text.data();
+  const char* last = first + text.size();
+  if (*first == '+') ++first;
+  long long v = 0;
+  const auto res = std::from_chars(first, last, v);
+  if (res.ec != std::errc() || res.ptr != last || v < lo || v > hi) return false;
+  *out = v;
+  return true;
+}
+
+bool ParseUint64(const std::string& text, std::uint64_t* out) {
+  if (text.empty() || text[0] < '0' || text[0] > '9') return false;
+  std::uint64_t v = 0;
+  const auto res = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (res.ec != std::errc() || res.ptr != text.data() + text.size()) return false;
+  *out = v;
+  return true;
+}
+
+}  // namespace formsim::sim

@@ -1,0 +1,271 @@
+#include "sim/core/session.hpp"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "sim/core/run_output.hpp"
+#include "sim/core/scenario_files.hpp"
+#include "sim/core/yaml_patch.hpp"
+
+namespace fs = std::filesystem;
+
+namespace formsim::sim {
+namespace {
+
+// The last override per key, in the order of those last occurrences, all from the start.
+std::vector<Override> Compress(const std::vector<Override>& in) {
+  std::vector<Override> out;
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    bool later = false;
+    for (std::size_t j = i + 1; j < in.size() && !later; ++j) later = in[j].key == in[i].key;
+    if (later) continue;
+    Override o = in[i];
+    o.step = -1;
+    out.push_back(o);
+  }
+  return out;
+}
+
+// A path as YAML text: plain when it is safe, double-quoted otherwise.
+std::string YamlPathText(const std::string& p) {
+  bool plain = !p.empty();
+  for (char c : p)
+    plain = plain && (std::isalnum(static_cast<unsigned char>(c)) || c == '/' || c == '.' ||
+                      c == '_' || c == '-');
+  if (plain) return p;
+  std::string q = "\"";
+  for (char c : p) {
+    if (c == '"' || c == '\\') q += '\\';
+    q += c;
+  }
+  return q + "\"";
+}
+
+}  // namespace
+
+Session::Session(const std::string& file, std::vector<Override> cli_overrides)
+    : source_(ScenarioSource::FromFile(file)), cli_(std::move(cli_overrides)), base_(cli_) {
+  applied_ = ParseScenario(source_, base_);
+  exp_ = BuildExperiment(applied_);
+}
+
+Session::Session(const std::string& file, const std::vector<std::string>& sets, long long seed)
+    : Session(file, CliOverrides(sets, seed)) {}
+
+void Session::Reject(const std::string& key, const std::string& why) {
+  char t[32];
+  std::snprintf(t, sizeof(t), "t=%.2f s ", exp_->time());
+  rejected_.push_back(t + key + ": " + why);
+  if (rejected_.size() > 50) rejected_.erase(rejected_.begin());
+  refusals_[key] = why;
+}
+
+std::string Session::refusal(const std::string& key) const {
+  const auto it = refusals_.find(key);
+  return it == refusals_.end() ? "" : it->second;
+}
+
+std::vector<Override> Session::All(bool with_reset_edits) const {
+  std::vector<Override> all = base_;
+  all.insert(all.end(), run_edits_.begin(), run_edits_.end());
+  all.insert(all.end(), queued_.begin(), queued_.end());
+  if (with_reset_edits) all.insert(all.end(), reset_edits_.begin(), reset_edits_.end());
+  return all;
+}
+
+std::vector<Override> Session::EffectiveOverrides() const { return Compress(All(true)); }
+
+std::map<std::string, std::string> Session::waiting_for_reset() const {
+  std::map<std::string, std::string> out;
+  for (const Override& o : reset_edits_) out[o.key] = o.value;
+  return out;
+}
+
+std::string Session::Edit(const std::string& key, const std::string& value,
+                          const std::string& origin) {
+  const Param* p = applied_.params.Find(key);
+  if (p == nullptr) {
+    const std::string why = "unknown parameter (not a tunable of this scenario)";
+    Reject(key, why);
+    return why;
+  }
+  std::string canonical;
+  if (std::string why = p->Parse(value, &canonical); !why.empty()) {
+    Reject(key, why);
+    return why;
+  }
+  const Override edit{key, canonical, origin, -1};
+  // The scenario as the next reset would read it must stay valid (cross-field rules included).
+  std::vector<Override> all = All(true);
+  all.push_back(edit);
+  try {
+    (void)ParseScenario(source_, all);
+  } catch (const std::exception& e) {
+    Reject(key, e.what());
+    return e.what();
+  }
+  bool live = p->tune.live;
+  if (live) {
+    std::vector<Override> now = All(false);
+    now.push_back(edit);
+    try {
+      queued_parse_ = ParseScenario(source_, now);
+      queued_.push_back(edit);
+    } catch (const std::exception&) {
+      live = false;  // valid only together with edits that wait for a reset: wait too
+    }
+  }
+  if (!live) {
+    bool replaced = false;
+    for (Override& o : reset_edits_)
+      if (o.key == key) {
+        o = edit;
+        replaced = true;
+      }
+    if (!replaced) reset_edits_.push_back(edit);
+  }
+  ++accepted_;
+  refusals_.erase(key);
+  return "";
+}
+
+void Session::Move(const std::string& name, double x, double y) { moves_.push_back({name, x, y}); }
+
+void Session::ApplyPending() {
+  if (!queued_.empty() && queued_parse_) {
+    try {
+      exp_->Retune(*queued_parse_->config);
+      applied_ = std::move(*queued_parse_);
+      for (Override o : queued_) {
+        o.step = exp_->steps();
+        run_edits_.push_back(o);
+        exp_->NoteOverride(o);
+      }
+    } catch (const std::exception& e) {
+      for (const Override& o : queued_) Reject(o.key, std::string("could not apply: ") + e.what());
+    }
+  }
+  queued_.clear();
+  queued_parse_.reset();
+  for (const MoveRequest& m : moves_) {
+    const std::string err = exp_->Move(m.name, {m.x, m.y});
+    if (!err.empty()) Reject("move", err);
+  }
+  moves_.clear();
+}
+
+void Session::Step() {
+  ApplyPending();
+  exp_->Step();
+}
+
+std::string Session::Reset(std::optional<std::uint64_t> seed) {
+  std::vector<Override> all = All(true);
+  if (seed) all.push_back({"seed", std::to_string(*seed), "reset with seed", -1});
+  all = Compress(all);
+  try {
+    ParsedScenario parsed = ParseScenario(source_, all);
+    std::unique_ptr<Experiment> exp = BuildExperiment(parsed);
+    applied_ = std::move(parsed);
+    exp_ = std::move(exp);
+  } catch (const std::exception& e) {
+    return std::string("reset failed, the run goes on unchanged: ") + e.what();
+  }
+  base_ = std::move(all);
+  run_edits_.clear();
+  queued_.clear();
+  queued_parse_.reset();
+  reset_edits_.clear();
+  moves_.clear();
+  return "";
+}
+
+std::string Session::Reload() {
+  try {
+    ScenarioSource source = ScenarioSource::FromFile(source_.file());
+    ParsedScenario parsed = ParseScenario(source, cli_);
+    std::unique_ptr<Experiment> exp = BuildExperiment(parsed);
+    source_ = std::move(source);
+    applied_ = std::move(parsed);
+    exp_ = std::move(exp);
+  } catch (const std::exception& e) {
+    return std::string("reload failed, the run goes on unchanged: ") + e.what();
+  }
+  base_ = cli_;
+  run_edits_.clear();
+  queued_.clear();
+  queued_parse_.reset();
+  reset_edits_.clear();
+  moves_.clear();
+  refusals_.clear();
+  accepted_ = 0;
+  return "";
+}
+
+std::string Session::TunedYaml(const std::string& path, std::string* note) const {
+  const std::vector<Override> overrides = EffectiveOverrides();
+  std::vector<std::pair<std::string, std::string>> edits;
+  for (const Override& o : overrides) edits.emplace_back(o.key, o.value);
+  // Relative file paths must still point at the same files from the new folder.
+  const fs::path target_dir = fs::absolute(fs::path(path)).parent_path();
+  const ParsedScenario expected = ParseScenario(source_, overrides);
+  for (const PathField& f : expected.paths) {
+    if (fs::path(f.text).is_absolute()) continue;
+    const fs::path abs = fs::absolute(f.resolved).lexically_normal();
+    std::string rel = abs.lexically_relative(target_dir).string();
+    if (rel.empty()) rel = abs.string();
+    if (rel != f.text || !f.in_file) edits.emplace_back(f.key, YamlPathText(rel));
+  }
+  const std::string target_name = path;
+  auto verify = [&](const std::string& text) -> std::string {
+    try {
+      const ParsedScenario got = ParseScenario(
+          ScenarioSource::FromText(text, target_name, target_dir.string()), {});
+      for (const Param& p : expected.params.all()) {
+        const Param* q = got.params.Find(p.key);
+        if (q == nullptr || q->Text() != p.Text())
+          return "'" + p.key + "' reads back as " + (q ? q->Text() : "missing") + ", not " + p.Text();
+      }
+      if (got.setup.seed != expected.setup.seed) return "the seed reads back differently";
+    } catch (const std::exception& e) {
+      return e.what();
+    }
+    return "";
+  };
+  std::string text, why;
+  if (PatchYamlText(source_.text(), edits, &text, &why)) {
+    why = verify(text);
+    if (why.empty()) return text;
+  }
+  // Fall back to writing the whole tree (values as written, comments lost).
+  YAML::Node tree = LoadYamlText(source_.text(), source_.file());
+  for (const auto& [key, value] : edits) {
+    const std::string err = SetAtPath(tree, key, LoadYamlText(value, key));
+    if (!err.empty()) throw std::runtime_error("cannot save: " + err);
+  }
+  YAML::Emitter out;
+  out.SetIndent(2);
+  out << tree;
+  text = "# Tuned with formsim from " + fs::path(source_.file()).filename().string() + "\n" +
+         out.c_str() + "\n";
+  const std::string err = verify(text);
+  if (!err.empty()) throw std::runtime_error("cannot save a scenario that loads back: " + err);
+  if (note) *note = "comments of the original could not be kept (" + why + ")";
+  return text;
+}
+
+bool Session::IsShipped(const std::string& path) {
+  std::error_code ec;
+  const fs::path dir = fs::weakly_canonical(ScenarioDir(), ec);
+  const fs::path p = fs::weakly_canonical(path, ec);
+  return fs::exists(p) && p.parent_path() == dir;
+}
+
+Session::SaveResult Session::Save(const std::string& path, bool overwrite, std::string* note) const {
+  if (!overwrite && fs::exists(path)) return SaveResult::kNeedsConfirmation;
+  const std::string text = TunedYaml(path, note);
+  WriteFileAtomic(path, text);
+  return SaveResult::kSaved;
+}
+
+}  // namespace formsim::sim

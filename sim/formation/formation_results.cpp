@@ -1,0 +1,92 @@
+// Metrics of the formation experiment (summary.json, the printed and GUI tables) and the
+// read-only link views.
+#include <cstdio>
+
+#include "sim/formation/formation_experiment.hpp"
+
+namespace formsim::sim::formation {
+
+using cf::FormationLaw;
+
+std::vector<FormationExperiment::LinkView> FormationExperiment::Links() const {
+  std::vector<LinkView> out;
+  for (const Link& l : links_) {
+    LinkView v;
+    v.name = l.name;
+    v.leader = l.leader;
+    v.follower = l.follower;
+    v.truth = l.truth;
+    v.measured = l.measured;
+    v.used = l.used;
+    v.e_l = l.e_l;
+    v.e_phi = l.e_phi;
+    v.e_alpha = l.e_alpha;
+    v.est_l = l.est_l;
+    v.est_phi = l.est_phi;
+    v.est_alpha = l.est_alpha;
+    v.has_phi_target = cfg_.robots[l.follower].node.law == FormationLaw::kLPhi;
+    v.filter = Mode(l.follower) == EstimatorMode::kUkf ? l.filter.get() : nullptr;
+    v.nees = l.nees;
+    v.filter_faults = l.fault_count;
+    out.push_back(v);
+  }
+  return out;
+}
+
+Metrics FormationExperiment::Results() const {
+  Metrics m;
+  const bool das = cfg_.bearing == cf::BearingConvention::kDas;
+  const bool printed = cfg_.gain_reading == cf::GainReading::kPrinted;
+  m.SetText("bearing", das ? "das" : "printed");
+  m.SetText("gain_reading", printed ? "printed" : "per_sample");
+  m.Set("control_period", cfg_.control_period);
+  m.Set("settle_time", cfg_.settle_time);
+  char note[160];
+  std::snprintf(note, sizeof note, "formation: bearing %s, gains %s, errors after %.2g s",
+                das ? "das" : "printed", printed ? "as printed" : "per sample", cfg_.settle_time);
+  m.AddNote(note);
+
+  Metrics::Table table;
+  table.row_header = "link";
+  table.columns = {{"law", "law", ""},
+                   {"est", "estimator", ""},
+                   {"max|e_l| [m]", "max_abs_error_after_settle.l", "%.3e"},
+                   {"max|e_phi| [rad]", "max_abs_error_after_settle.phi", "%.3e"},
+                   {"max|e_alpha| [rad]", "max_abs_error_after_settle.alpha", "%.3e"},
+                   {"rmse e_l [m]", "rmse_after_settle.l", "%.3e"},
+                   {"est rms phi [rad]", "estimation_rmse.phi", "%.3e"}};
+  for (const Link& l : links_) {
+    const FormationRobotDef& r = cfg_.robots[l.follower];
+    const std::string p = "links." + l.name + ".";
+    const bool lphi = r.node.law == FormationLaw::kLPhi;
+    m.SetText(p + "law", lphi ? "l_phi" : "l_l");
+    m.SetText(p + "estimator", EstimatorModeNames()[static_cast<int>(r.follow.estimator)]);
+    auto block = [&](const std::string& name, auto get) {
+      m.Set(p + name + ".l", get(l.e_l));
+      if (lphi) m.Set(p + name + ".phi", get(l.e_phi));
+      m.Set(p + name + ".alpha", get(l.e_alpha));
+    };
+    block("max_abs_error", [](const SettledErrorStats& s) { return s.max_abs; });
+    block("max_abs_error_after_settle", [](const SettledErrorStats& s) { return s.max_abs_settled(); });
+    block("rmse_after_settle", [](const SettledErrorStats& s) { return s.rmse_settled(); });
+    // Estimation metrics exist when an estimator ran at some time of the run (the estimator can
+    // be switched live).
+    if (l.est_l.n > 0) {
+      m.Set(p + "estimation_rmse.l", l.est_l.rms());
+      m.Set(p + "estimation_rmse.phi", l.est_phi.rms());
+      m.Set(p + "estimation_rmse.alpha", l.est_alpha.rms());
+    }
+    if (l.ever_ukf) m.Set(p + "filter_fault_steps", l.fault_count);
+    const std::string& f = r.body.name;
+    m.Set(p + "events.collision", static_cast<double>(events_.CountForRobot(event::kCollision, f)));
+    m.Set(p + "events.saturation", static_cast<double>(events_.CountForRobot(event::kSaturation, f)));
+    m.Set(p + "events.singular", static_cast<double>(events_.CountForSubject(event::kSingular, f)));
+    m.Set(p + "events.filter_fault",
+          static_cast<double>(events_.CountForSubject(event::kFilterFault, l.name)));
+    table.rows.emplace_back(l.name, "links." + l.name);
+  }
+  m.AddTable(std::move(table));
+  return m;
+}
+
+}  // namespace formsim::sim::formation

@@ -1,0 +1,140 @@
+// Analytic Jacobians of every residual against central finite differences.
+#include "control/velocity/factors.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+
+#include "control/common/angle.hpp"
+
+namespace vio = formsim::control::vio;
+using vio::KeyframeState;
+using vio::Vec2d;
+
+namespace {
+
+KeyframeState MakeState(double seed) {
+  KeyframeState s;
+  for (int i = 0; i < KeyframeState::kDim; ++i) s.x(i) = 0.3 * std::sin(seed * (i + 1) + 0.7 * i);
+  s.set_p(Vec2d(1.0 + seed, -0.5 * seed));
+  s.set_theta(0.4 + 0.3 * seed);
+  return s;
+}
+
+// d f / d x_k by central differences, f returning a vector.
+Eigen::MatrixXd NumericJacobian(const std::function<Eigen::VectorXd(const KeyframeState&)>& f,
+                                const KeyframeState& x) {
+  const double h = 1e-6;
+  Eigen::VectorXd f0 = f(x);
+  Eigen::MatrixXd J(f0.size(), KeyframeState::kDim);
+  for (int i = 0; i < KeyframeState::kDim; ++i) {
+    KeyframeState a = x, b = x;
+    a.x(i) += h;
+    b.x(i) -= h;
+    J.col(i) = (f(a) - f(b)) / (2 * h);
+  }
+  return J;
+}
+
+vio::ImuPreintegration SomeImu() {
+  vio::ImuNoise n;
+  vio::ImuPreintegration pre(0.01, Vec2d(0.03, -0.02), n);
+  for (int k = 0; k < 40; ++k)
+    pre.Integrate(0.005, 0.3 + 0.2 * std::sin(0.1 * k), Vec2d(0.4 * std::cos(0.2 * k), 0.1));
+  return pre;
+}
+
+}  // namespace
+
+TEST(Factors, ImuJacobians) {
+  const vio::ImuPreintegration pre = SomeImu();
+  const KeyframeState i = MakeState(0.3), j = MakeState(0.8);
+  const vio::ImuFactor f = vio::EvaluateImuFactor(pre, i, j);
+  const auto Ji = NumericJacobian(
+      [&](const KeyframeState& x) { return Eigen::VectorXd(vio::EvaluateImuFactor(pre, x, j).r); },
+      i);
+  const auto Jj = NumericJacobian(
+      [&](const KeyframeState& x) { return Eigen::VectorXd(vio::EvaluateImuFactor(pre, i, x).r); },
+      j);
+  EXPECT_LT((Ji - f.Ji).norm() / f.Ji.norm(), 1e-6);
+  EXPECT_LT((Jj - f.Jj).norm() / f.Jj.norm(), 1e-6);
+}
+
+TEST(Factors, OdometryJacobians) {
+  vio::OdometryPreintegration pre(0.02, -0.01, vio::OdometryNoise{});
+  for (int k = 0; k < 12; ++k) pre.Integrate(0.02, 0.5 + 0.01 * k, 0.3 - 0.02 * k);
+  const KeyframeState i = MakeState(0.2), j = MakeState(0.6);
+  const vio::OdometryFactor f = vio::EvaluateOdometryFactor(pre, i, j);
+  const auto Ji = NumericJacobian(
+      [&](const KeyframeState& x) {
+        return Eigen::VectorXd(vio::EvaluateOdometryFactor(pre, x, j).r);
+      },
+      i);
+  const auto Jj = NumericJacobian(
+      [&](const KeyframeState& x) {
+        return Eigen::VectorXd(vio::EvaluateOdometryFactor(pre, i, x).r);
+      },
+      j);
+  EXPECT_LT((Ji - f.Ji).norm() / f.Ji.norm(), 1e-6);
+  EXPECT_LT((Jj - f.Jj).norm() / f.Jj.norm(), 1e-6);
+}
+
+TEST(Factors, OdometryBiasJacobiansMatchReintegration) {
+  vio::OdometryPreintegration pre(0.0, 0.0, vio::OdometryNoise{});
+  for (int k = 0; k < 25; ++k) pre.Integrate(0.02, 0.45, 0.8);
+  const double h = 1e-6;
+  vio::OdometryPreintegration p1 = pre;
+  p1.Repropagate(h, 0.0);
+  EXPECT_LT(((p1.delta_p() - pre.delta_p()) / h - pre.dp_dbv()).norm(), 1e-5);
+  p1 = pre;
+  p1.Repropagate(0.0, h);
+  EXPECT_LT(((p1.delta_p() - pre.delta_p()) / h - pre.dp_dbw()).norm(), 1e-5);
+  EXPECT_NEAR((p1.delta_theta() - pre.delta_theta()) / h, pre.dtheta_dbw(), 1e-6);
+}
+
+TEST(Factors, BearingAndNonholonomicJacobians) {
+  const KeyframeState k = MakeState(0.5);
+  const Vec2d landmark = k.p() + vio::Rot(k.theta()) * Vec2d(3.0, 1.2);
+  const double z = 0.35;
+  const vio::BearingFactor f = vio::EvaluateBearingFactor(k, landmark, z, 0.01, 0.1);
+  EXPECT_GT(f.depth, 0.0);
+  const auto Jk = NumericJacobian(
+      [&](const KeyframeState& x) {
+        return Eigen::VectorXd::Constant(1,
+                                         vio::EvaluateBearingFactor(x, landmark, z, 0.01, 0.1).r);
+      },
+      k);
+  EXPECT_LT((Jk - f.Jk).norm() / f.Jk.norm(), 1e-6);
+  const double h = 1e-6;
+  for (int a = 0; a < 2; ++a) {
+    Vec2d lp = landmark, lm = landmark;
+    lp(a) += h;
+    lm(a) -= h;
+    const double num = (vio::EvaluateBearingFactor(k, lp, z, 0.01, 0.1).r -
+                        vio::EvaluateBearingFactor(k, lm, z, 0.01, 0.1).r) /
+                       (2 * h);
+    EXPECT_NEAR(num, f.Jf(a), 1e-5 * f.Jf.cwiseAbs().maxCoeff());
+  }
+  const vio::NonholonomicFactor nh = vio::EvaluateNonholonomicFactor(k, 0.05);
+  const auto Jn = NumericJacobian(
+      [&](const KeyframeState& x) {
+        return Eigen::VectorXd::Constant(1, vio::EvaluateNonholonomicFactor(x, 0.05).r);
+      },
+      k);
+  EXPECT_LT((Jn - nh.J).norm() / nh.J.norm(), 1e-6);
+}
+
+TEST(Factors, ZeroResidualForConsistentMotion) {
+  // A state pair that agrees with the pre-integrated motion gives a zero IMU residual.
+  const vio::ImuPreintegration pre = SomeImu();
+  KeyframeState i = MakeState(0.1);
+  i.set_bg(pre.lin_bg());
+  i.set_ba(pre.lin_ba());
+  KeyframeState j = i;
+  const vio::Mat2d R = vio::Rot(i.theta());
+  j.set_theta(formsim::control::WrapToPi(i.theta() + pre.delta_theta()));
+  j.set_v(i.v() + R * pre.delta_v());
+  j.set_p(i.p() + i.v() * pre.sum_dt() + R * pre.delta_p());
+  EXPECT_LT(vio::EvaluateImuFactor(pre, i, j).r.norm(), 1e-9);
+}
