@@ -60,6 +60,15 @@ struct ConfigOf : ExperimentConfig {
   C value;
 };
 
+/// A button an experiment offers beside its tunables (e.g. reload a fuzzy rule base from its
+/// file), run between two steps like an edit.
+struct ActionSpec {
+  std::string id;     ///< also the script action argument, e.g. "reload_rules"
+  std::string label;  ///< button text
+  std::string group;  ///< GUI group, as Tune::Group
+  std::string help;
+};
+
 class Experiment {
  public:
   explicit Experiment(const ExperimentSetup& setup);
@@ -92,6 +101,10 @@ class Experiment {
 
   /// Figures in the style of the paper (exported by --plots, drawn live in the GUI).
   virtual std::vector<FigureSpec> Figures() const = 0;
+  /// Buttons this experiment offers (none by default).
+  virtual std::vector<ActionSpec> Actions() const { return {}; }
+  /// Runs action `id` between two steps. Returns "" or why it failed (then nothing changed).
+  virtual std::string RunAction(const std::string& id) { return "no action '" + id + "'"; }
   /// Extra tables for the GUI beyond the results (rules with firing strengths...).
   virtual std::vector<TableSpec> Tables() const { return {}; }
   /// Draws the whole scene: world (patches, obstacles) then the experiment's own layers.

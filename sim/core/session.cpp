@@ -131,6 +131,17 @@ std::string Session::Edit(const std::string& key, const std::string& value,
 
 void Session::Move(const std::string& name, double x, double y) { moves_.push_back({name, x, y}); }
 
+std::string Session::Action(const std::string& id, const std::string& origin) {
+  for (const ActionSpec& a : exp_->Actions())
+    if (a.id == id) {
+      actions_.push_back({"action", id, origin, -1});
+      return "";
+    }
+  const std::string why = "no action '" + id + "' in this scenario";
+  Reject("action", why);
+  return why;
+}
+
 void Session::ApplyPending() {
   if (!queued_.empty() && queued_parse_) {
     try {
@@ -152,6 +163,16 @@ void Session::ApplyPending() {
     if (!err.empty()) Reject("move", err);
   }
   moves_.clear();
+  for (Override a : actions_) {
+    const std::string err = exp_->RunAction(a.value);
+    if (!err.empty()) {
+      Reject("action " + a.value, err);
+      continue;
+    }
+    a.step = exp_->steps();
+    exp_->NoteOverride(a);
+  }
+  actions_.clear();
 }
 
 void Session::Step() {
@@ -177,6 +198,7 @@ std::string Session::Reset(std::optional<std::uint64_t> seed) {
   queued_parse_.reset();
   reset_edits_.clear();
   moves_.clear();
+  actions_.clear();
   return "";
 }
 
@@ -197,6 +219,7 @@ std::string Session::Reload() {
   queued_parse_.reset();
   reset_edits_.clear();
   moves_.clear();
+  actions_.clear();
   refusals_.clear();
   accepted_ = 0;
   return "";

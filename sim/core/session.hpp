@@ -36,6 +36,9 @@ class Session {
   /// OnReset ones wait for Reset(). `origin` names the edit in messages and provenance.
   std::string Edit(const std::string& key, const std::string& value,
                    const std::string& origin = "GUI edit");
+  /// Queues one of the experiment's actions (Experiment::Actions), run between two steps.
+  /// Returns "" or why it is refused (unknown action).
+  std::string Action(const std::string& id, const std::string& origin = "GUI action");
   /// Queues a drag of a robot or obstacle to (x, y).
   void Move(const std::string& name, double x, double y);
   /// Applies queued edits and drags now (between steps; also while paused).
@@ -48,7 +51,7 @@ class Session {
   /// Re-reads the file from disk with the command-line overrides only (GUI edits are dropped).
   /// Returns "" or the reason; on failure everything stays as it was.
   std::string Reload();
-  bool has_pending() const { return !queued_.empty() || !moves_.empty(); }
+  bool has_pending() const { return !queued_.empty() || !moves_.empty() || !actions_.empty(); }
 
   /// Edits that were refused, newest last, each "t=1.23 s key: reason".
   const std::vector<std::string>& rejected() const { return rejected_; }
@@ -90,6 +93,7 @@ class Session {
     double x = 0, y = 0;
   };
   std::vector<MoveRequest> moves_;
+  std::vector<Override> actions_;  ///< queued actions (key "action", value the id)
   std::vector<std::string> rejected_;
   std::map<std::string, std::string> refusals_;
   int accepted_ = 0;
