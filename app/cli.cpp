@@ -12,17 +12,17 @@
 
 #include "app/export.hpp"
 #include "app/gui.hpp"
-#include "app/scenario_files.hpp"
-#include "app/session.hpp"
-#include "sim/core/experiment.hpp"
 #include "sim/core/run_output.hpp"
+#include "sim/core/scenario.hpp"
+#include "sim/core/scenario_files.hpp"
+#include "sim/core/session.hpp"
 
 namespace formsim::app {
 namespace {
 
 struct RunOptions {
   std::string scenario;
-  long long seed = -1;
+  std::string seed;  ///< empty: the scenario's
   std::vector<std::string> sets;
   std::string out_dir;
   bool quiet = false;
@@ -55,19 +55,49 @@ class ProgressBar {
   int last_pct_ = -1;
 };
 
-// `formsim run` with pictures: the same steps as a plain run, rendered offscreen as they go.
-int RunExportCommand(RunOptions opt, const std::string& file, const std::string& out) {
-  ParseSize(opt.size, &opt.exp.width, &opt.exp.height);
-  ParseSize(opt.plot_size, &opt.exp.plot_width, &opt.exp.plot_height);
-  PrepareExport(opt.exp);  // a missing ffmpeg or bad folder fails before simulating
-  Session session(file, opt.sets, opt.seed);
+// The overrides of the command line: every --set in order, then --seed.
+std::vector<sim::Override> Overrides(const std::vector<std::string>& sets, const std::string& seed) {
+  std::vector<sim::Override> out = sim::CliOverrides(sets, -1);
+  if (!seed.empty()) out.push_back({"seed", seed, "--seed", -1});
+  return out;
+}
+
+// `formsim run`: the one load path (sim::Session, as the GUI), then the same steps with or
+// without pictures.
+int RunCommand(RunOptions opt) {
+  const std::string file = sim::ResolveScenario(opt.scenario);
+  const std::string out =
+      opt.out_dir.empty() ? "out/" + std::filesystem::path(file).stem().string() : opt.out_dir;
+  if (opt.exp.any()) {
+    ParseSize(opt.size, &opt.exp.width, &opt.exp.height);
+    ParseSize(opt.plot_size, &opt.exp.plot_width, &opt.exp.plot_height);
+  }
+  sim::Session session(file, Overrides(opt.sets, opt.seed));
+  sim::PrepareOutputDir(out);  // fail before simulating, not after
+  if (opt.exp.any()) PrepareExport(opt.exp);  // a missing ffmpeg fails before simulating too
+
   ProgressBar bar(!opt.quiet);
-  const ExportStats st =
-      RunWithExport(session, opt.exp, [&](double f, double t) { bar.Update(f, t); });
+  const auto t0 = std::chrono::steady_clock::now();
+  ExportStats st;
+  if (opt.exp.any()) {
+    st = RunWithExport(session, opt.exp, [&](double f, double t) { bar.Update(f, t); });
+  } else {
+    sim::Experiment& exp = session.exp();
+    const double duration = exp.setup().duration;
+    while (!exp.finished()) {
+      exp.Step();
+      if ((exp.steps() & 63) == 0) bar.Update(exp.time() / duration, exp.time());
+    }
+  }
   bar.Done();
-  sim::WriteRunOutputs(session.exp(), out);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const sim::Experiment& exp = session.exp();
+  sim::WriteRunOutputs(exp, out);
+
   if (!opt.quiet) {
-    std::cout << session.exp().SummaryTable();
+    std::cout << exp.SummaryText();
+    std::printf("%ld steps, %.2f s simulated in %.3f s wall (%.0fx real time)\n", exp.steps(),
+                exp.time(), wall, wall > 0 ? exp.time() / wall : 0.0);
     std::printf("wrote %s/timeseries.csv and %s/summary.json", out.c_str(), out.c_str());
     if (!opt.exp.frames_dir.empty())
       std::printf(", %ld frames in %s", st.frames, opt.exp.frames_dir.c_str());
@@ -77,43 +107,12 @@ int RunExportCommand(RunOptions opt, const std::string& file, const std::string&
     if (!opt.exp.snapshot.empty()) std::printf(", %s", opt.exp.snapshot.c_str());
     std::printf("\n");
   }
-  if (opt.timing) std::fputs(st.Report().c_str(), stderr);
-  return 0;
-}
-
-int RunCommand(const RunOptions& opt) {
-  const std::string file = ResolveScenario(opt.scenario);
-  const std::string out =
-      opt.out_dir.empty() ? "out/" + std::filesystem::path(file).stem().string() : opt.out_dir;
-  if (opt.exp.any()) {
-    sim::PrepareOutputDir(out);
-    return RunExportCommand(opt, file, out);
-  }
-  auto exp = sim::LoadExperiment(file, opt.sets, opt.seed);
-  sim::PrepareOutputDir(out);  // fail before simulating, not after
-
-  ProgressBar bar(!opt.quiet);
-  const auto t0 = std::chrono::steady_clock::now();
-  const double duration = exp->setup().duration;
-  while (!exp->finished()) {
-    exp->Step();
-    if ((exp->steps() & 63) == 0) bar.Update(exp->time() / duration, exp->time());
-  }
-  bar.Done();
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  sim::WriteRunOutputs(*exp, out);
-
-  if (!opt.quiet) {
-    std::cout << exp->SummaryTable();
-    std::printf("%ld steps, %.2f s simulated in %.3f s wall (%.0fx real time)\n", exp->steps(),
-                exp->time(), wall, wall > 0 ? exp->time() / wall : 0.0);
-    std::printf("wrote %s/timeseries.csv and %s/summary.json\n", out.c_str(), out.c_str());
-  }
+  if (opt.timing && opt.exp.any()) std::fputs(st.Report().c_str(), stderr);
   return 0;
 }
 
 int ListCommand() {
-  for (const auto& file : ShippedScenarios()) {
+  for (const auto& file : sim::ShippedScenarios()) {
     const std::string stem = std::filesystem::path(file).stem().string();
     std::string type = "?", description;
     try {
@@ -138,7 +137,7 @@ int Main(int argc, char** argv) {
   CLI::App* run_cmd = app.add_subcommand("run", "Run a scenario headless and write CSV + summary");
   run_cmd->add_option("scenario", run.scenario, "Scenario name (see `formsim list`) or YAML path")
       ->required();
-  run_cmd->add_option("--seed", run.seed, "Random seed (overrides the scenario's)");
+  run_cmd->add_option("--seed", run.seed, "Random seed 0 ... 2^64-1 (overrides the scenario's)");
   run_cmd->add_option("--set", run.sets, "Override a scenario value: path.to.key=value")
       ->take_all();
   run_cmd->add_option("--out", run.out_dir, "Output folder (default out/<scenario>)");
@@ -163,7 +162,7 @@ int Main(int argc, char** argv) {
   CLI::App* gui_cmd = app.add_subcommand("gui", "Open the interactive window (live tuning)");
   gui_cmd->add_option("scenario", gui.scenario,
                       "Scenario name or YAML path (default: first formation_*)");
-  gui_cmd->add_option("--seed", gui.seed, "Random seed (overrides the scenario's)");
+  gui_cmd->add_option("--seed", gui.seed, "Random seed 0 ... 2^64-1 (overrides the scenario's)");
   gui_cmd->add_option("--set", gui.sets, "Override a scenario value: path.to.key=value")
       ->take_all();
   gui_cmd->add_option("--size", gui_size, "Window size WIDTHxHEIGHT (default 1600x900)");
@@ -177,6 +176,10 @@ int Main(int argc, char** argv) {
   gui_cmd
       ->add_option("--edit", gui.edits, "Scripted edit FRAME:key=value, as if made with a slider")
       ->take_all();
+  gui_cmd->add_option("--script", gui.script,
+                      "Run scripted actions, one per line: FRAME ACTION [ARGS] (edit k=v, reset, "
+                      "reset-seed N, reload, load S, open P, save P, play, pause, step, "
+                      "screenshot P, action ID)");
   gui_cmd->add_option("--out", gui.out_dir, "Write timeseries.csv and summary.json here on exit");
   gui_cmd->add_flag("--timing", gui.timing, "Print frame-time statistics on exit (stderr)");
 

@@ -75,7 +75,7 @@ std::string ExportStats::Report() const {
   return buf;
 }
 
-ExportStats RunWithExport(Session& session, const ExportOptions& opt,
+ExportStats RunWithExport(sim::Session& session, const ExportOptions& opt,
                           const std::function<void(double, double)>& progress) {
   PrepareExport(opt);
   ExportStats st;

@@ -5,7 +5,7 @@
 #include <functional>
 #include <string>
 
-#include "app/session.hpp"
+#include "sim/core/session.hpp"
 
 namespace formsim::app {
 
@@ -47,7 +47,7 @@ long FrameCount(double duration, double dt, double fps);
 
 /// Runs the session's experiment to the end (the same steps as a plain run), writing what `opt`
 /// asks for. `progress(fraction, t)` is called now and then.
-ExportStats RunWithExport(Session& session, const ExportOptions& opt,
+ExportStats RunWithExport(sim::Session& session, const ExportOptions& opt,
                           const std::function<void(double, double)>& progress = {});
 
 }  // namespace formsim::app

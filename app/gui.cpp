@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <stdexcept>
 #include <vector>
@@ -16,9 +17,10 @@
 #include "app/gl_api.hpp"
 #include "app/imgui_layer.hpp"
 #include "app/png_writer.hpp"
-#include "app/scenario_files.hpp"
 #include "app/ui.hpp"
+#include "sim/core/number_format.hpp"
 #include "sim/core/run_output.hpp"
+#include "sim/core/scenario_files.hpp"
 
 namespace formsim::app {
 namespace {
@@ -28,27 +30,25 @@ void GlfwError(int code, const char* text) {
 }
 
 std::string DefaultScenario() {
-  const auto files = ShippedScenarios();
+  const auto files = sim::ShippedScenarios();
   for (const auto& f : files)
     if (std::filesystem::path(f).stem().string().rfind("formation_", 0) == 0) return f;
   if (files.empty())
-    throw std::runtime_error("no scenario given and none shipped in " + ScenarioDir());
+    throw std::runtime_error("no scenario given and none shipped in " + sim::ScenarioDir());
   return files.front();
 }
 
-// "120:robots.R2.controller.k_l=0.3" -> frame 120, edit.
-std::multimap<long, std::pair<std::string, std::string>> ParseEdits(
-    const std::vector<std::string>& in) {
-  std::multimap<long, std::pair<std::string, std::string>> out;
+// "120:robots.R2.follow.k_l=0.3" -> frame 120, "edit robots.R2.follow.k_l=0.3".
+std::vector<ScriptAction> ParseEdits(const std::vector<std::string>& in) {
+  std::vector<ScriptAction> out;
   for (const auto& e : in) {
     const auto colon = e.find(':'), eq = e.find('=');
     if (colon == std::string::npos || eq == std::string::npos || eq < colon)
       throw std::runtime_error("--edit '" + e + "': expected FRAME:key=value");
-    char* end = nullptr;
-    const long frame = std::strtol(e.c_str(), &end, 10);
-    if (end != e.c_str() + colon || frame < 0)
+    long long frame = 0;
+    if (!sim::ParseInteger(e.substr(0, colon), 0, 1000000000LL, &frame))
       throw std::runtime_error("--edit '" + e + "': FRAME must be a frame number");
-    out.emplace(frame, std::make_pair(e.substr(colon + 1, eq - colon - 1), e.substr(eq + 1)));
+    out.push_back({static_cast<long>(frame), "edit " + e.substr(colon + 1), "--edit " + e});
   }
   return out;
 }
@@ -66,10 +66,41 @@ struct GlfwSession {
 
 }  // namespace
 
+std::vector<ScriptAction> ReadScript(const std::string& file) {
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error("--script '" + file + "': cannot open the file");
+  std::vector<ScriptAction> out;
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    const auto sp = line.find_first_of(" \t", first);
+    const std::string where = file + ":" + std::to_string(n);
+    long long frame = 0;
+    if (sp == std::string::npos ||
+        !sim::ParseInteger(line.substr(first, sp - first), 0, 1000000000LL, &frame))
+      throw std::runtime_error(where + ": expected FRAME ACTION [ARGS], e.g. '30 reset'");
+    const auto act = line.find_first_not_of(" \t", sp);
+    if (act == std::string::npos) throw std::runtime_error(where + ": no action after the frame");
+    std::string action = line.substr(act);
+    while (!action.empty() && (action.back() == '\r' || action.back() == ' ')) action.pop_back();
+    out.push_back({static_cast<long>(frame), action, where});
+  }
+  return out;
+}
+
 int RunGui(const GuiOptions& opt) {
-  const auto scripted = ParseEdits(opt.edits);
-  const std::string file = opt.scenario.empty() ? DefaultScenario() : ResolveScenario(opt.scenario);
-  auto session = std::make_unique<Session>(file, opt.sets, opt.seed);
+  std::vector<ScriptAction> scripted = ParseEdits(opt.edits);
+  if (!opt.script.empty())
+    for (auto& a : ReadScript(opt.script)) scripted.push_back(std::move(a));
+  // Same frame: --edit first, then the script in file order.
+  std::stable_sort(scripted.begin(), scripted.end(),
+                   [](const ScriptAction& a, const ScriptAction& b) { return a.frame < b.frame; });
+  const std::string file =
+      opt.scenario.empty() ? DefaultScenario() : sim::ResolveScenario(opt.scenario);
+  std::vector<sim::Override> overrides = sim::CliOverrides(opt.sets, -1);
+  if (!opt.seed.empty()) overrides.push_back({"seed", opt.seed, "--seed", -1});
+  auto session = std::make_unique<sim::Session>(file, overrides);
   if (!opt.out_dir.empty()) sim::PrepareOutputDir(opt.out_dir);
 
   GlfwSession glfw;
@@ -102,14 +133,23 @@ int RunGui(const GuiOptions& opt) {
     using Clock = std::chrono::steady_clock;
     auto last = Clock::now();
     int shot_counter = 0;
+    std::size_t next_action = 0;
+    std::string title_shown = title;
     std::vector<double> frame_ms, sim_ms, ui_ms, gl_ms;  // for --timing
     for (long frame = 0; !glfwWindowShouldClose(window); ++frame) {
       glfwPollEvents();
       const auto now = Clock::now();
       const double wall_dt = std::min(0.1, std::chrono::duration<double>(now - last).count());
       last = now;
-      for (auto [it, end] = scripted.equal_range(frame); it != end; ++it)
-        ui.session().Edit(it->second.first, it->second.second);
+      // Scripted actions run through the same commands as the buttons and keys; a refused
+      // one is reported and the GUI goes on.
+      while (next_action < scripted.size() && scripted[next_action].frame <= frame) {
+        const ScriptAction& a = scripted[next_action++];
+        const std::string err = ui.RunScriptAction(a.action);
+        if (!err.empty())
+          std::fprintf(stderr, "formsim: %s (frame %ld): '%s' refused: %s\n", a.where.c_str(),
+                       a.frame, a.action.c_str(), err.c_str());
+      }
 
       ImGui_ImplGlfw_NewFrame();
       layer.NewFrame();
@@ -133,11 +173,15 @@ int RunGui(const GuiOptions& opt) {
       if (ui.state().screenshot_requested ||
           ((last_frame || finished_exit) && !opt.screenshot.empty())) {
         std::string path = opt.screenshot;
-        if (path.empty() || (ui.state().screenshot_requested && !last_frame && !finished_exit)) {
+        if (ui.state().screenshot_requested && !ui.state().screenshot_path.empty()) {
+          path = ui.state().screenshot_path;  // scripted "screenshot PATH"
+        } else if (path.empty() ||
+                   (ui.state().screenshot_requested && !last_frame && !finished_exit)) {
           char name[64];
           std::snprintf(name, sizeof(name), "formsim_screenshot_%03d.png", shot_counter++);
           path = opt.screenshot.empty() ? name : path;
         }
+        ui.state().screenshot_path.clear();
         try {
           WritePng(path, fw, fh, GlReadRgba(fw, fh).data());
           ui.state().status = "screenshot " + path;
@@ -148,6 +192,11 @@ int RunGui(const GuiOptions& opt) {
         ui.state().screenshot_requested = false;
       }
       glfwSwapBuffers(window);
+      const std::string now_title = "formsim — " + ui.session().exp().setup().name;
+      if (now_title != title_shown) {
+        glfwSetWindowTitle(window, now_title.c_str());
+        title_shown = now_title;
+      }
       ui.state().frame_ms = 1e3 * std::chrono::duration<double>(Clock::now() - now).count();
       if (opt.timing) frame_ms.push_back(ui.state().frame_ms);
       if (last_frame || finished_exit) break;

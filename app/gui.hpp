@@ -8,7 +8,8 @@ namespace formsim::app {
 
 struct GuiOptions {
   std::string scenario;  ///< empty: the first shipped formation scenario
-  long long seed = -1;
+  std::string seed;  ///< empty: the scenario's
+
   std::vector<std::string> sets;
   int width = 1600, height = 900;
   std::string screenshot;  ///< saved after the last frame (with --exit-after) and on 's'
@@ -16,11 +17,26 @@ struct GuiOptions {
   bool exit_when_finished = false;
   bool paused = false;
   double speed = 1.0;  ///< 0 = as fast as possible
-  /// Scripted edits "FRAME:key=value" applied as if made with a slider (tests, demos).
+  /// Scripted edits "FRAME:key=value" applied as if made with a slider (tests, demos); a
+  /// shorthand for the script action "FRAME edit key=value".
   std::vector<std::string> edits;
+  /// A script file: one action per line, "FRAME ACTION [ARGS]" (see ScriptAction).
+  std::string script;
   std::string out_dir;  ///< write timeseries.csv and summary.json here on exit
   bool timing = false;  ///< print frame-time statistics on exit
 };
+
+/// One scripted GUI action: at frame `frame`, `action` ("edit k=v", "reset", "reset-seed 7",
+/// "reload", "load NAME", "open PATH", "save PATH", "play", "pause", "step",
+/// "screenshot PATH", "action ID"), run through the same commands as the mouse and keyboard.
+struct ScriptAction {
+  long frame = 0;
+  std::string action;
+  std::string where;  ///< "script.txt:3" or "--edit", for messages
+};
+/// Reads a script file (blank lines and lines starting with # are skipped). Throws
+/// std::runtime_error naming file:line for a malformed line.
+std::vector<ScriptAction> ReadScript(const std::string& file);
 
 /// Runs the GUI. Returns the process exit code; throws on setup errors (no display...).
 int RunGui(const GuiOptions& opt);

@@ -6,7 +6,8 @@
 #include <cstring>
 #include <filesystem>
 
-#include "app/scenario_files.hpp"
+#include "sim/core/number_format.hpp"
+#include "sim/core/scenario_files.hpp"
 
 namespace fs = std::filesystem;
 
@@ -32,28 +33,24 @@ void CopyString(char* dst, std::size_t n, const std::string& s) {
 
 }  // namespace
 
-AppUi::AppUi(std::unique_ptr<Session> session) : owned_(std::move(session)) {
+AppUi::AppUi(std::unique_ptr<sim::Session> session) : owned_(std::move(session)) {
   session_ = owned_.get();
-  shipped_ = ShippedScenarios();
-  Open("");  // initialise the per-scenario fields for the loaded session
+  shipped_ = sim::ShippedScenarios();
+  SyncScenarioFields();
 }
 
-AppUi::AppUi(Session& borrowed) : session_(&borrowed) {
-  shipped_ = ShippedScenarios();
-  Open("");
+AppUi::AppUi(sim::Session& borrowed) : session_(&borrowed) {
+  shipped_ = sim::ShippedScenarios();
+  SyncScenarioFields();
 }
 
-void AppUi::Open(const std::string& file) {
-  if (!file.empty()) {
-    try {
-      owned_ = std::make_unique<Session>(file, std::vector<std::string>{}, -1);
-      session_ = owned_.get();
-      state_.status = "loaded " + file;
-    } catch (const std::exception& e) {
-      state_.status = std::string("cannot load: ") + e.what();
-      return;
-    }
-  }
+void AppUi::SetStatus(const std::string& message, bool error) {
+  state_.status = message;
+  state_.status_is_error = error;
+}
+
+// Per-scenario fields of the interface, after a load or reload.
+void AppUi::SyncScenarioFields() {
   const std::string current = session_->file();
   for (std::size_t i = 0; i < shipped_.size(); ++i)
     if (fs::path(shipped_[i]).filename() == fs::path(current).filename())
@@ -61,13 +58,189 @@ void AppUi::Open(const std::string& file) {
   CopyString(state_.open_path, sizeof(state_.open_path), current);
   CopyString(state_.save_path, sizeof(state_.save_path),
              fs::path(current).stem().string() + "_tuned.yaml");
-  state_.seed_input = static_cast<long long>(session_->seed());
-  state_.plot_open.assign(session_->exp().Figures().size(), 1);
+  CopyString(state_.seed_text, sizeof(state_.seed_text), std::to_string(session_->seed()));
+  state_.plot_closed.clear();
   state_.follow = -1;
   state_.auto_fit = true;
   state_.fit_now = true;
   state_.step_budget = 0;
   auto_fit_.Reset();
+}
+
+void AppUi::Adopt(std::unique_ptr<sim::Session> session, const std::string& message) {
+  owned_ = std::move(session);
+  session_ = owned_.get();
+  SyncScenarioFields();
+  SetStatus(message);
+}
+
+// ---- commands ----
+
+std::string AppUi::CmdPlay() {
+  state_.playing = true;
+  return "";
+}
+
+std::string AppUi::CmdPause() {
+  state_.playing = false;
+  return "";
+}
+
+std::string AppUi::CmdStep() {
+  state_.playing = false;
+  if (session_->exp().finished()) {
+    SetStatus("the run has reached its duration: reset (r) to run again", true);
+    return state_.status;
+  }
+  try {
+    session_->Step();
+  } catch (const std::exception& e) {
+    SetStatus(std::string("step failed: ") + e.what(), true);
+    return state_.status;
+  }
+  return "";
+}
+
+std::string AppUi::CmdReset() {
+  const std::string err = session_->Reset();
+  if (!err.empty()) {
+    SetStatus(err, true);
+    return err;
+  }
+  state_.step_budget = 0;
+  CopyString(state_.seed_text, sizeof(state_.seed_text), std::to_string(session_->seed()));
+  SetStatus("reset");
+  return "";
+}
+
+std::string AppUi::CmdResetSeed(const std::string& seed_text) {
+  std::string t = seed_text;
+  t.erase(0, t.find_first_not_of(" \t"));
+  t.erase(t.find_last_not_of(" \t") + 1);
+  std::uint64_t seed = 0;
+  if (!sim::ParseUint64(t, &seed)) {
+    const std::string why =
+        "seed must be a whole number in [0, 18446744073709551615], got '" + seed_text + "'";
+    SetStatus(why, true);
+    return why;
+  }
+  const std::string err = session_->Reset(seed);
+  if (!err.empty()) {
+    SetStatus(err, true);
+    return err;
+  }
+  state_.step_budget = 0;
+  CopyString(state_.seed_text, sizeof(state_.seed_text), std::to_string(seed));
+  SetStatus("reset with seed " + std::to_string(seed));
+  return "";
+}
+
+std::string AppUi::CmdReload() {
+  const std::string err = session_->Reload();
+  if (!err.empty()) {
+    SetStatus(err, true);
+    return err;
+  }
+  SyncScenarioFields();
+  SetStatus("reloaded " + session_->file());
+  return "";
+}
+
+std::string AppUi::CmdLoad(const std::string& name_or_path) {
+  std::string file;
+  try {
+    file = sim::ResolveScenario(name_or_path);
+  } catch (const std::exception& e) {
+    SetStatus(std::string("cannot load: ") + e.what(), true);
+    return state_.status;
+  }
+  return CmdOpen(file);
+}
+
+std::string AppUi::CmdOpen(const std::string& path) {
+  // Copy first: `path` may refer to state that the new session replaces.
+  const std::string file = path;
+  try {
+    Adopt(std::make_unique<sim::Session>(file, std::vector<sim::Override>{}), "loaded " + file);
+  } catch (const std::exception& e) {
+    SetStatus(std::string("cannot load, the current scenario stays: ") + e.what(), true);
+    return state_.status;
+  }
+  return "";
+}
+
+std::string AppUi::CmdSave(const std::string& path, bool overwrite) {
+  if (path.empty()) {
+    SetStatus("save: give a file name", true);
+    return state_.status;
+  }
+  try {
+    std::string note;
+    if (session_->Save(path, overwrite, &note) == sim::Session::SaveResult::kNeedsConfirmation) {
+      confirm_overwrite_ = true;
+      SetStatus(path + " exists: confirm to overwrite");
+      return "";
+    }
+    SetStatus("saved " + path + (note.empty() ? "" : " (" + note + ")"));
+  } catch (const std::exception& e) {
+    SetStatus(std::string("save failed: ") + e.what(), true);
+    return state_.status;
+  }
+  return "";
+}
+
+std::string AppUi::CmdEdit(const std::string& key, const std::string& value) {
+  const std::string err = session_->Edit(key, value);
+  if (!err.empty()) SetStatus("edit " + key + "=" + value + " refused: " + err, true);
+  return err;
+}
+
+std::string AppUi::CmdAction(const std::string& id) {
+  const std::string err = session_->Action(id);
+  if (!err.empty()) SetStatus(err, true);
+  else SetStatus("action " + id);
+  return err;
+}
+
+std::string AppUi::CmdScreenshot(const std::string& path) {
+  state_.screenshot_requested = true;
+  state_.screenshot_path = path;
+  return "";
+}
+
+std::string AppUi::RunScriptAction(const std::string& line) {
+  std::string action = line, args;
+  const auto sp = line.find_first_of(" \t");
+  if (sp != std::string::npos) {
+    action = line.substr(0, sp);
+    args = line.substr(line.find_first_not_of(" \t", sp) == std::string::npos
+                           ? line.size()
+                           : line.find_first_not_of(" \t", sp));
+  }
+  while (!args.empty() && (args.back() == ' ' || args.back() == '\t' || args.back() == '\r'))
+    args.pop_back();
+  auto need = [&](const char* what) -> std::string {
+    return args.empty() ? std::string(action) + ": expects " + what : "";
+  };
+  if (action == "play") return CmdPlay();
+  if (action == "pause") return CmdPause();
+  if (action == "step") return CmdStep();
+  if (action == "reset") return CmdReset();
+  if (action == "reload") return CmdReload();
+  if (action == "reset-seed") return need("a seed").empty() ? CmdResetSeed(args) : need("a seed");
+  if (action == "load") return need("a scenario").empty() ? CmdLoad(args) : need("a scenario");
+  if (action == "open") return need("a path").empty() ? CmdOpen(args) : need("a path");
+  if (action == "save") return need("a path").empty() ? CmdSave(args, true) : need("a path");
+  if (action == "screenshot") return need("a path").empty() ? CmdScreenshot(args) : need("a path");
+  if (action == "action") return need("an action id").empty() ? CmdAction(args) : need("an action id");
+  if (action == "edit") {
+    const auto eq = args.find('=');
+    if (eq == std::string::npos || eq == 0) return "edit: expects KEY=VALUE, got '" + args + "'";
+    return CmdEdit(args.substr(0, eq), args.substr(eq + 1));
+  }
+  return "unknown action '" + action +
+         "' (known: edit, reset, reset-seed, reload, load, open, save, play, pause, step, "
+         "screenshot, action)";
 }
 
 void AppUi::Advance(double wall_dt) {
@@ -76,32 +249,44 @@ void AppUi::Advance(double wall_dt) {
   const auto t0 = Clock::now();
   int steps = 0;
   // While paused, drags and edits still apply at once (between steps, as always).
-  session_->ApplyPending();
+  try {
+    session_->ApplyPending();
+  } catch (const std::exception& e) {
+    SetStatus(std::string("could not apply the edits: ") + e.what(), true);
+  }
   if (state_.playing && !exp.finished()) {
-    const double speed = SpeedChoices()[state_.speed_index];
-    if (speed == 0.0) {
-      // As fast as possible, but leave the frame responsive: ~15 ms of stepping per frame.
-      while (!session_->exp().finished()) {
-        session_->Step();
-        if ((++steps & 7) == 0 && std::chrono::duration<double>(Clock::now() - t0).count() > 0.015)
-          break;
-      }
-      state_.step_budget = 0;
-    } else {
-      state_.step_budget = std::min(state_.step_budget + wall_dt * speed, 0.25 * speed + exp.dt());
-      while (state_.step_budget >= 0.5 * exp.dt() && !session_->exp().finished()) {
-        session_->Step();
-        ++steps;
-        state_.step_budget -= session_->exp().dt();
-        if (std::chrono::duration<double>(Clock::now() - t0).count() > 0.05) {
-          state_.step_budget = 0;  // cannot keep up: slow down rather than freeze
-          break;
+    try {
+      const double speed = SpeedChoices()[state_.speed_index];
+      if (speed == 0.0) {
+        // As fast as possible, but leave the frame responsive: ~15 ms of stepping per frame.
+        while (!session_->exp().finished()) {
+          session_->Step();
+          if ((++steps & 7) == 0 && std::chrono::duration<double>(Clock::now() - t0).count() > 0.015)
+            break;
+        }
+        state_.step_budget = 0;
+      } else {
+        state_.step_budget = std::min(state_.step_budget + wall_dt * speed, 0.25 * speed + exp.dt());
+        while (state_.step_budget >= 0.5 * exp.dt() && !session_->exp().finished()) {
+          session_->Step();
+          ++steps;
+          state_.step_budget -= session_->exp().dt();
+          if (std::chrono::duration<double>(Clock::now() - t0).count() > 0.05) {
+            state_.step_budget = 0;  // cannot keep up: slow down rather than freeze
+            break;
+          }
         }
       }
-    }
-    if (session_->exp().finished()) {
+      if (session_->exp().finished()) {
+        state_.playing = false;
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "finished at t = %.2f s", session_->exp().time());
+        SetStatus(buf);
+      }
+    } catch (const std::exception& e) {
+      // Nothing a step throws may end the program: stop and say what happened.
       state_.playing = false;
-      state_.status = "finished at t = " + std::to_string(session_->exp().time()) + " s";
+      SetStatus(std::string("the simulation stopped: ") + e.what() + " (reset to go on)", true);
     }
   }
   state_.steps_last_frame = steps;
@@ -118,12 +303,10 @@ void AppUi::HandleKeys() {
         state_.playing = !state_.playing;
         break;
       case '.':
-        state_.playing = false;
-        session_->Step();
+        CmdStep();
         break;
       case 'r':
-        session_->Reset();
-        state_.status = "reset";
+        CmdReset();
         break;
       case 's':
         state_.screenshot_requested = true;
@@ -185,72 +368,50 @@ void AppUi::DrawScenarioSection() {
       ImGui::EndCombo();
     }
     ImGui::SameLine();
-    if (ImGui::Button("Load")) Open(shipped_[shipped_index_]);
+    if (ImGui::Button("Load")) CmdOpen(shipped_[shipped_index_]);
   }
   ImGui::SetNextItemWidth(-70);
   ImGui::InputText("##open", state_.open_path, sizeof(state_.open_path));
   ImGui::SameLine();
-  if (ImGui::Button("Open")) Open(state_.open_path);
-  if (ImGui::Button("Reload file")) Open(session_->file());
+  if (ImGui::Button("Open")) CmdOpen(state_.open_path);
+  if (ImGui::Button("Reload file")) CmdReload();
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Reload from disk, dropping the tuned values");
 
   ImGui::SetNextItemWidth(-70);
   ImGui::InputText("##save", state_.save_path, sizeof(state_.save_path));
   ImGui::SameLine();
-  if (ImGui::Button("Save")) {
-    try {
-      if (session_->Save(state_.save_path) == Session::SaveResult::kNeedsConfirmation)
-        confirm_overwrite_ = true;
-      else
-        state_.status = std::string("saved ") + state_.save_path;
-    } catch (const std::exception& e) {
-      state_.status = std::string("save failed: ") + e.what();
-    }
-  }
+  if (ImGui::Button("Save")) CmdSave(state_.save_path, false);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Write the scenario with the tuned parameters as YAML");
+    ImGui::SetTooltip("Write the scenario with the tuned values: the file's own text, comments\n"
+                      "and layout, with only the changed values rewritten");
   if (confirm_overwrite_) ImGui::OpenPopup("Overwrite?");
   if (ImGui::BeginPopupModal("Overwrite?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-    const bool shipped = Session::IsShipped(state_.save_path);
+    const bool shipped = sim::Session::IsShipped(state_.save_path);
     ImGui::Text("%s already exists%s.", state_.save_path,
                 shipped ? " and is a shipped scenario" : "");
     ImGui::Text("Overwrite it?");
     if (ImGui::Button("Overwrite")) {
-      try {
-        session_->Save(state_.save_path, true);
-        state_.status = std::string("saved ") + state_.save_path;
-      } catch (const std::exception& e) {
-        state_.status = std::string("save failed: ") + e.what();
-      }
       confirm_overwrite_ = false;
+      CmdSave(state_.save_path, true);
       ImGui::CloseCurrentPopup();
     }
     ImGui::SameLine();
     if (ImGui::Button("Cancel")) {
       confirm_overwrite_ = false;
+      SetStatus("not saved");
       ImGui::CloseCurrentPopup();
     }
     ImGui::EndPopup();
   }
-  if (session_->accepted_edits() > 0)
-    ImGui::TextDisabled("%d edit%s since loading (Save keeps them)", session_->accepted_edits(),
-                        session_->accepted_edits() == 1 ? "" : "s");
 }
 
 void AppUi::DrawRunSection() {
-  sim::Experiment& exp = session_->exp();
   if (ImGui::Button(state_.playing ? "Pause" : "Play", ImVec2(70, 0)))
-    state_.playing = !state_.playing;
+    state_.playing ? CmdPause() : CmdPlay();
   ImGui::SameLine();
-  if (ImGui::Button("Step")) {
-    state_.playing = false;
-    session_->Step();
-  }
+  if (ImGui::Button("Step")) CmdStep();
   ImGui::SameLine();
-  if (ImGui::Button("Reset")) {
-    session_->Reset();
-    state_.status = "reset";
-  }
+  if (ImGui::Button("Reset")) CmdReset();
   ImGui::SameLine();
   ImGui::TextDisabled("(space . r)");
 
@@ -262,14 +423,13 @@ void AppUi::DrawRunSection() {
     state_.speed_index = std::clamp(si, 0, static_cast<int>(speeds.size()) - 1);
 
   ImGui::SetNextItemWidth(120);
-  ImGui::InputScalar("seed", ImGuiDataType_S64, &state_.seed_input);
+  ImGui::InputText("seed", state_.seed_text, sizeof(state_.seed_text),
+                   ImGuiInputTextFlags_CharsDecimal);
   ImGui::SameLine();
-  if (ImGui::Button("Reset with seed")) {
-    if (state_.seed_input < 0) state_.seed_input = 0;
-    session_->Reset(state_.seed_input);
-    state_.status = "reset with seed " + std::to_string(state_.seed_input);
-  }
+  if (ImGui::Button("Reset with seed")) CmdResetSeed(state_.seed_text);
 
+  // Read the experiment after the buttons: a reset above has replaced it.
+  const sim::Experiment& exp = session_->exp();
   const double dur = exp.setup().duration;
   char buf[64];
   std::snprintf(buf, sizeof(buf), "t = %.2f / %.1f s", exp.time(), dur);
@@ -323,11 +483,15 @@ void AppUi::DrawViewSection() {
 
 void AppUi::DrawMessagesSection() {
   const auto& rejected = session_->rejected();
-  const auto& events = session_->exp().events();
+  const auto& events = session_->exp().events().list();
   char title[64];
   std::snprintf(title, sizeof(title), "Messages (%zu rejected, %zu events)###messages",
                 rejected.size(), events.size());
-  if (!state_.status.empty()) ImGui::TextWrapped("%s", state_.status.c_str());
+  if (!state_.status.empty()) {
+    if (state_.status_is_error) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.75f, 0.1f, 0.1f, 1));
+    ImGui::TextWrapped("%s", state_.status.c_str());
+    if (state_.status_is_error) ImGui::PopStyleColor();
+  }
   if (!ImGui::CollapsingHeader(title, rejected.empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen))
     return;
   ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.75f, 0.1f, 0.1f, 1));

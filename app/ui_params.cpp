@@ -1,12 +1,15 @@
-/// \file The generic parameter panel: every entry of the experiment's ParamTable, grouped by its
-/// group path ("Gains/R2" -> header "Gains", node "R2"). Widgets never write the experiment:
-/// they queue edits in the Session, applied between steps.
+/// \file The generic parameter panel: every tunable of the scenario's ParamTable (declared once,
+/// where the scenario reader reads it), grouped by its group path ("Gains/R2" -> header
+/// "Gains", node "R2"), plus the experiment's action buttons. Widgets never write the
+/// experiment: they ask the session for an edit, which checks it against the whole scenario and
+/// applies it between steps; a refused edit is marked at its widget with the reason.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
 
 #include "app/ui.hpp"
+#include "sim/core/number_format.hpp"
 
 namespace formsim::app {
 namespace {
@@ -19,65 +22,71 @@ std::string Tail(const std::string& group) {
   return slash == std::string::npos ? "" : group.substr(slash + 1);
 }
 
-// One row: label (with unit) on the left, widget on the right. Returns the new value as text when
-// the user changed it, "" otherwise.
-std::string ParamRow(const sim::Param& p, const std::string* waiting) {
+// One row: label (with unit) on the left, widget on the right. `shown` is the value to show (the
+// one waiting for a reset, if any). Returns the new value as text when the user changed it.
+std::string ParamRow(const sim::Param& p, const std::string& shown, bool waiting,
+                     const std::string& refusal) {
   ImGui::TableNextRow();
   ImGui::TableSetColumnIndex(0);
   ImGui::AlignTextToFramePadding();
-  std::string label = p.label.empty() ? p.key : p.label;
-  if (!p.unit.empty()) label += " [" + p.unit + "]";
+  std::string label = p.tune.label.empty() ? p.key : p.tune.label;
+  if (!p.tune.unit.empty()) label += " [" + p.tune.unit + "]";
+  if (!refusal.empty()) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.75f, 0.1f, 0.1f, 1));
   ImGui::TextUnformatted(label.c_str());
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("%s\nrange %g … %g%s%s", p.key.c_str(), p.min, p.max,
-                      p.log_scale ? ", log scale" : "",
-                      p.requires_reset ? "\napplies on reset" : "\napplies on the next step");
+  if (!refusal.empty()) ImGui::PopStyleColor();
+  if (ImGui::IsItemHovered()) {
+    std::string tip = p.key;
+    if (!p.tune.help.empty()) tip += "\n" + p.tune.help;
+    if (p.kind == sim::Param::Kind::kDouble || p.kind == sim::Param::Kind::kInt)
+      tip += "\nvalid: " + p.tune.ValidityText();
+    tip += p.tune.live ? "\napplies on the next step" : "\napplies on reset";
+    if (!refusal.empty()) tip += "\n\nlast edit refused: " + refusal;
+    ImGui::SetTooltip("%s", tip.c_str());
+  }
   ImGui::TableSetColumnIndex(1);
   ImGui::SetNextItemWidth(waiting ? -22.0f : -1.0f);
   ImGui::PushID(p.key.c_str());
+  if (!refusal.empty()) ImGui::PushStyleColor(ImGuiCol_FrameBg, ImVec4(0.95f, 0.75f, 0.75f, 1));
   std::string out;
   switch (p.kind) {
     case sim::Param::Kind::kDouble: {
-      double v = waiting ? std::atof(waiting->c_str()) : *p.d;
-      // YAML may hold values outside the slider range: widen it rather than clamp them away.
-      double lo = std::min(p.min, v), hi = std::max(p.max, v);
+      double v = 0;
+      if (!sim::ParseFiniteDouble(shown, &v)) v = p.value;
+      // The declared slider range lies inside the validity; a file value outside the slider
+      // widens it (still valid: the range between two valid values is valid).
+      double lo = std::min(p.slider_min(), v), hi = std::max(p.slider_max(), v);
       ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp;
-      if (p.log_scale && lo > 0) flags |= ImGuiSliderFlags_Logarithmic;
+      if (p.tune.log_scale && lo > 0) flags |= ImGuiSliderFlags_Logarithmic;
       if (ImGui::SliderScalar("##v", ImGuiDataType_Double, &v, &lo, &hi, "%.4g", flags) &&
           std::isfinite(v))
-        out = ExactDouble(std::clamp(v, lo, hi));
+        out = sim::FormatDouble(std::clamp(v, lo, hi));
       break;
     }
     case sim::Param::Kind::kInt: {
-      int v = waiting ? std::atoi(waiting->c_str()) : *p.i;
-      int lo = std::min(static_cast<int>(p.min), v), hi = std::max(static_cast<int>(p.max), v);
+      long long parsed = 0;
+      int v = sim::ParseInteger(shown, -2147483647LL, 2147483647LL, &parsed) ? static_cast<int>(parsed)
+                                                                          : static_cast<int>(p.value);
+      int lo = std::min(static_cast<int>(std::max(p.slider_min(), -1e9)), v);
+      int hi = std::max(static_cast<int>(std::min(p.slider_max(), 1e9)), v);
       if (ImGui::SliderInt("##v", &v, lo, hi, "%d", ImGuiSliderFlags_AlwaysClamp))
         out = std::to_string(std::clamp(v, lo, hi));
       break;
     }
     case sim::Param::Kind::kBool: {
-      bool v = waiting ? (*waiting == "true") : *p.b;
+      bool v = shown == "true";
       if (ImGui::Checkbox("##v", &v)) out = v ? "true" : "false";
       break;
     }
     case sim::Param::Kind::kChoice: {
-      int cur = *p.i;
-      if (waiting) {
-        for (std::size_t k = 0; k < p.choices.size(); ++k)
-          if (p.choices[k] == *waiting) cur = static_cast<int>(k);
-      }
-      const char* preview =
-          cur >= 0 && cur < static_cast<int>(p.choices.size()) ? p.choices[cur].c_str() : "?";
-      if (ImGui::BeginCombo("##v", preview)) {
-        for (std::size_t k = 0; k < p.choices.size(); ++k)
-          if (ImGui::Selectable(p.choices[k].c_str(), static_cast<int>(k) == cur) &&
-              static_cast<int>(k) != cur)
-            out = p.choices[k];
+      if (ImGui::BeginCombo("##v", shown.c_str())) {
+        for (const auto& c : p.choices)
+          if (ImGui::Selectable(c.c_str(), c == shown) && c != shown) out = c;
         ImGui::EndCombo();
       }
       break;
     }
   }
+  if (!refusal.empty()) ImGui::PopStyleColor();
   if (waiting) {
     ImGui::SameLine();
     ImGui::TextColored(ImVec4(0.8f, 0.45f, 0.0f, 1.0f), "↻");
@@ -90,18 +99,22 @@ std::string ParamRow(const sim::Param& p, const std::string* waiting) {
 }  // namespace
 
 void AppUi::DrawParamSection() {
-  auto& params = session_->exp().params().all();
+  const auto& params = session_->params().all();
+  const auto actions = session_->exp().Actions();
   // Groups in order of first appearance; within a head group, sub-groups likewise.
   std::vector<std::string> heads;
   std::map<std::string, std::vector<std::string>> tails;
-  for (const auto& p : params) {
-    const std::string h = Head(p.group), t = Tail(p.group);
+  auto note_group = [&](const std::string& g) {
+    const std::string h = Head(g), t = Tail(g);
     if (std::find(heads.begin(), heads.end(), h) == heads.end()) heads.push_back(h);
     auto& v = tails[h];
     if (std::find(v.begin(), v.end(), t) == v.end()) v.push_back(t);
-  }
+  };
+  for (const auto& p : params) note_group(p.tune.group);
+  for (const auto& a : actions) note_group(a.group);
   std::vector<std::pair<std::string, std::string>> edits;
-  const auto& waiting = session_->waiting_for_reset();
+  std::vector<std::string> run_actions;
+  const auto waiting = session_->waiting_for_reset();
   for (const std::string& h : heads) {
     const std::string header = (h.empty() ? std::string("Parameters") : h) + "###grp_" + h;
     if (!ImGui::CollapsingHeader(header.c_str(), ImGuiTreeNodeFlags_DefaultOpen)) continue;
@@ -115,18 +128,26 @@ void AppUi::DrawParamSection() {
         ImGui::TableSetupColumn("label", ImGuiTableColumnFlags_WidthStretch, 0.45f);
         ImGui::TableSetupColumn("value", ImGuiTableColumnFlags_WidthStretch, 0.55f);
         for (const auto& p : params) {
-          if (p.group != group) continue;
+          if (p.tune.group != group) continue;
           const auto w = waiting.find(p.key);
-          const std::string v = ParamRow(p, w == waiting.end() ? nullptr : &w->second);
+          const bool is_waiting = w != waiting.end();
+          const std::string v =
+              ParamRow(p, is_waiting ? w->second : p.Text(), is_waiting, session_->refusal(p.key));
           if (!v.empty()) edits.emplace_back(p.key, v);
         }
         ImGui::EndTable();
       }
+      for (const auto& a : actions) {
+        if (a.group != group) continue;
+        if (ImGui::Button(a.label.c_str())) run_actions.push_back(a.id);
+        if (!a.help.empty() && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", a.help.c_str());
+      }
       if (!t.empty()) ImGui::TreePop();
     }
   }
-  // Queued after the loop: an edit never changes the table while we iterate over it.
-  for (const auto& [key, value] : edits) session_->Edit(key, value);
+  // Asked for after the loop: an edit never changes the table while we iterate over it.
+  for (const auto& [key, value] : edits) CmdEdit(key, value);
+  for (const auto& id : run_actions) CmdAction(id);
 }
 
 }  // namespace formsim::app

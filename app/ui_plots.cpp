@@ -17,19 +17,24 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
   const sim::Experiment& exp = session_->exp();
   if (ImGui::BeginTabBar("tabs")) {
     if (ImGui::BeginTabItem("Plots")) {
+      // The figure list can change during a run (an estimator switched on adds its figure), so
+      // the user's choices are kept by figure id.
       const auto figures = exp.Figures();
-      if (state_.plot_open.size() != figures.size()) state_.plot_open.assign(figures.size(), 1);
+      auto is_open = [&](const sim::FigureSpec& f) {
+        const auto it = state_.plot_closed.find(f.id);
+        return it == state_.plot_closed.end() || !it->second;
+      };
       // Toggles for each figure, then the open ones stacked (scrolling when they do not fit).
       for (std::size_t i = 0; i < figures.size(); ++i) {
         if (i > 0) ImGui::SameLine();
-        bool open = state_.plot_open[i] != 0;
+        bool open = is_open(figures[i]);
         const std::string id = figures[i].id + "##toggle";
-        if (ImGui::Checkbox(id.c_str(), &open)) state_.plot_open[i] = open;
+        if (ImGui::Checkbox(id.c_str(), &open)) state_.plot_closed[figures[i].id] = !open;
         if (ImGui::GetContentRegionAvail().x < 120 && i + 1 < figures.size()) ImGui::NewLine();
       }
       ImGui::BeginChild("plot_list", ImVec2(0, 0), false);
       int open_count = 0;
-      for (char c : state_.plot_open) open_count += c != 0;
+      for (const auto& f : figures) open_count += is_open(f);
       const float avail_h = ImGui::GetContentRegionAvail().y;
       const float h = std::max(220.0f, open_count > 0 ? avail_h / std::min(open_count, 3) - 6 : 0);
       PlotStyle style;
@@ -39,7 +44,7 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
       style.line_width = 1.6f;
       style.padding = 6;
       for (std::size_t i = 0; i < figures.size(); ++i) {
-        if (!state_.plot_open[i]) continue;
+        if (!is_open(figures[i])) continue;
         const ImVec2 p0 = ImGui::GetCursorScreenPos();
         const float w = ImGui::GetContentRegionAvail().x;
         ImGui::Dummy(ImVec2(w, h));
@@ -68,7 +73,9 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
       ImGui::EndChild();
       ImGui::EndTabItem();
     }
-    const auto tables = exp.Tables();
+    // The results as tables (the same metrics as summary.json), then the experiment's own.
+    std::vector<sim::TableSpec> tables = exp.Results().GuiTables();
+    for (auto& t : exp.Tables()) tables.push_back(std::move(t));
     if (!tables.empty() && ImGui::BeginTabItem("Tables")) {
       for (std::size_t t = 0; t < tables.size(); ++t) {
         const sim::TableSpec& spec = tables[t];
@@ -105,11 +112,12 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
     }
     if (ImGui::BeginTabItem("Summary")) {
       ImGui::PushFont(fonts.mono);
-      ImGui::TextUnformatted(exp.SummaryTable().c_str());
+      ImGui::TextUnformatted(exp.SummaryText().c_str());
       ImGui::PopFont();
       ImGui::Separator();
-      ImGui::Text("%zu events", exp.events().size());
-      for (const auto& e : exp.events())
+      const auto& events = exp.events().list();
+      ImGui::Text("%zu events", events.size());
+      for (const auto& e : events)
         ImGui::TextWrapped("%.2f s  %s  %s: %s", e.time, e.kind.c_str(), e.robots.c_str(),
                            e.message.c_str());
       ImGui::EndTabItem();

@@ -91,6 +91,7 @@ std::string Session::Edit(const std::string& key, const std::string& value,
   }
   std::string canonical;
   if (std::string why = p->Parse(value, &canonical); !why.empty()) {
+    why = origin + " " + key + "=" + value + ": " + why;
     Reject(key, why);
     return why;
   }

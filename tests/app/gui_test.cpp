@@ -5,7 +5,9 @@
 #include <filesystem>
 
 #include "app/png_writer.hpp"
-#include "app/session.hpp"
+#include "sim/core/number_format.hpp"
+#include "sim/core/scenario_files.hpp"
+#include "sim/core/session.hpp"
 #include "app/video_writer.hpp"
 #include "tests/app/test_util.hpp"
 
@@ -27,20 +29,20 @@ TEST(Gui, RunsUnderXvfbWithParameterChangesAndSavesAScreenshot) {
   if (FindOnPath("xvfb-run").empty()) GTEST_SKIP() << "xvfb-run not installed";
   const std::string dir = TempDir("gui_xvfb");
   // Parameter changes as if dragged: a live double, a choice, and a malformed value (refused).
-  Session probe(Scenario("formation_traj2_ukf"), {}, -1);
+  sim::Session probe(Scenario("formation_traj2_ukf"), {}, -1);
   std::string edits;
   int frame = 20;
-  for (const auto& p : probe.exp().params().all()) {
-    if (p.kind == sim::Param::Kind::kDouble && !p.requires_reset && frame < 200) {
+  for (const auto& p : probe.params().all()) {
+    if (p.kind == sim::Param::Kind::kDouble && p.tune.live && frame < 200) {
       edits += " --edit " + std::to_string(frame) + ":" + p.key + "=" +
-               ExactDouble(p.min + 0.3 * (p.max - p.min));
+               sim::FormatDouble(p.slider_min() + 0.3 * (p.slider_max() - p.slider_min()));
       frame += 15;
     } else if (p.kind == sim::Param::Kind::kChoice && frame < 200) {
       edits += " --edit " + std::to_string(frame) + ":" + p.key + "=" + p.choices.back();
       frame += 15;
     }
   }
-  edits += " --edit 150:" + probe.exp().params().all().front().key + "=not_a_value";
+  edits += " --edit 150:" + probe.params().all().front().key + "=not_a_value";
   const std::string shot = dir + "/gui.png";
   const int rc = RunShell(
       Xvfb(Binary() +

@@ -1,32 +1,31 @@
-// Every slider of every shipped scenario at its extremes: the experiment must keep stepping
-// without throwing, crashing or writing a non-finite number into the recorded truth. This is
-// what a user dragging sliders in the GUI does (the GUI clamps values to [min, max]).
+// Every slider of every shipped scenario at both ends and in the middle, through the tuning
+// session exactly as the GUI's widgets drive it, followed by a reset: a value is either
+// accepted or refused with a reason (rules across keys, such as the l-l triangle, can refuse
+// an in-range value), the run keeps stepping, a reset always succeeds, and every recorded
+// number of every column stays finite.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 
-#include "app/scenario_files.hpp"
-#include "sim/core/experiment.hpp"
+#include "sim/core/number_format.hpp"
+#include "sim/core/scenario_files.hpp"
+#include "sim/core/session.hpp"
 
 using namespace formsim;
 
 namespace {
 
-// Values a slider can produce for a parameter.
-std::vector<std::string> SliderValues(const sim::Param& p) {
-  char buf[64];
+// Values a widget can produce for a parameter.
+std::vector<std::string> WidgetValues(const sim::Param& p) {
   switch (p.kind) {
     case sim::Param::Kind::kDouble: {
-      std::vector<std::string> out;
-      for (double v : {p.min, p.max, 0.5 * (p.min + p.max)}) {
-        std::snprintf(buf, sizeof buf, "%.17g", v);
-        out.push_back(buf);
-      }
-      return out;
+      const double lo = p.slider_min(), hi = p.slider_max();
+      return {sim::FormatDouble(lo), sim::FormatDouble(hi), sim::FormatDouble(0.5 * (lo + hi))};
     }
     case sim::Param::Kind::kInt:
-      return {std::to_string(static_cast<int>(p.min)), std::to_string(static_cast<int>(p.max))};
+      return {std::to_string(static_cast<long long>(p.slider_min())),
+              std::to_string(static_cast<long long>(p.slider_max()))};
     case sim::Param::Kind::kBool:
       return {"true", "false"};
     case sim::Param::Kind::kChoice:
@@ -35,42 +34,46 @@ std::vector<std::string> SliderValues(const sim::Param& p) {
   return {};
 }
 
-class ParamExtremes : public ::testing::TestWithParam<std::string> {};
-
-TEST_P(ParamExtremes, EverySliderValueKeepsTheRunFinite) {
-  const std::string file = GetParam();
-  auto exp = sim::LoadExperiment(file);
-  ASSERT_TRUE(exp);
-  const std::size_t n_params = exp->params().all().size();
-  ASSERT_GT(n_params, 0u) << file << " exposes no tunable parameters";
-  // Copy keys first: Apply may not reorder the table, but keep the loop independent of it.
-  std::vector<std::pair<std::string, std::vector<std::string>>> plan;
-  for (const sim::Param& p : exp->params().all())
-    if (!p.requires_reset) plan.emplace_back(p.key, SliderValues(p));
-  for (const auto& [key, values] : plan) {
-    for (const std::string& v : values) {
-      sim::PendingChanges pc;
-      pc.edits.push_back({key, v});
-      std::vector<std::string> errors;
-      ASSERT_NO_THROW(errors = exp->Apply(pc)) << file << ": " << key << "=" << v;
-      EXPECT_TRUE(errors.empty()) << file << ": a slider value was rejected: " << errors[0];
-      for (int k = 0; k < 30 && !exp->finished(); ++k)
-        ASSERT_NO_THROW(exp->Step()) << file << ": after " << key << "=" << v;
+// Every recorded cell is a finite number or "not sampled".
+void ExpectFinite(const sim::Experiment& exp, const std::string& what) {
+  const sim::Recorder& rec = exp.recorder();
+  for (std::size_t r = 0; r < rec.rows(); ++r)
+    for (std::size_t c = 0; c < rec.columns(); ++c) {
+      const double v = rec.At(r, static_cast<int>(c));
+      ASSERT_TRUE(std::isfinite(v) || sim::IsNotSampled(v))
+          << what << ": " << rec.names()[c] << " row " << r << " = " << v;
     }
-  }
-  // The true poses must stay finite whatever the controllers were asked to do.
-  const sim::Recorder& rec = exp->recorder();
-  for (int c = 0; c < static_cast<int>(rec.columns()); ++c) {
-    const std::string& name = rec.names()[c];
-    const bool truth = name.size() > 2 && (name.substr(name.size() - 2) == ".x" ||
-                                           name.substr(name.size() - 2) == ".y");
-    if (!truth) continue;
-    for (std::size_t r = 0; r < rec.rows(); ++r)
-      ASSERT_TRUE(std::isfinite(rec.At(r, c))) << file << ": " << name << " row " << r;
-  }
 }
 
-std::vector<std::string> Scenarios() { return app::ShippedScenarios(); }
+class ParamExtremes : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ParamExtremes, EveryWidgetValueIsAcceptedOrRefusedAndTheRunStaysFinite) {
+  const std::string file = GetParam();
+  sim::Session s(file, {}, -1);
+  ASSERT_FALSE(s.params().empty()) << file << " exposes no tunable parameters";
+  std::vector<std::pair<std::string, std::vector<std::string>>> plan;
+  for (const sim::Param& p : s.params().all()) plan.emplace_back(p.key, WidgetValues(p));
+  int accepted = 0, refused = 0;
+  for (const auto& [key, values] : plan) {
+    for (const std::string& v : values) {
+      std::string err;
+      ASSERT_NO_THROW(err = s.Edit(key, v)) << file << ": " << key << "=" << v;
+      if (err.empty()) ++accepted;
+      else ++refused;
+      for (int k = 0; k < 20 && !s.exp().finished(); ++k)
+        ASSERT_NO_THROW(s.Step()) << file << ": after " << key << "=" << v;
+      ExpectFinite(s.exp(), file + " after " + key + "=" + v);
+    }
+    // A reset after each parameter's extremes rebuilds from everything accepted so far.
+    ASSERT_EQ(s.Reset(), "") << file << " after " << key;
+    for (int k = 0; k < 20 && !s.exp().finished(); ++k) ASSERT_NO_THROW(s.Step());
+    ExpectFinite(s.exp(), file + " after reset following " + key);
+  }
+  EXPECT_GT(accepted, 0) << file;
+  RecordProperty("refused", refused);
+}
+
+std::vector<std::string> Scenarios() { return sim::ShippedScenarios(); }
 
 std::string Name(const ::testing::TestParamInfo<std::string>& info) {
   return std::filesystem::path(info.param).stem().string();

@@ -9,7 +9,7 @@
 #include "app/figure_data.hpp"
 #include "app/offscreen_renderer.hpp"
 #include "app/png_writer.hpp"
-#include "app/session.hpp"
+#include "sim/core/session.hpp"
 #include "tests/app/test_util.hpp"
 
 namespace formsim::app {
@@ -44,7 +44,7 @@ double NearestColour(const std::vector<std::uint8_t>& px, int w, int h, ImVec2 c
 }
 
 TEST(HeadlessRender, RobotsAppearInTheirColourWhereTheSimSaysTheyAre) {
-  Session s(Scenario("formation_traj2"), {}, -1);
+  sim::Session s(Scenario("formation_traj2"), {}, -1);
   while (s.exp().time() < 3.0) s.Step();
   const int w = 640, h = 360;
   OffscreenRenderer r(w, h);
@@ -73,7 +73,7 @@ TEST(HeadlessRender, RobotsAppearInTheirColourWhereTheSimSaysTheyAre) {
 }
 
 TEST(HeadlessRender, FiguresHaveAxesTicksAndData) {
-  Session s(Scenario("formation_traj2"), {"duration=2"}, -1);
+  sim::Session s(Scenario("formation_traj2"), {"duration=2"}, -1);
   while (!s.exp().finished()) s.Step();
   const auto figures = s.exp().Figures();
   ASSERT_FALSE(figures.empty());
@@ -125,7 +125,7 @@ TEST(HeadlessRender, FiguresHaveAxesTicksAndData) {
 
 TEST(HeadlessExport, FramesSnapshotAndPlotsHaveTheRightCountAndSize) {
   const std::string dir = TempDir("export_frames");
-  Session s(Scenario("formation_traj2"), {"duration=1.0"}, -1);
+  sim::Session s(Scenario("formation_traj2"), {"duration=1.0"}, -1);
   ExportOptions opt;
   opt.frames_dir = dir + "/frames";
   opt.snapshot = dir + "/snap.png";
