@@ -4,7 +4,7 @@
 // is measured by the same cascades with the estimators off (truth) and with Box2D alone.
 #include <benchmark/benchmark.h>
 
-#include "sim/core/experiment.hpp"
+#include "sim/core/scenario.hpp"
 #include "sim/core/unicycle_drive.hpp"
 #include "sim/formation/cascade_generator.hpp"
 
@@ -48,9 +48,9 @@ void BM_Cascade(benchmark::State& state, bool ukf) {
   const int n = static_cast<int>(state.range(0));
   for (auto _ : state) {
     state.PauseTiming();
-    YAML::Node root = MakeCascadeScenario(n, ukf);
-    root["record_every"] = 100;  // recording is I/O, measured separately
-    auto e = LoadExperimentFromNode(root, "cascade");
+    // Recording is I/O, measured separately.
+    auto e = LoadExperimentFromText(formation::MakeCascadeScenario(n, ukf), "cascade",
+                                    {"record_every=100"});
     state.ResumeTiming();
     RunSteps(state, *e, 100);
   }
