@@ -3,7 +3,9 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <atomic>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -55,6 +57,31 @@ class ProgressBar {
   int last_pct_ = -1;
 };
 
+// Ctrl-C and SIGTERM: the run stops after the current step and writes what it has.
+std::atomic<int> g_signal{0};
+extern "C" void OnStopSignal(int sig) { g_signal = sig; }
+
+void InstallStopSignals() {
+  struct sigaction sa = {};
+  sa.sa_handler = OnStopSignal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+  std::signal(SIGPIPE, SIG_IGN);  // a closed pipe (ffmpeg, `| head`) is an error, not a death
+}
+
+// Stops `exp` when a stop signal arrived. Returns true when it did.
+bool CheckStopSignal(sim::Experiment& exp) {
+  const int sig = g_signal.load();
+  if (sig == 0) return false;
+  exp.Interrupt(std::string("interrupted by ") + (sig == SIGINT ? "SIGINT (Ctrl-C)" : "SIGTERM") +
+                " at t = " + std::to_string(exp.time()) + " s");
+  return true;
+}
+
+// Rows kept in memory for the figures of a headless run; the CSV is streamed to disk.
+constexpr std::size_t kHistoryRows = 20000;
+
 // The overrides of the command line: every --set in order, then --seed.
 std::vector<sim::Override> Overrides(const std::vector<std::string>& sets, const std::string& seed) {
   std::vector<sim::Override> out = sim::CliOverrides(sets, -1);
@@ -75,40 +102,85 @@ int RunCommand(RunOptions opt) {
   sim::Session session(file, Overrides(opt.sets, opt.seed));
   sim::PrepareOutputDir(out);  // fail before simulating, not after
   if (opt.exp.any()) PrepareExport(opt.exp);  // a missing ffmpeg fails before simulating too
+  // Rows go to disk as they are recorded; memory keeps a bounded history for the figures.
+  sim::Recorder& rec = session.exp().mutable_recorder();
+  rec.StreamTo(sim::CsvPath(out));
+  rec.SetHistoryLimit(kHistoryRows);
+  InstallStopSignals();
 
   ProgressBar bar(!opt.quiet);
   const auto t0 = std::chrono::steady_clock::now();
   ExportStats st;
+  std::string write_error;
+  auto write_results = [&] {
+    try {
+      sim::WriteRunOutputs(session.exp(), out);
+    } catch (const std::exception& e) {
+      write_error = e.what();
+    }
+  };
   if (opt.exp.any()) {
-    st = RunWithExport(session, opt.exp, [&](double f, double t) { bar.Update(f, t); });
+    st = RunWithExport(
+        session, opt.exp,
+        [&](double f, double t) {
+          bar.Update(f, t);
+          CheckStopSignal(session.exp());
+        },
+        write_results);
   } else {
     sim::Experiment& exp = session.exp();
     const double duration = exp.setup().duration;
     while (!exp.finished()) {
       exp.Step();
-      if ((exp.steps() & 63) == 0) bar.Update(exp.time() / duration, exp.time());
+      if ((exp.steps() & 63) == 0) {
+        bar.Update(exp.time() / duration, exp.time());
+        CheckStopSignal(exp);
+      }
     }
+    write_results();
   }
   bar.Done();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const sim::Experiment& exp = session.exp();
-  sim::WriteRunOutputs(exp, out);
 
   if (!opt.quiet) {
     std::cout << exp.SummaryText();
     std::printf("%ld steps, %.2f s simulated in %.3f s wall (%.0fx real time)\n", exp.steps(),
                 exp.time(), wall, wall > 0 ? exp.time() / wall : 0.0);
-    std::printf("wrote %s/timeseries.csv and %s/summary.json", out.c_str(), out.c_str());
-    if (!opt.exp.frames_dir.empty())
-      std::printf(", %ld frames in %s", st.frames, opt.exp.frames_dir.c_str());
-    if (!opt.exp.plots_dir.empty())
-      std::printf(", %ld figures in %s", st.figures, opt.exp.plots_dir.c_str());
-    if (!opt.exp.video.empty()) std::printf(", %s", opt.exp.video.c_str());
-    if (!opt.exp.snapshot.empty()) std::printf(", %s", opt.exp.snapshot.c_str());
-    std::printf("\n");
+    if (write_error.empty()) {
+      std::printf("wrote %s/timeseries.csv and %s/summary.json", out.c_str(), out.c_str());
+      if (!opt.exp.frames_dir.empty())
+        std::printf(", %ld frames in %s", st.frames, opt.exp.frames_dir.c_str());
+      if (!opt.exp.plots_dir.empty())
+        std::printf(", %ld figures in %s", st.figures, opt.exp.plots_dir.c_str());
+      if (!opt.exp.video.empty() && st.error.empty()) std::printf(", %s", opt.exp.video.c_str());
+      if (!opt.exp.snapshot.empty() && st.error.empty()) std::printf(", %s", opt.exp.snapshot.c_str());
+      std::printf("\n");
+    }
   }
   if (opt.timing && opt.exp.any()) std::fputs(st.Report().c_str(), stderr);
-  return 0;
+  // Exit codes: 2 bad input or unwritable results, 3 the run stopped early (numerical fault),
+  // 4 an export failed (results written), 130 / 143 interrupted (results written).
+  int rc = 0;
+  if (!st.error.empty()) {
+    std::fprintf(stderr, "formsim: error: export failed (the results were written): %s\n",
+                 st.error.c_str());
+    rc = 4;
+  }
+  if (exp.status() == "numerical_fault") {
+    std::fprintf(stderr, "formsim: error: the run stopped at t = %g s: %s; everything up to it was written\n",
+                 exp.time(), exp.stop_reason().c_str());
+    rc = 3;
+  } else if (exp.status() == "interrupted") {
+    std::fprintf(stderr, "formsim: %s; the results so far were written and marked interrupted\n",
+                 exp.stop_reason().c_str());
+    rc = 128 + g_signal.load();
+  }
+  if (!write_error.empty()) {
+    std::fprintf(stderr, "formsim: error: %s\n", write_error.c_str());
+    rc = 2;
+  }
+  return rc;
 }
 
 int ListCommand() {

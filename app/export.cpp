@@ -76,7 +76,8 @@ std::string ExportStats::Report() const {
 }
 
 ExportStats RunWithExport(sim::Session& session, const ExportOptions& opt,
-                          const std::function<void(double, double)>& progress) {
+                          const std::function<void(double, double)>& progress,
+                          const std::function<void()>& results_ready) {
   PrepareExport(opt);
   ExportStats st;
   const double t_start = Now();
@@ -102,70 +103,117 @@ ExportStats RunWithExport(sim::Session& session, const ExportOptions& opt,
     return renderer.RenderWorld(session.exp(), view, fit, first, caption);
   };
 
-  const bool want_frames = !opt.frames_dir.empty() || video != nullptr;
+  bool want_frames = !opt.frames_dir.empty() || video != nullptr;
   sim::Experiment& exp = session.exp();
   const long total_frames = want_frames ? FrameCount(exp.setup().duration, exp.dt(), opt.fps) : 0;
   long next = 0;
-  auto emit_due_frames = [&]() {
-    while (next < total_frames &&
-           static_cast<double>(next) / opt.fps <= exp.time() + 0.5 * exp.dt()) {
-      const auto& px = render(next == 0);
-      const double t0 = Now();
-      if (video) video->Write(px);
-      const double t1 = Now();
-      if (!opt.frames_dir.empty()) {
-        char name[32];
-        std::snprintf(name, sizeof(name), "/frame_%05ld.png", next);
-        std::vector<std::uint8_t> copy(px);
-        const double t2 = Now();
-        st.copy += t2 - t1;
-        pool.Submit(opt.frames_dir + name, renderer.width(), renderer.height(), std::move(copy));
+  auto fail = [&](const std::string& what) {
+    st.error += (st.error.empty() ? "" : "; ") + what;
+  };
+  // Drops the frame outputs after a failure: the run goes on, the video file is removed.
+  auto stop_frames = [&](const std::string& why) {
+    fail(why);
+    want_frames = false;
+    if (video) {
+      try {
+        video->Close();
+      } catch (const std::exception&) {
       }
-      st.video += t1 - t0;
+      video.reset();
+      std::error_code ec;
+      fs::remove(opt.video, ec);
+    }
+  };
+  auto emit_due_frames = [&]() {
+    while (want_frames && next < total_frames &&
+           static_cast<double>(next) / opt.fps <= exp.time() + 0.5 * exp.dt()) {
+      try {
+        const auto& px = render(next == 0);
+        const double t0 = Now();
+        if (video) video->Write(px);
+        const double t1 = Now();
+        if (!opt.frames_dir.empty()) {
+          char name[32];
+          std::snprintf(name, sizeof(name), "/frame_%05ld.png", next);
+          std::vector<std::uint8_t> copy(px);
+          const double t2 = Now();
+          st.copy += t2 - t1;
+          pool.Submit(opt.frames_dir + name, renderer.width(), renderer.height(), std::move(copy));
+        }
+        st.video += t1 - t0;
+      } catch (const std::exception& e) {
+        stop_frames(std::string("frames stopped at t = ") + std::to_string(exp.time()) + " s: " + e.what());
+        return;
+      }
       ++next;
       ++st.frames;
     }
   };
 
-  {
+  emit_due_frames();
+  const double duration = exp.setup().duration;
+  while (!exp.finished()) {
+    const double t0 = Now();
+    session.Step();
+    st.sim += Now() - t0;
     emit_due_frames();
-    const double duration = exp.setup().duration;
-    while (!exp.finished()) {
-      const double t0 = Now();
-      session.Step();
-      st.sim += Now() - t0;
-      emit_due_frames();
-      // A whole-run snapshot without frames still needs the extent of the whole run.
-      if (opt.whole_run && !want_frames && !opt.snapshot.empty() && exp.steps() % 10 == 0) {
-        if (ui) {
-          ui->TrackBounds();
-        } else {
-          Vec2 lo, hi;
-          exp.Bounds(lo, hi);
-          fit.Include(lo, hi);
-        }
+    // A whole-run snapshot without frames still needs the extent of the whole run.
+    if (opt.whole_run && !want_frames && !opt.snapshot.empty() && exp.steps() % 10 == 0) {
+      if (ui) {
+        ui->TrackBounds();
+      } else {
+        Vec2 lo, hi;
+        exp.Bounds(lo, hi);
+        fit.Include(lo, hi);
       }
-      if (progress && (exp.steps() & 31) == 0) progress(exp.time() / duration, exp.time());
     }
-    if (!opt.snapshot.empty()) {
-      if (ui && !want_frames) ui->state().fit_now = true;  // no frames before: fit at once
-      const auto& px = render(!want_frames);
-      pool.Submit(opt.snapshot, renderer.width(), renderer.height(), px);
+    if (progress && (exp.steps() & 31) == 0) progress(exp.time() / duration, exp.time());
+  }
+  try {
+    pool.Wait();  // frames written before the results are reported
+  } catch (const std::exception& e) {
+    stop_frames(e.what());
+  }
+  if (video) {
+    try {
+      video->Close();
+    } catch (const std::exception& e) {
+      stop_frames(e.what());
     }
-    if (!opt.plots_dir.empty()) {
-      for (const auto& fig : exp.Figures()) {
+  }
+  // The results are safe on disk before any picture of the end is drawn.
+  if (results_ready) results_ready();
+  if (!opt.snapshot.empty()) {
+    try {
+      if (ui && st.frames == 0) ui->state().fit_now = true;  // no frames before: fit at once
+      const auto& px = render(st.frames == 0);
+      WritePng(opt.snapshot, renderer.width(), renderer.height(), px.data());
+    } catch (const std::exception& e) {
+      fail(e.what());
+    }
+  }
+  if (!opt.plots_dir.empty()) {
+    for (const auto& fig : exp.Figures()) {
+      try {
         const PlotData data = ResolveFigure(fig, exp.recorder());
         if (!data.error.empty()) throw std::runtime_error("figure '" + fig.id + "': " + data.error);
         const auto& px = renderer.RenderFigure(data, opt.plot_width, opt.plot_height);
-        pool.Submit(opt.plots_dir + "/" + fig.id + ".png", opt.plot_width, opt.plot_height, px);
+        // Written at once (not through the frame pool, whose failure may be sticky).
+        WritePng(opt.plots_dir + "/" + fig.id + ".png", opt.plot_width, opt.plot_height, px.data());
         ++st.figures;
+      } catch (const std::exception& e) {
+        fail(e.what());
+        break;
       }
     }
   }
   const double t_drain = Now();
-  pool.Wait();
+  try {
+    pool.Wait();
+  } catch (const std::exception& e) {
+    fail(e.what());
+  }
   st.png_drain = Now() - t_drain;
-  if (video) video->Close();
   st.build = renderer.times().build;
   st.gl = renderer.times().gl;
   st.png_cpu = pool.encode_seconds();

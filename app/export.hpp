@@ -32,6 +32,9 @@ struct ExportStats {
   double png_blocked = 0;  ///< main thread waiting for a free queue slot
   double png_drain = 0;    ///< waiting for the last PNGs after the run
   int png_threads = 0;
+  /// Export failures (a full disk, ffmpeg dying): the simulation went on and its results were
+  /// written; partial outputs were removed. Empty when every export succeeded.
+  std::string error;
   std::string Report() const;
 };
 
@@ -45,9 +48,13 @@ void PrepareExport(const ExportOptions& opt);
 /// Number of frames a run of `duration` s gives at `fps` (frames at t = k/fps, t < duration).
 long FrameCount(double duration, double dt, double fps);
 
-/// Runs the session's experiment to the end (the same steps as a plain run), writing what `opt`
-/// asks for. `progress(fraction, t)` is called now and then.
+/// Runs the session's experiment to the end (the same steps as a plain run), writing frames
+/// and video as it goes; then calls `results_ready()` (the caller writes the CSV and summary),
+/// then renders the snapshot and figures. An export that fails never stops the simulation or
+/// loses its results: it is dropped, its partial file removed, and the failure reported in
+/// ExportStats::error. `progress(fraction, t)` is called now and then.
 ExportStats RunWithExport(sim::Session& session, const ExportOptions& opt,
-                          const std::function<void(double, double)>& progress = {});
+                          const std::function<void(double, double)>& progress = {},
+                          const std::function<void()>& results_ready = {});
 
 }  // namespace formsim::app

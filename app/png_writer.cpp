@@ -1,5 +1,8 @@
 #include "app/png_writer.hpp"
 
+#include <cerrno>
+#include <cstring>
+
 #include <stb_image.h>
 #include <zlib.h>
 
@@ -85,11 +88,20 @@ std::vector<std::uint8_t> EncodePng(int width, int height, const std::uint8_t* r
 double WritePng(const std::string& path, int width, int height, const std::uint8_t* rgba) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<std::uint8_t> png = EncodePng(width, height, rgba);
-  std::FILE* f = std::fopen(path.c_str(), "wb");
-  if (f == nullptr) throw std::runtime_error("cannot write " + path);
-  const bool ok = std::fwrite(png.data(), 1, png.size(), f) == png.size();
-  if (std::fclose(f) != 0 || !ok)
-    throw std::runtime_error("cannot write " + path + " (disk full?)");
+  // Through a temporary name: a failed write (full disk) leaves no truncated PNG behind.
+  const std::string tmp = path + ".tmp";
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (f == nullptr) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+  const bool ok = std::fwrite(png.data(), 1, png.size(), f) == png.size() && std::fflush(f) == 0;
+  const std::string why = std::strerror(errno);
+  if (std::fclose(f) != 0 || !ok) {
+    std::remove(tmp.c_str());
+    throw std::runtime_error("cannot write " + path + ": " + why);
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+  }
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 

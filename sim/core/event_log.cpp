@@ -4,8 +4,11 @@ namespace formsim::sim {
 
 void EventLog::Add(double t, const std::string& kind, const std::string& robots,
                    const std::string& message, const std::string& subject) {
-  events_.push_back({t, kind, robots, subject, message});
-  ++by_kind_[kind];
+  Event e{t, kind, robots, subject, message};
+  if (++by_kind_[kind] <= kMaxStoredPerKind) events_.push_back(e);
+  recent_.push_back(std::move(e));
+  if (recent_.size() > kRecent) recent_.pop_front();
+  ++total_;
   if (!subject.empty()) ++by_subject_[{kind, subject}];
   std::size_t start = 0;
   while (start <= robots.size()) {

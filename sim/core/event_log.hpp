@@ -6,6 +6,7 @@
 /// the number of links plus events.
 
 #include <cstddef>
+#include <deque>
 #include <map>
 #include <string>
 #include <utility>
@@ -33,6 +34,12 @@ struct Event {
 
 class EventLog {
  public:
+  /// Events stored per kind; later ones are counted (exactly) but not stored, so a run that
+  /// collides a million times keeps a bounded log.
+  static constexpr long kMaxStoredPerKind = 1000;
+  /// The most recent events kept for display (flashes), whatever their kind.
+  static constexpr std::size_t kRecent = 64;
+
   /// Records an event at time `t`. `robots` is a comma-separated list of robot names.
   void Add(double t, const std::string& kind, const std::string& robots, const std::string& message,
            const std::string& subject = "");
@@ -52,9 +59,13 @@ class EventLog {
   }
   bool IsActive(ConditionId id) const { return conditions_[static_cast<std::size_t>(id)].active; }
 
+  /// Stored events in time order (at most kMaxStoredPerKind of each kind).
   const std::vector<Event>& list() const { return events_; }
-  std::size_t size() const { return events_.size(); }
-  bool empty() const { return events_.empty(); }
+  /// The last kRecent events, stored or not, oldest first.
+  const std::deque<Event>& recent() const { return recent_; }
+  /// Number of events so far, stored or not.
+  long total() const { return total_; }
+  bool empty() const { return total_ == 0; }
   /// Events of `kind` so far (exact).
   long Count(const std::string& kind) const;
   /// Events of `kind` whose robots include `robot`.
@@ -66,6 +77,8 @@ class EventLog {
 
  private:
   std::vector<Event> events_;
+  std::deque<Event> recent_;
+  long total_ = 0;
   std::map<std::string, long> by_kind_;
   std::map<std::pair<std::string, std::string>, long> by_robot_, by_subject_;
   struct Cond {

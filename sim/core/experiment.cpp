@@ -1,6 +1,7 @@
 #include "sim/core/experiment.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <map>
 
 namespace formsim::sim {
@@ -16,6 +17,7 @@ void Experiment::Start() {
 }
 
 void Experiment::Step() {
+  if (finished()) return;
   Control(time_);
   world_.Step(setup_.dt);
   ++steps_;
@@ -23,8 +25,74 @@ void Experiment::Step() {
   time_ = static_cast<double>(steps_) * setup_.dt;
   for (const auto& c : world_.new_collisions())
     events_.Add(time_, event::kCollision, c.a + "," + c.b, c.a + " hit " + c.b);
+  // A non-finite state goes no further (sensors would hand it to Box2D's ray casts): the row
+  // of the fault is recorded and the run stops.
+  if (!CheckRobots()) {
+    recorder_.Sample();
+    return;
+  }
   Sense(time_);
-  if (steps_ % setup_.record_every == 0) recorder_.Sample();
+  if (steps_ % setup_.record_every == 0 || !stop_reason_.empty()) {
+    recorder_.Sample();
+    CheckRow();
+  }
+}
+
+namespace {
+std::string Num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+}  // namespace
+
+bool Experiment::CheckRobots() {
+  for (const auto& r : world_.robots()) {
+    const Pose2 p = r->pose();
+    const Vec2 v = r->world_velocity();
+    const double w = r->yaw_rate();
+    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta) && std::isfinite(v.x) &&
+        std::isfinite(v.y) && std::isfinite(w))
+      continue;
+    NumericalFault(r->name(), r->name() + "'s state became non-finite at t = " + Num(time_) +
+                                  " s (x = " + Num(p.x) + ", y = " + Num(p.y) +
+                                  ", θ = " + Num(p.theta) + ", v = (" + Num(v.x) + ", " +
+                                  Num(v.y) + "), ω = " + Num(w) + ")");
+    return false;
+  }
+  return true;
+}
+
+void Experiment::CheckRow() {
+  const std::size_t row = recorder_.rows() - 1;
+  for (std::size_t c = 0; c < recorder_.columns(); ++c) {
+    const double v = recorder_.At(row, static_cast<int>(c));
+    if (std::isfinite(v) || IsNotSampled(v)) continue;
+    // The column's first part names the robot ("R2.x_est") or the link ("R1-R2.phi_est").
+    const std::string& name = recorder_.names()[c];
+    std::string robots = name.substr(0, name.find('.'));
+    std::replace(robots.begin(), robots.end(), '-', ',');
+    NumericalFault(robots, name + " = " + Num(v) + " at t = " + Num(time_) + " s");
+    return;
+  }
+}
+
+void Experiment::NumericalFault(const std::string& robots, const std::string& message) {
+  if (!stop_reason_.empty()) return;
+  events_.Add(time_, event::kNumericalFault, robots, message);
+  stop_status_ = "numerical_fault";
+  stop_reason_ = "numerical fault: " + message;
+}
+
+void Experiment::Interrupt(const std::string& why) {
+  if (!stop_reason_.empty()) return;
+  stop_status_ = "interrupted";
+  stop_reason_ = why;
+}
+
+std::string Experiment::status() const {
+  if (!stop_status_.empty()) return stop_status_;
+  return finished() ? "completed" : "running";
 }
 
 std::string Experiment::Move(const std::string& name, Vec2 p) {
@@ -80,6 +148,8 @@ Json Experiment::Summary() const {
   j["dt"] = s.dt;
   j["steps"] = static_cast<long long>(steps_);
   j["time"] = time_;
+  j["status"] = status();
+  if (!stop_reason_.empty()) j["stop_reason"] = stop_reason_;
   j["provenance"] = s.provenance.ToJson();
   j["results"] = Results().ToJson();
   Json counts = Json::Object();
@@ -88,6 +158,7 @@ Json Experiment::Summary() const {
   Json list = Json::Array();
   constexpr std::size_t kMaxListed = 200;
   const auto& events = events_.list();
+  j["events_stored"] = static_cast<long long>(events.size());
   for (std::size_t i = 0; i < events.size() && i < kMaxListed; ++i) {
     const Event& e = events[i];
     Json ev = Json::Object();
@@ -104,6 +175,7 @@ Json Experiment::Summary() const {
 
 std::string Experiment::SummaryText() const {
   std::string out = Results().Text();
+  if (!stop_reason_.empty()) out += "run stopped at t = " + Num(time_) + " s: " + stop_reason_ + "\n";
   if (!events_.counts().empty()) {
     out += "events:";
     for (const auto& [kind, n] : events_.counts()) out += " " + kind + " " + std::to_string(n);

@@ -91,12 +91,21 @@ class Experiment {
   double time() const { return time_; }
   double dt() const { return setup_.dt; }
   long steps() const { return steps_; }
-  bool finished() const { return time_ >= setup_.duration - 0.5 * setup_.dt; }
+  /// The run has ended: it reached its duration, or stopped early (numerical fault, interrupt).
+  bool finished() const { return !stop_reason_.empty() || time_ >= setup_.duration - 0.5 * setup_.dt; }
+  /// How the run ended so far: "running", "completed", "numerical_fault" or "interrupted".
+  std::string status() const;
+  /// Why the run stopped early ("" when it did not).
+  const std::string& stop_reason() const { return stop_reason_; }
+  /// Stops the run now (Ctrl-C, SIGTERM): the results so far stay valid and are marked so.
+  void Interrupt(const std::string& why);
   const ExperimentSetup& setup() const { return setup_; }
 
   World& world() { return world_; }
   const World& world() const { return world_; }
   const Recorder& recorder() const { return recorder_; }
+  /// For the owner of the run (streaming the rows to disk, limiting the history kept).
+  Recorder& mutable_recorder() { return recorder_; }
   const EventLog& events() const { return events_; }
 
   /// Figures in the style of the paper (exported by --plots, drawn live in the GUI).
@@ -126,6 +135,9 @@ class Experiment {
   /// Call at the end of the derived constructor, after declaring the recorder's channels:
   /// samples the sensors at t = 0 and records row 0.
   void Start();
+  /// A non-finite or diverged value that the experiment found itself (an estimate, a command):
+  /// raises a numerical_fault event for `robots` and stops the run after this step.
+  void NumericalFault(const std::string& robots, const std::string& message);
   /// Records an event now.
   void AddEvent(const std::string& kind, const std::string& robots, const std::string& message,
                 const std::string& subject = "") {
@@ -139,8 +151,14 @@ class Experiment {
   EventLog events_;
 
  private:
+  /// After the world step: every robot's pose and velocity must be finite.
+  bool CheckRobots();
+  /// After a recorded row: every sampled value must be finite.
+  void CheckRow();
   double time_ = 0.0;
   long steps_ = 0;
+  std::string stop_status_;  ///< "numerical_fault" or "interrupted" once stopped
+  std::string stop_reason_;
 };
 
 /// Base of a kind with configuration type C: keeps the configuration and routes Retune to

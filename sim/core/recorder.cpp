@@ -2,9 +2,12 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cerrno>
 #include <cstring>
 #include <cstdio>
 #include <stdexcept>
+
+#include <unistd.h>
 
 #include "sim/core/number_format.hpp"
 
@@ -25,6 +28,59 @@ bool IsNotSampled(double v) {
   std::memcpy(&bits, &v, sizeof v);
   return bits == kNotSampledBits;
 }
+
+// Checked, buffered writing of one CSV file through a temporary name.
+class Recorder::Stream {
+ public:
+  explicit Stream(const std::string& path) : path_(path), tmp_(path + ".tmp") {
+    f_ = std::fopen(tmp_.c_str(), "wb");
+    if (f_ == nullptr) throw std::runtime_error("cannot write '" + tmp_ + "': " + std::strerror(errno));
+    std::setvbuf(f_, nullptr, _IOFBF, 1 << 20);
+  }
+  ~Stream() { Abandon(); }
+  void Write(const std::string& text) {
+    if (failed_) return;
+    if (std::fwrite(text.data(), 1, text.size(), f_) != text.size()) Fail();
+  }
+  void Finish() {
+    if (f_ == nullptr) return;
+    if (!failed_ && std::fflush(f_) != 0) Fail();
+    if (!failed_ && fsync(fileno(f_)) != 0) Fail();
+    const bool closed = std::fclose(f_) == 0;
+    f_ = nullptr;
+    if (!closed && !failed_) failed_ = true, error_ = std::strerror(errno);
+    if (failed_) {
+      std::remove(tmp_.c_str());
+      throw std::runtime_error("cannot write '" + path_ + "': " + error_);
+    }
+    if (std::rename(tmp_.c_str(), path_.c_str()) != 0) {
+      const std::string why = std::strerror(errno);
+      std::remove(tmp_.c_str());
+      throw std::runtime_error("cannot move '" + tmp_ + "' to '" + path_ + "': " + why);
+    }
+  }
+  void Abandon() {
+    if (f_ == nullptr) return;
+    std::fclose(f_);
+    f_ = nullptr;
+    std::remove(tmp_.c_str());
+  }
+  bool failed() const { return failed_; }
+  const std::string& error() const { return error_; }
+
+ private:
+  void Fail() {
+    failed_ = true;
+    error_ = std::strerror(errno);
+  }
+  std::string path_, tmp_;
+  std::FILE* f_ = nullptr;
+  bool failed_ = false;
+  std::string error_;
+};
+
+Recorder::Recorder() = default;
+Recorder::~Recorder() = default;
 
 int Recorder::Declare(const std::string& name) {
   if (rows_ > 0) throw std::logic_error("Recorder: column '" + name + "' declared after rows");
@@ -54,16 +110,68 @@ int Recorder::Column(const std::string& name) const {
 }
 
 void Recorder::Sample() {
-  const std::size_t base = data_.size();
-  data_.resize(base + names_.size(), NotSampled());
-  for (const Group& g : groups_) g.fill(&data_[base + g.first]);
+  const std::size_t n = names_.size();
+  scratch_.assign(n, NotSampled());
+  for (const Group& g : groups_) g.fill(&scratch_[g.first]);
+  if (stream_) {
+    std::string line;
+    for (std::size_t c = 0; c < n; ++c) {
+      if (c) line += ',';
+      if (!IsNotSampled(scratch_[c])) AppendDouble(line, scratch_[c]);
+    }
+    line += '\n';
+    stream_->Write(line);
+  }
+  // The history keeps every stride-th sampled row; when full it drops every second row.
+  if (sampled_++ % stride_ != 0) return;
+  if (limit_ > 0 && rows_ >= limit_) {
+    std::size_t kept = 0;
+    for (std::size_t r = 0; r < rows_; r += 2, ++kept)
+      std::copy(data_.begin() + r * n, data_.begin() + (r + 1) * n, data_.begin() + kept * n);
+    rows_ = kept;
+    data_.resize(rows_ * n);
+    stride_ *= 2;
+    if ((sampled_ - 1) % stride_ != 0) return;
+  }
+  data_.insert(data_.end(), scratch_.begin(), scratch_.end());
   ++rows_;
 }
 
-void Recorder::Clear() {
-  data_.clear();
-  rows_ = 0;
+void Recorder::SetHistoryLimit(std::size_t max_rows) { limit_ = max_rows < 2 && max_rows > 0 ? 2 : max_rows; }
+
+void Recorder::AppendRow(std::string& line, std::size_t r) const {
+  for (std::size_t c = 0; c < names_.size(); ++c) {
+    if (c) line += ',';
+    const double v = data_[r * names_.size() + c];
+    if (!IsNotSampled(v)) AppendDouble(line, v);  // not sampled -> empty field
+  }
+  line += '\n';
 }
+
+void Recorder::StreamTo(const std::string& path) {
+  if (stride_ != 1) throw std::logic_error("Recorder::StreamTo after the history was decimated");
+  stream_.reset();
+  stream_ = std::make_unique<Stream>(path);
+  stream_path_ = path;
+  std::string text;
+  for (std::size_t c = 0; c < names_.size(); ++c) text += (c ? "," : "") + names_[c];
+  text += '\n';
+  for (std::size_t r = 0; r < rows_; ++r) AppendRow(text, r);
+  stream_->Write(text);
+  if (stream_->failed()) {
+    const std::string why = stream_->error();
+    stream_.reset();
+    throw std::runtime_error("cannot write '" + path + "': " + why);
+  }
+}
+
+void Recorder::FinishStream() {
+  if (!stream_) return;
+  std::unique_ptr<Stream> s = std::move(stream_);
+  s->Finish();
+}
+
+void Recorder::AbandonStream() { stream_.reset(); }
 
 std::vector<double> Recorder::Series(int column) const {
   std::vector<double> out(rows_);
@@ -72,28 +180,21 @@ std::vector<double> Recorder::Series(int column) const {
 }
 
 void Recorder::WriteCsv(const std::string& file) const {
-  std::FILE* f = std::fopen(file.c_str(), "w");
-  if (!f) throw std::runtime_error("cannot write '" + file + "'");
-  std::string line;
-  bool ok = true;
-  for (std::size_t c = 0; c < names_.size(); ++c) {
-    if (c) line += ',';
-    line += names_[c];
-  }
-  line += '\n';
-  ok = ok && std::fputs(line.c_str(), f) >= 0;
-  for (std::size_t r = 0; r < rows_ && ok; ++r) {
-    line.clear();
-    for (std::size_t c = 0; c < names_.size(); ++c) {
-      if (c) line += ',';
-      const double v = data_[r * names_.size() + c];
-      if (!IsNotSampled(v)) AppendDouble(line, v);  // not sampled -> empty field
+  if (stride_ != 1)
+    throw std::logic_error("Recorder::WriteCsv of a decimated history (stream long runs instead)");
+  Stream out(file);
+  std::string text;
+  for (std::size_t c = 0; c < names_.size(); ++c) text += (c ? "," : "") + names_[c];
+  text += '\n';
+  for (std::size_t r = 0; r < rows_; ++r) {
+    AppendRow(text, r);
+    if (text.size() > (1u << 20)) {
+      out.Write(text);
+      text.clear();
     }
-    line += '\n';
-    ok = std::fputs(line.c_str(), f) >= 0;
   }
-  ok = std::fflush(f) == 0 && ok;
-  if (std::fclose(f) != 0 || !ok) throw std::runtime_error("error writing '" + file + "'");
+  out.Write(text);
+  out.Finish();
 }
 
 }  // namespace formsim::sim

@@ -5,7 +5,9 @@
 /// plots all read these rows.
 
 #include <cstddef>
+#include <cstdio>
 #include <functional>
+#include <memory>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -20,17 +22,42 @@ bool IsNotSampled(double v);
 
 class Recorder {
  public:
+  Recorder();
+  ~Recorder();
+  Recorder(const Recorder&) = delete;
+  Recorder& operator=(const Recorder&) = delete;
+
   /// Declares a channel: its column name and how to read it (NotSampled() when it has no value
   /// in this row). All channels are declared before the first row.
   void Add(const std::string& name, std::function<double()> get);
   /// Declares several columns filled by one call (e.g. x, y, θ of one pose): `fill` writes
   /// names.size() values into `out`.
   void AddGroup(const std::vector<std::string>& names, std::function<void(double* out)> fill);
-  /// Samples every channel into a new row.
+  /// Samples every channel into a new row (streamed to disk when StreamTo is on).
   void Sample();
-  void Clear();
+
+  /// Streams every row to `path` as it is sampled (rows already recorded first), through
+  /// `path`.tmp: FinishStream() flushes, syncs and renames it into place. So a run of any
+  /// length writes its CSV as it goes. Throws std::runtime_error when the file cannot be
+  /// opened or written (the temporary is removed).
+  void StreamTo(const std::string& path);
+  /// Completes the streamed file. Throws std::runtime_error (and removes the temporary) when
+  /// any write failed.
+  void FinishStream();
+  /// Drops the streamed file (its temporary), e.g. when the run is abandoned.
+  void AbandonStream();
+  bool streaming() const { return stream_ != nullptr; }
+  /// Keeps at most `max_rows` rows in memory for figures and live plots: when the limit is
+  /// reached every second row is dropped and from then on only every 2nd (4th, ...) sampled
+  /// row is kept, so memory stays bounded however long the run. 0: keep every row (default).
+  void SetHistoryLimit(std::size_t max_rows);
+  /// Rows sampled since the start (kept in memory or not).
+  std::size_t rows_sampled() const { return sampled_; }
+  /// 1 while every sampled row is in memory; 2, 4, ... after decimation.
+  std::size_t history_stride() const { return stride_; }
 
   int Column(const std::string& name) const;  ///< -1 when absent
+  /// Rows kept in memory (all of them unless SetHistoryLimit decimated the history).
   std::size_t rows() const { return rows_; }
   std::size_t columns() const { return names_.size(); }
   const std::vector<std::string>& names() const { return names_; }
@@ -38,14 +65,17 @@ class Recorder {
   /// Copies one column out.
   std::vector<double> Series(int column) const;
 
-  /// Writes CSV with a header; each number as the shortest text that reads back to the same
-  /// double, so runs compare bit for bit. NotSampled() cells are empty; NaN or infinite values
-  /// that were computed are written as nan / inf / -inf. Throws std::runtime_error naming the
-  /// file when it cannot be written completely.
+  /// Writes the rows in memory as CSV with a header; each number as the shortest text that
+  /// reads back to the same double, so runs compare bit for bit. NotSampled() cells are empty;
+  /// NaN or infinite values that were computed are written as nan / inf / -inf. Throws
+  /// std::runtime_error naming the file when it cannot be written completely (and leaves no
+  /// partial file). Refuses a decimated history (use StreamTo for long runs).
   void WriteCsv(const std::string& file) const;
 
  private:
+  class Stream;
   int Declare(const std::string& name);
+  void AppendRow(std::string& line, std::size_t row) const;
   struct Group {
     int first = 0, count = 1;
     std::function<void(double*)> fill;
@@ -55,6 +85,12 @@ class Recorder {
   std::vector<Group> groups_;
   std::vector<double> data_;
   std::size_t rows_ = 0;
+  std::size_t sampled_ = 0;
+  std::size_t limit_ = 0;   ///< rows kept in memory at most (0: all)
+  std::size_t stride_ = 1;  ///< keep every stride-th sampled row
+  std::vector<double> scratch_;  ///< the row being sampled
+  std::unique_ptr<Stream> stream_;
+  std::string stream_path_;
 };
 
 }  // namespace formsim::sim

@@ -1,8 +1,12 @@
 #include "sim/core/run_output.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 
 namespace fs = std::filesystem;
@@ -13,6 +17,7 @@ void PrepareOutputDir(const std::string& dir) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw std::runtime_error("cannot create output folder '" + dir + "': " + ec.message());
+  if (!fs::is_directory(dir, ec)) throw std::runtime_error("output folder '" + dir + "' is not a folder");
   const std::string probe = (fs::path(dir) / ".formsim_write_test").string();
   std::FILE* f = std::fopen(probe.c_str(), "w");
   if (!f) throw std::runtime_error("output folder '" + dir + "' is not writable");
@@ -22,26 +27,55 @@ void PrepareOutputDir(const std::string& dir) {
 
 void WriteFileAtomic(const std::string& path, const std::string& text) {
   const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out) throw std::runtime_error("cannot write '" + path + "'");
-    out << text;
-    out.flush();
-    if (!out) throw std::runtime_error("error writing '" + path + "'");
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw std::runtime_error("cannot write '" + path + "': " + std::strerror(errno));
+  // Every write checked, then flushed to the disk before the rename makes the file visible:
+  // a full disk leaves the previous file (or none), never a truncated one.
+  std::size_t done = 0;
+  std::string error;
+  while (done < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      error = std::strerror(errno);
+      break;
+    }
+    done += static_cast<std::size_t>(n);
   }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) throw std::runtime_error("cannot move '" + tmp + "' to '" + path + "': " + ec.message());
+  if (error.empty() && ::fsync(fd) != 0) error = std::strerror(errno);
+  if (::close(fd) != 0 && error.empty()) error = std::strerror(errno);
+  if (!error.empty()) {
+    std::remove(tmp.c_str());
+    throw std::runtime_error("cannot write '" + path + "': " + error);
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    error = std::strerror(errno);
+    std::remove(tmp.c_str());
+    throw std::runtime_error("cannot move '" + tmp + "' to '" + path + "': " + error);
+  }
 }
 
-void WriteRunOutputs(const Experiment& exp, const std::string& dir) {
+std::string CsvPath(const std::string& dir) { return (fs::path(dir) / "timeseries.csv").string(); }
+
+void WriteRunOutputs(Experiment& exp, const std::string& dir) {
   PrepareOutputDir(dir);
-  const std::string csv = (fs::path(dir) / "timeseries.csv").string();
-  exp.recorder().WriteCsv(csv + ".tmp");
-  std::error_code ec;
-  fs::rename(csv + ".tmp", csv, ec);
-  if (ec) throw std::runtime_error("cannot write '" + csv + "': " + ec.message());
-  WriteFileAtomic((fs::path(dir) / "summary.json").string(), exp.Summary().Dump());
+  // The summary first (small), then the rows: whatever fails, the other is still written.
+  std::string error;
+  try {
+    WriteFileAtomic((fs::path(dir) / "summary.json").string(), exp.Summary().Dump());
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  try {
+    Recorder& rec = exp.mutable_recorder();
+    if (rec.streaming())
+      rec.FinishStream();
+    else
+      rec.WriteCsv(CsvPath(dir));
+  } catch (const std::exception& e) {
+    error += (error.empty() ? "" : "; ") + std::string(e.what());
+  }
+  if (!error.empty()) throw std::runtime_error(error);
 }
 
 }  // namespace formsim::sim

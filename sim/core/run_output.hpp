@@ -11,12 +11,17 @@ namespace formsim::sim {
 /// done, so a bad folder fails fast. Throws std::runtime_error naming the folder and the reason.
 void PrepareOutputDir(const std::string& dir);
 
-/// Writes `dir/timeseries.csv` and `dir/summary.json` (the summary gets the scenario name, seed,
-/// steps and events added). Files are written to a temporary name and renamed, so a failure
-/// never leaves a half-written file. Throws std::runtime_error on failure.
-void WriteRunOutputs(const Experiment& experiment, const std::string& dir);
+/// `dir/timeseries.csv`.
+std::string CsvPath(const std::string& dir);
 
-/// Writes `text` to `path` atomically (temp file + rename). Throws std::runtime_error.
+/// Writes `dir/summary.json` and completes `dir/timeseries.csv` (finishing the stream when the
+/// recorder streams there, else writing the rows in memory). Files are written to a temporary
+/// name, synced and renamed, so a failure never leaves a half-written file; when one file
+/// fails the other is still written. Throws std::runtime_error naming what failed.
+void WriteRunOutputs(Experiment& experiment, const std::string& dir);
+
+/// Writes `text` to `path` atomically (temp file, every write checked, fsync, rename). Throws
+/// std::runtime_error and removes the temporary on failure.
 void WriteFileAtomic(const std::string& path, const std::string& text);
 
 }  // namespace formsim::sim

@@ -10,7 +10,8 @@ namespace formsim::sim {
 WorldDef ReadWorldDef(YamlReader& m) {
   WorldDef def;
   def.floor_friction = m.Double("floor_friction", def.floor_friction);
-  if (def.floor_friction < 0) m.Fail("floor_friction", "must be >= 0");
+  if (!(def.floor_friction >= 0 && def.floor_friction <= world_limits::kMaxFriction))
+    m.Fail("floor_friction", "must be in [0, 10]");
   def.velocity_iterations = m.Int("velocity_iterations", def.velocity_iterations);
   if (def.velocity_iterations < 1 || def.velocity_iterations > 100)
     m.Fail("velocity_iterations", "must be in [1, 100] (Box2D's default is 8)");
@@ -30,6 +31,8 @@ std::vector<ObstacleDef> ReadObstacles(YamlReader& root) {
     const int shape = o.Choice("shape", {"box", "circle", "polygon", "wall"}, 0);
     def.shape = static_cast<ObstacleDef::Shape>(shape);
     def.friction = o.Double("friction", def.friction);
+    if (!(def.friction >= 0 && def.friction <= world_limits::kMaxFriction))
+      o.Fail("friction", "must be in [0, 10]");
     switch (def.shape) {
       case ObstacleDef::Shape::kBox: {
         const auto c = o.Doubles("center", {0, 0}, 2);
@@ -59,6 +62,16 @@ std::vector<ObstacleDef> ReadObstacles(YamlReader& root) {
         break;
     }
     o.Finish();
+    // Sizes, positions and polygon shape as Box2D needs them, reported at the obstacle.
+    if (const std::string e = CheckObstacleDef(def); !e.empty()) {
+      const char* key = def.shape == ObstacleDef::Shape::kBox      ? "size"
+                        : def.shape == ObstacleDef::Shape::kCircle ? "radius"
+                        : def.shape == ObstacleDef::Shape::kWall   ? "points"
+                                                                   : "vertices";
+      if (e.rfind("centre", 0) == 0 || e.rfind("angle", 0) == 0) key = "center";
+      if (e.rfind("friction", 0) == 0) key = "friction";
+      o.Fail(key, e);
+    }
     out.push_back(def);
   }
   return out;
@@ -71,7 +84,8 @@ std::vector<PatchDef> ReadPatches(YamlReader& root) {
     PatchDef def;
     def.name = p.String("name", "patch" + std::to_string(index++));
     def.friction = p.RequiredDouble("friction");
-    if (def.friction < 0) p.Fail("friction", "must be >= 0");
+    if (!(def.friction >= 0 && def.friction <= world_limits::kMaxFriction))
+      p.Fail("friction", "must be in [0, 10]");
     if (p.Has("polygon")) {
       def.polygon = p.Points("polygon", 3);
     } else {
@@ -100,9 +114,15 @@ void ReadRobotBody(YamlReader& b, RobotDef& def) {
     if (def.radius <= 0) b.Fail("radius", "must be positive");
   }
   def.mass = b.Double("mass", def.mass);
-  if (def.mass <= 0) b.Fail("mass", "must be positive");
+  if (!(def.mass >= world_limits::kMinMass && def.mass <= world_limits::kMaxMass))
+    b.Fail("mass", "must be in [0.001, 1e6] kg");
   def.collide_with_robots = b.Bool("collide_with_robots", def.collide_with_robots);
   b.Finish();
+  // Sizes as Box2D needs them (pose is checked where it is read).
+  RobotDef at_origin = def;
+  at_origin.pose = {};
+  if (const std::string e = CheckRobotDef(at_origin); !e.empty())
+    b.Fail(def.shape == RobotDef::Shape::kCircle ? "radius" : "size", e);
 }
 
 }  // namespace formsim::sim

@@ -38,7 +38,92 @@ bool IsConvex(const std::vector<Vec2>& p) {
   return true;
 }
 
+std::string Num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+std::string CheckPoint(Vec2 p, const std::string& what) {
+  using namespace world_limits;
+  if (!std::isfinite(p.x) || !std::isfinite(p.y)) return what + " is not finite";
+  if (std::abs(p.x) > kExtent || std::abs(p.y) > kExtent)
+    return what + " (" + Num(p.x) + ", " + Num(p.y) + ") is outside the world (|x|, |y| <= " +
+           Num(kExtent) + " m)";
+  return "";
+}
+
+std::string CheckSize(double v, const std::string& what) {
+  using namespace world_limits;
+  if (!(v >= kMinSize && v <= kMaxSize))
+    return what + " " + Num(v) + " m is outside [" + Num(kMinSize) + ", " + Num(kMaxSize) + "] m";
+  return "";
+}
+
+double PolygonArea(const std::vector<Vec2>& p) {
+  double a = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) a += p[i].Cross(p[(i + 1) % p.size()]);
+  return 0.5 * std::abs(a);
+}
+
 }  // namespace
+
+std::string CheckRobotDef(const RobotDef& def) {
+  using namespace world_limits;
+  std::string e = CheckPoint(def.pose.p(), "pose");
+  if (!e.empty()) return e;
+  if (!(std::abs(def.pose.theta) <= kMaxAngle)) return "heading " + Num(def.pose.theta) + " rad is not within ±" + Num(kMaxAngle) + " rad";
+  if (def.shape == RobotDef::Shape::kCircle) {
+    if (!(e = CheckSize(2 * def.radius, "diameter")).empty()) return e;
+  } else {
+    if (!(e = CheckSize(2 * def.half_length, "length")).empty()) return e;
+    if (!(e = CheckSize(2 * def.half_width, "width")).empty()) return e;
+  }
+  if (!(def.mass >= kMinMass && def.mass <= kMaxMass))
+    return "mass " + Num(def.mass) + " kg is outside [" + Num(kMinMass) + ", " + Num(kMaxMass) + "] kg";
+  return "";
+}
+
+std::string CheckObstacleDef(const ObstacleDef& def) {
+  using namespace world_limits;
+  std::string e;
+  if (!(def.friction >= 0 && def.friction <= kMaxFriction))
+    return "friction " + Num(def.friction) + " is outside [0, " + Num(kMaxFriction) + "]";
+  if (def.shape != ObstacleDef::Shape::kWall) {
+    if (!(e = CheckPoint(def.pose.p(), "centre")).empty()) return e;
+    if (!(std::abs(def.pose.theta) <= kMaxAngle)) return "angle is not within ±" + Num(kMaxAngle) + " rad";
+  }
+  switch (def.shape) {
+    case ObstacleDef::Shape::kBox:
+      if (!(e = CheckSize(2 * def.half_x, "size x")).empty()) return e;
+      return CheckSize(2 * def.half_y, "size y");
+    case ObstacleDef::Shape::kCircle:
+      return CheckSize(2 * def.radius, "diameter");
+    case ObstacleDef::Shape::kPolygon: {
+      const auto& v = def.vertices;
+      if (v.size() < 3 || v.size() > b2_maxPolygonVertices) return "a polygon needs 3 to 8 vertices";
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        if (!(e = CheckPoint(def.pose.ToWorld(v[i]), "vertex " + std::to_string(i))).empty()) return e;
+        const double side = (v[(i + 1) % v.size()] - v[i]).Norm();
+        if (!(side >= kMinSize)) return "side " + std::to_string(i) + " is " + Num(side) + " m, shorter than " + Num(kMinSize) + " m";
+      }
+      if (!IsConvex(v)) return "the vertices must form a convex polygon (no straight or reflex corner)";
+      if (!(PolygonArea(v) >= kMinArea)) return "area " + Num(PolygonArea(v)) + " m² is below " + Num(kMinArea) + " m²";
+      return "";
+    }
+    case ObstacleDef::Shape::kWall: {
+      const auto& v = def.vertices;
+      if (v.size() < 2) return "a wall needs at least 2 points";
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        if (!(e = CheckPoint(v[i], "point " + std::to_string(i))).empty()) return e;
+        if (i + 1 < v.size() && !((v[i + 1] - v[i]).Norm() >= kMinSize))
+          return "segment " + std::to_string(i) + " is shorter than " + Num(kMinSize) + " m";
+      }
+      return "";
+    }
+  }
+  return "";
+}
 
 // Logs the start of every contact between two named bodies.
 class World::ContactListener : public b2ContactListener {
@@ -120,6 +205,9 @@ World::~World() {
 }
 
 Robot& World::CreateRobot(const RobotDef& def) {
+  // The readers refuse all of this with file:line:key; this is the last line before Box2D.
+  if (const std::string e = CheckRobotDef(def); !e.empty())
+    throw std::invalid_argument("robot '" + def.name + "': " + e);
   for (const auto& r : robots_)
     if (r->name() == def.name) throw std::invalid_argument("duplicate robot name '" + def.name + "'");
   auto robot = std::make_unique<Robot>();
@@ -158,6 +246,8 @@ Robot& World::CreateRobot(const RobotDef& def) {
 }
 
 void World::CreateObstacle(const ObstacleDef& def) {
+  if (const std::string e = CheckObstacleDef(def); !e.empty())
+    throw std::invalid_argument("obstacle '" + def.name + "': " + e);
   b2BodyDef bd;
   bd.type = b2_staticBody;
   bd.position = b2Vec2(static_cast<float>(def.pose.x), static_cast<float>(def.pose.y));
@@ -191,17 +281,12 @@ void World::CreateObstacle(const ObstacleDef& def) {
       std::vector<b2Vec2> v;
       for (const Vec2& p : def.vertices) v.push_back(ToB2(p));
       b2PolygonShape s;
-      if (v.size() < 3 || v.size() > b2_maxPolygonVertices || !IsConvex(def.vertices))
-        throw std::invalid_argument("obstacle '" + def.name +
-                                    "': polygon needs 3 to 8 vertices forming a convex shape");
       s.Set(v.data(), static_cast<int>(v.size()));
       fd.shape = &s;
       body->CreateFixture(&fd);
       break;
     }
     case ObstacleDef::Shape::kWall: {
-      if (def.vertices.size() < 2)
-        throw std::invalid_argument("obstacle '" + def.name + "': a wall needs at least 2 points");
       for (std::size_t i = 0; i + 1 < def.vertices.size(); ++i) {
         b2EdgeShape e;
         e.SetTwoSided(ToB2(def.vertices[i]), ToB2(def.vertices[i + 1]));
@@ -270,7 +355,10 @@ class ClosestRay : public b2RayCastCallback {
 
 RayHit World::RayCast(Vec2 from, Vec2 to, bool include_robots, const Robot* ignore) const {
   RayHit out;
-  if ((to - from).Norm() < 1e-9) return out;
+  // Box2D asserts on a zero-length or non-finite ray: such a ray hits nothing.
+  if (!std::isfinite(from.x) || !std::isfinite(from.y) || !std::isfinite(to.x) ||
+      !std::isfinite(to.y) || !((to - from).Norm() >= 1e-6))
+    return out;
   ClosestRay cb(include_robots, ignore ? ignore->body() : nullptr);
   b2_->RayCast(&cb, ToB2(from), ToB2(to));
   if (!cb.hit) return out;
@@ -289,6 +377,7 @@ Robot* World::FindRobot(const std::string& name) {
 }
 
 bool World::MoveObstacle(const std::string& name, Vec2 p) {
+  if (!CheckPoint(p, "position").empty()) return false;
   for (std::size_t i = 0; i < obstacle_defs_.size(); ++i) {
     if (obstacle_defs_[i].name != name || obstacle_defs_[i].shape == ObstacleDef::Shape::kWall) continue;
     obstacle_bodies_[i]->SetTransform(ToB2(p), obstacle_bodies_[i]->GetAngle());

@@ -19,6 +19,20 @@ class Robot;
 
 constexpr double kGravity = 9.81;  ///< m/s², for friction limits (the world itself has none)
 
+/// What the world accepts. Box2D computes in float and asserts on degenerate shapes (Debian's
+/// build keeps its assertions), so everything handed to it is checked against these first.
+namespace world_limits {
+inline constexpr double kExtent = 1e4;      ///< |x|, |y| of any point, m (float keeps ~1 mm)
+inline constexpr double kMaxAngle = 1e3;    ///< |θ| of a pose, rad
+inline constexpr double kMinSize = 0.01;    ///< smallest side or diameter of a body, m
+inline constexpr double kMaxSize = 1e3;     ///< largest side or diameter, m
+inline constexpr double kMinArea = 1e-4;    ///< smallest polygon area, m²
+inline constexpr double kMinMass = 1e-3;    ///< kg
+inline constexpr double kMaxMass = 1e6;     ///< kg
+inline constexpr double kMaxFriction = 10;  ///< Coulomb μ
+}  // namespace world_limits
+
+
 /// How a robot turns commands into motion. Each robot kind supplies one (unicycle, Mecanum,
 /// differential drive with motors, steered vehicle). Apply() runs before every world step.
 class DriveModel {
@@ -61,6 +75,13 @@ struct PatchDef {
   std::vector<Vec2> polygon;  ///< world frame, any simple polygon
   double friction = 0.8;
 };
+
+/// "" when the robot body can be handed to Box2D (finite, inside the world, sizes and mass
+/// within world_limits), else the reason.
+std::string CheckRobotDef(const RobotDef& def);
+/// Same for an obstacle: also a convex polygon of 3 to 8 vertices with sides of at least
+/// kMinSize and area of at least kMinArea, and wall segments of at least kMinSize.
+std::string CheckObstacleDef(const ObstacleDef& def);
 
 /// A collision between two named bodies (robots or obstacles), logged when contact begins.
 struct CollisionEvent {

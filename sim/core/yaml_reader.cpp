@@ -13,6 +13,11 @@ namespace fs = std::filesystem;
 namespace formsim::sim {
 namespace {
 
+// The world's extent and largest pose angle (sim/core/world.hpp world_limits, repeated here
+// so the reader stays free of Box2D).
+constexpr double kWorldExtent = 1e4;
+constexpr double kMaxPoseAngle = 1e3;
+
 std::string Location(const std::string& file, int line, int col) {
   std::ostringstream os;
   os << file;
@@ -212,6 +217,8 @@ std::vector<Vec2> YamlReader::Points(const std::string& key, int min_count) {
     for (std::size_t i = 0; i < n.size(); ++i) {
       if (!n[i].IsSequence() || n[i].size() != 2) Fail(key, "each point must be [x, y]");
       out.push_back({ToDouble(*this, key, n[i][0]), ToDouble(*this, key, n[i][1])});
+      if (std::abs(out.back().x) > kWorldExtent || std::abs(out.back().y) > kWorldExtent)
+        Fail(key, "point " + std::to_string(i) + " is outside the world (|x|, |y| <= 1e4 m)");
     }
   }
   if (static_cast<int>(out.size()) < min_count)
@@ -225,6 +232,9 @@ Pose2 YamlReader::Pose(const std::string& key, const Pose2& def) {
     return def;
   }
   const std::vector<double> v = Doubles(key, {}, 3);
+  if (std::abs(v[0]) > kWorldExtent || std::abs(v[1]) > kWorldExtent)
+    Fail(key, "position outside the world (|x|, |y| <= 1e4 m)");
+  if (std::abs(v[2]) > kMaxPoseAngle) Fail(key, "heading beyond ±1000 rad (angles are radians)");
   return {v[0], v[1], v[2]};
 }
 

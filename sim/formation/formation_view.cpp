@@ -177,7 +177,7 @@ void FormationExperiment::DrawScene(DrawSink& draw) const {
     }
   }
   // Flashes for recent saturations, collisions, singularities and filter faults.
-  const auto& events = events_.list();
+  const auto& events = events_.recent();
   for (auto it = events.rbegin(); it != events.rend(); ++it) {
     const double age = (now - it->time) / kFlashSeconds;
     if (age > 1.0) break;
