@@ -4,7 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
-namespace formsim::control {
+namespace formsim::control::agv {
 namespace {
 
 // Regularised lower incomplete gamma P(a, x): power series below a + 1, Lentz continued
@@ -56,4 +56,4 @@ double ChiSquareQuantile(double p, int dof) {
   return 0.5 * (lo + hi);
 }
 
-}  // namespace formsim::control
+}  // namespace formsim::control::agv

@@ -1,7 +1,7 @@
 #pragma once
 /// \file Chi-square distribution helpers for innovation gating.
 
-namespace formsim::control {
+namespace formsim::control::agv {
 
 /// P(X ≤ x) for X ~ χ²(dof), dof ≥ 1 (regularised lower incomplete gamma P(dof/2, x/2)).
 double ChiSquareCdf(double x, int dof);
@@ -9,4 +9,4 @@ double ChiSquareCdf(double x, int dof);
 /// Example: ChiSquareQuantile(0.99, 3) ≈ 11.345.
 double ChiSquareQuantile(double p, int dof);
 
-}  // namespace formsim::control
+}  // namespace formsim::control::agv

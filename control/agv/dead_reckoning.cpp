@@ -4,7 +4,7 @@
 
 #include "control/common/angle.hpp"
 
-namespace formsim::control {
+namespace formsim::control::agv {
 
 WorldVelocity ToWorld(const BodyTwist& t, double theta) {
   const double c = std::cos(theta), s = std::sin(theta);
@@ -16,4 +16,4 @@ Pose2 IntegrateTwist(const Pose2& pose, const BodyTwist& twist, double dt) {
   return {pose.x + v.x_dot * dt, pose.y + v.y_dot * dt, WrapToPi(pose.theta + v.theta_dot * dt)};
 }
 
-}  // namespace formsim::control
+}  // namespace formsim::control::agv

@@ -4,7 +4,7 @@
 #include "control/common/geometry.hpp"
 #include "control/agv/kinematics.hpp"
 
-namespace formsim::control {
+namespace formsim::control::agv {
 
 /// World-frame velocity (ẋ, ẏ, θ̇) of a body moving with `twist` at heading `theta`:
 /// [ẋ ẏ]ᵀ = R(θ) [vx vy]ᵀ, θ̇ = ω (eq. 3-4).
@@ -30,4 +30,4 @@ class DeadReckoning {
   Pose2 pose_;
 };
 
-}  // namespace formsim::control
+}  // namespace formsim::control::agv

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace formsim::control {
+namespace formsim::control::agv {
 
 double MecanumGeometry::RollerSign(int wheel) {
   return (wheel == kFrontLeft || wheel == kRearRight) ? -1.0 : 1.0;
@@ -51,4 +51,4 @@ double ScaleToLimit(WheelArray& w, double limit) {
   return k;
 }
 
-}  // namespace formsim::control
+}  // namespace formsim::control::agv

@@ -27,10 +27,12 @@
 
 #include "control/common/geometry.hpp"
 
-namespace formsim::control {
+namespace formsim::control::agv {
 
 enum MecanumWheel { kFrontLeft = 0, kFrontRight = 1, kRearLeft = 2, kRearRight = 3 };
 constexpr int kMecanumWheels = 4;
+/// Short wheel names in that order (column names, labels).
+inline constexpr const char* kWheelNames[kMecanumWheels] = {"FL", "FR", "RL", "RR"};
 
 /// Four wheel values in the order FL, FR, RL, RR (speeds in rad/s, angles in rad, ...).
 using WheelArray = std::array<double, kMecanumWheels>;
@@ -66,4 +68,4 @@ BodyTwist ForwardKinematics(const MecanumGeometry& g, const WheelArray& wheel_sp
 /// direction of motion). Returns the factor applied (1 when nothing was limited).
 double ScaleToLimit(WheelArray& wheel_speeds, double limit);
 
-}  // namespace formsim::control
+}  // namespace formsim::control::agv

@@ -7,7 +7,7 @@
 
 #include "control/common/angle.hpp"
 
-namespace formsim::control {
+namespace formsim::control::agv {
 namespace {
 
 Vec2 Dir(double heading) {
@@ -251,4 +251,4 @@ std::vector<Vec2> Path::Sample(double step) const {
   return out;
 }
 
-}  // namespace formsim::control
+}  // namespace formsim::control::agv

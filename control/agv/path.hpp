@@ -11,7 +11,7 @@
 
 #include "control/common/geometry.hpp"
 
-namespace formsim::control {
+namespace formsim::control::agv {
 
 /// A point on the path with its tangent heading [rad] and signed curvature [1/m] (> 0 turns
 /// left, counter-clockwise).
@@ -99,4 +99,4 @@ class Path {
   bool closed_ = false;
 };
 
-}  // namespace formsim::control
+}  // namespace formsim::control::agv

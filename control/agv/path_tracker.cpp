@@ -6,7 +6,7 @@
 
 #include "control/common/angle.hpp"
 
-namespace formsim::control {
+namespace formsim::control::agv {
 
 void PathTracker::SetDef(const PathTrackerDef& def) {
   def_ = def;
@@ -83,4 +83,4 @@ BodyTwist PathTracker::Step(const Pose2& pose, double dt) {
   return t;
 }
 
-}  // namespace formsim::control
+}  // namespace formsim::control::agv

@@ -19,7 +19,7 @@
 #include "control/agv/kinematics.hpp"
 #include "control/agv/path.hpp"
 
-namespace formsim::control {
+namespace formsim::control::agv {
 
 struct PathTrackerDef {
   PidGains along{1.5, 0.0, 0.0, -0.15, 0.15, 0.05};  ///< es -> vx correction, m/s
@@ -84,4 +84,4 @@ class PathTracker {
   bool saturated_ = false;
 };
 
-}  // namespace formsim::control
+}  // namespace formsim::control::agv

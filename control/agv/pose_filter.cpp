@@ -8,7 +8,7 @@
 #include "control/agv/chi_square.hpp"
 #include "control/agv/dead_reckoning.hpp"
 
-namespace formsim::control {
+namespace formsim::control::agv {
 namespace {
 
 bool AllFinite(const Eigen::MatrixXd& m) {
@@ -193,4 +193,4 @@ Pose2 PoseFilter::pose() const {
   return {kf_.x()(0), kf_.x()(1), kf_.x()(2)};
 }
 
-}  // namespace formsim::control
+}  // namespace formsim::control::agv

@@ -28,7 +28,7 @@
 #include "control/common/linear_kf.hpp"
 #include "control/agv/kinematics.hpp"
 
-namespace formsim::control {
+namespace formsim::control::agv {
 
 struct PoseFilterDef {
   double q_xy = 0.01;      ///< process noise of x and y, m/√s (Q = diag(q²)·T)
@@ -97,4 +97,4 @@ class PoseFilter {
   std::string last_fault_;
 };
 
-}  // namespace formsim::control
+}  // namespace formsim::control::agv

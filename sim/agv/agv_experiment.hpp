@@ -1,5 +1,5 @@
 #pragma once
-/// \file The omnidirectional Mecanum AGV of paper 002 as an Experiment (type "mecanum_agv"):
+/// \file The omnidirectional Mecanum AGV of paper 002 as an Experiment (type "agv"):
 /// wheel-level Mecanum drive in Box2D, wheel encoders, a StarGazer-like ceiling beacon, the
 /// paper's odometry + beacon Kalman filter (with optional innovation gate and adaptive R), and
 /// PID tracking of a path at 15 Hz using the odometry, beacon or fused estimate (live switch).
@@ -12,7 +12,8 @@
 /// (inverse kinematics). The world steps (MecanumDrive applies the traction forces). With
 /// record_every = control_every every recorded row holds truth and estimates of one instant.
 ///
-/// Recorder columns (stable names):
+/// Recorder channels (stable names, declared in DeclareChannels; every estimator runs whatever
+/// the localisation mode, so every channel is sampled in every row):
 ///   t; x y theta (true pose); odo_x odo_y odo_theta; beacon_x beacon_y beacon_theta (last raw
 ///   fix, held); fused_x fused_y fused_theta; fused_sd_x fused_sd_y fused_sd_theta (√diag P);
 ///   cross_track (true, m); cross_track_mm; est_cross_track (what the controller saw, m);
@@ -21,6 +22,10 @@
 ///   (cumulative counts); vx_cmd vy_cmd omega_cmd; w_cmd_<FL|FR|RL|RR> w_<..> (rad/s);
 ///   slip_<..> (mm/s); slipping (1 if any wheel at its friction limit); mu (floor under the
 ///   body centre); mode (0 odometry, 1 beacon, 2 fused); progress (true arc length, m).
+///
+/// Events: filter_fault (one per run of control periods in which the Kalman prediction or
+/// update failed; every failed update is counted in the results' beacon.faults), filter_reset
+/// (the gate re-initialised the filter after a streak of rejections).
 
 #include <deque>
 #include <memory>
@@ -30,33 +35,34 @@
 #include "control/agv/dead_reckoning.hpp"
 #include "control/agv/path_tracker.hpp"
 #include "control/agv/pose_filter.hpp"
-#include "sim/core/experiment.hpp"
 #include "sim/agv/agv_config.hpp"
-#include "sim/agv/agv_metrics.hpp"
 #include "sim/agv/beacon_sensor.hpp"
+#include "sim/agv/estimate_stats.hpp"
 #include "sim/agv/mecanum_drive.hpp"
 #include "sim/agv/wheel_encoders.hpp"
+#include "sim/core/experiment.hpp"
+#include "sim/core/multirate.hpp"
 
-namespace formsim::sim {
+namespace formsim::sim::agv {
 
-class AgvExperiment : public Experiment {
+class AgvExperiment : public ExperimentOf<AgvConfig> {
  public:
-  AgvExperiment(const ExperimentSetup& setup, YamlReader& root);
+  static AgvConfig ReadConfig(YamlReader& root, const ExperimentSetup& setup) {
+    return ReadAgvConfig(root, setup.dt);
+  }
+  AgvExperiment(const ExperimentSetup& setup, const AgvConfig& config);
 
   std::vector<FigureSpec> Figures() const override;
-  std::vector<TableSpec> Tables() const override;
   void Bounds(Vec2& lo, Vec2& hi) const override;
-  Json Summary() const override;
-  std::string SummaryTable() const override;
+  Metrics Results() const override;
 
   /// Read-only views for tests and benchmarks.
-  const AgvConfig& config() const { return cfg_; }
   Pose2 true_pose() const { return robot_->pose(); }
   Pose2 odometry_pose() const { return odometry_.pose(); }
   Pose2 beacon_pose() const { return beacon_pose_; }
   Pose2 fused_pose() const { return filter_.pose(); }
-  const control::PoseFilter& filter() const { return filter_; }
-  const control::PathTracker& tracker() const { return tracker_; }
+  const ca::PoseFilter& filter() const { return filter_; }
+  const ca::PathTracker& tracker() const { return tracker_; }
   const MecanumDrive& drive() const { return *drive_; }
   const ErrorStats& cross_track() const { return cross_track_; }
   const EstimateStats& odometry_stats() const { return stats_odo_; }
@@ -70,36 +76,35 @@ class AgvExperiment : public Experiment {
  protected:
   void Control(double t) override;
   void Sense(double t) override;
-  void Record(Recorder& rec) override;
   void DrawScene(DrawSink& draw) const override;
-  void OnParamsChanged() override;
+  void ApplyTunables(const AgvConfig& next) override;
 
  private:
-  void RegisterParams();
-  void DeclareColumns();
+  void DeclareChannels();
   void Estimate(double t);
-  void RunFilter(double t, const control::BodyTwist& odo);
+  void RunFilter(double t, const ca::BodyTwist& odo);
   void Score();
   Pose2 ControlPose() const;
-  void AddCappedEvent(const std::string& kind, const std::string& message);
 
-  AgvConfig cfg_;
   Robot* robot_ = nullptr;
   MecanumDrive* drive_ = nullptr;
   BeaconSensor beacon_;
   WheelEncoders encoders_;
-  control::DeadReckoning odometry_;
-  control::PoseFilter filter_;
-  control::PathTracker tracker_;
-  int mode_index_ = 2;  ///< mirror of cfg_.mode for the parameter table
+  ca::DeadReckoning odometry_;
+  ca::PoseFilter filter_;
+  ca::PathTracker tracker_;
+  MultiRate control_;  ///< the 15 Hz grid of the estimators and the tracker
 
   // Estimation state.
   std::deque<BeaconFix> pending_;  ///< beacon samples not yet given to the filter
   Pose2 beacon_pose_;              ///< last valid raw fix
   double filter_time_ = 0.0;       ///< time the filter state refers to
-  control::BodyTwist odo_twist_, cmd_twist_;
-  control::WheelArray wheel_cmd_{};
+  ca::BodyTwist odo_twist_, cmd_twist_;
+  ca::WheelArray wheel_cmd_{};
   double last_nis_ = 0.0;
+  EventLog::ConditionId filter_fault_ = 0;
+  bool fault_now_ = false;     ///< a prediction or update failed in this control period
+  std::string fault_message_;  ///< the first failure of this control period
 
   // Metrics.
   ErrorStats cross_track_;
@@ -108,7 +113,6 @@ class AgvExperiment : public Experiment {
   BeaconCounts counts_;
   bool tracking_done_ = false;
   double done_time_ = -1.0;
-  long filter_events_ = 0, suppressed_events_ = 0;
 
   // Drawing and figure data (bounded histories).
   struct FixRecord {
@@ -120,13 +124,6 @@ class AgvExperiment : public Experiment {
   std::vector<FixRecord> fixes_;  ///< every valid sample (for figures)
   std::deque<Vec2> trail_true_, trail_fused_, trail_odo_;
   std::vector<Vec2> path_samples_;
-
-  // Recorder column indices.
-  int c_t_ = -1, c_true_ = -1, c_odo_ = -1, c_beacon_ = -1, c_fused_ = -1, c_sd_ = -1;
-  int c_cross_ = -1, c_cross_mm_ = -1, c_est_cross_ = -1, c_err_ = -1, c_herr_ = -1,
-      c_track_err_ = -1;
-  int c_nis_ = -1, c_acc_ = -1, c_rej_ = -1, c_twist_ = -1, c_wcmd_ = -1, c_w_ = -1, c_slip_ = -1;
-  int c_slipping_ = -1, c_mu_ = -1, c_mode_ = -1, c_progress_ = -1;
 };
 
-}  // namespace formsim::sim
+}  // namespace formsim::sim::agv

@@ -4,9 +4,8 @@
 #include <cmath>
 
 #include "control/common/angle.hpp"
-#include "sim/core/yaml_reader.hpp"
 
-namespace formsim::sim {
+namespace formsim::sim::agv {
 
 BeaconFix BeaconSensor::Sample(double t, const Pose2& truth) {
   // Fixed draw order per sample: 3 normals, dropout, outlier, direction, size, heading.
@@ -33,26 +32,4 @@ BeaconFix BeaconSensor::Sample(double t, const Pose2& truth) {
   return fix;
 }
 
-BeaconDef ReadBeacon(YamlReader& b) {
-  BeaconDef def;
-  def.period = b.Double("period", def.period);
-  if (!(def.period >= 0.005)) b.Fail("period", "must be at least 0.005 s");
-  def.sigma_xy = b.Double("sigma_xy", def.sigma_xy);
-  if (def.sigma_xy < 0) b.Fail("sigma_xy", "must be >= 0");
-  def.sigma_theta = b.Double("sigma_theta", def.sigma_theta);
-  if (def.sigma_theta < 0) b.Fail("sigma_theta", "must be >= 0");
-  def.outlier_probability = b.Double("outlier_probability", def.outlier_probability);
-  if (def.outlier_probability < 0 || def.outlier_probability > 1)
-    b.Fail("outlier_probability", "must be in [0, 1]");
-  def.outlier_size = b.Double("outlier_size", def.outlier_size);
-  if (def.outlier_size < 0) b.Fail("outlier_size", "must be >= 0");
-  def.outlier_heading = b.Double("outlier_heading", def.outlier_heading);
-  if (def.outlier_heading < 0) b.Fail("outlier_heading", "must be >= 0");
-  def.dropout_probability = b.Double("dropout_probability", def.dropout_probability);
-  if (def.dropout_probability < 0 || def.dropout_probability > 1)
-    b.Fail("dropout_probability", "must be in [0, 1]");
-  b.Finish();
-  return def;
-}
-
-}  // namespace formsim::sim
+}  // namespace formsim::sim::agv

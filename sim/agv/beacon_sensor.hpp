@@ -8,7 +8,7 @@
 #include "control/common/geometry.hpp"
 #include "sim/core/rng.hpp"
 
-namespace formsim::sim {
+namespace formsim::sim::agv {
 
 struct BeaconDef {
   double period = 0.1;               ///< Ts, s
@@ -44,9 +44,4 @@ class BeaconSensor {
   double next_time_ = 0.0;
 };
 
-class YamlReader;
-/// Reads `beacon: {period, sigma_xy, sigma_theta, outlier_probability, outlier_size,
-/// outlier_heading, dropout_probability}`.
-BeaconDef ReadBeacon(YamlReader& beacon);
-
-}  // namespace formsim::sim
+}  // namespace formsim::sim::agv

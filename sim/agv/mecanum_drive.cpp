@@ -4,12 +4,11 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sim/core/yaml_reader.hpp"
 
-namespace formsim::sim {
+namespace formsim::sim::agv {
 
-using control::kMecanumWheels;
-using control::MecanumGeometry;
+using control::agv::kMecanumWheels;
+using control::agv::MecanumGeometry;
 
 double MecanumDrive::true_radius(int i) const {
   return def_.geometry.wheel_radius * (1.0 + def_.radius_error[i]);
@@ -19,7 +18,7 @@ bool MecanumDrive::slipping() const {
   return std::any_of(slipping_.begin(), slipping_.end(), [](bool b) { return b; });
 }
 
-void MecanumDrive::SetWheelCommand(const control::WheelArray& w) {
+void MecanumDrive::SetWheelCommand(const control::agv::WheelArray& w) {
   command_limited_ = false;
   for (int i = 0; i < kMecanumWheels; ++i) {
     const double v = std::isfinite(w[i]) ? w[i] : 0.0;
@@ -104,29 +103,4 @@ void MecanumDrive::Apply(Robot& robot, World& world, double dt) {
   body->ApplyTorque(static_cast<float>(tau), true);
 }
 
-MecanumDriveDef ReadMecanumDrive(YamlReader& w) {
-  MecanumDriveDef def = DefaultMecanumDriveDef();
-  auto positive = [&w](const char* key, double value) {
-    if (!(value > 0.0)) w.Fail(key, "must be positive");
-    return value;
-  };
-  def.geometry.wheel_radius = positive("radius", w.Double("radius", def.geometry.wheel_radius));
-  def.geometry.half_wheelbase =
-      positive("half_wheelbase", w.Double("half_wheelbase", def.geometry.half_wheelbase));
-  def.geometry.half_track = positive("half_track", w.Double("half_track", def.geometry.half_track));
-  const std::vector<double> e = w.Doubles("radius_error", {0, 0, 0, 0}, 4);
-  for (int i = 0; i < kMecanumWheels; ++i) {
-    if (!(e[i] > -0.5 && e[i] < 0.5))
-      w.Fail("radius_error", "each entry is a fraction of the radius in (-0.5, 0.5)");
-    def.radius_error[i] = e[i];
-  }
-  def.wheel_speed_max = positive("speed_max", w.Double("speed_max", def.wheel_speed_max));
-  def.motor_time_constant = w.Double("motor_time_constant", def.motor_time_constant);
-  if (def.motor_time_constant < 0.0) w.Fail("motor_time_constant", "must be >= 0");
-  def.wheel_accel_max = positive("accel_max", w.Double("accel_max", def.wheel_accel_max));
-  def.slip_damping = positive("slip_damping", w.Double("slip_damping", def.slip_damping));
-  w.Finish();
-  return def;
-}
-
-}  // namespace formsim::sim
+}  // namespace formsim::sim::agv

@@ -19,15 +19,15 @@
 #include "control/agv/kinematics.hpp"
 #include "sim/core/world.hpp"
 
-namespace formsim::sim {
+namespace formsim::sim::agv {
 
 struct MecanumDriveDef {
-  control::MecanumGeometry geometry;             ///< nominal geometry (what the controller knows)
-  control::WheelArray radius_error{0, 0, 0, 0};  ///< true radius = nominal · (1 + e_i)
-  double wheel_speed_max = 12.0;                 ///< |ω_i| limit, rad/s
-  double motor_time_constant = 0.04;             ///< speed-loop lag, s (0: ideal)
-  double wheel_accel_max = 40.0;                 ///< |dω_i/dt| limit, rad/s²
-  double slip_damping = 3000.0;                  ///< contact force per slip speed, N·s/m
+  control::agv::MecanumGeometry geometry;  ///< nominal geometry (what the controller knows)
+  control::agv::WheelArray radius_error{0, 0, 0, 0};  ///< true radius = nominal · (1 + e_i)
+  double wheel_speed_max = 12.0;      ///< |ω_i| limit, rad/s
+  double motor_time_constant = 0.04;  ///< speed-loop lag, s (0: ideal)
+  double wheel_accel_max = 40.0;      ///< |dω_i/dt| limit, rad/s²
+  double slip_damping = 3000.0;       ///< contact force per slip speed, N·s/m
 };
 inline MecanumDriveDef DefaultMecanumDriveDef() {
   return MecanumDriveDef{};
@@ -41,18 +41,18 @@ class MecanumDrive : public DriveModel {
 
   /// Wheel speed set-points [rad/s], FL FR RL RR. Non-finite values become 0; each is clamped
   /// to the speed limit (the clamping is reported by `command_limited()`).
-  void SetWheelCommand(const control::WheelArray& w);
+  void SetWheelCommand(const control::agv::WheelArray& w);
   void Apply(Robot& robot, World& world, double dt) override;
   bool saturated() const override { return command_limited_ || slipping(); }
 
-  const control::WheelArray& command() const { return cmd_; }
+  const control::agv::WheelArray& command() const { return cmd_; }
   /// Actual motor speeds and accumulated wheel angles (what an ideal encoder sees).
-  const control::WheelArray& wheel_speeds() const { return speed_; }
-  const control::WheelArray& wheel_angles() const { return angle_; }
+  const control::agv::WheelArray& wheel_speeds() const { return speed_; }
+  const control::agv::WheelArray& wheel_angles() const { return angle_; }
   /// Slip speed along each roller axis at the start of the last step, m/s.
-  const control::WheelArray& slip() const { return slip_; }
+  const control::agv::WheelArray& slip() const { return slip_; }
   /// Floor force on each wheel along its roller axis in the last step, N.
-  const control::WheelArray& traction() const { return force_; }
+  const control::agv::WheelArray& traction() const { return force_; }
   /// Wheel i was at its friction limit in the last step.
   bool wheel_slipping(int i) const { return slipping_[i]; }
   bool slipping() const;
@@ -62,14 +62,9 @@ class MecanumDrive : public DriveModel {
 
  private:
   MecanumDriveDef def_;
-  control::WheelArray cmd_{}, speed_{}, angle_{}, slip_{}, force_{};
+  control::agv::WheelArray cmd_{}, speed_{}, angle_{}, slip_{}, force_{};
   std::array<bool, 4> slipping_{};
   bool command_limited_ = false;
 };
 
-class YamlReader;
-/// Reads `wheels: {radius, half_wheelbase, half_track, radius_error: [4], speed_max,
-/// motor_time_constant, accel_max, slip_damping}` (strict, with clear errors).
-MecanumDriveDef ReadMecanumDrive(YamlReader& wheels);
-
-}  // namespace formsim::sim
+}  // namespace formsim::sim::agv

@@ -4,7 +4,7 @@
 
 #include "control/common/angle.hpp"
 
-namespace formsim::sim {
+namespace formsim::sim::agv {
 
 double WheelEncoders::Quantise(double angle) const {
   if (def_.ticks_per_rev <= 0) return angle;
@@ -13,13 +13,13 @@ double WheelEncoders::Quantise(double angle) const {
   return std::floor(angle / tick + 1e-9) * tick;
 }
 
-void WheelEncoders::Latch(const control::WheelArray& angles) {
-  for (int i = 0; i < control::kMecanumWheels; ++i) last_[i] = Quantise(angles[i]);
+void WheelEncoders::Latch(const control::agv::WheelArray& angles) {
+  for (int i = 0; i < control::agv::kMecanumWheels; ++i) last_[i] = Quantise(angles[i]);
 }
 
-control::WheelArray WheelEncoders::Read(const control::WheelArray& angles, double period) {
-  control::WheelArray out{};
-  for (int i = 0; i < control::kMecanumWheels; ++i) {
+control::agv::WheelArray WheelEncoders::Read(const control::agv::WheelArray& angles, double period) {
+  control::agv::WheelArray out{};
+  for (int i = 0; i < control::agv::kMecanumWheels; ++i) {
     const double q = Quantise(angles[i]);
     const double noise = rng_.Normal();
     out[i] = period > 0.0 ? (q - last_[i]) / period + def_.speed_noise * noise : 0.0;
@@ -28,4 +28,4 @@ control::WheelArray WheelEncoders::Read(const control::WheelArray& angles, doubl
   return out;
 }
 
-}  // namespace formsim::sim
+}  // namespace formsim::sim::agv

@@ -11,11 +11,11 @@
 #include "sim/agv/mecanum_drive.hpp"
 #include "sim/agv/wheel_encoders.hpp"
 
-namespace formsim::sim {
+namespace formsim::sim::agv {
 namespace {
 
-using control::BodyTwist;
-using control::InverseKinematics;
+using control::agv::BodyTwist;
+using control::agv::InverseKinematics;
 
 struct Rig {
   explicit Rig(double floor_mu, MecanumDriveDef def = DefaultMecanumDriveDef()) {
@@ -101,9 +101,9 @@ TEST(MecanumDrive, SlipperyPatchOnlyAffectsWheelsOnIt) {
   rig.Command({0.2, 0.0, 0.0});
   rig.Run(1.0);
   EXPECT_NEAR(rig.robot->forward_speed(), 0.2, 2e-3);
-  EXPECT_TRUE(rig.drive->wheel_slipping(control::kFrontLeft));
-  EXPECT_FALSE(rig.drive->wheel_slipping(control::kRearRight));
-  EXPECT_DOUBLE_EQ(rig.drive->traction()[control::kFrontLeft], 0.0);
+  EXPECT_TRUE(rig.drive->wheel_slipping(control::agv::kFrontLeft));
+  EXPECT_FALSE(rig.drive->wheel_slipping(control::agv::kRearRight));
+  EXPECT_DOUBLE_EQ(rig.drive->traction()[control::agv::kFrontLeft], 0.0);
 }
 
 TEST(WheelEncoders, CountTicksAndAddNoise) {
@@ -113,7 +113,7 @@ TEST(WheelEncoders, CountTicksAndAddNoise) {
   WheelEncoders enc(def, Rng(3));
   enc.Latch({0, 0, 0, 0});
   const double tick = 2 * control::kPi / 100;
-  const control::WheelArray w = enc.Read({10.5 * tick, -3.2 * tick, 0, 2 * control::kPi}, 0.1);
+  const control::agv::WheelArray w = enc.Read({10.5 * tick, -3.2 * tick, 0, 2 * control::kPi}, 0.1);
   EXPECT_NEAR(w[0], 10 * tick / 0.1, 1e-9);
   EXPECT_NEAR(w[1], -4 * tick / 0.1, 1e-9);  // floor: -3.2 ticks reads -4
   EXPECT_NEAR(w[3], 2 * control::kPi / 0.1, 1e-9);
@@ -123,7 +123,7 @@ TEST(WheelEncoders, CountTicksAndAddNoise) {
   double sum_sq = 0;
   const int n = 4000;
   for (int k = 0; k < n; ++k) {
-    const control::WheelArray r = enc.Read({0, 0, 0, 2 * control::kPi}, 0.1);
+    const control::agv::WheelArray r = enc.Read({0, 0, 0, 2 * control::kPi}, 0.1);
     sum_sq += r[0] * r[0];
   }
   EXPECT_NEAR(std::sqrt(sum_sq / n), 0.1, 0.005);
@@ -179,4 +179,4 @@ TEST(BeaconSensor, SameSeedSameReadingsWhateverTheRates) {
 }
 
 }  // namespace
-}  // namespace formsim::sim
+}  // namespace formsim::sim::agv

@@ -8,7 +8,7 @@
 #include "control/common/angle.hpp"
 #include "control/agv/dead_reckoning.hpp"
 
-namespace formsim::control {
+namespace formsim::control::agv {
 namespace {
 
 MecanumGeometry Geom() {
@@ -111,4 +111,4 @@ TEST(DeadReckoning, StraightAndArcAndWrap) {
 }
 
 }  // namespace
-}  // namespace formsim::control
+}  // namespace formsim::control::agv

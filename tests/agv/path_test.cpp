@@ -7,7 +7,7 @@
 
 #include "control/common/angle.hpp"
 
-namespace formsim::control {
+namespace formsim::control::agv {
 namespace {
 
 TEST(Path, RoundedRectangleLengthAndClosure) {
@@ -103,4 +103,4 @@ TEST(Path, CloseRejectsOpenLoop) {
 }
 
 }  // namespace
-}  // namespace formsim::control
+}  // namespace formsim::control::agv

@@ -9,7 +9,7 @@
 #include "control/common/angle.hpp"
 #include "control/agv/dead_reckoning.hpp"
 
-namespace formsim::control {
+namespace formsim::control::agv {
 namespace {
 
 struct LapResult {
@@ -87,4 +87,4 @@ TEST(PathTracker, StopsAtTheEndOfAnOpenPath) {
 }
 
 }  // namespace
-}  // namespace formsim::control
+}  // namespace formsim::control::agv

@@ -9,7 +9,7 @@
 #include "control/agv/chi_square.hpp"
 #include "tests/agv/test_noise.hpp"
 
-namespace formsim::control {
+namespace formsim::control::agv {
 namespace {
 
 TEST(ChiSquare, KnownQuantiles) {
@@ -180,4 +180,4 @@ TEST(PoseFilter, SingularInnovationCovarianceIsReportedNotPropagated) {
 }
 
 }  // namespace
-}  // namespace formsim::control
+}  // namespace formsim::control::agv

@@ -1,6 +1,6 @@
 #pragma once
-/// \file Run metrics of the Mecanum AGV experiment: error statistics of the tracking and of each
-/// localisation source, and beacon/gate counters.
+/// \file Accumulators of the Mecanum AGV experiment's results: error statistics of each
+/// localisation source against the truth, and beacon/gate counters.
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include "control/common/geometry.hpp"
 #include "sim/core/error_stats.hpp"
 
-namespace formsim::sim {
+namespace formsim::sim::agv {
 
 /// How well one estimate (odometry, beacon, fused) follows the true pose, sampled every control
 /// period while the AGV is tracking.
@@ -45,4 +45,4 @@ struct BeaconCounts {
   double nis_sum = 0.0;  ///< over accepted samples
 };
 
-}  // namespace formsim::sim
+}  // namespace formsim::sim::agv

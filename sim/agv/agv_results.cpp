@@ -1,0 +1,92 @@
+// Results of the Mecanum AGV experiment: summary.json's `results`, the printed and GUI tables.
+#include <cmath>
+#include <cstdio>
+
+#include "sim/agv/agv_experiment.hpp"
+
+namespace formsim::sim::agv {
+
+namespace {
+
+void SetStats(Metrics& m, const std::string& p, const EstimateStats& s) {
+  m.Set(p + ".position_rms_m", s.position.rms());
+  m.Set(p + ".position_max_m", s.position.max_abs);
+  m.Set(p + ".position_final_m", s.final_position_error);
+  m.Set(p + ".heading_rms_rad", s.heading.rms());
+  m.Set(p + ".heading_max_rad", s.heading.max_abs);
+  m.Set(p + ".jumps", static_cast<double>(s.jumps));
+}
+
+}  // namespace
+
+Metrics AgvExperiment::Results() const {
+  Metrics m;
+  // Flags are 1 (true) or 0 (false): the results tree holds numbers and texts.
+  m.SetText("localisation_mode", ModeName(cfg_.mode));
+  m.Set("path_length_m", cfg_.path.length());
+  m.Set("tracking_finished", tracking_done_ ? 1 : 0);
+  m.Set("tracking_time_s", done_time_);
+  m.Set("loop_completed", completed() ? 1 : 0);
+  m.Set("completion_tolerance_m", cfg_.completion_tolerance);
+  m.Set("cross_track.rms_m", cross_track_.rms());
+  m.Set("cross_track.max_m", cross_track_.max_abs);
+  m.Set("cross_track.final_m", true_cross_);
+  const ca::PathPoint end = cfg_.path.At(tracker_.goal_s());
+  m.Set("final_distance_to_goal_m", (robot_->pose().p() - end.p).Norm());
+  SetStats(m, "localisation.odometry", stats_odo_);
+  SetStats(m, "localisation.beacon", stats_beacon_);
+  SetStats(m, "localisation.fused", stats_fused_);
+  const BeaconCounts& c = counts_;
+  m.Set("beacon.samples", static_cast<double>(c.samples));
+  m.Set("beacon.dropouts", static_cast<double>(c.dropouts));
+  m.Set("beacon.outliers", static_cast<double>(c.outliers));
+  m.Set("beacon.accepted", static_cast<double>(c.accepted));
+  m.Set("beacon.rejected", static_cast<double>(c.rejected));
+  m.Set("beacon.rejected_outliers", static_cast<double>(c.rejected_outliers));
+  m.Set("beacon.accepted_outliers", static_cast<double>(c.accepted_outliers));
+  m.Set("beacon.rejected_good", static_cast<double>(c.rejected - c.rejected_outliers));
+  m.Set("beacon.reinitialisations", static_cast<double>(c.reinitialisations));
+  m.Set("beacon.faults", static_cast<double>(c.faults));
+  m.Set("beacon.nis_mean", c.accepted ? c.nis_sum / c.accepted : 0.0);
+  m.Set("filter.gate", cfg_.filter.gate ? 1 : 0);
+  m.Set("filter.adaptive_r", cfg_.filter.adaptive_r ? 1 : 0);
+  m.Set("filter.r_xy_in_use_m", std::sqrt(filter_.measurement_cov()(0, 0)));
+  m.Set("filter.r_theta_in_use_rad", std::sqrt(filter_.measurement_cov()(2, 2)));
+
+  char line[200];
+  std::snprintf(line, sizeof line, "Mecanum AGV, %s localisation, path %.2f m: %s",
+                ModeName(cfg_.mode).c_str(), cfg_.path.length(),
+                !tracking_done_ ? "did not finish (duration too short?)"
+                : completed()   ? "completed"
+                                : "finished in its own belief, but off the path");
+  m.AddNote(line);
+  std::snprintf(
+      line, sizeof line, "true cross-track error: RMS %.1f mm, max %.1f mm (tolerance %.0f mm)",
+      cross_track_.rms() * 1000, cross_track_.max_abs * 1000, cfg_.completion_tolerance * 1000);
+  m.AddNote(line);
+
+  Metrics::Table loc;
+  loc.title = "Localisation against the truth";
+  loc.row_header = "estimate";
+  loc.rows = {{"odometry", "localisation.odometry"},
+              {"beacon (raw)", "localisation.beacon"},
+              {"fused (KF)", "localisation.fused"}};
+  loc.columns = {{"RMS [m]", "position_rms_m", "%.4f"},
+                 {"max [m]", "position_max_m", "%.4f"},
+                 {"final [m]", "position_final_m", "%.4f"},
+                 {"heading RMS [rad]", "heading_rms_rad", "%.4f"},
+                 {"jumps", "jumps", "%.0f"}};
+  m.AddTable(std::move(loc));
+
+  Metrics::Table beacon;
+  beacon.title =
+      std::string("Beacon samples and the gate (") + (cfg_.filter.gate ? "on" : "off") + ")";
+  beacon.rows = {{"beacon", "beacon"}};
+  for (const char* k : {"samples", "dropouts", "outliers", "accepted", "rejected",
+                        "rejected_outliers", "accepted_outliers", "reinitialisations", "faults"})
+    beacon.columns.push_back({k, k, "%.0f"});
+  m.AddTable(std::move(beacon));
+  return m;
+}
+
+}  // namespace formsim::sim::agv
