@@ -22,50 +22,6 @@ Tune Positive(double max) {
 }
 
 // A number that is not a tunable, refused outside `valid`.
-double Number(YamlReader& r, const std::string& key, double def, const Tune& valid) {
-  const double v = r.Double(key, def);
-  const std::string err = valid.Check(v);
-  if (!err.empty()) r.Fail(key, err);
-  return v;
-}
-
-int WholeNumber(YamlReader& r, const std::string& key, int def, const Tune& valid) {
-  const int v = r.Int(key, def);
-  const std::string err = valid.Check(v);
-  if (!err.empty()) r.Fail(key, err);
-  return v;
-}
-
-// A fixed-length list of numbers (the length of `def`), each refused outside `valid`.
-std::vector<double> Numbers(YamlReader& r, const std::string& key, const std::vector<double>& def,
-                            const Tune& valid) {
-  const std::vector<double> v = r.Doubles(key, def, static_cast<int>(def.size()));
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const std::string err = valid.Check(v[i]);
-    if (!err.empty()) r.Fail(key, "item " + std::to_string(i) + " " + err);
-  }
-  return v;
-}
-
-// YamlReader::Reals with one label per item (Reals numbers its items "label 0", "label 1"...):
-// item i is the tunable "key.i" labelled labels[i].
-std::vector<double> LabelledReals(YamlReader& r, const std::string& key,
-                                  const std::vector<double>& def, const Tune& tune,
-                                  const std::vector<std::string>& labels) {
-  const std::vector<double> v = Numbers(r, key, def, tune);
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    Param p;
-    p.kind = Param::Kind::kDouble;
-    p.tune = tune;
-    p.tune.label = labels[i];
-    p.value = v[i];
-    p.key = r.KeyPath(key) + "." + std::to_string(i);
-    p.in_file = r.Has(key);
-    p.tune.CheckDeclaration(p.key);
-    r.context().params.Add(std::move(p));
-  }
-  return v;
-}
 
 // A pose [x, y, θ]: x and y inside the world's bounds, θ any finite angle (wrapped).
 Pose2 ReadPose(YamlReader& r, const std::string& key) {
@@ -81,10 +37,10 @@ control::PidGains ReadPid(YamlReader& m, control::PidGains g, const std::string&
   g.kp = m.Real("kp", g.kp, Tune("kp").In(0, 1e4).Slider(0.0, 10.0).Group(group));
   g.ki = m.Real("ki", g.ki, Tune("ki").In(0, 1e4).Slider(0.0, 5.0).Group(group));
   g.kd = m.Real("kd", g.kd, Tune("kd").In(0, 1e4).Slider(0.0, 2.0).Group(group));
-  const double limit = Number(m, "limit", g.out_max, Positive(1e3));
+  const double limit = m.Double("limit", g.out_max, Positive(1e3));
   g.out_min = -limit;
   g.out_max = limit;
-  g.integral_limit = Number(m, "integral_limit", g.integral_limit, Tune().In(0, 1e3));
+  g.integral_limit = m.Double("integral_limit", g.integral_limit, Tune().In(0, 1e3));
   m.Finish();
   return g;
 }
@@ -93,9 +49,9 @@ ca::Path ReadPath(YamlReader& p) {
   const int type = p.Choice("type", {"rounded_rectangle", "polyline", "segments"}, 0);
   try {
     if (type == 0) {
-      const auto c = Numbers(p, "center", {0.0, 0.0}, kCoordinate);
-      const auto size = Numbers(p, "size", {6.0, 4.0}, kLength);
-      const double r = Number(p, "corner_radius", 0.5, kLength);
+      const auto c = p.Doubles("center", {0.0, 0.0}, kCoordinate);
+      const auto size = p.Doubles("size", {6.0, 4.0}, kLength);
+      const double r = p.Double("corner_radius", 0.5, kLength);
       const double r_max = 0.5 * std::min(size[0], size[1]);
       if (r > r_max)
         p.Fail("corner_radius", "must be in [0.001, min(size)/2 = " + FormatDouble(r_max) + "]");
@@ -109,7 +65,7 @@ ca::Path ReadPath(YamlReader& p) {
         const std::string err = kCoordinate.Check(std::max(std::abs(pts[i].x), std::abs(pts[i].y)));
         if (!err.empty()) p.Fail("points", "point " + std::to_string(i) + ": x and y " + err);
       }
-      const double r = Number(p, "corner_radius", 0.3, kLength);
+      const double r = p.Double("corner_radius", 0.3, kLength);
       const bool closed = p.Bool("closed", false);
       p.Finish();
       try {
@@ -126,7 +82,7 @@ ca::Path ReadPath(YamlReader& p) {
     for (YamlReader& s : segs) {
       try {
         if (s.Has("line")) {
-          path.AddLine(Number(s, "line", 0.0, kLength));
+          path.AddLine(s.Double("line", 0.0, kLength));
         } else if (s.Has("arc")) {
           const auto a = s.Doubles("arc", {}, 2);
           if (const std::string err = kLength.Check(a[0]); !err.empty())
@@ -156,24 +112,11 @@ ca::Path ReadPath(YamlReader& p) {
   }
 }
 
-void ReadBody(YamlReader& b, RobotDef& def) {
-  ReadRobotBody(b, def);
-  // The shared reader only asks for positive values; keep Box2D's float sizes and masses sane.
-  if (def.shape == RobotDef::Shape::kBox) {
-    for (double v : {2 * def.half_length, 2 * def.half_width})
-      if (const std::string err = kLength.Check(v); !err.empty()) b.Fail("size", err);
-  } else if (const std::string err = kLength.Check(def.radius); !err.empty()) {
-    b.Fail("radius", err);
-  }
-  if (const std::string err = Tune().In(1e-3, 1e6).Check(def.mass); !err.empty())
-    b.Fail("mass", err);
-}
-
 MecanumDriveDef ReadWheels(YamlReader& w) {
   MecanumDriveDef def = DefaultMecanumDriveDef();
-  def.geometry.wheel_radius = Number(w, "radius", def.geometry.wheel_radius, kLength);
-  def.geometry.half_wheelbase = Number(w, "half_wheelbase", def.geometry.half_wheelbase, kLength);
-  def.geometry.half_track = Number(w, "half_track", def.geometry.half_track, kLength);
+  def.geometry.wheel_radius = w.Double("radius", def.geometry.wheel_radius, kLength);
+  def.geometry.half_wheelbase = w.Double("half_wheelbase", def.geometry.half_wheelbase, kLength);
+  def.geometry.half_track = w.Double("half_track", def.geometry.half_track, kLength);
   // Each radius error is a tunable when the list is in the file: list items are addressed by
   // index, which only works when the list exists (an edit would otherwise create a map).
   const Tune error =
@@ -182,16 +125,16 @@ MecanumDriveDef ReadWheels(YamlReader& w) {
   if (w.Has("radius_error")) {
     std::vector<std::string> labels;
     for (const char* n : ca::kWheelNames) labels.push_back(std::string("radius error ") + n);
-    e = LabelledReals(w, "radius_error", {0, 0, 0, 0}, error, labels);
+    e = w.Reals("radius_error", {0, 0, 0, 0}, error, labels);
   } else {
-    e = Numbers(w, "radius_error", {0, 0, 0, 0}, error);
+    e = w.Doubles("radius_error", {0, 0, 0, 0}, error);
   }
   for (int i = 0; i < control::agv::kMecanumWheels; ++i) def.radius_error[i] = e[i];
-  def.wheel_speed_max = Number(w, "speed_max", def.wheel_speed_max, Positive(1e4));
+  def.wheel_speed_max = w.Double("speed_max", def.wheel_speed_max, Positive(1e4));
   def.motor_time_constant =
-      Number(w, "motor_time_constant", def.motor_time_constant, Tune().In(0, 100));
-  def.wheel_accel_max = Number(w, "accel_max", def.wheel_accel_max, Positive(1e6));
-  def.slip_damping = Number(w, "slip_damping", def.slip_damping, Positive(1e9));
+      w.Double("motor_time_constant", def.motor_time_constant, Tune().In(0, 100));
+  def.wheel_accel_max = w.Double("accel_max", def.wheel_accel_max, Positive(1e6));
+  def.slip_damping = w.Double("slip_damping", def.slip_damping, Positive(1e9));
   w.Finish();
   return def;
 }
@@ -243,8 +186,8 @@ ca::PoseFilterDef ReadFilter(YamlReader& e) {
   f.r_xy = e.Real("r_xy", f.r_xy, Tune("r x,y", "m").In(0, 100).Slider(1e-4, 1.0, kLog).Group(r));
   f.r_theta =
       e.Real("r_theta", f.r_theta, Tune("r θ", "rad").In(0, 100).Slider(1e-4, 1.0, kLog).Group(r));
-  f.p0_xy = Number(e, "p0_xy", f.p0_xy, Tune().In(0, 1e3));
-  f.p0_theta = Number(e, "p0_theta", f.p0_theta, Tune().In(0, 1e3));
+  f.p0_xy = e.Double("p0_xy", f.p0_xy, Tune().In(0, 1e3));
+  f.p0_theta = e.Double("p0_theta", f.p0_theta, Tune().In(0, 1e3));
   f.gate = e.Flag("gate", f.gate, Tune("innovation gate").Group(gate));
   f.gate_probability =
       e.Real("gate_probability", f.gate_probability,
@@ -255,8 +198,8 @@ ca::PoseFilterDef ReadFilter(YamlReader& e) {
   f.adaptive_r = e.Flag("adaptive_r", f.adaptive_r, Tune("adaptive R").Group(adaptive));
   f.adaptive_window = e.Integer("adaptive_window", f.adaptive_window,
                                 Tune("window").In(2, 1e6).Slider(2, 300).Group(adaptive));
-  f.adaptive_min_xy = Number(e, "adaptive_min_xy", f.adaptive_min_xy, kSigma);
-  f.adaptive_min_theta = Number(e, "adaptive_min_theta", f.adaptive_min_theta, kSigma);
+  f.adaptive_min_xy = e.Double("adaptive_min_xy", f.adaptive_min_xy, kSigma);
+  f.adaptive_min_theta = e.Double("adaptive_min_theta", f.adaptive_min_theta, kSigma);
   e.Finish();
   return f;
 }
@@ -298,7 +241,7 @@ AgvConfig ReadAgvConfig(YamlReader& root, double dt) {
   if (pose_given) cfg.body.pose = ReadPose(robot, "pose");
   {
     YamlReader b = robot.Map("body");
-    ReadBody(b, cfg.body);
+    ReadRobotBody(b, cfg.body);
   }
   {
     YamlReader e = robot.Map("encoders");
@@ -326,21 +269,21 @@ AgvConfig ReadAgvConfig(YamlReader& root, double dt) {
     YamlReader m = c.Map("heading_pid");
     t.heading = ReadPid(m, t.heading, "Gains/heading eθ");
   }
-  cfg.control_rate = Number(c, "rate", cfg.control_rate, Tune().Above(0));
+  cfg.control_rate = c.Double("rate", cfg.control_rate, Tune().Above(0));
   if (const std::string err = StepsPerPeriod(1.0 / cfg.control_rate, dt, true, &cfg.control_every);
       !err.empty())
     c.Fail("rate",
            "the control period 1/rate = " + FormatDouble(1.0 / cfg.control_rate) + " s " + err +
                (err.find("multiple") != std::string::npos ? " (e.g. rate 15 Hz with dt = 1/300 s)"
                                                           : ""));
-  t.accel = Number(c, "accel", t.accel, Positive(1e3));
-  t.v_max = Number(c, "v_max", t.v_max, Positive(100));
-  t.omega_max = Number(c, "omega_max", t.omega_max, Positive(1e3));
+  t.accel = c.Double("accel", t.accel, Positive(1e3));
+  t.v_max = c.Double("v_max", t.v_max, Positive(100));
+  t.omega_max = c.Double("omega_max", t.omega_max, Positive(1e3));
   t.heading_mode =
       static_cast<ca::PathTrackerDef::HeadingMode>(c.Choice("heading", {"tangent", "fixed"}, 0));
   t.fixed_heading = c.Double("fixed_heading", t.fixed_heading);
-  t.laps = WholeNumber(c, "laps", t.laps, Tune().In(0, 1e6));
-  t.projection_window = Number(c, "window", t.projection_window, kLength);
+  t.laps = c.Int("laps", t.laps, Tune().In(0, 1e6));
+  t.projection_window = c.Double("window", t.projection_window, kLength);
   c.Finish();
 
   {
@@ -356,8 +299,8 @@ AgvConfig ReadAgvConfig(YamlReader& root, double dt) {
   {
     YamlReader m = root.Map("metrics");
     cfg.completion_tolerance =
-        Number(m, "completion_tolerance", cfg.completion_tolerance, Positive(1e3));
-    cfg.jump_threshold = Number(m, "jump_threshold", cfg.jump_threshold, Positive(1e3));
+        m.Double("completion_tolerance", cfg.completion_tolerance, Positive(1e3));
+    cfg.jump_threshold = m.Double("jump_threshold", cfg.jump_threshold, Positive(1e3));
     m.Finish();
   }
 

@@ -24,9 +24,9 @@ Metrics AgvExperiment::Results() const {
   // Flags are 1 (true) or 0 (false): the results tree holds numbers and texts.
   m.SetText("localisation_mode", ModeName(cfg_.mode));
   m.Set("path_length_m", cfg_.path.length());
-  m.Set("tracking_finished", tracking_done_ ? 1 : 0);
+  m.SetFlag("tracking_finished", tracking_done_);
   m.Set("tracking_time_s", done_time_);
-  m.Set("loop_completed", completed() ? 1 : 0);
+  m.SetFlag("loop_completed", completed());
   m.Set("completion_tolerance_m", cfg_.completion_tolerance);
   m.Set("cross_track.rms_m", cross_track_.rms());
   m.Set("cross_track.max_m", cross_track_.max_abs);
@@ -48,8 +48,8 @@ Metrics AgvExperiment::Results() const {
   m.Set("beacon.reinitialisations", static_cast<double>(c.reinitialisations));
   m.Set("beacon.faults", static_cast<double>(c.faults));
   m.Set("beacon.nis_mean", c.accepted ? c.nis_sum / c.accepted : 0.0);
-  m.Set("filter.gate", cfg_.filter.gate ? 1 : 0);
-  m.Set("filter.adaptive_r", cfg_.filter.adaptive_r ? 1 : 0);
+  m.SetFlag("filter.gate", cfg_.filter.gate);
+  m.SetFlag("filter.adaptive_r", cfg_.filter.adaptive_r);
   m.Set("filter.r_xy_in_use_m", std::sqrt(filter_.measurement_cov()(0, 0)));
   m.Set("filter.r_theta_in_use_rad", std::sqrt(filter_.measurement_cov()(2, 2)));
 

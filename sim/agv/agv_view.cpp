@@ -17,11 +17,6 @@ constexpr int kTruthColor = 0, kRejectedColor = 1, kFusedColor = 2, kOdoColor = 
 constexpr int kBeaconColor = 5, kPathColor = 6;
 
 // A scatter of inline points (the core has builders for lines and paths only).
-SeriesSpec Markers(const std::string& label, int color) {
-  SeriesSpec s = Line(label, "", color);
-  s.markers_only = true;
-  return s;
-}
 
 }  // namespace
 

@@ -18,6 +18,12 @@ SeriesSpec Path(const std::string& label, const std::string& x_column, const std
   return s;
 }
 
+SeriesSpec Markers(const std::string& label, int color_index) {
+  SeriesSpec s = Line(label, "", color_index);
+  s.markers_only = true;
+  return s;
+}
+
 FigureSpec TimeFigure(const std::string& id, const std::string& title, const std::string& y_label,
                       std::vector<SeriesSpec> series) {
   FigureSpec f;

@@ -45,6 +45,8 @@ SeriesSpec Line(const std::string& label, const std::string& column, int color_i
 /// A series of `y_column` against `x_column` (a path in the plane).
 SeriesSpec Path(const std::string& label, const std::string& x_column, const std::string& y_column,
                 int color_index = -1, bool dashed = false);
+/// A scatter of points given inline (fill x and y), e.g. raw sensor fixes.
+SeriesSpec Markers(const std::string& label, int color_index = -1);
 /// A time plot: id, title, y label, series.
 FigureSpec TimeFigure(const std::string& id, const std::string& title, const std::string& y_label,
                       std::vector<SeriesSpec> series);

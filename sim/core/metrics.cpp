@@ -9,7 +9,7 @@ namespace formsim::sim {
 
 Metrics::Entry* Metrics::Slot(const std::string& path) {
   const auto [it, added] = index_.emplace(path, entries_.size());
-  if (added) entries_.push_back({path, false, 0.0, ""});
+  if (added) entries_.push_back(Entry{path, false, false, 0.0, ""});
   return &entries_[it->second];
 }
 
@@ -21,7 +21,15 @@ const Metrics::Entry* Metrics::Lookup(const std::string& path) const {
 void Metrics::Set(const std::string& path, double value) {
   Entry* e = Slot(path);
   e->is_text = false;
+  e->is_flag = false;
   e->value = value;
+}
+
+void Metrics::SetFlag(const std::string& path, bool value) {
+  Entry* e = Slot(path);
+  e->is_text = false;
+  e->is_flag = true;
+  e->value = value ? 1.0 : 0.0;
 }
 
 void Metrics::SetText(const std::string& path, const std::string& text) {
@@ -39,7 +47,7 @@ Json Metrics::ToJson() const {
       const std::size_t dot = e.path.find('.', start);
       const std::string seg = e.path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
       if (dot == std::string::npos) {
-        (*node)[seg] = e.is_text ? Json(e.text) : Json(e.value);
+        (*node)[seg] = e.is_text ? Json(e.text) : e.is_flag ? Json(e.value != 0) : Json(e.value);
         break;
       }
       node = &(*node)[seg];
@@ -65,6 +73,7 @@ std::string Metrics::Cell(const std::string& path, const std::string& format) co
   const Entry* e = Lookup(path);
   if (e == nullptr) return "-";
   if (e->is_text) return e->text;
+  if (e->is_flag) return e->value != 0 ? "yes" : "no";
   if (format.empty()) return FormatDouble(e->value);
   char buf[64];
   std::snprintf(buf, sizeof buf, format.c_str(), e->value);

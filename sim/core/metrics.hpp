@@ -18,6 +18,8 @@ class Metrics {
  public:
   /// A number at a dotted path (set again: replaced in place).
   void Set(const std::string& path, double value);
+  /// A yes/no value (true/false in summary.json, 1/0 in sweep tables).
+  void SetFlag(const std::string& path, bool value);
   /// A text value (a mode, an estimator name).
   void SetText(const std::string& path, const std::string& text);
   /// A line printed above the tables ("formation: bearing das, gains per sample").
@@ -54,6 +56,7 @@ class Metrics {
   struct Entry {
     std::string path;
     bool is_text = false;
+    bool is_flag = false;
     double value = 0.0;
     std::string text;
   };

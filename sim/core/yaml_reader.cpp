@@ -132,6 +132,27 @@ double YamlReader::Double(const std::string& key, double def) {
   return ToDouble(*this, key, n);
 }
 
+double YamlReader::Double(const std::string& key, double def, const Tune& valid) {
+  const double v = Double(key, def);
+  if (const std::string err = valid.Check(v); !err.empty()) Fail(key, err);
+  return v;
+}
+
+int YamlReader::Int(const std::string& key, int def, const Tune& valid) {
+  const int v = Int(key, def);
+  if (const std::string err = valid.Check(v); !err.empty()) Fail(key, err);
+  return v;
+}
+
+std::vector<double> YamlReader::Doubles(const std::string& key, const std::vector<double>& def,
+                                        const Tune& valid) {
+  const std::vector<double> v = Doubles(key, def, static_cast<int>(def.size()));
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (const std::string err = valid.Check(v[i]); !err.empty())
+      Fail(key, "item " + std::to_string(i) + " " + err);
+  return v;
+}
+
 double YamlReader::RequiredDouble(const std::string& key) {
   if (!Has(key)) Fail(key, "required number is missing");
   return Double(key, 0.0);
@@ -311,15 +332,14 @@ int YamlReader::Pick(const std::string& key, const std::vector<std::string>& cho
 }
 
 std::vector<double> YamlReader::Reals(const std::string& key, const std::vector<double>& def,
-                                      const Tune& tune) {
-  const std::vector<double> v = Doubles(key, def, static_cast<int>(def.size()));
+                                      const Tune& tune, const std::vector<std::string>& item_labels) {
+  const std::vector<double> v = Doubles(key, def, tune);
   for (std::size_t i = 0; i < v.size(); ++i) {
-    const std::string err = tune.Check(v[i]);
-    if (!err.empty()) Fail(key, "item " + std::to_string(i) + " " + err);
     Param p;
     p.kind = Param::Kind::kDouble;
     p.tune = tune;
-    if (!p.tune.label.empty()) p.tune.label += " " + std::to_string(i);
+    if (i < item_labels.size()) p.tune.label = item_labels[i];
+    else if (!p.tune.label.empty()) p.tune.label += " " + std::to_string(i);
     p.value = v[i];
     p.key = KeyPath(key) + "." + std::to_string(i);
     p.in_file = Has(key);

@@ -68,6 +68,11 @@ class YamlReader {
 
   bool Has(const std::string& key) const;
   double Double(const std::string& key, double def);
+  /// A number that is not a tunable but has a hard validity (the loader refuses the rest).
+  double Double(const std::string& key, double def, const Tune& valid);
+  int Int(const std::string& key, int def, const Tune& valid);
+  /// A fixed-length list (the length of `def`) whose items must each satisfy `valid`.
+  std::vector<double> Doubles(const std::string& key, const std::vector<double>& def, const Tune& valid);
   double RequiredDouble(const std::string& key);
   int Int(const std::string& key, int def);
   bool Bool(const std::string& key, bool def);
@@ -92,8 +97,10 @@ class YamlReader {
   bool Flag(const std::string& key, bool def, const Tune& tune);
   /// A choice among `choices`; returns the index.
   int Pick(const std::string& key, const std::vector<std::string>& choices, int def, const Tune& tune);
-  /// A fixed-length list of tunable numbers; element i is the tunable "key.i".
-  std::vector<double> Reals(const std::string& key, const std::vector<double>& def, const Tune& tune);
+  /// A fixed-length list of tunable numbers; element i is the tunable "key.i", labelled
+  /// `item_labels[i]` (default: the tune's label and the index).
+  std::vector<double> Reals(const std::string& key, const std::vector<double>& def, const Tune& tune,
+                            const std::vector<std::string>& item_labels = {});
 
   /// Sub-map (error if present and not a map). Returns an empty reader when absent.
   YamlReader Map(const std::string& key);
