@@ -3,11 +3,18 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <set>
+#include <sstream>
 
+#include "control/inspection/fuzzy_controller.hpp"
 #include "control/inspection/paper_frame.hpp"
+#include "sim/core/number_format.hpp"
+#include "sim/inspection/checked_read.hpp"
 
-namespace formsim::sim {
+namespace fs = std::filesystem;
+
+namespace formsim::sim::inspection {
 
 using control::inspection::AzimuthDirection;
 using control::inspection::Rad;
@@ -48,6 +55,59 @@ control::inspection::PostMap InspectionConfig::SurveyedMap() const {
 
 namespace {
 
+// Bounds on the generated posts: each is a Box2D body and a candidate of every identification.
+constexpr int kMaxTurnPosts = 1000;
+constexpr double kMaxPosts = 10000;
+
+// The shared readers of sim/core (robot body, obstacles) check signs only, and Box2D asserts on
+// positions beyond float range, on polygons too small for its area test and on masses it cannot
+// invert. Until the core bounds them, the kind does: lengths in [1e-3, 1e3] m, coordinates
+// within ±1e3 m, mass in [1e-3, 1e6] kg.
+const Tune kLength = Tune().In(1e-3, 1e3);
+const Tune kCoordinate = Tune().In(-1e3, 1e3);
+
+void Check(YamlReader& r, const std::string& key, const Tune& valid, double v) {
+  if (const std::string why = valid.Check(v); !why.empty()) r.Fail(key, why);
+}
+
+void CheckBody(YamlReader& b, const RobotDef& d) {
+  if (d.shape == RobotDef::Shape::kBox) {
+    Check(b, "size", kLength, 2.0 * d.half_length);
+    Check(b, "size", kLength, 2.0 * d.half_width);
+  } else {
+    Check(b, "radius", kLength, d.radius);
+  }
+  Check(b, "mass", Tune().In(1e-3, 1e6), d.mass);
+}
+
+void CheckObstacles(YamlReader& root, const std::vector<ObstacleDef>& obstacles) {
+  std::vector<YamlReader> items = root.MapList("obstacles");
+  for (std::size_t i = 0; i < obstacles.size() && i < items.size(); ++i) {
+    const ObstacleDef& o = obstacles[i];
+    YamlReader& m = items[i];
+    if (o.shape == ObstacleDef::Shape::kWall) {
+      for (const Vec2& p : o.vertices) {
+        Check(m, "points", kCoordinate, p.x);
+        Check(m, "points", kCoordinate, p.y);
+      }
+      continue;
+    }
+    Check(m, "center", kCoordinate, o.pose.x);
+    Check(m, "center", kCoordinate, o.pose.y);
+    if (o.shape == ObstacleDef::Shape::kBox) {
+      Check(m, "size", kLength, 2.0 * o.half_x);
+      Check(m, "size", kLength, 2.0 * o.half_y);
+    } else if (o.shape == ObstacleDef::Shape::kCircle) {
+      Check(m, "radius", kLength, o.radius);
+    } else {
+      for (const Vec2& p : o.vertices) {
+        Check(m, "vertices", kCoordinate, p.x);
+        Check(m, "vertices", kCoordinate, p.y);
+      }
+    }
+  }
+}
+
 // Posts along both sides of both straights and around the turn, in driving order.
 std::vector<Vec2> GeneratePosts(const InspectionConfig& c) {
   std::vector<Vec2> out;
@@ -87,35 +147,42 @@ std::vector<Vec2> GeneratePosts(const InspectionConfig& c) {
 
 InspectionConfig ReadInspectionConfig(YamlReader& root, const ExperimentSetup& setup, Rng survey) {
   InspectionConfig c;
+  const Tune& length = kLength;
+  {
+    YamlReader w = root.Map("world");
+    c.world = ReadWorldDef(w);
+  }
+  c.patches = ReadPatches(root);
   {
     YamlReader r = root.Map("route");
     const auto s = r.Doubles("start", {c.route_start.x, c.route_start.y}, 2);
+    for (double v : s) Check(r, "start", kCoordinate, v);
     c.route_start = {s[0], s[1]};
-    c.straight_length = r.Double("straight_length", c.straight_length);
-    c.turn_radius = r.Double("turn_radius", c.turn_radius);
+    c.straight_length = CheckedReal(r, "straight_length", c.straight_length, length);
+    c.turn_radius = CheckedReal(r, "turn_radius", c.turn_radius, length);
     c.turn_right = r.Choice("turn", {"left", "right"}, 1) == 1;
-    if (c.straight_length <= 0) r.Fail("straight_length", "must be positive");
-    if (c.turn_radius <= 0) r.Fail("turn_radius", "must be positive");
     r.Finish();
   }
   std::vector<std::string> omit;
   {
     YamlReader p = root.Map("posts");
-    c.post_radius = p.Double("radius", c.post_radius);
-    c.post_spacing = p.Double("spacing", c.post_spacing);
-    c.post_side_offset = p.Double("side_offset", c.post_side_offset);
+    c.post_radius = CheckedReal(p, "radius", c.post_radius, Tune().In(1e-3, 1.0));
+    c.post_spacing = CheckedReal(p, "spacing", c.post_spacing, length);
+    c.post_side_offset = CheckedReal(p, "side_offset", c.post_side_offset, length);
     c.post_stagger = p.Bool("stagger", c.post_stagger);
-    c.turn_outer = p.Int("turn_outer", c.turn_outer);
-    c.turn_inner = p.Int("turn_inner", c.turn_inner);
-    c.survey_sigma = p.Double("survey_sigma", c.survey_sigma);
+    c.turn_outer = CheckedInt(p, "turn_outer", c.turn_outer, Tune().In(0, kMaxTurnPosts));
+    c.turn_inner = CheckedInt(p, "turn_inner", c.turn_inner, Tune().In(0, kMaxTurnPosts));
+    c.survey_sigma = p.Real("survey_sigma", c.survey_sigma,
+                            Tune("post survey error σ", "m").AtLeast(0).AtMost(10).Slider(0.0, 0.2)
+                                .Group("Noise/survey").OnReset());
     omit = p.Strings("omit", {});
-    if (c.post_radius <= 0 || c.post_radius > 1.0) p.Fail("radius", "must be in (0, 1] m");
     if (c.post_spacing < 4.0 * c.post_radius)
       p.Fail("spacing", "must be at least two post diameters");
     if (c.post_side_offset <= c.post_radius) p.Fail("side_offset", "must exceed the post radius");
-    if (c.turn_outer < 0) p.Fail("turn_outer", "must be >= 0");
-    if (c.turn_inner < 0) p.Fail("turn_inner", "must be >= 0");
-    if (c.survey_sigma < 0) p.Fail("survey_sigma", "must be >= 0");
+    const double per_side = std::floor(c.straight_length / c.post_spacing + 1e-9) + 1.0;
+    if (4.0 * per_side > kMaxPosts)
+      p.Fail("spacing", "gives " + FormatDouble(4.0 * per_side) + " posts along the straights (at most " +
+                            FormatDouble(kMaxPosts) + "): increase the spacing");
     const std::vector<Vec2> pos = GeneratePosts(c);
     std::set<std::string> names;
     for (std::size_t i = 0; i < pos.size(); ++i) {
@@ -135,6 +202,12 @@ InspectionConfig ReadInspectionConfig(YamlReader& root, const ExperimentSetup& s
                "no post named '" + name + "' (posts are P1..P" + std::to_string(pos.size()) + ")");
     p.Finish();
   }
+  c.obstacles = ReadObstacles(root);
+  CheckObstacles(root, c.obstacles);
+  for (const ObstacleDef& o : c.obstacles)
+    for (const InspectionPost& p : c.posts)
+      if (o.name == p.name)
+        root.Fail("obstacles", "obstacle name '" + o.name + "' is taken by a reference post");
   {
     YamlReader r = root.Map("robot");
     c.body = DefaultRobotDef();
@@ -154,13 +227,14 @@ InspectionConfig ReadInspectionConfig(YamlReader& root, const ExperimentSetup& s
     start.Finish();
     YamlReader body = r.Map("body");
     ReadRobotBody(body, c.body);
+    CheckBody(body, c.body);
     YamlReader drive = r.Map("drive");
     c.drive = ReadSteeredDrive(drive);
     r.Finish();
   }
   {
     YamlReader l = root.Map("laser");
-    c.laser = ReadLaserScanner(l);
+    c.laser = ReadLaserScanner(l, setup.dt, &c.laser_every);
   }
   {
     YamlReader o = root.Map("odometry");
@@ -168,100 +242,105 @@ InspectionConfig ReadInspectionConfig(YamlReader& root, const ExperimentSetup& s
   }
   {
     YamlReader l = root.Map("localisation");
+    const std::string g = "Localisation/laser";
     auto& d = c.detector;
-    d.min_beams = l.Int("min_beams", d.min_beams);
-    d.cluster_jump = l.Double("cluster_jump", d.cluster_jump);
-    d.span_tolerance = l.Double("span_tolerance", d.span_tolerance);
-    d.fit_tolerance = l.Double("fit_tolerance", d.fit_tolerance);
-    d.gate = l.Double("gate", d.gate);
-    c.range_tolerance = l.Double("range_tolerance", c.range_tolerance);
-    c.min_subtended_deg = l.Double("min_subtended_deg", c.min_subtended_deg);
-    c.angle_tolerance_deg = l.Double("angle_tolerance_deg", c.angle_tolerance_deg);
-    c.max_range = l.Double("max_range", c.max_range);
-    if (d.min_beams < 1) l.Fail("min_beams", "must be >= 1");
-    if (d.cluster_jump <= 0) l.Fail("cluster_jump", "must be positive");
-    if (d.span_tolerance < 0) l.Fail("span_tolerance", "must be >= 0");
-    if (d.fit_tolerance <= 0) l.Fail("fit_tolerance", "must be positive");
-    if (d.gate <= 0) l.Fail("gate", "must be positive");
+    d.gate = l.Real("gate", d.gate, Tune("identification gate", "m").Above(0).AtMost(1e3).Slider(0.05, 1.4).Group(g));
     if (d.gate >= 0.5 * c.post_spacing)
       l.Fail("gate", "must be below half the post spacing, else neighbouring posts are confused");
-    if (c.range_tolerance < 0) l.Fail("range_tolerance", "must be >= 0");
-    if (c.min_subtended_deg <= 0 || c.min_subtended_deg >= 90)
-      l.Fail("min_subtended_deg", "must be in (0, 90)");
-    if (c.angle_tolerance_deg <= 0) l.Fail("angle_tolerance_deg", "must be positive");
-    if (c.max_range <= 0) l.Fail("max_range", "must be positive");
+    d.fit_tolerance = l.Real("fit_tolerance", d.fit_tolerance,
+                             Tune("circle fit tolerance", "m").Above(0).AtMost(10).Slider(0.005, 0.2).Group(g));
+    d.min_beams = l.Integer("min_beams", d.min_beams,
+                            Tune("min beams per post").AtLeast(1).AtMost(10000).Slider(1, 10).Group(g));
+    c.max_range = l.Real("max_range", c.max_range,
+                         Tune("max post range", "m").Above(0).AtMost(1e3).Slider(1.0, 30.0).Group(g));
+    c.min_subtended_deg =
+        l.Real("min_subtended_deg", c.min_subtended_deg,
+               Tune("min angle between posts", "deg").Above(0).Below(90).Slider(1.0, 89.0).Group(g));
+    c.angle_tolerance_deg =
+        l.Real("angle_tolerance_deg", c.angle_tolerance_deg,
+               Tune("angle consistency", "deg").Above(0).AtMost(180).Slider(0.1, 20.0).Group(g));
+    c.range_tolerance = l.Real("range_tolerance", c.range_tolerance,
+                               Tune("circle miss tolerance", "m").AtLeast(0).AtMost(10).Slider(0.0, 0.5).Group(g));
+    d.cluster_jump = CheckedReal(l, "cluster_jump", d.cluster_jump, Tune().Above(0).AtMost(1e3));
+    d.span_tolerance = CheckedReal(l, "span_tolerance", d.span_tolerance, Tune().AtLeast(0).AtMost(1e3));
     l.Finish();
   }
   {
     YamlReader e = root.Map("estimation");
-    c.source = e.Choice("controller_source", NavSourceNames(), c.source);
+    c.source = e.Pick("controller_source", NavSourceNames(), c.source,
+                      Tune("controller uses").Group("Estimation/source"));
     YamlReader k = e.Map("kalman");
+    const std::string gk = "Estimation/Kalman";
     auto& kf = c.kalman;
-    kf.q_per_m = k.Double("q_per_m", kf.q_per_m);
-    kf.q_per_s = k.Double("q_per_s", kf.q_per_s);
-    kf.r = k.Double("r", kf.r);
-    kf.p0 = k.Double("p0", kf.p0);
-    kf.nis_gate = k.Double("nis_gate", kf.nis_gate);
-    kf.reacquire_after = k.Int("reacquire_after", kf.reacquire_after);
-    if (kf.q_per_m < 0) k.Fail("q_per_m", "must be >= 0");
-    if (kf.q_per_s < 0) k.Fail("q_per_s", "must be >= 0");
-    if (kf.r <= 0) k.Fail("r", "must be positive (a variance)");
-    if (kf.p0 <= 0) k.Fail("p0", "must be positive (a variance)");
-    if (kf.reacquire_after < 1) k.Fail("reacquire_after", "must be >= 1");
+    kf.q_per_m = k.Real("q_per_m", kf.q_per_m,
+                        Tune("Q per metre", "m²/m").AtLeast(0).AtMost(100).Slider(1e-7, 1e-1, kLog).Group(gk));
+    kf.q_per_s = k.Real("q_per_s", kf.q_per_s,
+                        Tune("Q per second", "m²/s").AtLeast(0).AtMost(100).Slider(1e-8, 1e-1, kLog).Group(gk));
+    kf.r = k.Real("r", kf.r, Tune("R (fix variance)", "m²").In(1e-10, 100).Slider(1e-6, 1.0, kLog).Group(gk));
+    kf.nis_gate = k.Real("nis_gate", kf.nis_gate,
+                         Tune("innovation gate (≤0 off)").In(-1e6, 1e6).Slider(0.0, 100.0).Group(gk));
+    kf.reacquire_after = k.Integer("reacquire_after", kf.reacquire_after,
+                                   Tune("re-init after gated").AtLeast(1).AtMost(1000000).Slider(1, 200).Group(gk));
+    kf.p0 = CheckedReal(k, "p0", kf.p0, Tune().In(1e-10, 1e6));
     k.Finish();
     YamlReader cl = e.Map("classical");
-    c.limit.max_step = cl.Double("limit_step", c.limit.max_step);
-    c.limit.max_rate = cl.Double("limit_rate", c.limit.max_rate);
-    c.limit.reacquire_after = cl.Int("reacquire_after", c.limit.reacquire_after);
-    c.mean_window = cl.Int("mean_window", c.mean_window);
-    if (c.limit.max_step <= 0) cl.Fail("limit_step", "must be positive");
-    if (c.limit.max_rate < 0) cl.Fail("limit_rate", "must be >= 0");
-    if (c.limit.reacquire_after < 1) cl.Fail("reacquire_after", "must be >= 1");
-    if (c.mean_window < 1 || c.mean_window > 100) cl.Fail("mean_window", "must be in [1, 100]");
+    const std::string gc = "Estimation/classical";
+    c.limit.max_step = cl.Real("limit_step", c.limit.max_step,
+                               Tune("limit step", "m").Above(0).AtMost(1e3).Slider(0.01, 2.0).Group(gc));
+    c.limit.max_rate = cl.Real("limit_rate", c.limit.max_rate,
+                               Tune("limit rate", "m/s").AtLeast(0).AtMost(1e3).Slider(0.0, 5.0).Group(gc));
+    c.mean_window = cl.Integer("mean_window", c.mean_window, Tune("mean window").In(1, 100).Slider(1, 50).Group(gc));
+    c.limit.reacquire_after =
+        CheckedInt(cl, "reacquire_after", c.limit.reacquire_after, Tune().AtLeast(1).AtMost(1000000));
     cl.Finish();
     YamlReader h = e.Map("heading");
-    c.heading_limit_deg = h.Double("limit_deg", c.heading_limit_deg);
-    c.heading_window = h.Int("mean_window", c.heading_window);
-    c.heading_reacquire = h.Int("reacquire_after", c.heading_reacquire);
-    if (c.heading_limit_deg <= 0) h.Fail("limit_deg", "must be positive");
-    if (c.heading_window < 1 || c.heading_window > 100)
-      h.Fail("mean_window", "must be in [1, 100]");
-    if (c.heading_reacquire < 1) h.Fail("reacquire_after", "must be >= 1");
+    const std::string gh = "Estimation/heading";
+    c.heading_limit_deg = h.Real("limit_deg", c.heading_limit_deg,
+                                 Tune("heading limit", "deg").Above(0).AtMost(180).Slider(0.5, 45.0).Group(gh));
+    c.heading_window =
+        h.Integer("mean_window", c.heading_window, Tune("heading mean window").In(1, 100).Slider(1, 50).Group(gh));
+    c.heading_reacquire =
+        CheckedInt(h, "reacquire_after", c.heading_reacquire, Tune().AtLeast(1).AtMost(1000000));
     h.Finish();
     e.Finish();
   }
   {
     YamlReader r = root.Map("control");
-    c.control_rate_hz = r.Double("rate_hz", c.control_rate_hz);
-    c.feedforward = r.Bool("feedforward", c.feedforward);
-    if (c.control_rate_hz <= 0) r.Fail("rate_hz", "must be positive");
-    if (c.control_rate_hz > 1.0 / setup.dt + 1e-9)
-      r.Fail("rate_hz", "cannot exceed the world step rate 1/dt");
-    if (c.laser.rate_hz > 1.0 / setup.dt + 1e-9)
-      root.Map("laser").Fail("rate_hz", "cannot exceed the world step rate 1/dt");
+    const std::string g = "Gains/fuzzy";
+    c.feedforward = r.Flag("feedforward", c.feedforward, Tune("turn feed-forward").Group(g));
+    c.control_rate_hz = r.Real("rate_hz", c.control_rate_hz,
+                               Tune("control rate", "Hz").Above(0).AtMost(1e6).Slider(1.0, 50.0).Group(g));
+    c.control_every = RateSteps(r, "rate_hz", c.control_rate_hz, setup.dt);
     r.Finish();
   }
   {
     YamlReader f = root.Map("fuzzy");
-    const std::string file = f.String("file", "../fuzzy/inspection.fll");
-    c.fuzzy_reload = f.Bool("reload", false);
-    std::filesystem::path p(file);
-    if (p.is_relative()) p = std::filesystem::path(setup.file).parent_path() / p;
-    if (!std::filesystem::is_regular_file(p))
-      f.Fail("file", "cannot open the rule base '" + p.string() +
+    c.fuzzy_file = fs::path(f.FilePath("file", "../fuzzy/inspection.fll")).lexically_normal().string();
+    std::error_code ec;
+    if (!fs::is_regular_file(c.fuzzy_file, ec))
+      f.Fail("file", "cannot open the rule base '" + c.fuzzy_file +
                          "' (relative paths start at the scenario's folder)");
-    c.fuzzy_file = p.lexically_normal().string();
+    std::ifstream in(c.fuzzy_file, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (!in.good() && !in.eof()) f.Fail("file", "cannot read the rule base '" + c.fuzzy_file + "'");
+    c.fuzzy_text = text.str();
+    // Checked here, so that a broken rule base is a scenario error at this key (also on reset).
+    try {
+      control::inspection::FuzzyController check;
+      check.LoadText(c.fuzzy_text, c.fuzzy_file);
+    } catch (const std::exception& e) {
+      f.Fail("file", e.what());
+    }
     f.Finish();
   }
   {
     YamlReader m = root.Map("metrics");
-    c.lateral_bound = m.Double("lateral_bound", c.lateral_bound);
-    c.transient_m = m.Double("transient_m", c.transient_m);
-    if (c.lateral_bound <= 0) m.Fail("lateral_bound", "must be positive");
-    if (c.transient_m < 0) m.Fail("transient_m", "must be >= 0");
+    c.lateral_bound = CheckedReal(m, "lateral_bound", c.lateral_bound, Tune().Above(0).AtMost(1e3));
+    c.transient_m = CheckedReal(m, "transient_m", c.transient_m, Tune().AtLeast(0).AtMost(1e4));
     m.Finish();
   }
   return c;
 }
 
-}  // namespace formsim::sim
+}  // namespace formsim::sim::inspection

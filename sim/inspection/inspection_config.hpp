@@ -1,5 +1,6 @@
 #pragma once
-/// \file The inspection scenario (type "inspection"), read strictly from YAML. Keys (defaults in
+/// \file The inspection scenario (type "inspection"), read strictly from YAML; the reader also
+/// declares every tunable of the kind (label, unit, validity, slider, group). Keys (defaults in
 /// InspectionConfig; angles in degrees, distances in metres):
 ///   route:        {start: [x, y], straight_length, turn_radius, turn: right|left}
 ///   posts:        {radius, spacing, side_offset, stagger, turn_outer, turn_inner, omit: [names],
@@ -15,8 +16,15 @@
 ///                  kalman: {q_per_m, q_per_s, r, p0, nis_gate, reacquire_after},
 ///                  classical: {limit_step, limit_rate, mean_window, reacquire_after},
 ///                  heading: {limit_deg, mean_window, reacquire_after}}
-///   control:      {rate_hz, feedforward}   fuzzy: {file, reload}
+///   control:      {rate_hz, feedforward}
+///   fuzzy:        {file}   the FLL rule base, relative to the scenario's folder (Save rewrites
+///                 it); it is loaded and checked by the reader. Reloading it during a run is
+///                 the experiment's action "reload_rules", not a key.
 ///   metrics:      {lateral_bound, transient_m}
+/// Every number has a hard validity (Tune) that keeps the run finite: lengths within
+/// [1e-3, 1e3] m, coordinates within ±1e3 m (also of the robot body and the obstacles, which
+/// the shared readers do not bound yet), mass in [1e-3, 1e6] kg, rates that give between 1 and
+/// 10^8 world steps per period, probabilities in [0, 1], bounded noise.
 
 #include <string>
 #include <vector>
@@ -31,7 +39,7 @@
 #include "sim/inspection/steered_drive.hpp"
 #include "sim/inspection/wheel_odometry.hpp"
 
-namespace formsim::sim {
+namespace formsim::sim::inspection {
 
 /// A reference post: where it stands, and where the survey says it stands.
 struct InspectionPost {
@@ -45,6 +53,10 @@ enum class NavSource { kKalman, kClassical, kRaw, kDeadReckoning, kTruth };
 const std::vector<std::string>& NavSourceNames();
 
 struct InspectionConfig {
+  // World: floor, the user's obstacles (cabinets...) and patches (the posts are added).
+  WorldDef world;
+  std::vector<ObstacleDef> obstacles;
+  std::vector<PatchDef> patches;
   // Route (Fig. 7).
   Vec2 route_start{3.3, 2.0};
   double straight_length = 18.0;
@@ -81,9 +93,11 @@ struct InspectionConfig {
   int heading_reacquire = 10;
   // Control.
   double control_rate_hz = 5.0;
+  int control_every = 20;  ///< world steps per control period
+  int laser_every = 2;     ///< world steps per scan
   bool feedforward = true;
   std::string fuzzy_file;  ///< resolved path
-  bool fuzzy_reload = false;
+  std::string fuzzy_text;  ///< the rule base as read (and checked) by the reader
   // Metrics.
   double lateral_bound = 0.3;  ///< |true lateral offset| allowed after the transient, m
   double transient_m = 6.0;    ///< start transient excluded from the tracking metrics, m of route
@@ -94,7 +108,8 @@ struct InspectionConfig {
   control::inspection::PostMap SurveyedMap() const;
 };
 
-/// Reads everything but the loader's root keys. `survey` draws the survey errors.
+/// Reads everything but the loader's root keys (strict) and declares the tunables. `survey`
+/// draws the survey errors of the posts. Throws ScenarioError.
 InspectionConfig ReadInspectionConfig(YamlReader& root, const ExperimentSetup& setup, Rng survey);
 
-}  // namespace formsim::sim
+}  // namespace formsim::sim::inspection

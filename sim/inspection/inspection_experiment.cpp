@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <limits>
+#include <string>
 
 #include "control/common/angle.hpp"
 #include "control/inspection/paper_frame.hpp"
 
-namespace formsim::sim {
+namespace formsim::sim::inspection {
+
+FORMSIM_REGISTER_EXPERIMENT("inspection", InspectionExperiment);
 
 namespace ins = control::inspection;
 using control::AngleDiff;
@@ -17,51 +19,34 @@ using ins::Rad;
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// Recorder columns, in declaration order (see the header for their meaning).
-// clang-format off
-enum Col {
-  kT, kTrueX, kTrueY, kTrueHeading, kRawX, kRawY, kRawHeading, kClassicX, kClassicY, kKfX, kKfY,
-  kKfSdX, kKfSdY, kDrX, kDrY, kEstHeading, kErrRaw, kErrClassic, kErrKf, kErrDr, kSTrue,
-  kDphiTrue, kSCtrl, kDphiCtrl, kFzU1, kFzU2, kFzU3, kU1, kU2, kU3, kSteer, kSpeed, kPostsSeen,
-  kFix, kTurnDr, kTurnDphi, kSlipping, kProgress, kRawEx, kRawEy, kClassicEx, kClassicEy, kKfEx,
-  kKfEy, kS1RawX, kS1ClassicX, kS1KfX, kS1TrueX, kS1RawY, kS1ClassicY, kS1KfY, kS1TrueY,
-  kColumnCount,
-};
-const char* const kColumnNames[kColumnCount] = {
-    "t", "true_x", "true_y", "true_heading_deg", "raw_x", "raw_y", "raw_heading_deg",
-    "classic_x", "classic_y", "kf_x", "kf_y", "kf_sd_x", "kf_sd_y", "dr_x", "dr_y",
-    "est_heading_deg", "err_raw", "err_classic", "err_kf", "err_dr", "s_true", "dphi_true_deg",
-    "s_ctrl", "dphi_ctrl_deg", "fz_u1", "fz_u2", "fz_u3", "u1", "u2", "u3", "steer_deg", "speed",
-    "posts_seen", "fix", "turn_dr", "turn_dphi_deg", "slipping", "progress", "raw_ex", "raw_ey",
-    "classic_ex", "classic_ey", "kf_ex", "kf_ey", "s1_raw_x", "s1_classic_x", "s1_kf_x",
-    "s1_true_x", "s1_raw_y", "s1_classic_y", "s1_kf_y", "s1_true_y",
-};
-// clang-format on
-
-int StepsPer(double rate_hz, double dt) {
-  return std::max(1, static_cast<int>(std::lround(1.0 / (rate_hz * dt))));
-}
+constexpr const char* kReloadAction = "reload_rules";
 
 }  // namespace
 
-InspectionExperiment::InspectionExperiment(const ExperimentSetup& setup, YamlReader& root)
-    : Experiment(setup),
-      cfg_(ReadInspectionConfig(root, setup, rng_.Fork(3))),
+InspectionExperiment::InspectionExperiment(const ExperimentSetup& setup, const InspectionConfig& config)
+    : ExperimentOf(setup, config),
       laser_(cfg_.laser, rng_.Fork(1)),
       odometry_(cfg_.odometry, rng_.Fork(2)) {
+  BuildWorld();
+  // The reader loaded and checked this text already; a failure here is a programming error.
+  fuzzy_.LoadText(cfg_.fuzzy_text, cfg_.fuzzy_file);
+  // The system is given its initial position and heading (paper section 1.3).
+  Configure();
+  kf_.Reset(initial_pose_.p());
+  heading_.Reset(initial_pose_.theta);
+  dr_.Reset(initial_pose_);
+  classic_nav_ = raw_nav_ = initial_pose_;
+  no_rule_ = events_.DeclareCondition("fuzzy_no_rule", robot_->name());
+  filter_fault_ = events_.DeclareCondition(event::kFilterFault, robot_->name());
+  DeclareChannels();
+  Start();
+}
+
+void InspectionExperiment::BuildWorld() {
   // World: floor, patches, the user's obstacles (cabinets...), then the reference posts.
-  YamlReader world = root.Map("world");
-  world_.SetDef(ReadWorldDef(world));
-  for (const PatchDef& p : ReadPatches(root)) world_.CreatePatch(p);
-  const std::vector<ObstacleDef> obstacles = ReadObstacles(root);
-  for (const ObstacleDef& o : obstacles) {
-    for (const InspectionPost& p : cfg_.posts)
-      if (o.name == p.name)
-        root.Fail("obstacles", "obstacle name '" + o.name + "' is taken by a reference post");
-    world_.CreateObstacle(o);
-  }
+  world_.SetDef(cfg_.world);
+  for (const PatchDef& p : cfg_.patches) world_.CreatePatch(p);
+  for (const ObstacleDef& o : cfg_.obstacles) world_.CreateObstacle(o);
   for (const InspectionPost& p : cfg_.posts) {
     ObstacleDef def = DefaultObstacleDef();
     def.name = p.name;
@@ -91,40 +76,9 @@ InspectionExperiment::InspectionExperiment(const ExperimentSetup& setup, YamlRea
   drive_ = drive.get();
   drive_->SetCommand(0.0, 0.0, cfg_.drive.servo_center);
   robot_->SetDrive(std::move(drive));
-  fz_.u1 = fz_.u2 = fz_.u3 = kNaN;  // no decision yet
-
-  try {
-    fuzzy_.LoadFile(cfg_.fuzzy_file);
-  } catch (const std::exception& e) {
-    root.Map("fuzzy").Fail("file", e.what());
-  }
-  cfg_.fuzzy_reload = false;
-
-  // The system is given its initial position and heading (paper section 1.3).
-  kf_.Reset(initial_pose_.p());
-  heading_.Reset(initial_pose_.theta);
-  dr_.Reset(initial_pose_);
-  classic_nav_ = raw_nav_ = initial_pose_;
-  SyncSettings();
-  RegisterParams();
-  DeclareColumns();
-  Start();
 }
 
-void InspectionExperiment::SyncSettings() {
-  // Live edits may leave a value outside its meaningful range: bring it back rather than fail.
-  cfg_.control_rate_hz = std::clamp(cfg_.control_rate_hz, 0.1, 1.0 / setup_.dt);
-  cfg_.laser.rate_hz = std::clamp(cfg_.laser.rate_hz, 0.1, 1.0 / setup_.dt);
-  cfg_.laser.resolution_deg = std::clamp(cfg_.laser.resolution_deg, 0.05, 10.0);
-  cfg_.kalman.r = std::max(cfg_.kalman.r, 1e-10);
-  cfg_.kalman.q_per_m = std::max(cfg_.kalman.q_per_m, 0.0);
-  cfg_.kalman.q_per_s = std::max(cfg_.kalman.q_per_s, 0.0);
-  cfg_.kalman.reacquire_after = std::max(cfg_.kalman.reacquire_after, 1);
-  cfg_.mean_window = std::clamp(cfg_.mean_window, 1, 100);
-  cfg_.heading_window = std::clamp(cfg_.heading_window, 1, 100);
-  cfg_.detector.min_beams = std::max(cfg_.detector.min_beams, 1);
-  cfg_.drive.speed_per_level = std::max(cfg_.drive.speed_per_level, 0.0);
-  cfg_.drive.steer_per_unit_deg = std::max(cfg_.drive.steer_per_unit_deg, 1e-4);
+void InspectionExperiment::Configure() {
   drive_->def() = cfg_.drive;
   laser_.def() = cfg_.laser;
   odometry_.def() = cfg_.odometry;
@@ -132,115 +86,104 @@ void InspectionExperiment::SyncSettings() {
   classic_.Configure(cfg_.limit, cfg_.mean_window);
   heading_.SetDef(cfg_.Heading());
   tri_ = cfg_.Trilateration();
-  control_every_ = StepsPer(cfg_.control_rate_hz, setup_.dt);
-  laser_every_ = StepsPer(cfg_.laser.rate_hz, setup_.dt);
+  control_rate_ = MultiRate(cfg_.control_every);
+  laser_rate_ = MultiRate(cfg_.laser_every);
 }
 
-void InspectionExperiment::OnParamsChanged() {
-  SyncSettings();
-  if (cfg_.fuzzy_reload) {
-    cfg_.fuzzy_reload = false;
-    const std::string err = ReloadFuzzy();
-    if (err.empty()) {
-      AddEvent("fuzzy_reloaded", robot_->name(), "rule base reloaded from " + cfg_.fuzzy_file);
-    } else {
-      AddEvent("fuzzy_reload_failed", robot_->name(), err + " (the previous rule base stays)");
-    }
-  }
+void InspectionExperiment::ApplyTunables(const InspectionConfig& next) {
+  // The posts (survey errors) apply on reset only and are unchanged in `next`; the rule base
+  // stays as loaded (reloading it is the action).
+  cfg_ = next;
+  Configure();
 }
 
-std::string InspectionExperiment::ReloadFuzzy() {
+std::vector<ActionSpec> InspectionExperiment::Actions() const {
+  return {{kReloadAction, "Reload rule base (FLL)", "Gains/fuzzy",
+           "Re-reads " + cfg_.fuzzy_file + " between two steps; a bad file keeps the current rules"}};
+}
+
+std::string InspectionExperiment::RunAction(const std::string& id) {
+  if (id != kReloadAction) return Experiment::RunAction(id);
   try {
-    fuzzy_.LoadFile(cfg_.fuzzy_file);
+    fuzzy_.LoadFile(cfg_.fuzzy_file);  // keeps the previous engine on any error
   } catch (const std::exception& e) {
+    AddEvent("fuzzy_reload_failed", robot_->name(), std::string(e.what()) + " (the previous rule base stays)");
     return e.what();
   }
-  return std::string();
+  AddEvent("fuzzy_reloaded", robot_->name(), "rule base reloaded from " + cfg_.fuzzy_file);
+  return "";
 }
 
-void InspectionExperiment::RegisterParams() {
-  auto& d = cfg_.drive;
-  params_.AddDouble("robot.drive.speed_per_level", "Gains/vehicle scales", "speed per level",
-                    &d.speed_per_level, 0.02, 0.4, "m/s");
-  params_.AddDouble("robot.drive.steer_per_unit_deg", "Gains/vehicle scales",
-                    "steer per servo unit", &d.steer_per_unit_deg, 0.05, 0.5, "deg");
-  params_.AddDouble("robot.drive.servo_center", "Gains/vehicle scales", "servo centre",
-                    &d.servo_center, 300, 420);
-  params_.AddDouble("robot.drive.steer_rate_deg_s", "Gains/vehicle scales", "servo slew rate",
-                    &d.steer_rate_deg_s, 10, 360, "deg/s");
-  params_.AddDouble("robot.drive.motor_force_max", "Gains/vehicle scales", "motor force limit",
-                    &d.motor_force_max, 5, 200, "N");
-  params_.AddBool("fuzzy.reload", "Gains/fuzzy", "reload rule base (FLL)", &cfg_.fuzzy_reload);
-  params_.AddBool("control.feedforward", "Gains/fuzzy", "turn feed-forward", &cfg_.feedforward);
-  params_.AddDouble("control.rate_hz", "Gains/fuzzy", "control rate", &cfg_.control_rate_hz, 1, 50,
-                    "Hz");
-  auto& l = cfg_.laser;
-  params_.AddDouble("laser.range_sigma", "Noise/laser", "range noise σ", &l.range_sigma, 0.0, 0.2,
-                    "m");
-  params_.AddDouble("laser.angle_sigma_deg", "Noise/laser", "beam jitter σ", &l.angle_sigma_deg,
-                    0.0, 1.0, "deg");
-  params_.AddDouble("laser.outlier_prob", "Noise/laser", "outlier probability", &l.outlier_prob,
-                    0.0, 0.05);
-  params_.AddDouble("laser.outlier_sigma", "Noise/laser", "outlier σ", &l.outlier_sigma, 0.0, 2.0,
-                    "m");
-  params_.AddDouble("laser.resolution_deg", "Noise/laser", "angular resolution", &l.resolution_deg,
-                    0.1, 2.0, "deg");
-  params_.AddDouble("laser.range_max", "Noise/laser", "max range", &l.range_max, 2.0, 30.0, "m");
-  params_.AddDouble("laser.rate_hz", "Noise/laser", "scan rate", &l.rate_hz, 1.0, 100.0, "Hz");
-  auto& o = cfg_.odometry;
-  params_.AddDouble("odometry.sigma_per_sqrt_m", "Noise/odometry", "encoder noise",
-                    &o.sigma_per_sqrt_m, 0.0, 0.05, "m/√m");
-  params_.AddDouble("odometry.scale_error_left", "Noise/odometry", "left scale error",
-                    &o.scale_error_left, -0.1, 0.1);
-  params_.AddDouble("odometry.scale_error_right", "Noise/odometry", "right scale error",
-                    &o.scale_error_right, -0.1, 0.1);
-  params_
-      .AddDouble("posts.survey_sigma", "Noise/survey", "post survey error σ", &cfg_.survey_sigma,
-                 0.0, 0.2, "m")
-      .requires_reset = true;
-  auto& det = cfg_.detector;
-  params_.AddDouble("localisation.gate", "Localisation/laser", "identification gate", &det.gate,
-                    0.05, 1.4, "m");
-  params_.AddDouble("localisation.fit_tolerance", "Localisation/laser", "circle fit tolerance",
-                    &det.fit_tolerance, 0.005, 0.2, "m");
-  params_.AddInt("localisation.min_beams", "Localisation/laser", "min beams per post",
-                 &det.min_beams, 1, 10);
-  params_.AddDouble("localisation.max_range", "Localisation/laser", "max post range",
-                    &cfg_.max_range, 1.0, 30.0, "m");
-  params_.AddDouble("localisation.min_subtended_deg", "Localisation/laser",
-                    "min angle between posts", &cfg_.min_subtended_deg, 1.0, 89.0, "deg");
-  params_.AddDouble("localisation.angle_tolerance_deg", "Localisation/laser", "angle consistency",
-                    &cfg_.angle_tolerance_deg, 0.1, 20.0, "deg");
-  params_.AddDouble("localisation.range_tolerance", "Localisation/laser", "circle miss tolerance",
-                    &cfg_.range_tolerance, 0.0, 0.5, "m");
-  params_.AddChoice("estimation.controller_source", "Estimation/source", "controller uses",
-                    &cfg_.source, NavSourceNames());
-  auto& k = cfg_.kalman;
-  params_.AddDouble("estimation.kalman.q_per_m", "Estimation/Kalman", "Q per metre", &k.q_per_m,
-                    1e-7, 1e-1, "m²/m", true);
-  params_.AddDouble("estimation.kalman.q_per_s", "Estimation/Kalman", "Q per second", &k.q_per_s,
-                    1e-8, 1e-1, "m²/s", true);
-  params_.AddDouble("estimation.kalman.r", "Estimation/Kalman", "R (fix variance)", &k.r, 1e-6, 1.0,
-                    "m²", true);
-  params_.AddDouble("estimation.kalman.nis_gate", "Estimation/Kalman", "innovation gate (≤0 off)",
-                    &k.nis_gate, 0.0, 100.0);
-  params_.AddInt("estimation.kalman.reacquire_after", "Estimation/Kalman", "re-init after gated",
-                 &k.reacquire_after, 1, 200);
-  params_.AddDouble("estimation.classical.limit_step", "Estimation/classical", "limit step",
-                    &cfg_.limit.max_step, 0.01, 2.0, "m");
-  params_.AddDouble("estimation.classical.limit_rate", "Estimation/classical", "limit rate",
-                    &cfg_.limit.max_rate, 0.0, 5.0, "m/s");
-  params_.AddInt("estimation.classical.mean_window", "Estimation/classical", "mean window",
-                 &cfg_.mean_window, 1, 50);
-  params_.AddDouble("estimation.heading.limit_deg", "Estimation/heading", "heading limit",
-                    &cfg_.heading_limit_deg, 0.5, 45.0, "deg");
-  params_.AddInt("estimation.heading.mean_window", "Estimation/heading", "heading mean window",
-                 &cfg_.heading_window, 1, 50);
-}
-
-void InspectionExperiment::DeclareColumns() {
-  cols_.resize(kColumnCount);
-  for (int c = 0; c < kColumnCount; ++c) cols_[c] = recorder_.AddColumn(kColumnNames[c]);
+void InspectionExperiment::DeclareChannels() {
+  Recorder& r = recorder_;
+  r.AddGroup({"true_x", "true_y", "true_heading_deg"}, [this](double* o) {
+    const ins::PaperPose p = TruePose();
+    o[0] = p.x, o[1] = p.y, o[2] = Deg(p.theta);
+  });
+  r.AddGroup({"raw_x", "raw_y", "raw_heading_deg"}, [this](double* o) {
+    if (!raw_row_) return;
+    o[0] = raw_.x, o[1] = raw_.y, o[2] = Deg(raw_heading_);
+  });
+  r.AddGroup({"classic_x", "classic_y"}, [this](double* o) {
+    if (!classic_.has_value()) return;
+    o[0] = classic_.value().x, o[1] = classic_.value().y;
+  });
+  r.AddGroup({"kf_x", "kf_y", "kf_sd_x", "kf_sd_y"}, [this](double* o) {
+    o[0] = kf_.position().x, o[1] = kf_.position().y;
+    o[2] = std::sqrt(kf_.axis_x().P()), o[3] = std::sqrt(kf_.axis_y().P());
+  });
+  r.AddGroup({"dr_x", "dr_y"}, [this](double* o) { o[0] = dr_.pose().x, o[1] = dr_.pose().y; });
+  r.Add("est_heading_deg", [this] { return Deg(heading_.value()); });
+  r.Add("err_raw", [this] { return raw_row_ ? (raw_ - TruePose().p()).Norm() : NotSampled(); });
+  r.Add("err_classic", [this] {
+    return classic_.has_value() ? (classic_.value() - TruePose().p()).Norm() : NotSampled();
+  });
+  r.Add("err_kf", [this] { return (kf_.position() - TruePose().p()).Norm(); });
+  r.Add("err_dr", [this] { return (dr_.pose().p() - TruePose().p()).Norm(); });
+  r.AddGroup({"s_true", "dphi_true_deg"}, [this](double* o) { o[0] = s_true_, o[1] = Deg(dphi_true_); });
+  r.AddGroup({"s_ctrl", "dphi_ctrl_deg", "fz_u1", "fz_u2", "fz_u3"}, [this](double* o) {
+    if (control_updates_ == 0) return;  // no decision yet
+    o[0] = s_ctrl_, o[1] = Deg(dphi_ctrl_);
+    o[2] = fz_.u1, o[3] = fz_.u2, o[4] = fz_.u3;
+  });
+  r.AddGroup({"u1", "u2", "u3"}, [this](double* o) { o[0] = drive_->u1(), o[1] = drive_->u2(), o[2] = drive_->u3(); });
+  r.Add("steer_deg", [this] { return Deg(drive_->steer_angle()); });
+  r.Add("speed", [this] { return robot_->forward_speed(); });
+  r.Add("posts_seen", [this] { return static_cast<double>(detection_.sightings.size()); });
+  r.Add("fix", [this] { return fix_.ok() ? 1.0 : 0.0; });
+  r.AddGroup({"turn_dr", "turn_dphi_deg"}, [this](double* o) {
+    if (!turn_valid_) return;
+    o[0] = turn_.delta_r, o[1] = Deg(turn_.heading_error);
+  });
+  r.Add("slipping", [this] { return drive_->slipping() ? 1.0 : 0.0; });
+  r.Add("progress", [this] { return progress_; });
+  // Per-axis errors (estimate − truth).
+  r.AddGroup({"raw_ex", "raw_ey"}, [this](double* o) {
+    if (!raw_row_) return;
+    const ins::PaperPose t = TruePose();
+    o[0] = raw_.x - t.x, o[1] = raw_.y - t.y;
+  });
+  r.AddGroup({"classic_ex", "classic_ey"}, [this](double* o) {
+    if (!classic_.has_value()) return;
+    const ins::PaperPose t = TruePose();
+    o[0] = classic_.value().x - t.x, o[1] = classic_.value().y - t.y;
+  });
+  r.AddGroup({"kf_ex", "kf_ey"}, [this](double* o) {
+    const ins::PaperPose t = TruePose();
+    o[0] = kf_.position().x - t.x, o[1] = kf_.position().y - t.y;
+  });
+  // The coordinates on the first straight only (the paper's Fig. 8-9 window; empty elsewhere
+  // so the plots zoom onto it).
+  r.AddGroup({"s1_raw_x", "s1_classic_x", "s1_kf_x", "s1_true_x", "s1_raw_y", "s1_classic_y", "s1_kf_y",
+              "s1_true_y"},
+             [this](double* o) {
+               if (!OnFirstStraight()) return;
+               const ins::PaperPose t = TruePose();
+               if (raw_row_) o[0] = raw_.x, o[4] = raw_.y;
+               if (classic_.has_value()) o[1] = classic_.value().x, o[5] = classic_.value().y;
+               o[2] = kf_.position().x, o[6] = kf_.position().y;
+               o[3] = t.x, o[7] = t.y;
+             });
 }
 
 Pose2 InspectionExperiment::SensorPose() const {
@@ -270,8 +213,8 @@ ins::PaperPose InspectionExperiment::NavPose() const {
   return TruePose();
 }
 
-void InspectionExperiment::Control(double) {
-  if (steps() % control_every_ != 0) return;
+void InspectionExperiment::Control(double t) {
+  if (!control_rate_.Due(steps())) return;
   ++control_updates_;
   const ins::PaperPose nav = NavPose();
   const ins::RouteProjection pr = route_.Project(nav.p(), ctrl_hint_);
@@ -289,19 +232,18 @@ void InspectionExperiment::Control(double) {
     return;
   }
   fz_ = fuzzy_.Process(s_ctrl_, Deg(dphi_ctrl_));
+  // One event per entry into a stretch where no rule fires.
+  events_.Update(no_rule_, t, !fz_.ok, [&] {
+    char msg[160];
+    std::snprintf(msg, sizeof msg, "no fuzzy rule fired at s = %.2f m, dphi = %.1f deg: stopping",
+                  s_ctrl_, Deg(dphi_ctrl_));
+    return std::string(msg);
+  });
   if (!fz_.ok) {
-    ++no_rule_;
-    if (!no_rule_active_) {
-      char msg[160];
-      std::snprintf(msg, sizeof msg, "no fuzzy rule fired at s = %.2f m, dphi = %.1f deg: stopping",
-                    s_ctrl_, Deg(dphi_ctrl_));
-      AddEvent("fuzzy_no_rule", robot_->name(), msg);
-    }
-    no_rule_active_ = true;
+    ++no_rule_steps_;
     drive_->SetCommand(0.0, 0.0, cfg_.drive.servo_center);
     return;
   }
-  no_rule_active_ = false;
   double u1 = fz_.u1, u2 = fz_.u2, u3 = fz_.u3;
   if (cfg_.feedforward && pr.curvature != 0.0) {
     // The turn's own steering angle and wheel-speed ratio, so the fuzzy rules only correct.
@@ -316,6 +258,7 @@ void InspectionExperiment::Control(double) {
 
 void InspectionExperiment::Sense(double t) {
   ++sense_steps_;
+  fault_ = Fault::kNone;
   // Encoders every step: dead reckoning (eq. 1) and the Kalman time update with the filtered
   // heading at the start of the step, then the heading follows the encoder increment.
   const ins::OdometryIncrement inc =
@@ -323,10 +266,7 @@ void InspectionExperiment::Sense(double t) {
   dr_.Step(inc);
   if (!kf_.Predict(inc.ds, heading_.value(), setup_.dt)) {
     ++kf_faults_;
-    char msg[160];
-    std::snprintf(msg, sizeof msg,
-                  "Kalman prediction at t = %.2f s gave a non-finite state; step skipped", t);
-    AddEvent("filter_fault", robot_->name(), msg);
+    fault_ = Fault::kPredict;
   }
   classic_nav_ = ins::DeadReckonStep(classic_nav_, inc.ds, heading_.value());
   raw_nav_ = ins::DeadReckonStep(raw_nav_, inc.ds, heading_.value());
@@ -334,10 +274,23 @@ void InspectionExperiment::Sense(double t) {
   if (drive_->slipping()) ++slip_steps_;
 
   ScoreTracking(t);
-  if (steps() % laser_every_ == 0) ScanAndFix(t);
+  if (laser_rate_.Due(steps())) ScanAndFix(t);
   if (steps() % 10 == 0 && trail_true_.size() < 20000) {
     trail_true_.push_back(TruePose().p());
     trail_kf_.push_back(kf_.position());
+  }
+  // One event per entry into a run of steps with a Kalman fault; every fault is counted.
+  events_.Update(filter_fault_, t, fault_ != Fault::kNone, [&] {
+    char when[32];
+    std::snprintf(when, sizeof when, "%.2f", t);
+    return fault_ == Fault::kPredict
+               ? "Kalman prediction at t = " + std::string(when) + " s gave a non-finite state; step skipped"
+               : "Kalman update at t = " + std::string(when) + " s gave a non-finite state; fix ignored";
+  });
+  // The row recorded after this step (if any) shows the fixes that arrived since the last row.
+  if (steps() % setup_.record_every == 0) {
+    raw_row_ = raw_new_;
+    raw_new_ = false;
   }
 }
 
@@ -412,10 +365,7 @@ void InspectionExperiment::ScanAndFix(double t) {
     }
     if (r.fault()) {
       ++kf_faults_;
-      char msg[160];
-      std::snprintf(msg, sizeof msg,
-                    "Kalman update at t = %.2f s gave a non-finite state; fix ignored", t);
-      AddEvent("filter_fault", robot_->name(), msg);
+      if (fault_ == Fault::kNone) fault_ = Fault::kUpdate;
     }
     if (classic_.Filter(raw_, t)) {
       classic_nav_.x = classic_.value().x;
@@ -433,75 +383,4 @@ void InspectionExperiment::ScanAndFix(double t) {
   err_heading_.Add(Deg(AngleDiff(heading_.value(), truth.theta)));
 }
 
-void InspectionExperiment::Record(Recorder& rec) {
-  const ins::PaperPose truth = TruePose();
-  auto set = [&](Col c, double v) { rec.Set(cols_[c], v); };
-  const bool raw_now = raw_new_;  // a fix arrived since the last row
-  raw_new_ = false;
-  set(kT, time());
-  set(kTrueX, truth.x);
-  set(kTrueY, truth.y);
-  set(kTrueHeading, Deg(truth.theta));
-  set(kRawX, raw_now ? raw_.x : kNaN);
-  set(kRawY, raw_now ? raw_.y : kNaN);
-  set(kRawHeading, raw_now ? Deg(raw_heading_) : kNaN);
-  set(kErrRaw, raw_now ? (raw_ - truth.p()).Norm() : kNaN);
-  if (classic_.has_value()) {
-    set(kClassicX, classic_.value().x);
-    set(kClassicY, classic_.value().y);
-    set(kErrClassic, (classic_.value() - truth.p()).Norm());
-  }
-  set(kKfX, kf_.position().x);
-  set(kKfY, kf_.position().y);
-  set(kKfSdX, std::sqrt(kf_.axis_x().P()));
-  set(kKfSdY, std::sqrt(kf_.axis_y().P()));
-  set(kErrKf, (kf_.position() - truth.p()).Norm());
-  set(kDrX, dr_.pose().x);
-  set(kDrY, dr_.pose().y);
-  set(kErrDr, (dr_.pose().p() - truth.p()).Norm());
-  set(kEstHeading, Deg(heading_.value()));
-  set(kSTrue, s_true_);
-  set(kDphiTrue, Deg(dphi_true_));
-  set(kSCtrl, s_ctrl_);
-  set(kDphiCtrl, Deg(dphi_ctrl_));
-  set(kFzU1, fz_.u1);
-  set(kFzU2, fz_.u2);
-  set(kFzU3, fz_.u3);
-  set(kU1, drive_->u1());
-  set(kU2, drive_->u2());
-  set(kU3, drive_->u3());
-  set(kSteer, Deg(drive_->steer_angle()));
-  set(kSpeed, robot_->forward_speed());
-  set(kPostsSeen, static_cast<double>(detection_.sightings.size()));
-  set(kFix, fix_.ok() ? 1.0 : 0.0);
-  set(kTurnDr, turn_valid_ ? turn_.delta_r : kNaN);
-  set(kTurnDphi, turn_valid_ ? Deg(turn_.heading_error) : kNaN);
-  set(kSlipping, drive_->slipping() ? 1.0 : 0.0);
-  set(kProgress, progress_);
-  // Per-axis errors (estimate − truth), and the coordinates on the first straight only (the
-  // paper's Fig. 8-9 window; NaN elsewhere so the plots zoom onto it).
-  set(kRawEx, raw_now ? raw_.x - truth.x : kNaN);
-  set(kRawEy, raw_now ? raw_.y - truth.y : kNaN);
-  if (classic_.has_value()) {
-    set(kClassicEx, classic_.value().x - truth.x);
-    set(kClassicEy, classic_.value().y - truth.y);
-  }
-  set(kKfEx, kf_.position().x - truth.x);
-  set(kKfEy, kf_.position().y - truth.y);
-  if (true_hint_ == 0 && !completed_) {
-    set(kS1RawX, raw_now ? raw_.x : kNaN);
-    set(kS1RawY, raw_now ? raw_.y : kNaN);
-    if (classic_.has_value()) {
-      set(kS1ClassicX, classic_.value().x);
-      set(kS1ClassicY, classic_.value().y);
-    }
-    set(kS1KfX, kf_.position().x);
-    set(kS1KfY, kf_.position().y);
-    set(kS1TrueX, truth.x);
-    set(kS1TrueY, truth.y);
-  }
-}
-
-FORMSIM_REGISTER_EXPERIMENT("inspection", InspectionExperiment);
-
-}  // namespace formsim::sim
+}  // namespace formsim::sim::inspection

@@ -16,21 +16,30 @@
 /// is mounted: that point moves along the heading, so eq. 1 holds without a lever arm, and its
 /// heading is tangent to a turn (the paper's ideal θ = 90° to the radius).
 ///
-/// Live tuning: all scales, noise and filter settings are params (YAML paths as keys). Setting
-/// the bool param `fuzzy.reload` re-reads the FLL file between two steps (the GUI's "reload");
-/// a bad file is reported as an event "fuzzy_reload_failed" and the old rule base stays.
+/// Live tuning: the vehicle scales, noise, localisation and filter settings, the control rate
+/// and the controller's source are tunables (YAML paths as keys, see inspection_config.hpp);
+/// only the post survey error waits for a reset. The action "reload_rules" re-reads the FLL file
+/// between two steps (the GUI's "Reload rule base (FLL)" button); success raises the event
+/// "fuzzy_reloaded", a bad file the event "fuzzy_reload_failed", and the old rule base stays.
 ///
-/// Recorder columns: t; true_x true_y true_heading_deg; raw_x raw_y raw_heading_deg (NaN
-/// without a new fix); classic_x classic_y; kf_x kf_y kf_sd_x kf_sd_y; dr_x dr_y;
-/// est_heading_deg; err_raw err_classic err_kf err_dr (m); s_true dphi_true_deg; s_ctrl
-/// dphi_ctrl_deg (what the controller saw); fz_u1 fz_u2 fz_u3 (fuzzy outputs); u1 u2 u3 (after
-/// feed-forward); steer_deg; speed; posts_seen; fix (1/0); turn_dr turn_dphi_deg (eq. 4, NaN off
-/// the turn); slipping; progress; raw_ex raw_ey classic_ex classic_ey kf_ex kf_ey (estimate −
-/// truth per axis); s1_{raw,classic,kf,true}_{x,y} (coordinates on the first straight, NaN
-/// elsewhere: the window of the paper's Fig. 8-9).
+/// Recorder channels (declared in DeclareChannels; an empty cell means "no value in this row"):
+///   t; true_x true_y true_heading_deg (the tracked point, paper convention);
+///   raw_x raw_y raw_heading_deg (only in rows with a new fix since the previous row);
+///   classic_x classic_y (once the classical chain has a value); kf_x kf_y kf_sd_x kf_sd_y;
+///   dr_x dr_y; est_heading_deg; err_raw (with raw_x) err_classic err_kf err_dr (m);
+///   s_true dphi_true_deg; s_ctrl dphi_ctrl_deg (what the controller saw, from its first update);
+///   fz_u1 fz_u2 fz_u3 (fuzzy outputs, from the first decision); u1 u2 u3 (after feed-forward);
+///   steer_deg; speed; posts_seen; fix (1/0); turn_dr turn_dphi_deg (eq. 4, only on the turn);
+///   slipping; progress; raw_ex raw_ey classic_ex classic_ey kf_ex kf_ey (estimate − truth per
+///   axis); s1_{raw,classic,kf,true}_{x,y} (coordinates on the first straight only: the window
+///   of the paper's Fig. 8-9).
+/// Every estimator runs and is recorded whatever the controller uses (the source is a live
+/// tunable), so switching it mid-run changes s_ctrl / dphi_ctrl and the tracking, never the
+/// columns.
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -43,28 +52,29 @@
 #include "control/inspection/trilateration.hpp"
 #include "sim/core/error_stats.hpp"
 #include "sim/core/experiment.hpp"
+#include "sim/core/multirate.hpp"
 #include "sim/inspection/inspection_config.hpp"
 #include "sim/inspection/laser_scanner.hpp"
 #include "sim/inspection/steered_drive.hpp"
 #include "sim/inspection/wheel_odometry.hpp"
 
-namespace formsim::sim {
+namespace formsim::sim::inspection {
 
-class InspectionExperiment : public Experiment {
+class InspectionExperiment : public ExperimentOf<InspectionConfig> {
  public:
-  InspectionExperiment(const ExperimentSetup& setup, YamlReader& root);
+  static InspectionConfig ReadConfig(YamlReader& root, const ExperimentSetup& setup) {
+    return ReadInspectionConfig(root, setup, Rng(setup.seed).Fork(kSurveyStream));
+  }
+  InspectionExperiment(const ExperimentSetup& setup, const InspectionConfig& config);
 
   std::vector<FigureSpec> Figures() const override;
+  std::vector<ActionSpec> Actions() const override;
+  std::string RunAction(const std::string& id) override;
   std::vector<TableSpec> Tables() const override;
   void Bounds(Vec2& lo, Vec2& hi) const override;
-  Json Summary() const override;
-  std::string SummaryTable() const override;
-
-  /// Re-reads the FLL rule base. Returns an error message, empty on success.
-  std::string ReloadFuzzy();
+  Metrics Results() const override;
 
   // Read-only views for tests and benchmarks.
-  const InspectionConfig& config() const { return cfg_; }
   const control::inspection::Route& route() const { return route_; }
   const control::inspection::FuzzyController& fuzzy() const { return fuzzy_; }
   const SteeredDrive& drive() const { return *drive_; }
@@ -87,21 +97,25 @@ class InspectionExperiment : public Experiment {
   Pose2 SensorPose() const;
   control::inspection::PaperPose NavPose() const;
 
+  /// Rng stream of the post survey errors (the reader draws them), beside the laser's (1) and
+  /// the encoders' (2).
+  static constexpr std::uint64_t kSurveyStream = 3;
+
  protected:
   void Control(double t) override;
   void Sense(double t) override;
-  void Record(Recorder& rec) override;
   void DrawScene(DrawSink& draw) const override;
-  void OnParamsChanged() override;
+  void ApplyTunables(const InspectionConfig& next) override;
 
  private:
-  void RegisterParams();
-  void DeclareColumns();
-  void SyncSettings();
+  void BuildWorld();
+  void DeclareChannels();
+  void Configure();
   void ScanAndFix(double t);
   void ScoreTracking(double t);
+  /// On the first straight and not finished: the rows of the s1_* channels.
+  bool OnFirstStraight() const { return true_hint_ == 0 && !completed_; }
 
-  InspectionConfig cfg_;
   control::inspection::Route route_;
   control::inspection::PostMap map_;
   control::inspection::TrilaterationDef tri_;
@@ -118,7 +132,9 @@ class InspectionExperiment : public Experiment {
   control::inspection::DeadReckoning dr_;
   control::inspection::PaperPose initial_pose_;
   control::inspection::PaperPose classic_nav_, raw_nav_;  ///< last fix carried on by odometry
-  bool has_raw_ = false, raw_new_ = false;
+  bool has_raw_ = false;
+  bool raw_new_ = false;  ///< a fix arrived since the last recorded row
+  bool raw_row_ = false;  ///< the row being recorded holds a new fix
   Vec2 raw_;
   double raw_heading_ = 0.0;
 
@@ -132,24 +148,31 @@ class InspectionExperiment : public Experiment {
   bool turn_valid_ = false;
 
   // Control.
-  int control_every_ = 20, laser_every_ = 2;
+  MultiRate control_rate_, laser_rate_;
   int ctrl_hint_ = 0, true_hint_ = 0;
   control::inspection::FuzzyOutputs fz_;
-  // What the controller saw at its last update (NaN before the first one).
-  double s_ctrl_ = std::nan(""), dphi_ctrl_ = std::nan("");
+  // What the controller saw at its last update (meaningful once control_updates_ > 0).
+  double s_ctrl_ = 0.0, dphi_ctrl_ = 0.0;
   double s_true_ = 0.0, dphi_true_ = 0.0, progress_ = 0.0;
-  bool stopped_ = false, no_rule_active_ = false;
+  bool stopped_ = false;
+
+  // Events: lasting conditions, declared once.
+  EventLog::ConditionId no_rule_ = 0, filter_fault_ = 0;
 
   // Metrics.
   ErrorStats err_raw_, err_classic_, err_kf_, err_dr_, err_kf_x_, err_kf_y_, err_heading_;
   ErrorStats lateral_, lateral_tracking_, dphi_tracking_;
   std::array<long, 5> status_counts_{};
-  long scans_ = 0, fixes_ = 0, control_updates_ = 0, no_rule_ = 0;
+  long scans_ = 0, fixes_ = 0, control_updates_ = 0, no_rule_steps_ = 0;
   long kf_gated_ = 0, kf_reinit_ = 0, kf_faults_ = 0, slip_steps_ = 0, sense_steps_ = 0;
+  enum class Fault { kNone, kPredict, kUpdate };
+  Fault fault_ = Fault::kNone;  ///< the first Kalman fault of the current step
   bool completed_ = false;
   double completion_time_ = -1.0;
   std::vector<Vec2> trail_true_, trail_kf_;
-  std::vector<int> cols_;  ///< recorder column indices, in the order of kColumnNames
 };
 
-}  // namespace formsim::sim
+/// printf-style text of one number (Fmt("%.1f", v)), for notes, labels and table cells.
+std::string Fmt(const char* fmt, double v);
+
+}  // namespace formsim::sim::inspection

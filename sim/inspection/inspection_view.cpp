@@ -6,7 +6,7 @@
 #include "control/inspection/paper_frame.hpp"
 #include "sim/inspection/inspection_experiment.hpp"
 
-namespace formsim::sim {
+namespace formsim::sim::inspection {
 
 namespace ins = control::inspection;
 
@@ -21,13 +21,13 @@ const Color kClassicColor{0.8f, 0.47f, 0.65f, 1.0f};  // reddish purple
 const Color kKalmanColor{0.0f, 0.45f, 0.7f, 1.0f};    // blue
 const Color kDrColor{0.5f, 0.5f, 0.5f, 1.0f};
 
+}  // namespace
+
 std::string Fmt(const char* fmt, double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, fmt, v);
   return buf;
 }
-
-}  // namespace
 
 void InspectionExperiment::DrawScene(DrawSink& draw) const {
   // Route centre line and the turn centre.
@@ -93,146 +93,76 @@ void InspectionExperiment::Bounds(Vec2& lo, Vec2& hi) const {
 }
 
 std::vector<FigureSpec> InspectionExperiment::Figures() const {
-  std::vector<FigureSpec> figs;
-  auto series = [](const std::string& label, const std::string& column, int color,
-                   bool markers = false, bool dashed = false) {
-    SeriesSpec s;
-    s.label = label;
-    s.column = column;
-    s.color_index = color;
-    s.markers_only = markers;
-    s.dashed = dashed;
+  // Colours: 0 truth, 4 Kalman, 5 raw fixes (markers), 6 limit + mean, 7 dead reckoning.
+  auto markers = [](SeriesSpec s) {
+    s.markers_only = true;
     return s;
   };
+  const SeriesSpec raw = markers(Line("raw fix", "", 5));
+  auto estimates = [&](const std::string& raw_col, const std::string& classic_col,
+                       const std::string& kf_col) {
+    SeriesSpec r = raw;
+    r.column = raw_col;
+    return std::vector<SeriesSpec>{r, Line("limit + mean", classic_col, 6), Line("Kalman", kf_col, 4)};
+  };
+  std::vector<FigureSpec> figs;
   {
-    FigureSpec f;
-    f.id = "fig8_x";
-    f.title =
-        "Fig. 8: X on the first straight (centre line X = " + Fmt("%.1f", cfg_.route_start.x) +
-        " m): raw / limit+mean / Kalman / ideal";
-    f.y_label = "X [m]";
-    f.series = {series("raw fix", "s1_raw_x", 5, true), series("limit + mean", "s1_classic_x", 6),
-                series("Kalman", "s1_kf_x", 4),
-                series("ideal (true)", "s1_true_x", 0, false, true)};
+    std::vector<SeriesSpec> s = estimates("s1_raw_x", "s1_classic_x", "s1_kf_x");
+    s.push_back(Line("ideal (true)", "s1_true_x", 0, true));
+    FigureSpec f = TimeFigure("fig8_x",
+                              "Fig. 8: X on the first straight (centre line X = " +
+                                  Fmt("%.1f", cfg_.route_start.x) +
+                                  " m): raw / limit+mean / Kalman / ideal",
+                              "X [m]", std::move(s));
     f.reference_lines = {cfg_.route_start.x};
     figs.push_back(f);
   }
   {
-    FigureSpec f;
-    f.id = "fig9_y";
-    f.title = "Fig. 9: Y on the first straight: raw / limit+mean / Kalman / ideal";
-    f.y_label = "Y [m]";
-    f.series = {series("raw fix", "s1_raw_y", 5, true), series("limit + mean", "s1_classic_y", 6),
-                series("Kalman", "s1_kf_y", 4),
-                series("ideal (true)", "s1_true_y", 0, false, true)};
-    figs.push_back(f);
+    std::vector<SeriesSpec> s = estimates("s1_raw_y", "s1_classic_y", "s1_kf_y");
+    s.push_back(Line("ideal (true)", "s1_true_y", 0, true));
+    figs.push_back(TimeFigure("fig9_y", "Fig. 9: Y on the first straight: raw / limit+mean / Kalman / ideal",
+                              "Y [m]", std::move(s)));
   }
+  figs.push_back(TimeFigure("x_error", "X error (estimate − truth), whole route", "ΔX [m]",
+                            estimates("raw_ex", "classic_ex", "kf_ex")));
+  figs.back().reference_lines = {0.0};
+  figs.push_back(TimeFigure("y_error", "Y error (estimate − truth), whole route", "ΔY [m]",
+                            estimates("raw_ey", "classic_ey", "kf_ey")));
+  figs.back().reference_lines = {0.0};
+  figs.push_back(TimeFigure("localisation_error", "Position error of each estimate", "error [m]",
+                            estimates("err_raw", "err_classic", "err_kf")));
+  figs.back().reference_lines = {0.1};  // the paper's ~10 cm
+  figs.push_back(TimeFigure("dead_reckoning_error", "Dead reckoning alone (eq. 1, encoders only) drifts",
+                            "error [m]", {Line("dead reckoning", "err_dr", 7), Line("Kalman", "err_kf", 4)}));
+  figs.push_back(TimeFigure("lateral_offset", "Lateral offset s from the route (true, and as the controller saw it)",
+                            "s [m]", {Line("true", "s_true", 0), Line("controller input", "s_ctrl", 4, true)}));
+  figs.back().reference_lines = {0.0};
+  figs.push_back(TimeFigure("heading_error", "Heading error Δφ (true, and as the controller saw it)", "Δφ [deg]",
+                            {Line("true", "dphi_true_deg", 0), Line("controller input", "dphi_ctrl_deg", 4, true)}));
+  figs.back().reference_lines = {0.0};
+  figs.push_back(TimeFigure("fuzzy_speed_levels", "Drive motor levels u1 (left), u2 (right)", "level",
+                            {Line("u1 left", "u1", 1), Line("u2 right", "u2", 2),
+                             Line("u1 fuzzy", "fz_u1", 1, true), Line("u2 fuzzy", "fz_u2", 2, true)}));
+  figs.push_back(TimeFigure("fuzzy_steering", "Steering servo command u3 (360 = straight, > 360 right)", "u3",
+                            {Line("u3 sent", "u3", 3), Line("u3 fuzzy", "fz_u3", 4, true)}));
+  figs.back().reference_lines = {cfg_.drive.servo_center};
   {
-    FigureSpec f;
-    f.id = "x_error";
-    f.title = "X error (estimate − truth), whole route";
-    f.y_label = "ΔX [m]";
-    f.series = {series("raw fix", "raw_ex", 5, true), series("limit + mean", "classic_ex", 6),
-                series("Kalman", "kf_ex", 4)};
-    f.reference_lines = {0.0};
-    figs.push_back(f);
-  }
-  {
-    FigureSpec f;
-    f.id = "y_error";
-    f.title = "Y error (estimate − truth), whole route";
-    f.y_label = "ΔY [m]";
-    f.series = {series("raw fix", "raw_ey", 5, true), series("limit + mean", "classic_ey", 6),
-                series("Kalman", "kf_ey", 4)};
-    f.reference_lines = {0.0};
-    figs.push_back(f);
-  }
-  {
-    FigureSpec f;
-    f.id = "localisation_error";
-    f.title = "Position error of each estimate";
-    f.y_label = "error [m]";
-    f.series = {series("raw fix", "err_raw", 5, true), series("limit + mean", "err_classic", 6),
-                series("Kalman", "err_kf", 4)};
-    f.reference_lines = {0.1};  // the paper's ~10 cm
-    figs.push_back(f);
-  }
-  {
-    FigureSpec f;
-    f.id = "dead_reckoning_error";
-    f.title = "Dead reckoning alone (eq. 1, encoders only) drifts";
-    f.y_label = "error [m]";
-    f.series = {series("dead reckoning", "err_dr", 7), series("Kalman", "err_kf", 4)};
-    figs.push_back(f);
-  }
-  {
-    FigureSpec f;
-    f.id = "lateral_offset";
-    f.title = "Lateral offset s from the route (true, and as the controller saw it)";
-    f.y_label = "s [m]";
-    f.series = {series("true", "s_true", 0), series("controller input", "s_ctrl", 4, false, true)};
-    f.reference_lines = {0.0};
-    figs.push_back(f);
-  }
-  {
-    FigureSpec f;
-    f.id = "heading_error";
-    f.title = "Heading error Δφ (true, and as the controller saw it)";
-    f.y_label = "Δφ [deg]";
-    f.series = {series("true", "dphi_true_deg", 0),
-                series("controller input", "dphi_ctrl_deg", 4, false, true)};
-    f.reference_lines = {0.0};
-    figs.push_back(f);
-  }
-  {
-    FigureSpec f;
-    f.id = "fuzzy_speed_levels";
-    f.title = "Drive motor levels u1 (left), u2 (right)";
-    f.y_label = "level";
-    f.series = {series("u1 left", "u1", 1), series("u2 right", "u2", 2),
-                series("u1 fuzzy", "fz_u1", 1, false, true),
-                series("u2 fuzzy", "fz_u2", 2, false, true)};
-    figs.push_back(f);
-  }
-  {
-    FigureSpec f;
-    f.id = "fuzzy_steering";
-    f.title = "Steering servo command u3 (360 = straight, > 360 right)";
-    f.y_label = "u3";
-    f.series = {series("u3 sent", "u3", 3), series("u3 fuzzy", "fz_u3", 4, false, true)};
-    f.reference_lines = {cfg_.drive.servo_center};
-    figs.push_back(f);
-  }
-  {
-    FigureSpec f;
-    f.id = "trajectory";
-    f.title = "Route and trajectories";
-    f.x_label = "X [m]";
-    f.y_label = "Y [m]";
-    f.equal_aspect = true;
-    SeriesSpec route;
-    route.label = "route";
-    route.color_index = 7;
-    route.dashed = true;
+    SeriesSpec route = Line("route", "", 7, true);
     for (const Vec2& p : route_.Polyline(0.2)) {
       route.x.push_back(p.x);
       route.y.push_back(p.y);
     }
-    SeriesSpec posts;
-    posts.label = "posts";
-    posts.color_index = 6;
-    posts.markers_only = true;
+    SeriesSpec posts = markers(Line("posts", "", 6));
     for (const auto& p : cfg_.posts) {
       posts.x.push_back(p.position.x);
       posts.y.push_back(p.position.y);
     }
-    SeriesSpec truth = series("true", "true_y", 0);
-    truth.x_column = "true_x";
-    SeriesSpec kf = series("Kalman", "kf_y", 4);
-    kf.x_column = "kf_x";
-    SeriesSpec raw = series("raw fix", "raw_y", 5, true);
-    raw.x_column = "raw_x";
-    f.series = {route, posts, raw, truth, kf};
+    SeriesSpec raw_path = markers(Path("raw fix", "raw_x", "raw_y", 5));
+    FigureSpec f = PlaneFigure("trajectory", "Route and trajectories",
+                               {route, posts, raw_path, Path("true", "true_x", "true_y", 0),
+                                Path("Kalman", "kf_x", "kf_y", 4)});
+    f.x_label = "X [m]";
+    f.y_label = "Y [m]";
     figs.push_back(f);
   }
   // Membership functions with the current value marked.
@@ -241,19 +171,15 @@ std::vector<FigureSpec> InspectionExperiment::Figures() const {
                                 "u3: steering servo command"};
   int vi = 0;
   for (const auto& v : fuzzy_.variables()) {
-    FigureSpec f;
-    f.id = "mf_" + v.name;
-    f.title = std::string("Membership functions, ") + titles[std::min(vi++, 4)];
+    FigureSpec f = TimeFigure("mf_" + v.name, std::string("Membership functions, ") + titles[std::min(vi++, 4)],
+                              "membership", {});
     f.x_label = v.name == "dphi" ? "Δφ [deg]" : v.name == "s" ? "s [m]" : v.name;
-    f.y_label = "membership";
     int color = 0;
     for (const auto& term : v.terms) {
-      SeriesSpec s;
-      s.label = v.input ? term.name : term.name + " (" + Fmt("%.4g", term.centroid) + ")";
+      SeriesSpec s = Line(v.input ? term.name : term.name + " (" + Fmt("%.4g", term.centroid) + ")", "", color++);
       s.x = term.x;
       s.y = term.y;
-      s.color_index = color++;
-      f.series.push_back(s);
+      f.series.push_back(std::move(s));
     }
     f.marker_x = v.value;
     figs.push_back(f);
@@ -262,7 +188,6 @@ std::vector<FigureSpec> InspectionExperiment::Figures() const {
 }
 
 std::vector<TableSpec> InspectionExperiment::Tables() const {
-  std::vector<TableSpec> tables;
   TableSpec rules;
   rules.title = "Fuzzy rules (firing strength of the last control step)";
   rules.header = {"#", "s", "Δφ", "u1", "u2", "u3", "strength"};
@@ -276,25 +201,7 @@ std::vector<TableSpec> InspectionExperiment::Tables() const {
     }
     rules.row_strength.push_back(std::clamp(r.strength, 0.0, 1.0));
   }
-  tables.push_back(rules);
-
-  TableSpec loc;
-  loc.title = "Localisation";
-  loc.header = {"item", "value"};
-  loc.rows.push_back({"scans", std::to_string(scans_)});
-  loc.rows.push_back({"fixes", std::to_string(fixes_)});
-  for (int s = 1; s < 5; ++s)
-    loc.rows.push_back({std::string("no fix: ") + ins::ToString(static_cast<ins::FixStatus>(s)),
-                        std::to_string(status_counts_[s])});
-  loc.rows.push_back({"posts identified now", std::to_string(detection_.sightings.size())});
-  loc.rows.push_back({"Kalman fixes gated", std::to_string(kf_gated_)});
-  loc.rows.push_back({"limit filter rejections", std::to_string(classic_.rejected())});
-  loc.rows.push_back({"heading rejections", std::to_string(heading_.rejected())});
-  loc.rows.push_back({"RMS error raw / classical / Kalman [m]",
-                      Fmt("%.3f", err_raw_.rms()) + " / " + Fmt("%.3f", err_classic_.rms()) +
-                          " / " + Fmt("%.3f", err_kf_.rms())});
-  tables.push_back(loc);
-  return tables;
+  return {rules};
 }
 
-}  // namespace formsim::sim
+}  // namespace formsim::sim::inspection

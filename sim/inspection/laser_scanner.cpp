@@ -5,9 +5,9 @@
 #include <limits>
 
 #include "control/inspection/paper_frame.hpp"
-#include "sim/core/yaml_reader.hpp"
+#include "sim/inspection/checked_read.hpp"
 
-namespace formsim::sim {
+namespace formsim::sim::inspection {
 
 using control::inspection::AzimuthDirection;
 using control::inspection::PaperFromMath;
@@ -48,27 +48,27 @@ control::inspection::Scan LaserScanner::Sample(const World& world, const Pose2& 
   return scan;
 }
 
-LaserScannerDef ReadLaserScanner(YamlReader& l) {
+LaserScannerDef ReadLaserScanner(YamlReader& l, double dt, int* every) {
+  const std::string g = "Noise/laser";
   LaserScannerDef def = DefaultLaserScannerDef();
-  def.rate_hz = l.Double("rate_hz", def.rate_hz);
-  def.range_max = l.Double("range_max", def.range_max);
-  def.fov_deg = l.Double("fov_deg", def.fov_deg);
-  def.resolution_deg = l.Double("resolution_deg", def.resolution_deg);
-  def.range_sigma = l.Double("range_sigma", def.range_sigma);
-  def.angle_sigma_deg = l.Double("angle_sigma_deg", def.angle_sigma_deg);
-  def.outlier_prob = l.Double("outlier_prob", def.outlier_prob);
-  def.outlier_sigma = l.Double("outlier_sigma", def.outlier_sigma);
-  if (def.rate_hz <= 0) l.Fail("rate_hz", "must be positive");
-  if (def.range_max <= 0) l.Fail("range_max", "must be positive");
-  if (def.fov_deg <= 0 || def.fov_deg > 360) l.Fail("fov_deg", "must be in (0, 360]");
-  if (def.resolution_deg < 0.05 || def.resolution_deg > 10)
-    l.Fail("resolution_deg", "must be in [0.05, 10]");
-  if (def.range_sigma < 0) l.Fail("range_sigma", "must be >= 0");
-  if (def.angle_sigma_deg < 0) l.Fail("angle_sigma_deg", "must be >= 0");
-  if (def.outlier_prob < 0 || def.outlier_prob > 1) l.Fail("outlier_prob", "must be in [0, 1]");
-  if (def.outlier_sigma < 0) l.Fail("outlier_sigma", "must be >= 0");
+  def.range_sigma =
+      l.Real("range_sigma", def.range_sigma, Tune("range noise σ", "m").AtLeast(0).AtMost(10).Slider(0.0, 0.2).Group(g));
+  def.angle_sigma_deg = l.Real("angle_sigma_deg", def.angle_sigma_deg,
+                               Tune("beam jitter σ", "deg").AtLeast(0).AtMost(180).Slider(0.0, 1.0).Group(g));
+  def.outlier_prob =
+      l.Real("outlier_prob", def.outlier_prob, Tune("outlier probability").In(0, 1).Slider(0.0, 0.05).Group(g));
+  def.outlier_sigma =
+      l.Real("outlier_sigma", def.outlier_sigma, Tune("outlier σ", "m").AtLeast(0).AtMost(100).Slider(0.0, 2.0).Group(g));
+  def.resolution_deg = l.Real("resolution_deg", def.resolution_deg,
+                              Tune("angular resolution", "deg").In(0.05, 10).Slider(0.1, 2.0).Group(g));
+  // A ray longer than 1 km overflows Box2D's float ray cast.
+  def.range_max =
+      l.Real("range_max", def.range_max, Tune("max range", "m").Above(1e-3).AtMost(1e3).Slider(2.0, 30.0).Group(g));
+  def.rate_hz = l.Real("rate_hz", def.rate_hz, Tune("scan rate", "Hz").Above(0).AtMost(1e6).Slider(1.0, 100.0).Group(g));
+  *every = RateSteps(l, "rate_hz", def.rate_hz, dt);
+  def.fov_deg = CheckedReal(l, "fov_deg", def.fov_deg, Tune().Above(0).AtMost(360));
   l.Finish();
   return def;
 }
 
-}  // namespace formsim::sim
+}  // namespace formsim::sim::inspection

@@ -14,8 +14,10 @@
 #include "sim/core/world.hpp"
 
 namespace formsim::sim {
-
 class YamlReader;
+}  // namespace formsim::sim
+
+namespace formsim::sim::inspection {
 
 struct LaserScannerDef {
   double rate_hz = 50.0;
@@ -31,8 +33,9 @@ inline LaserScannerDef DefaultLaserScannerDef() {
   return LaserScannerDef{};
 }
 
-/// Reads `laser:` (keys as in LaserScannerDef).
-LaserScannerDef ReadLaserScanner(YamlReader& laser_map);
+/// Reads `laser:` (keys as in LaserScannerDef) and declares its tunables (group "Noise/laser").
+/// `*every` receives the world steps between two scans at step `dt`.
+LaserScannerDef ReadLaserScanner(YamlReader& laser_map, double dt, int* every);
 
 class LaserScanner {
  public:
@@ -50,4 +53,4 @@ class LaserScanner {
   Rng rng_;
 };
 
-}  // namespace formsim::sim
+}  // namespace formsim::sim::inspection

@@ -4,9 +4,9 @@
 #include <cmath>
 
 #include "control/inspection/paper_frame.hpp"
-#include "sim/core/yaml_reader.hpp"
+#include "sim/inspection/checked_read.hpp"
 
-namespace formsim::sim {
+namespace formsim::sim::inspection {
 namespace {
 
 using control::inspection::Rad;
@@ -150,34 +150,33 @@ void SteeredDrive::Apply(Robot& robot, World& world, double dt) {
 }
 
 SteeredDriveDef ReadSteeredDrive(YamlReader& d) {
+  const std::string g = "Gains/vehicle scales";
   SteeredDriveDef def = DefaultSteeredDriveDef();
-  def.speed_per_level = d.Double("speed_per_level", def.speed_per_level);
-  def.servo_center = d.Double("servo_center", def.servo_center);
-  def.steer_per_unit_deg = d.Double("steer_per_unit_deg", def.steer_per_unit_deg);
-  def.steer_max_deg = d.Double("steer_max_deg", def.steer_max_deg);
-  def.steer_rate_deg_s = d.Double("steer_rate_deg_s", def.steer_rate_deg_s);
-  def.wheelbase = d.Double("wheelbase", def.wheelbase);
-  def.track = d.Double("track", def.track);
-  def.rear_axle = d.Double("rear_axle", -0.5 * def.wheelbase);
-  def.motor_force_max = d.Double("motor_force_max", def.motor_force_max);
-  def.motor_time_constant = d.Double("motor_time_constant", def.motor_time_constant);
-  def.rolling_resistance = d.Double("rolling_resistance", def.rolling_resistance);
-  def.front_load = d.Double("front_load", def.front_load);
-  if (def.speed_per_level <= 0) d.Fail("speed_per_level", "must be positive");
-  if (def.servo_center < SteeredDrive::kServoMin || def.servo_center > SteeredDrive::kServoMax)
-    d.Fail("servo_center", "must lie in [220, 500]");
-  if (def.steer_per_unit_deg <= 0) d.Fail("steer_per_unit_deg", "must be positive");
-  if (def.steer_max_deg <= 0 || def.steer_max_deg >= 80)
-    d.Fail("steer_max_deg", "must be in (0, 80)");
-  if (def.steer_rate_deg_s <= 0) d.Fail("steer_rate_deg_s", "must be positive");
-  if (def.wheelbase <= 0) d.Fail("wheelbase", "must be positive");
-  if (def.track <= 0) d.Fail("track", "must be positive");
-  if (def.motor_force_max <= 0) d.Fail("motor_force_max", "must be positive");
-  if (def.motor_time_constant <= 0) d.Fail("motor_time_constant", "must be positive");
-  if (def.rolling_resistance < 0) d.Fail("rolling_resistance", "must be >= 0");
-  if (def.front_load <= 0 || def.front_load >= 1) d.Fail("front_load", "must be in (0, 1)");
+  def.speed_per_level = d.Real("speed_per_level", def.speed_per_level,
+                               Tune("speed per level", "m/s").Above(0).AtMost(10).Slider(0.02, 0.4).Group(g));
+  def.steer_per_unit_deg =
+      d.Real("steer_per_unit_deg", def.steer_per_unit_deg,
+             Tune("steer per servo unit", "deg").AtLeast(1e-4).AtMost(10).Slider(0.05, 0.5).Group(g));
+  def.servo_center = d.Real("servo_center", def.servo_center,
+                            Tune("servo centre").In(SteeredDrive::kServoMin, SteeredDrive::kServoMax)
+                                .Slider(300.0, 420.0).Group(g));
+  def.steer_rate_deg_s = d.Real("steer_rate_deg_s", def.steer_rate_deg_s,
+                                Tune("servo slew rate", "deg/s").Above(0).AtMost(1e4).Slider(10.0, 360.0).Group(g));
+  def.motor_force_max = d.Real("motor_force_max", def.motor_force_max,
+                               Tune("motor force limit", "N").Above(0).AtMost(1e5).Slider(5.0, 200.0).Group(g));
+  // Geometry and dynamics: fixed for a run.
+  const Tune length = Tune().In(1e-3, 1e3);
+  def.steer_max_deg = CheckedReal(d, "steer_max_deg", def.steer_max_deg, Tune().Above(0).Below(80));
+  def.wheelbase = CheckedReal(d, "wheelbase", def.wheelbase, length);
+  def.track = CheckedReal(d, "track", def.track, length);
+  def.rear_axle = CheckedReal(d, "rear_axle", -0.5 * def.wheelbase, Tune().In(-1e3, 1e3));
+  def.motor_time_constant =
+      CheckedReal(d, "motor_time_constant", def.motor_time_constant, Tune().Above(0).AtMost(1e3));
+  def.rolling_resistance =
+      CheckedReal(d, "rolling_resistance", def.rolling_resistance, Tune().AtLeast(0).AtMost(10));
+  def.front_load = CheckedReal(d, "front_load", def.front_load, Tune().Above(0).Below(1));
   d.Finish();
   return def;
 }
 
-}  // namespace formsim::sim
+}  // namespace formsim::sim::inspection

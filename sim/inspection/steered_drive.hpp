@@ -19,8 +19,10 @@
 #include "sim/core/world.hpp"
 
 namespace formsim::sim {
-
 class YamlReader;
+}  // namespace formsim::sim
+
+namespace formsim::sim::inspection {
 
 struct SteeredDriveDef {
   double speed_per_level = 0.15;             ///< rim speed per u1/u2 level, m/s
@@ -40,7 +42,8 @@ inline SteeredDriveDef DefaultSteeredDriveDef() {
   return SteeredDriveDef{};
 }
 
-/// Reads `robot.drive:` (keys as in SteeredDriveDef), checking ranges.
+/// Reads `robot.drive:` (keys as in SteeredDriveDef), checking ranges; the scales and limits
+/// are tunables (group "Gains/vehicle scales").
 SteeredDriveDef ReadSteeredDrive(YamlReader& drive_map);
 
 class SteeredDrive : public DriveModel {
@@ -80,4 +83,4 @@ class SteeredDrive : public DriveModel {
   bool slipping_ = false, motor_limited_ = false;
 };
 
-}  // namespace formsim::sim
+}  // namespace formsim::sim::inspection

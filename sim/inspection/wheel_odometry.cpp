@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include "sim/core/yaml_reader.hpp"
+#include "sim/inspection/checked_read.hpp"
 
-namespace formsim::sim {
+namespace formsim::sim::inspection {
 
 control::inspection::OdometryIncrement WheelOdometry::Read(double left_distance,
                                                            double right_distance) {
@@ -21,17 +21,17 @@ control::inspection::OdometryIncrement WheelOdometry::Read(double left_distance,
 }
 
 WheelOdometryDef ReadWheelOdometry(YamlReader& o) {
+  const std::string g = "Noise/odometry";
   WheelOdometryDef def;
-  def.sigma_per_sqrt_m = o.Double("sigma_per_sqrt_m", def.sigma_per_sqrt_m);
-  def.scale_error_left = o.Double("scale_error_left", def.scale_error_left);
-  def.scale_error_right = o.Double("scale_error_right", def.scale_error_right);
-  def.track = o.Double("track", def.track);
-  if (def.sigma_per_sqrt_m < 0) o.Fail("sigma_per_sqrt_m", "must be >= 0");
-  if (std::abs(def.scale_error_left) >= 0.5) o.Fail("scale_error_left", "must be in (-0.5, 0.5)");
-  if (std::abs(def.scale_error_right) >= 0.5) o.Fail("scale_error_right", "must be in (-0.5, 0.5)");
-  if (def.track <= 0) o.Fail("track", "must be positive");
+  def.sigma_per_sqrt_m = o.Real("sigma_per_sqrt_m", def.sigma_per_sqrt_m,
+                                Tune("encoder noise", "m/√m").AtLeast(0).AtMost(1).Slider(0.0, 0.05).Group(g));
+  def.scale_error_left = o.Real("scale_error_left", def.scale_error_left,
+                                Tune("left scale error").Above(-0.5).Below(0.5).Slider(-0.1, 0.1).Group(g));
+  def.scale_error_right = o.Real("scale_error_right", def.scale_error_right,
+                                 Tune("right scale error").Above(-0.5).Below(0.5).Slider(-0.1, 0.1).Group(g));
+  def.track = CheckedReal(o, "track", def.track, Tune().In(1e-3, 1e3));
   o.Finish();
   return def;
 }
 
-}  // namespace formsim::sim
+}  // namespace formsim::sim::inspection

@@ -6,8 +6,10 @@
 #include "sim/core/rng.hpp"
 
 namespace formsim::sim {
-
 class YamlReader;
+}  // namespace formsim::sim
+
+namespace formsim::sim::inspection {
 
 struct WheelOdometryDef {
   double sigma_per_sqrt_m = 0.003;  ///< random error, m per √m rolled
@@ -16,7 +18,8 @@ struct WheelOdometryDef {
   double track = 0.5;  ///< the track the estimator believes, m
 };
 
-/// Reads `odometry:` (keys as in WheelOdometryDef).
+/// Reads `odometry:` (keys as in WheelOdometryDef); noise and scale errors are tunables
+/// (group "Noise/odometry").
 WheelOdometryDef ReadWheelOdometry(YamlReader& odometry_map);
 
 class WheelOdometry {
@@ -34,4 +37,4 @@ class WheelOdometry {
   double last_left_ = 0.0, last_right_ = 0.0;
 };
 
-}  // namespace formsim::sim
+}  // namespace formsim::sim::inspection

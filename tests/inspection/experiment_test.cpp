@@ -1,5 +1,5 @@
-// The inspection experiment end to end: the U-route run, determinism, live params, outputs and
-// the invalid scenario fixtures.
+// The inspection experiment end to end: the U-route run, determinism, tunables and live edits
+// through sim::Session, the rule base reload action, outputs and the invalid scenario fixtures.
 #include <gtest/gtest.h>
 
 #include "tests/support/invalid_fixtures.hpp"
@@ -8,32 +8,66 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 
+#include "sim/core/scenario.hpp"
+#include "sim/core/session.hpp"
 #include "sim/inspection/inspection_experiment.hpp"
 
-namespace formsim::sim {
+namespace formsim::sim::inspection {
 namespace {
+
+namespace fs = std::filesystem;
 
 const std::string kDir = std::string(FORMSIM_SOURCE_DIR) + "/assets/scenarios/";
 const std::string kRoute = kDir + "inspection_u_route.yaml";
 
-InspectionExperiment& AsInspection(std::unique_ptr<Experiment>& e) {
-  auto* p = dynamic_cast<InspectionExperiment*>(e.get());
+InspectionExperiment& AsInspection(Experiment& e) {
+  auto* p = dynamic_cast<InspectionExperiment*>(&e);
   EXPECT_NE(p, nullptr);
   return *p;
 }
+InspectionExperiment& AsInspection(std::unique_ptr<Experiment>& e) { return AsInspection(*e); }
 
 void RunToEnd(Experiment& e) {
   while (!e.finished()) e.Step();
 }
 
-bool HasEvent(const Experiment& e, const std::string& kind) {
-  for (const auto& ev : e.events())
-    if (ev.kind == kind) return true;
-  return false;
+long CountEvents(const Experiment& e, const std::string& kind) {
+  long n = 0;
+  for (const auto& ev : e.events().list()) n += ev.kind == kind;
+  return n;
 }
+
+std::string ReadText(const std::string& file) {
+  std::ifstream in(file);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A private folder with a copy of the U-route scenario and of its rule base (so that a test
+// can break the rules), the scenario pointing at the copy.
+struct PrivateScenario {
+  explicit PrivateScenario(const std::string& tag) {
+    dir = (fs::temp_directory_path() / ("formsim_inspection_" + tag)).string();
+    fs::create_directories(dir);
+    fll = dir + "/rules.fll";
+    fs::copy_file(std::string(FORMSIM_SOURCE_DIR) + "/assets/fuzzy/inspection.fll", fll,
+                  fs::copy_options::overwrite_existing);
+    std::string text = ReadText(kRoute);
+    const std::string from = "fuzzy: {file: ../fuzzy/inspection.fll}";
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos);
+    text.replace(at, from.size(), "fuzzy: {file: rules.fll}");
+    file = dir + "/route.yaml";
+    std::ofstream(file) << text;
+  }
+  ~PrivateScenario() { fs::remove_all(dir); }
+  std::string dir, fll, file;
+};
 
 // The acceptance run: the robot starts 0.4 m off the centre line, converges, drives the
 // whole U and stays within the lateral bound; the Kalman estimate beats the raw fixes.
@@ -53,11 +87,19 @@ TEST(InspectionExperiment, CompletesTheURouteWithinTheLateralBound) {
   EXPECT_LT(x.error_kalman().max_abs, x.error_raw().max_abs);
   EXPECT_GT(x.error_dead_reckoning().max_abs, 0.5);  // what the laser fixes are there for
   EXPECT_NEAR(static_cast<double>(x.control_updates()) / e->time(), 5.0, 0.05);
-  EXPECT_FALSE(HasEvent(*e, "filter_fault"));
-  EXPECT_FALSE(HasEvent(*e, "fuzzy_no_rule"));
+  EXPECT_EQ(CountEvents(*e, "filter_fault"), 0);
+  EXPECT_EQ(CountEvents(*e, "fuzzy_no_rule"), 0);
+  EXPECT_EQ(CountEvents(*e, "route_end"), 1);
   const Json s = e->Summary();
-  ASSERT_NE(s.Get("tracking"), nullptr);
-  EXPECT_NE(e->SummaryTable().find("per-axis Kalman"), std::string::npos);
+  ASSERT_NE(s.Get("results"), nullptr);
+  ASSERT_NE(s.Get("results")->Get("tracking"), nullptr);
+  const Metrics m = e->Results();
+  ASSERT_NE(m.Find("tracking.within_bound"), nullptr);
+  EXPECT_EQ(*m.Find("tracking.within_bound"), 1.0);
+  EXPECT_EQ(*m.Find("route.completed"), 1.0);
+  EXPECT_EQ(*m.Find("localisation.fixes"), static_cast<double>(x.fixes()));
+  EXPECT_NE(e->SummaryText().find("per-axis Kalman"), std::string::npos);
+  EXPECT_NE(e->SummaryText().find("controller uses the kalman estimate"), std::string::npos);
 }
 
 TEST(InspectionExperiment, WithoutKalmanTheClassicalChainDrives) {
@@ -107,45 +149,216 @@ TEST(InspectionExperiment, WithoutPostsInRangeThereIsNoFixAndNoNaN) {
   EXPECT_TRUE(std::isfinite(nav.x) && std::isfinite(nav.y) && std::isfinite(nav.theta));
   // The robot still drives, on dead reckoning.
   EXPECT_GT(x.TruePose().y, x.config().route_start.y + 0.5);
+  // No fix: the raw columns are empty (not sampled) in every row, never a computed NaN.
+  const Recorder& r = e->recorder();
+  const int raw_x = r.Column("raw_x");
+  for (std::size_t i = 0; i < r.rows(); ++i) EXPECT_TRUE(IsNotSampled(r.At(i, raw_x)));
+  for (std::size_t i = 0; i < r.rows(); ++i)
+    for (std::size_t c = 0; c < r.columns(); ++c) {
+      const double v = r.At(i, static_cast<int>(c));
+      EXPECT_TRUE(std::isfinite(v) || IsNotSampled(v)) << r.names()[c] << " row " << i;
+    }
 }
 
-TEST(InspectionExperiment, EveryParamIsAValidScenarioPath) {
-  auto e = LoadExperiment(kRoute);
-  YAML::Node root = LoadYamlFile(kRoute);
-  for (const Param& p : e->params().all()) {
-    const std::string err = SetAtPath(root, p.key, YAML::Load(ParamTable::ToString(p)));
-    EXPECT_TRUE(err.empty()) << p.key << ": " << err;
+// Every tunable of the kind, as the port declares it: the same key, label, unit, group, slider
+// and live/reset as before the port, and a validity that contains the slider.
+TEST(InspectionExperiment, TunablesKeepTheirKeysLabelsGroupsAndSliders) {
+  struct Old {
+    const char* key;
+    const char* group;
+    const char* label;
+    const char* unit;
+    double lo, hi;
+    bool log, live;
+  };
+  const std::vector<Old> old = {
+      {"robot.drive.speed_per_level", "Gains/vehicle scales", "speed per level", "m/s", 0.02, 0.4, false, true},
+      {"robot.drive.steer_per_unit_deg", "Gains/vehicle scales", "steer per servo unit", "deg", 0.05, 0.5, false, true},
+      {"robot.drive.servo_center", "Gains/vehicle scales", "servo centre", "", 300, 420, false, true},
+      {"robot.drive.steer_rate_deg_s", "Gains/vehicle scales", "servo slew rate", "deg/s", 10, 360, false, true},
+      {"robot.drive.motor_force_max", "Gains/vehicle scales", "motor force limit", "N", 5, 200, false, true},
+      {"control.feedforward", "Gains/fuzzy", "turn feed-forward", "", NAN, NAN, false, true},
+      {"control.rate_hz", "Gains/fuzzy", "control rate", "Hz", 1, 50, false, true},
+      {"laser.range_sigma", "Noise/laser", "range noise σ", "m", 0, 0.2, false, true},
+      {"laser.angle_sigma_deg", "Noise/laser", "beam jitter σ", "deg", 0, 1, false, true},
+      {"laser.outlier_prob", "Noise/laser", "outlier probability", "", 0, 0.05, false, true},
+      {"laser.outlier_sigma", "Noise/laser", "outlier σ", "m", 0, 2, false, true},
+      {"laser.resolution_deg", "Noise/laser", "angular resolution", "deg", 0.1, 2, false, true},
+      {"laser.range_max", "Noise/laser", "max range", "m", 2, 30, false, true},
+      {"laser.rate_hz", "Noise/laser", "scan rate", "Hz", 1, 100, false, true},
+      {"odometry.sigma_per_sqrt_m", "Noise/odometry", "encoder noise", "m/√m", 0, 0.05, false, true},
+      {"odometry.scale_error_left", "Noise/odometry", "left scale error", "", -0.1, 0.1, false, true},
+      {"odometry.scale_error_right", "Noise/odometry", "right scale error", "", -0.1, 0.1, false, true},
+      {"posts.survey_sigma", "Noise/survey", "post survey error σ", "m", 0, 0.2, false, false},
+      {"localisation.gate", "Localisation/laser", "identification gate", "m", 0.05, 1.4, false, true},
+      {"localisation.fit_tolerance", "Localisation/laser", "circle fit tolerance", "m", 0.005, 0.2, false, true},
+      {"localisation.min_beams", "Localisation/laser", "min beams per post", "", 1, 10, false, true},
+      {"localisation.max_range", "Localisation/laser", "max post range", "m", 1, 30, false, true},
+      {"localisation.min_subtended_deg", "Localisation/laser", "min angle between posts", "deg", 1, 89, false, true},
+      {"localisation.angle_tolerance_deg", "Localisation/laser", "angle consistency", "deg", 0.1, 20, false, true},
+      {"localisation.range_tolerance", "Localisation/laser", "circle miss tolerance", "m", 0, 0.5, false, true},
+      {"estimation.controller_source", "Estimation/source", "controller uses", "", NAN, NAN, false, true},
+      {"estimation.kalman.q_per_m", "Estimation/Kalman", "Q per metre", "m²/m", 1e-7, 1e-1, true, true},
+      {"estimation.kalman.q_per_s", "Estimation/Kalman", "Q per second", "m²/s", 1e-8, 1e-1, true, true},
+      {"estimation.kalman.r", "Estimation/Kalman", "R (fix variance)", "m²", 1e-6, 1.0, true, true},
+      {"estimation.kalman.nis_gate", "Estimation/Kalman", "innovation gate (≤0 off)", "", 0, 100, false, true},
+      {"estimation.kalman.reacquire_after", "Estimation/Kalman", "re-init after gated", "", 1, 200, false, true},
+      {"estimation.classical.limit_step", "Estimation/classical", "limit step", "m", 0.01, 2, false, true},
+      {"estimation.classical.limit_rate", "Estimation/classical", "limit rate", "m/s", 0, 5, false, true},
+      {"estimation.classical.mean_window", "Estimation/classical", "mean window", "", 1, 50, false, true},
+      {"estimation.heading.limit_deg", "Estimation/heading", "heading limit", "deg", 0.5, 45, false, true},
+      {"estimation.heading.mean_window", "Estimation/heading", "heading mean window", "", 1, 50, false, true},
+  };
+  const ParsedScenario parsed = ParseScenario(ScenarioSource::FromFile(kRoute), {});
+  EXPECT_EQ(parsed.params.size(), old.size());
+  for (const Old& o : old) {
+    const Param* p = parsed.params.Find(o.key);
+    ASSERT_NE(p, nullptr) << o.key;
+    EXPECT_EQ(p->tune.group, o.group) << o.key;
+    EXPECT_EQ(p->tune.label, o.label) << o.key;
+    EXPECT_EQ(p->tune.unit, o.unit) << o.key;
+    EXPECT_EQ(p->tune.live, o.live) << o.key;
+    if (std::isfinite(o.lo)) {
+      EXPECT_EQ(p->tune.slider_lo, o.lo) << o.key;
+      EXPECT_EQ(p->tune.slider_hi, o.hi) << o.key;
+      EXPECT_EQ(p->tune.log_scale, o.log) << o.key;
+    }
+    // Every key is a YAML path the reader accepts with its current value.
+    EXPECT_NO_THROW(ParseScenario(ScenarioSource::FromFile(kRoute), {{o.key, p->Text(), "--set", -1}}))
+        << o.key;
   }
-  EXPECT_NO_THROW(LoadExperimentFromNode(root, kRoute));
+  // The reload is an action now, not a tunable.
+  EXPECT_EQ(parsed.params.Find("fuzzy.reload"), nullptr);
+  EXPECT_THROW(LoadExperiment(kRoute, {"fuzzy.reload=true"}), ScenarioError);
 }
 
-TEST(InspectionExperiment, FuzzyReloadParamReloadsOrKeepsTheOldRules) {
-  // A private copy of the rule base, so the test can break it.
-  const std::string fll =
-      (std::filesystem::temp_directory_path() / "formsim_inspection_test.fll").string();
-  std::filesystem::copy_file(std::string(FORMSIM_SOURCE_DIR) + "/assets/fuzzy/inspection.fll", fll,
-                             std::filesystem::copy_options::overwrite_existing);
-  YAML::Node root = LoadYamlFile(kRoute);
-  root["fuzzy"]["file"] = fll;
-  root["duration"] = 2.0;
-  auto e = LoadExperimentFromNode(root, kRoute);
-  auto& x = AsInspection(e);
-  PendingChanges reload;
-  reload.edits.push_back({"fuzzy.reload", "true"});
-  EXPECT_TRUE(e->Apply(reload).empty());
-  EXPECT_TRUE(HasEvent(*e, "fuzzy_reloaded"));
-  EXPECT_EQ(ParamTable::ToString(*e->params().Find("fuzzy.reload")), "false");
-  // Break the file: the reload fails, is reported, and the 45 rules stay.
-  {
-    std::ofstream out(fll);
-    out << "Engine: broken\nInputVariable: s\n";
+TEST(InspectionExperiment, LiveEditsApplyBetweenStepsAndTheSurveyWaitsForAReset) {
+  Session s(kRoute, {"duration=6"}, -1);
+  for (int k = 0; k < 100; ++k) s.Step();
+  const long before = AsInspection(s.exp()).control_updates();
+  EXPECT_EQ(s.Edit("control.rate_hz", "10"), "");
+  EXPECT_EQ(s.Edit("robot.drive.speed_per_level", "0.2"), "");
+  for (int k = 0; k < 100; ++k) s.Step();
+  auto& x = AsInspection(s.exp());
+  EXPECT_EQ(x.control_updates() - before, 10);  // 1 s at 10 Hz
+  EXPECT_EQ(x.config().drive.speed_per_level, 0.2);
+  EXPECT_EQ(x.drive().def().speed_per_level, 0.2);
+  // A rate above 1/dt is refused by the reader (the period would be shorter than a step).
+  EXPECT_NE(s.Edit("control.rate_hz", "150").find("at least one world step"), std::string::npos);
+  EXPECT_NE(s.Edit("laser.range_max", "1e9").find("must be in (0.001, 1000]"), std::string::npos);
+  // The survey error applies on reset only.
+  EXPECT_EQ(s.Edit("posts.survey_sigma", "0.1"), "");
+  s.Step();
+  EXPECT_EQ(x.config().survey_sigma, 0.03);
+  EXPECT_EQ(s.waiting_for_reset().count("posts.survey_sigma"), 1u);
+  EXPECT_EQ(s.Reset(), "");
+  EXPECT_EQ(AsInspection(s.exp()).config().survey_sigma, 0.1);
+  EXPECT_EQ(AsInspection(s.exp()).config().control_rate_hz, 10.0);
+}
+
+// The controller's source is a live choice: every estimator runs and is recorded from the start,
+// so after a switch mid-run the columns of the new source are sampled, the controller follows it
+// and the summary names it with its error entries.
+TEST(InspectionExperiment, SwitchingTheControllerSourceMidRunKeepsColumnsAndSummary) {
+  const std::map<std::string, std::vector<std::string>> columns = {
+      {"kalman", {"kf_x", "kf_y", "kf_sd_x", "err_kf", "kf_ex"}},
+      {"classical", {"classic_x", "classic_y", "err_classic", "classic_ex"}},
+      {"raw", {"raw_x", "raw_y", "raw_heading_deg", "err_raw", "raw_ex"}},
+      {"dead_reckoning", {"dr_x", "dr_y", "err_dr"}},
+      {"truth", {"true_x", "true_y", "true_heading_deg"}}};
+  const std::map<std::string, std::string> summary = {
+      {"kalman", "localisation.position_error_m.kalman.rms"},
+      {"classical", "localisation.position_error_m.classical.rms"},
+      {"raw", "localisation.position_error_m.raw.rms"},
+      {"dead_reckoning", "localisation.position_error_m.dead_reckoning.rms"},
+      {"truth", "tracking.lateral_offset_m.rms"}};
+  Session s(kRoute, {"duration=20"}, -1);
+  for (int k = 0; k < 50; ++k) s.Step();
+  for (const std::string source : {"classical", "raw", "dead_reckoning", "truth", "kalman"}) {
+    ASSERT_EQ(s.Edit("estimation.controller_source", source), "") << source;
+    const std::size_t first_row = s.exp().recorder().rows();
+    for (int k = 0; k < 100; ++k) s.Step();
+    auto& x = AsInspection(s.exp());
+    EXPECT_EQ(NavSourceNames()[x.config().source], source);
+    const Recorder& r = x.recorder();
+    ASSERT_GT(r.rows(), first_row + 10);
+    for (const std::string& name : columns.at(source)) {
+      const int c = r.Column(name);
+      ASSERT_GE(c, 0) << name;
+      int sampled = 0;
+      for (std::size_t i = first_row; i < r.rows(); ++i) sampled += !IsNotSampled(r.At(i, c));
+      EXPECT_GT(sampled, 10) << source << ": " << name;
+    }
+    for (const char* name : {"s_ctrl", "dphi_ctrl_deg", "fz_u3"}) {
+      const int c = r.Column(name);
+      EXPECT_FALSE(IsNotSampled(r.At(r.rows() - 1, c))) << source << ": " << name;
+    }
+    // The controller follows the new source.
+    const control::inspection::PaperPose nav = x.NavPose(), truth = x.TruePose();
+    if (source == "truth") {
+      EXPECT_EQ(nav.x, truth.x);
+    } else {
+      EXPECT_NE(nav.x, truth.x) << source;
+      EXPECT_LT(std::hypot(nav.x - truth.x, nav.y - truth.y), 0.5) << source;
+    }
+    const Metrics m = x.Results();
+    EXPECT_EQ(m.Cell("tracking.controller_source", ""), source);
+    ASSERT_NE(m.Find(summary.at(source)), nullptr) << source;
+    EXPECT_TRUE(std::isfinite(*m.Find(summary.at(source)))) << source;
+    const Json j = x.Summary();
+    EXPECT_EQ(j.Get("results")->Get("tracking")->Get("controller_source")->str(), source);
+    for (const FigureSpec& f : x.Figures())
+      for (const SeriesSpec& series : f.series)
+        if (!series.column.empty()) {
+          EXPECT_GE(r.Column(series.column), 0) << f.id;
+        }
   }
-  EXPECT_TRUE(e->Apply(reload).empty());
-  EXPECT_TRUE(HasEvent(*e, "fuzzy_reload_failed"));
+  // The edits are part of the run's provenance.
+  EXPECT_GE(s.exp().setup().provenance.overrides.size(), 5u);
+}
+
+TEST(InspectionExperiment, ReloadActionReloadsOrKeepsTheOldRules) {
+  PrivateScenario p("reload");
+  Session s(p.file, {"duration=2"}, -1);
+  auto& x = AsInspection(s.exp());
+  const auto actions = x.Actions();
+  ASSERT_EQ(actions.size(), 1u);
+  EXPECT_EQ(actions[0].id, "reload_rules");
+  EXPECT_EQ(actions[0].label, "Reload rule base (FLL)");
+  EXPECT_EQ(actions[0].group, "Gains/fuzzy");
+  EXPECT_NE(s.Action("reload_now"), "");  // no such action
+  EXPECT_EQ(s.Action("reload_rules"), "");
+  s.Step();
+  EXPECT_EQ(CountEvents(x, "fuzzy_reloaded"), 1);
+  // Break the file: the reload fails, is reported (event and refusal), and the 45 rules stay.
+  std::ofstream(p.fll) << "Engine: broken\nInputVariable: s\n";
+  EXPECT_EQ(s.Action("reload_rules"), "");  // queued; it fails when run
+  s.Step();
+  EXPECT_EQ(CountEvents(x, "fuzzy_reload_failed"), 1);
+  ASSERT_FALSE(s.rejected().empty());
+  EXPECT_NE(s.rejected().back().find("reload_rules"), std::string::npos);
   EXPECT_EQ(x.fuzzy().rules().size(), 45u);
-  RunToEnd(*e);
-  EXPECT_GT(x.control_updates(), 5);
-  std::filesystem::remove(fll);
+  EXPECT_NE(x.RunAction("reload_rules"), "");  // directly: the reason
+  EXPECT_EQ(x.fuzzy().rules().size(), 45u);
+  // A reset reads the scenario again and refuses the broken rule base; the run goes on.
+  EXPECT_NE(s.Reset().find("fuzzy.file"), std::string::npos);
+  while (!s.exp().finished()) s.Step();
+  EXPECT_GT(AsInspection(s.exp()).control_updates(), 5);
+}
+
+// fuzzy.file is a path relative to the scenario: saved into another folder, it is rewritten so
+// that the saved scenario still finds the rule base.
+TEST(InspectionExperiment, SavingIntoAnotherFolderRewritesTheRuleBasePath) {
+  Session s(kRoute, {}, -1);
+  const fs::path out = fs::temp_directory_path() / "formsim_inspection_save" / "deeper" / "u.yaml";
+  fs::create_directories(out.parent_path());
+  ASSERT_EQ(s.Save(out.string(), true), Session::SaveResult::kSaved);
+  const std::string text = ReadText(out.string());
+  EXPECT_EQ(text.find("file: ../fuzzy/inspection.fll"), std::string::npos);
+  auto e = LoadExperiment(out.string());
+  EXPECT_EQ(fs::canonical(AsInspection(e).config().fuzzy_file),
+            fs::canonical(std::string(FORMSIM_SOURCE_DIR) + "/assets/fuzzy/inspection.fll"));
+  fs::remove_all(out.parent_path().parent_path());
 }
 
 // Counts what the scene draws.
@@ -190,12 +403,18 @@ TEST(InspectionExperiment, DrawsRaysFiguresAndTheRuleTable) {
   }
   EXPECT_EQ(membership, 5);
   const auto tables = e->Tables();
-  ASSERT_FALSE(tables.empty());
+  ASSERT_EQ(tables.size(), 1u);  // the rules; the counts are metrics now
   ASSERT_EQ(tables[0].rows.size(), 45u);
   ASSERT_EQ(tables[0].row_strength.size(), 45u);
   double total = 0.0;
   for (double w : tables[0].row_strength) total += w;
   EXPECT_NEAR(total, 1.0, 1e-9);  // product t-norm on partitions of unity
+  // The results' tables cover what the GUI's localisation table showed.
+  const auto gui = e->Results().GuiTables();
+  ASSERT_EQ(gui.size(), 3u);
+  for (const auto& t : gui)
+    for (const auto& row : t.rows)
+      for (const auto& cell : row) EXPECT_NE(cell, "-") << t.title;
   Vec2 lo, hi;
   e->Bounds(lo, hi);
   EXPECT_LT(lo.x, 2.0);
@@ -206,8 +425,8 @@ TEST(InspectionExperiment, DrawsRaysFiguresAndTheRuleTable) {
 // must throw a ScenarioError containing the text and pointing at the offending key's line.
 TEST(InspectionExperiment, InvalidFixturesAreRejectedWithTheRightMessage) {
   const int checked = formsim::testing::CheckInvalidFixtures("inspection_");
-  EXPECT_GE(checked, 9);
+  EXPECT_GE(checked, 14);
 }
 
 }  // namespace
-}  // namespace formsim::sim
+}  // namespace formsim::sim::inspection

@@ -9,7 +9,7 @@
 #include "sim/inspection/laser_scanner.hpp"
 #include "sim/inspection/steered_drive.hpp"
 
-namespace formsim::sim {
+namespace formsim::sim::inspection {
 namespace {
 
 namespace ins = control::inspection;
@@ -134,4 +134,4 @@ TEST(LaserScanner, SeesPostsByRayCastsAndIsDeterministic) {
 }
 
 }  // namespace
-}  // namespace formsim::sim
+}  // namespace formsim::sim::inspection
