@@ -29,4 +29,13 @@ int ReadPeriodSteps(YamlReader& r, const std::string& key, double def, double dt
   return steps;
 }
 
+int RateSteps(YamlReader& r, const std::string& key, double rate_hz, double dt) {
+  int steps = 1;
+  if (!(rate_hz > 0)) r.Fail(key, "must be a positive rate");
+  const double period = 1.0 / rate_hz;
+  if (const std::string why = StepsPerPeriod(period, dt, false, &steps); !why.empty())
+    r.Fail(key, "the period 1/" + key.substr(key.rfind('.') + 1) + " = " + FormatDouble(period) + " s " + why);
+  return steps;
+}
+
 }  // namespace formsim::sim

@@ -29,4 +29,7 @@ std::string StepsPerPeriod(double period, double dt, bool exact, int* steps);
 /// number of world steps in it, failing at the key with the reason.
 int ReadPeriodSteps(YamlReader& r, const std::string& key, double def, double dt, bool exact);
 
+/// Same for a rate in Hz at `key` (already read, `rate_hz`): the steps between two runs.
+int RateSteps(YamlReader& r, const std::string& key, double rate_hz, double dt);
+
 }  // namespace formsim::sim

@@ -2,6 +2,8 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdarg>
+#include <cstdio>
 #include <system_error>
 
 namespace formsim::sim {
@@ -24,6 +26,21 @@ std::string FormatDouble(double v) {
   std::string s;
   AppendDouble(s, v);
   return s;
+}
+
+std::string Sprintf(const char* fmt, ...) {
+  char buf[256];
+  std::va_list args;
+  va_start(args, fmt);
+  const int n = std::vsnprintf(buf, sizeof buf, fmt, args);
+  va_end(args);
+  if (n < static_cast<int>(sizeof buf)) return buf;
+  std::string out(static_cast<std::size_t>(n) + 1, '\0');
+  va_start(args, fmt);
+  std::vsnprintf(out.data(), out.size(), fmt, args);
+  va_end(args);
+  out.resize(static_cast<std::size_t>(n));
+  return out;
 }
 
 bool ParseFiniteDouble(const std::string& text, double* out) {

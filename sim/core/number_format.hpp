@@ -14,6 +14,9 @@ std::string FormatDouble(double v);
 /// Appends FormatDouble(v) to `out` without allocating a temporary (hot CSV path).
 void AppendDouble(std::string& out, double v);
 
+/// printf-style text for labels and notes ("%.1f m"); never for data (use FormatDouble).
+std::string Sprintf(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+
 /// Parses the whole of `text` as a finite double. Returns false on anything else (empty, junk
 /// after the number, out of range, nan, inf).
 bool ParseFiniteDouble(const std::string& text, double* out);

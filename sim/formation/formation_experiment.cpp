@@ -1,3 +1,4 @@
+#include "sim/core/number_format.hpp"
 #include "sim/formation/formation_experiment.hpp"
 
 #include <algorithm>
@@ -16,11 +17,6 @@ using cf::Twist;
 
 constexpr double kMinL = 1e-3;  // a distance handed to a law is at least this (noisy raw l)
 
-std::string Fmt(const char* fmt, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, v);
-  return buf;
-}
 
 }  // namespace
 
@@ -139,8 +135,8 @@ void FormationExperiment::Control(double t) {
       events_.Update(a.singular, t, c.singular, [&] {
         return r.body.name + " near the line through " + cfg_.robots[l1.leader].body.name +
                " and " + cfg_.robots[l2.leader].body.name +
-               " (|sin| = " + Fmt("%.3f", std::abs(c.sin_angle)) + " < " +
-               Fmt("%.3g", cfg_.singular_threshold) + "), regularised inverse in use";
+               " (|sin| = " + Sprintf("%.3f", std::abs(c.sin_angle)) + " < " +
+               Sprintf("%.3g", cfg_.singular_threshold) + "), regularised inverse in use";
       });
     }
     a.drive->SetCommand(cmd.v, cmd.w);
@@ -174,7 +170,7 @@ void FormationExperiment::RunFilter(Link& link, double t) {
   if (st == control::UkfStatus::kOk) st = link.filter->Update(link.measured);
   // One event per entry into a run of faults; every fault is counted for the summary.
   events_.Update(link.fault, t, st != control::UkfStatus::kOk, [&] {
-    return "UKF of link " + link.name + " at t = " + Fmt("%.3f", t) +
+    return "UKF of link " + link.name + " at t = " + Sprintf("%.3f", t) +
            " s: " + control::UkfStatusName(st) + "; restarted with P0";
   });
   if (st != control::UkfStatus::kOk) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "sim/core/number_format.hpp"
 #include "sim/formation/formation_experiment.hpp"
 
 namespace formsim::sim::formation {
@@ -17,11 +18,6 @@ constexpr double kFlashSeconds = 1.0;
 // The view (Bounds) covers the robots plus this margin, m.
 constexpr double kBoundsMargin = 0.6;
 
-std::string Fmt(const char* fmt, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, v);
-  return buf;
-}
 
 }  // namespace
 
@@ -153,9 +149,9 @@ void FormationExperiment::DrawScene(DrawSink& draw) const {
     for (int li : a.links) {
       const Link& l = links_[li];
       const Vec2 mid = (agents_[l.leader].robot->pose().p() + m) * 0.5;
-      std::string label = Fmt("%.3f m", l.truth.l);
+      std::string label = Sprintf("%.3f m", l.truth.l);
       if (cfg_.robots[l.follower].node.law == FormationLaw::kLPhi)
-        label += Fmt(", %.1f°", control::WrapTo2Pi(l.truth.phi) * 180 / control::kPi);
+        label += Sprintf(", %.1f°", control::WrapTo2Pi(l.truth.phi) * 180 / control::kPi);
       draw.Text(mid, label, Color{0.25f, 0.25f, 0.25f, 0.9f}, 4.0f, 4.0f);
     }
   }

@@ -10,7 +10,7 @@
 #include "control/inspection/fuzzy_controller.hpp"
 #include "control/inspection/paper_frame.hpp"
 #include "sim/core/number_format.hpp"
-#include "sim/inspection/checked_read.hpp"
+#include "sim/core/multirate.hpp"
 
 namespace fs = std::filesystem;
 
@@ -59,10 +59,7 @@ namespace {
 constexpr int kMaxTurnPosts = 1000;
 constexpr double kMaxPosts = 10000;
 
-// The shared readers of sim/core (robot body, obstacles) check signs only, and Box2D asserts on
-// positions beyond float range, on polygons too small for its area test and on masses it cannot
-// invert. Until the core bounds them, the kind does: lengths in [1e-3, 1e3] m, coordinates
-// within ±1e3 m, mass in [1e-3, 1e6] kg.
+// Lengths and coordinates of the route and posts (the core bounds bodies and obstacles).
 const Tune kLength = Tune().In(1e-3, 1e3);
 const Tune kCoordinate = Tune().In(-1e3, 1e3);
 
@@ -70,43 +67,6 @@ void Check(YamlReader& r, const std::string& key, const Tune& valid, double v) {
   if (const std::string why = valid.Check(v); !why.empty()) r.Fail(key, why);
 }
 
-void CheckBody(YamlReader& b, const RobotDef& d) {
-  if (d.shape == RobotDef::Shape::kBox) {
-    Check(b, "size", kLength, 2.0 * d.half_length);
-    Check(b, "size", kLength, 2.0 * d.half_width);
-  } else {
-    Check(b, "radius", kLength, d.radius);
-  }
-  Check(b, "mass", Tune().In(1e-3, 1e6), d.mass);
-}
-
-void CheckObstacles(YamlReader& root, const std::vector<ObstacleDef>& obstacles) {
-  std::vector<YamlReader> items = root.MapList("obstacles");
-  for (std::size_t i = 0; i < obstacles.size() && i < items.size(); ++i) {
-    const ObstacleDef& o = obstacles[i];
-    YamlReader& m = items[i];
-    if (o.shape == ObstacleDef::Shape::kWall) {
-      for (const Vec2& p : o.vertices) {
-        Check(m, "points", kCoordinate, p.x);
-        Check(m, "points", kCoordinate, p.y);
-      }
-      continue;
-    }
-    Check(m, "center", kCoordinate, o.pose.x);
-    Check(m, "center", kCoordinate, o.pose.y);
-    if (o.shape == ObstacleDef::Shape::kBox) {
-      Check(m, "size", kLength, 2.0 * o.half_x);
-      Check(m, "size", kLength, 2.0 * o.half_y);
-    } else if (o.shape == ObstacleDef::Shape::kCircle) {
-      Check(m, "radius", kLength, o.radius);
-    } else {
-      for (const Vec2& p : o.vertices) {
-        Check(m, "vertices", kCoordinate, p.x);
-        Check(m, "vertices", kCoordinate, p.y);
-      }
-    }
-  }
-}
 
 // Posts along both sides of both straights and around the turn, in driving order.
 std::vector<Vec2> GeneratePosts(const InspectionConfig& c) {
@@ -158,20 +118,20 @@ InspectionConfig ReadInspectionConfig(YamlReader& root, const ExperimentSetup& s
     const auto s = r.Doubles("start", {c.route_start.x, c.route_start.y}, 2);
     for (double v : s) Check(r, "start", kCoordinate, v);
     c.route_start = {s[0], s[1]};
-    c.straight_length = CheckedReal(r, "straight_length", c.straight_length, length);
-    c.turn_radius = CheckedReal(r, "turn_radius", c.turn_radius, length);
+    c.straight_length = r.Double("straight_length", c.straight_length, length);
+    c.turn_radius = r.Double("turn_radius", c.turn_radius, length);
     c.turn_right = r.Choice("turn", {"left", "right"}, 1) == 1;
     r.Finish();
   }
   std::vector<std::string> omit;
   {
     YamlReader p = root.Map("posts");
-    c.post_radius = CheckedReal(p, "radius", c.post_radius, Tune().In(1e-3, 1.0));
-    c.post_spacing = CheckedReal(p, "spacing", c.post_spacing, length);
-    c.post_side_offset = CheckedReal(p, "side_offset", c.post_side_offset, length);
+    c.post_radius = p.Double("radius", c.post_radius, Tune().In(1e-3, 1.0));
+    c.post_spacing = p.Double("spacing", c.post_spacing, length);
+    c.post_side_offset = p.Double("side_offset", c.post_side_offset, length);
     c.post_stagger = p.Bool("stagger", c.post_stagger);
-    c.turn_outer = CheckedInt(p, "turn_outer", c.turn_outer, Tune().In(0, kMaxTurnPosts));
-    c.turn_inner = CheckedInt(p, "turn_inner", c.turn_inner, Tune().In(0, kMaxTurnPosts));
+    c.turn_outer = p.Int("turn_outer", c.turn_outer, Tune().In(0, kMaxTurnPosts));
+    c.turn_inner = p.Int("turn_inner", c.turn_inner, Tune().In(0, kMaxTurnPosts));
     c.survey_sigma = p.Real("survey_sigma", c.survey_sigma,
                             Tune("post survey error σ", "m").AtLeast(0).AtMost(10).Slider(0.0, 0.2)
                                 .Group("Noise/survey").OnReset());
@@ -203,7 +163,6 @@ InspectionConfig ReadInspectionConfig(YamlReader& root, const ExperimentSetup& s
     p.Finish();
   }
   c.obstacles = ReadObstacles(root);
-  CheckObstacles(root, c.obstacles);
   for (const ObstacleDef& o : c.obstacles)
     for (const InspectionPost& p : c.posts)
       if (o.name == p.name)
@@ -227,7 +186,6 @@ InspectionConfig ReadInspectionConfig(YamlReader& root, const ExperimentSetup& s
     start.Finish();
     YamlReader body = r.Map("body");
     ReadRobotBody(body, c.body);
-    CheckBody(body, c.body);
     YamlReader drive = r.Map("drive");
     c.drive = ReadSteeredDrive(drive);
     r.Finish();
@@ -261,8 +219,8 @@ InspectionConfig ReadInspectionConfig(YamlReader& root, const ExperimentSetup& s
                Tune("angle consistency", "deg").Above(0).AtMost(180).Slider(0.1, 20.0).Group(g));
     c.range_tolerance = l.Real("range_tolerance", c.range_tolerance,
                                Tune("circle miss tolerance", "m").AtLeast(0).AtMost(10).Slider(0.0, 0.5).Group(g));
-    d.cluster_jump = CheckedReal(l, "cluster_jump", d.cluster_jump, Tune().Above(0).AtMost(1e3));
-    d.span_tolerance = CheckedReal(l, "span_tolerance", d.span_tolerance, Tune().AtLeast(0).AtMost(1e3));
+    d.cluster_jump = l.Double("cluster_jump", d.cluster_jump, Tune().Above(0).AtMost(1e3));
+    d.span_tolerance = l.Double("span_tolerance", d.span_tolerance, Tune().AtLeast(0).AtMost(1e3));
     l.Finish();
   }
   {
@@ -281,7 +239,7 @@ InspectionConfig ReadInspectionConfig(YamlReader& root, const ExperimentSetup& s
                          Tune("innovation gate (≤0 off)").In(-1e6, 1e6).Slider(0.0, 100.0).Group(gk));
     kf.reacquire_after = k.Integer("reacquire_after", kf.reacquire_after,
                                    Tune("re-init after gated").AtLeast(1).AtMost(1000000).Slider(1, 200).Group(gk));
-    kf.p0 = CheckedReal(k, "p0", kf.p0, Tune().In(1e-10, 1e6));
+    kf.p0 = k.Double("p0", kf.p0, Tune().In(1e-10, 1e6));
     k.Finish();
     YamlReader cl = e.Map("classical");
     const std::string gc = "Estimation/classical";
@@ -291,7 +249,7 @@ InspectionConfig ReadInspectionConfig(YamlReader& root, const ExperimentSetup& s
                                Tune("limit rate", "m/s").AtLeast(0).AtMost(1e3).Slider(0.0, 5.0).Group(gc));
     c.mean_window = cl.Integer("mean_window", c.mean_window, Tune("mean window").In(1, 100).Slider(1, 50).Group(gc));
     c.limit.reacquire_after =
-        CheckedInt(cl, "reacquire_after", c.limit.reacquire_after, Tune().AtLeast(1).AtMost(1000000));
+        cl.Int("reacquire_after", c.limit.reacquire_after, Tune().AtLeast(1).AtMost(1000000));
     cl.Finish();
     YamlReader h = e.Map("heading");
     const std::string gh = "Estimation/heading";
@@ -300,7 +258,7 @@ InspectionConfig ReadInspectionConfig(YamlReader& root, const ExperimentSetup& s
     c.heading_window =
         h.Integer("mean_window", c.heading_window, Tune("heading mean window").In(1, 100).Slider(1, 50).Group(gh));
     c.heading_reacquire =
-        CheckedInt(h, "reacquire_after", c.heading_reacquire, Tune().AtLeast(1).AtMost(1000000));
+        h.Int("reacquire_after", c.heading_reacquire, Tune().AtLeast(1).AtMost(1000000));
     h.Finish();
     e.Finish();
   }
@@ -336,8 +294,8 @@ InspectionConfig ReadInspectionConfig(YamlReader& root, const ExperimentSetup& s
   }
   {
     YamlReader m = root.Map("metrics");
-    c.lateral_bound = CheckedReal(m, "lateral_bound", c.lateral_bound, Tune().Above(0).AtMost(1e3));
-    c.transient_m = CheckedReal(m, "transient_m", c.transient_m, Tune().AtLeast(0).AtMost(1e4));
+    c.lateral_bound = m.Double("lateral_bound", c.lateral_bound, Tune().Above(0).AtMost(1e3));
+    c.transient_m = m.Double("transient_m", c.transient_m, Tune().AtLeast(0).AtMost(1e4));
     m.Finish();
   }
   return c;

@@ -52,6 +52,7 @@
 #include "control/inspection/trilateration.hpp"
 #include "sim/core/error_stats.hpp"
 #include "sim/core/experiment.hpp"
+#include "sim/core/number_format.hpp"
 #include "sim/core/multirate.hpp"
 #include "sim/inspection/inspection_config.hpp"
 #include "sim/inspection/laser_scanner.hpp"
@@ -172,7 +173,5 @@ class InspectionExperiment : public ExperimentOf<InspectionConfig> {
   std::vector<Vec2> trail_true_, trail_kf_;
 };
 
-/// printf-style text of one number (Fmt("%.1f", v)), for notes, labels and table cells.
-std::string Fmt(const char* fmt, double v);
 
 }  // namespace formsim::sim::inspection

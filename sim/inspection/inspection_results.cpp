@@ -20,12 +20,11 @@ void SetStats(Metrics& m, const std::string& path, const ErrorStats& s) {
 
 }  // namespace
 
-// Flags (completed, within_bound, feedforward) are 1 or 0: Metrics holds numbers and texts.
 Metrics InspectionExperiment::Results() const {
   Metrics m;
   m.Set("route.length_m", route_.length());
   m.Set("route.progress_m", progress_);
-  m.Set("route.completed", completed_ ? 1.0 : 0.0);
+  m.SetFlag("route.completed", completed_);
   // null in summary.json while the route is not completed
   m.Set("route.completion_time_s", completed_ ? completion_time_ : std::nan(""));
 
@@ -57,7 +56,7 @@ Metrics InspectionExperiment::Results() const {
   SetStats(m, "tracking.heading_error_after_transient_deg", dphi_tracking_);
   m.Set("tracking.lateral_bound_m", cfg_.lateral_bound);
   const bool within = lateral_tracking_.n > 0 && lateral_tracking_.max_abs <= cfg_.lateral_bound;
-  m.Set("tracking.within_bound", within ? 1.0 : 0.0);
+  m.SetFlag("tracking.within_bound", within);
 
   const double t = time();
   const double rate = t > 0 ? static_cast<double>(control_updates_) / t : 0.0;
@@ -66,18 +65,18 @@ Metrics InspectionExperiment::Results() const {
   m.Set("control.updates", static_cast<double>(control_updates_));
   m.Set("control.laser_rate_hz", laser_rate);
   m.Set("control.no_rule_fired", static_cast<double>(no_rule_steps_));
-  m.Set("control.feedforward", cfg_.feedforward ? 1.0 : 0.0);
+  m.SetFlag("control.feedforward", cfg_.feedforward);
   m.Set("control.slip_fraction",
         sense_steps_ > 0 ? static_cast<double>(slip_steps_) / static_cast<double>(sense_steps_) : 0.0);
   m.SetText("control.rule_base", fuzzy_.origin());
 
   m.AddNote("inspection robot, controller uses the " + source + " estimate");
-  m.AddNote("  route " + Fmt("%.1f", route_.length()) + " m: " +
-            (completed_ ? "completed at t = " + Fmt("%.1f", completion_time_) + " s" : "NOT completed"));
+  m.AddNote("  route " + Sprintf("%.1f", route_.length()) + " m: " +
+            (completed_ ? "completed at t = " + Sprintf("%.1f", completion_time_) + " s" : "NOT completed"));
   m.AddNote("  laser fixes " + std::to_string(fixes_) + " of " + std::to_string(scans_) + " scans (" +
-            Fmt("%.0f", scans_ > 0 ? 100.0 * fixes_ / scans_ : 0.0) + "%)");
-  m.AddNote("  control " + Fmt("%.2f", rate) + " Hz (" + std::to_string(control_updates_) +
-            " updates), laser " + Fmt("%.1f", laser_rate) + " Hz");
+            Sprintf("%.0f", scans_ > 0 ? 100.0 * fixes_ / scans_ : 0.0) + "%)");
+  m.AddNote("  control " + Sprintf("%.2f", rate) + " Hz (" + std::to_string(control_updates_) +
+            " updates), laser " + Sprintf("%.1f", laser_rate) + " Hz");
 
   // RMS, max and sample count of ErrorStats blocks, one row each.
   auto stats_table = [&](const std::string& title, const std::string& row_header,

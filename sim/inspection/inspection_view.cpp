@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "control/inspection/paper_frame.hpp"
+#include "sim/core/number_format.hpp"
 #include "sim/inspection/inspection_experiment.hpp"
 
 namespace formsim::sim::inspection {
@@ -22,12 +23,6 @@ const Color kKalmanColor{0.0f, 0.45f, 0.7f, 1.0f};    // blue
 const Color kDrColor{0.5f, 0.5f, 0.5f, 1.0f};
 
 }  // namespace
-
-std::string Fmt(const char* fmt, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, v);
-  return buf;
-}
 
 void InspectionExperiment::DrawScene(DrawSink& draw) const {
   // Route centre line and the turn centre.
@@ -111,7 +106,7 @@ std::vector<FigureSpec> InspectionExperiment::Figures() const {
     s.push_back(Line("ideal (true)", "s1_true_x", 0, true));
     FigureSpec f = TimeFigure("fig8_x",
                               "Fig. 8: X on the first straight (centre line X = " +
-                                  Fmt("%.1f", cfg_.route_start.x) +
+                                  Sprintf("%.1f", cfg_.route_start.x) +
                                   " m): raw / limit+mean / Kalman / ideal",
                               "X [m]", std::move(s));
     f.reference_lines = {cfg_.route_start.x};
@@ -176,7 +171,7 @@ std::vector<FigureSpec> InspectionExperiment::Figures() const {
     f.x_label = v.name == "dphi" ? "Δφ [deg]" : v.name == "s" ? "s [m]" : v.name;
     int color = 0;
     for (const auto& term : v.terms) {
-      SeriesSpec s = Line(v.input ? term.name : term.name + " (" + Fmt("%.4g", term.centroid) + ")", "", color++);
+      SeriesSpec s = Line(v.input ? term.name : term.name + " (" + Sprintf("%.4g", term.centroid) + ")", "", color++);
       s.x = term.x;
       s.y = term.y;
       f.series.push_back(std::move(s));
@@ -194,10 +189,10 @@ std::vector<TableSpec> InspectionExperiment::Tables() const {
   int k = 1;
   for (const auto& r : fuzzy_.rules()) {
     if (r.s.empty() && r.dphi.empty()) {
-      rules.rows.push_back({std::to_string(k++), r.text, "", "", "", "", Fmt("%.3f", r.strength)});
+      rules.rows.push_back({std::to_string(k++), r.text, "", "", "", "", Sprintf("%.3f", r.strength)});
     } else {
       rules.rows.push_back(
-          {std::to_string(k++), r.s, r.dphi, r.u1, r.u2, r.u3, Fmt("%.3f", r.strength)});
+          {std::to_string(k++), r.s, r.dphi, r.u1, r.u2, r.u3, Sprintf("%.3f", r.strength)});
     }
     rules.row_strength.push_back(std::clamp(r.strength, 0.0, 1.0));
   }

@@ -5,7 +5,8 @@
 #include <limits>
 
 #include "control/inspection/paper_frame.hpp"
-#include "sim/inspection/checked_read.hpp"
+#include "sim/core/multirate.hpp"
+#include "sim/core/yaml_reader.hpp"
 
 namespace formsim::sim::inspection {
 
@@ -66,7 +67,7 @@ LaserScannerDef ReadLaserScanner(YamlReader& l, double dt, int* every) {
       l.Real("range_max", def.range_max, Tune("max range", "m").Above(1e-3).AtMost(1e3).Slider(2.0, 30.0).Group(g));
   def.rate_hz = l.Real("rate_hz", def.rate_hz, Tune("scan rate", "Hz").Above(0).AtMost(1e6).Slider(1.0, 100.0).Group(g));
   *every = RateSteps(l, "rate_hz", def.rate_hz, dt);
-  def.fov_deg = CheckedReal(l, "fov_deg", def.fov_deg, Tune().Above(0).AtMost(360));
+  def.fov_deg = l.Double("fov_deg", def.fov_deg, Tune().Above(0).AtMost(360));
   l.Finish();
   return def;
 }

@@ -4,7 +4,8 @@
 #include <cmath>
 
 #include "control/inspection/paper_frame.hpp"
-#include "sim/inspection/checked_read.hpp"
+#include "sim/core/multirate.hpp"
+#include "sim/core/yaml_reader.hpp"
 
 namespace formsim::sim::inspection {
 namespace {
@@ -166,15 +167,15 @@ SteeredDriveDef ReadSteeredDrive(YamlReader& d) {
                                Tune("motor force limit", "N").Above(0).AtMost(1e5).Slider(5.0, 200.0).Group(g));
   // Geometry and dynamics: fixed for a run.
   const Tune length = Tune().In(1e-3, 1e3);
-  def.steer_max_deg = CheckedReal(d, "steer_max_deg", def.steer_max_deg, Tune().Above(0).Below(80));
-  def.wheelbase = CheckedReal(d, "wheelbase", def.wheelbase, length);
-  def.track = CheckedReal(d, "track", def.track, length);
-  def.rear_axle = CheckedReal(d, "rear_axle", -0.5 * def.wheelbase, Tune().In(-1e3, 1e3));
+  def.steer_max_deg = d.Double("steer_max_deg", def.steer_max_deg, Tune().Above(0).Below(80));
+  def.wheelbase = d.Double("wheelbase", def.wheelbase, length);
+  def.track = d.Double("track", def.track, length);
+  def.rear_axle = d.Double("rear_axle", -0.5 * def.wheelbase, Tune().In(-1e3, 1e3));
   def.motor_time_constant =
-      CheckedReal(d, "motor_time_constant", def.motor_time_constant, Tune().Above(0).AtMost(1e3));
+      d.Double("motor_time_constant", def.motor_time_constant, Tune().Above(0).AtMost(1e3));
   def.rolling_resistance =
-      CheckedReal(d, "rolling_resistance", def.rolling_resistance, Tune().AtLeast(0).AtMost(10));
-  def.front_load = CheckedReal(d, "front_load", def.front_load, Tune().Above(0).Below(1));
+      d.Double("rolling_resistance", def.rolling_resistance, Tune().AtLeast(0).AtMost(10));
+  def.front_load = d.Double("front_load", def.front_load, Tune().Above(0).Below(1));
   d.Finish();
   return def;
 }

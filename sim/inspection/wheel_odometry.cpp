@@ -2,7 +2,8 @@
 
 #include <cmath>
 
-#include "sim/inspection/checked_read.hpp"
+#include "sim/core/multirate.hpp"
+#include "sim/core/yaml_reader.hpp"
 
 namespace formsim::sim::inspection {
 
@@ -29,7 +30,7 @@ WheelOdometryDef ReadWheelOdometry(YamlReader& o) {
                                 Tune("left scale error").Above(-0.5).Below(0.5).Slider(-0.1, 0.1).Group(g));
   def.scale_error_right = o.Real("scale_error_right", def.scale_error_right,
                                  Tune("right scale error").Above(-0.5).Below(0.5).Slider(-0.1, 0.1).Group(g));
-  def.track = CheckedReal(o, "track", def.track, Tune().In(1e-3, 1e3));
+  def.track = o.Double("track", def.track, Tune().In(1e-3, 1e3));
   o.Finish();
   return def;
 }
