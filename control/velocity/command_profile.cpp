@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace formsim::control::vio {
+namespace formsim::control::velocity {
 
 CommandProfile::CommandProfile(std::vector<CommandStep> steps, double accel_limit,
                                double angular_accel_limit)
@@ -40,4 +40,4 @@ void CommandProfile::At(double t, double& v, double& omega) const {
   omega = Ramp(prev_w, target_w, angular_accel_limit_, t - prev_t);
 }
 
-}  // namespace formsim::control::vio
+}  // namespace formsim::control::velocity

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace formsim::control::vio {
+namespace formsim::control::velocity {
 
 /// From time t on, command (v, ω).
 struct CommandStep {
@@ -35,4 +35,4 @@ class CommandProfile {
   double accel_limit_, angular_accel_limit_;
 };
 
-}  // namespace formsim::control::vio
+}  // namespace formsim::control::velocity

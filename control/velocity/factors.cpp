@@ -5,7 +5,7 @@
 
 #include "control/common/angle.hpp"
 
-namespace formsim::control::vio {
+namespace formsim::control::velocity {
 
 using S = KeyframeState;
 
@@ -140,4 +140,4 @@ BearingFactor EvaluateBearingFactor(const KeyframeState& k, const Vec2d& landmar
   return f;
 }
 
-}  // namespace formsim::control::vio
+}  // namespace formsim::control::velocity

@@ -10,7 +10,7 @@
 #include "control/velocity/keyframe_state.hpp"
 #include "control/velocity/odometry_preintegration.hpp"
 
-namespace formsim::control::vio {
+namespace formsim::control::velocity {
 
 /// IMU pre-integration factor between keyframes i and j (8 rows):
 ///   r_θ = θj - θi - Δθ(bgi)
@@ -60,4 +60,4 @@ BearingFactor EvaluateBearingFactor(const KeyframeState& k, const Vec2d& landmar
 /// tiny jitter so that a zero-length interval stays finite).
 Eigen::MatrixXd SqrtInformation(const Eigen::MatrixXd& cov);
 
-}  // namespace formsim::control::vio
+}  // namespace formsim::control::velocity

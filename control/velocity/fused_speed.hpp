@@ -4,7 +4,7 @@
 /// is the estimate; until the next update, the odometry reading corrected by the last
 /// estimated odometry biases is: v_e = ṽ_O - b̂_v, ω_e = ψ̃_O - b̂_ψ.
 
-namespace formsim::control::vio {
+namespace formsim::control::velocity {
 
 /// Body forward speed and yaw rate.
 struct BodyTwist {
@@ -41,4 +41,4 @@ class FusedSpeedEstimate {
   bool fresh_ = false;
 };
 
-}  // namespace formsim::control::vio
+}  // namespace formsim::control::velocity

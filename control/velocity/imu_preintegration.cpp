@@ -1,6 +1,6 @@
 #include "control/velocity/imu_preintegration.hpp"
 
-namespace formsim::control::vio {
+namespace formsim::control::velocity {
 
 ImuPreintegration::ImuPreintegration(double bg_lin, const Vec2d& ba_lin, const ImuNoise& noise)
     : noise_(noise), bg_lin_(bg_lin), ba_lin_(ba_lin) {}
@@ -82,4 +82,4 @@ Vec2d ImuPreintegration::CorrectedP(double bg, const Vec2d& ba) const {
   return dp_ + dp_dbg_ * (bg - bg_lin_) + dp_dba_ * (ba - ba_lin_);
 }
 
-}  // namespace formsim::control::vio
+}  // namespace formsim::control::velocity

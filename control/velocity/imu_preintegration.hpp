@@ -16,7 +16,7 @@
 
 #include "control/velocity/planar.hpp"
 
-namespace formsim::control::vio {
+namespace formsim::control::velocity {
 
 /// Continuous-time IMU noise model (densities), as in a data sheet.
 struct ImuNoise {
@@ -82,4 +82,4 @@ class ImuPreintegration {
   Mat2d dv_dba_ = Mat2d::Zero(), dp_dba_ = Mat2d::Zero();
 };
 
-}  // namespace formsim::control::vio
+}  // namespace formsim::control::velocity

@@ -8,7 +8,7 @@
 
 #include "control/velocity/planar.hpp"
 
-namespace formsim::control::vio {
+namespace formsim::control::velocity {
 
 struct KeyframeState {
   static constexpr int kDim = 10;
@@ -40,4 +40,4 @@ struct KeyframeState {
   Vec2d body_velocity() const { return Rot(theta()).transpose() * v(); }
 };
 
-}  // namespace formsim::control::vio
+}  // namespace formsim::control::velocity

@@ -1,6 +1,6 @@
 #include "control/velocity/odometry_preintegration.hpp"
 
-namespace formsim::control::vio {
+namespace formsim::control::velocity {
 
 OdometryPreintegration::OdometryPreintegration(double bv_lin, double bw_lin,
                                                const OdometryNoise& noise)
@@ -65,4 +65,4 @@ Vec2d OdometryPreintegration::CorrectedP(double bv, double bw) const {
   return dp_ + dp_dbv_ * (bv - bv_lin_) + dp_dbw_ * (bw - bw_lin_);
 }
 
-}  // namespace formsim::control::vio
+}  // namespace formsim::control::velocity

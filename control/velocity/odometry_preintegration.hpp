@@ -12,7 +12,7 @@
 
 #include "control/velocity/planar.hpp"
 
-namespace formsim::control::vio {
+namespace formsim::control::velocity {
 
 /// Odometry noise model: white-noise densities on the measured speeds and bias random walks.
 struct OdometryNoise {
@@ -66,4 +66,4 @@ class OdometryPreintegration {
   Vec2d dp_dbv_ = Vec2d::Zero(), dp_dbw_ = Vec2d::Zero();
 };
 
-}  // namespace formsim::control::vio
+}  // namespace formsim::control::velocity

@@ -6,7 +6,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 
-namespace formsim::control::vio {
+namespace formsim::control::velocity {
 
 using Vec2d = Eigen::Vector2d;
 using Mat2d = Eigen::Matrix2d;
@@ -26,4 +26,4 @@ inline Mat2d J90() {
   return j;
 }
 
-}  // namespace formsim::control::vio
+}  // namespace formsim::control::velocity

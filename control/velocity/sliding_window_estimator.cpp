@@ -7,7 +7,7 @@
 #include "control/velocity/factors.hpp"
 #include "control/velocity/triangulation.hpp"
 
-namespace formsim::control::vio {
+namespace formsim::control::velocity {
 
 namespace {
 
@@ -590,4 +590,4 @@ std::vector<SlidingWindowEstimator::LandmarkView> SlidingWindowEstimator::Landma
   return out;
 }
 
-}  // namespace formsim::control::vio
+}  // namespace formsim::control::velocity

@@ -36,7 +36,7 @@
 #include "control/velocity/keyframe_state.hpp"
 #include "control/velocity/odometry_preintegration.hpp"
 
-namespace formsim::control::vio {
+namespace formsim::control::velocity {
 
 /// One camera measurement: the bearing (rad, in the camera frame, CCW from the optical axis)
 /// of landmark `id` (the tracker's association).
@@ -187,4 +187,4 @@ class SlidingWindowEstimator {
   long next_id_ = 0;
 };
 
-}  // namespace formsim::control::vio
+}  // namespace formsim::control::velocity

@@ -1,6 +1,6 @@
 #include "control/velocity/speed_loop.hpp"
 
-namespace formsim::control::vio {
+namespace formsim::control::velocity {
 
 WheelSpeedLoop::WheelSpeedLoop(const SpeedLoopDef& def) {
   SetDef(def);
@@ -35,4 +35,4 @@ void WheelSpeedLoop::CompensateEstimateJump(double dv, double domega) {
   right_.ShiftErrorHistory(-d.right);
 }
 
-}  // namespace formsim::control::vio
+}  // namespace formsim::control::velocity

@@ -8,7 +8,7 @@
 
 #include "control/common/pid.hpp"
 
-namespace formsim::control::vio {
+namespace formsim::control::velocity {
 
 /// Speeds of the left and right wheel contact points, m/s.
 struct WheelSpeeds {
@@ -55,4 +55,4 @@ class WheelSpeedLoop {
   IncrementalPid left_, right_;
 };
 
-}  // namespace formsim::control::vio
+}  // namespace formsim::control::velocity

@@ -4,7 +4,7 @@
 
 #include "control/common/angle.hpp"
 
-namespace formsim::control::vio {
+namespace formsim::control::velocity {
 
 TriangulationResult Triangulate(const std::vector<BearingRay>& rays, double min_parallax,
                                 double min_depth, double max_range) {
@@ -50,4 +50,4 @@ TriangulationResult Triangulate(const std::vector<BearingRay>& rays, double min_
   return res;
 }
 
-}  // namespace formsim::control::vio
+}  // namespace formsim::control::velocity

@@ -7,7 +7,7 @@
 
 #include "control/velocity/planar.hpp"
 
-namespace formsim::control::vio {
+namespace formsim::control::velocity {
 
 /// A bearing ray in the world frame: origin (camera centre) and direction angle.
 struct BearingRay {
@@ -27,4 +27,4 @@ struct TriangulationResult {
 TriangulationResult Triangulate(const std::vector<BearingRay>& rays, double min_parallax,
                                 double min_depth, double max_range);
 
-}  // namespace formsim::control::vio
+}  // namespace formsim::control::velocity

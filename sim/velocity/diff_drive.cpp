@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace formsim::sim::vio {
+namespace formsim::sim::velocity {
 
 namespace {
 
@@ -170,4 +170,4 @@ void DiffDrive::Apply(Robot& robot, World& world, double dt) {
                    true);
 }
 
-}  // namespace formsim::sim::vio
+}  // namespace formsim::sim::velocity

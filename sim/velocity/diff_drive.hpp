@@ -25,7 +25,7 @@
 
 #include "sim/core/world.hpp"
 
-namespace formsim::sim::vio {
+namespace formsim::sim::velocity {
 
 /// A brushed DC motor with gearbox, values at the motor side unless said otherwise.
 struct DcMotorDef {
@@ -100,4 +100,4 @@ class DiffDrive : public DriveModel {
   bool voltage_limited_ = false, skidding_ = false;
 };
 
-}  // namespace formsim::sim::vio
+}  // namespace formsim::sim::velocity

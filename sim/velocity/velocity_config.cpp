@@ -1,233 +1,444 @@
 #include "sim/velocity/velocity_config.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
-#include "sim/core/yaml_reader.hpp"
+#include "control/common/angle.hpp"
+#include "sim/core/multirate.hpp"
 
-namespace formsim::sim::vio {
+namespace formsim::sim::velocity {
 
 namespace {
 
-double Positive(YamlReader& m, const std::string& key, double def) {
+constexpr double kDeg = control::kPi / 180.0;
+// Magnitude bounds that keep the run finite and Box2D's assertions quiet.
+constexpr double kMinLength = 1e-3, kMaxLength = 1e3;  // sizes, radii, m
+constexpr double kMaxCoordinate = 1e4;                 // positions, m
+constexpr double kMaxHeading = 1e3;                    // rad
+constexpr double kMinMass = 1e-3, kMaxMass = 1e6;      // kg
+constexpr double kMaxFriction = 10.0;                  // μ
+constexpr double kMaxSpeed = 10.0;                     // commanded |v|, m/s
+constexpr double kMaxYawRate = 20.0;                   // commanded |ω|, rad/s
+constexpr double kMaxGain = 1e3;                       // PID gains, V per m/s
+constexpr double kMaxTime = 1e6;                       // s
+
+// The hard validity of a number that is not a tunable: the same rule (and message) as a
+// tunable's, without entering the parameter table.
+double Number(YamlReader& m, const std::string& key, double def, const Tune& rule) {
   const double v = m.Double(key, def);
-  if (!(v > 0.0)) m.Fail(key, "must be positive");
+  const std::string err = rule.Check(v);
+  if (!err.empty()) m.Fail(key, err);
   return v;
 }
 
-double NonNegative(YamlReader& m, const std::string& key, double def) {
-  const double v = m.Double(key, def);
-  if (!(v >= 0.0)) m.Fail(key, "must be >= 0");
+int Count(YamlReader& m, const std::string& key, int def, int lo, int hi) {
+  const int v = m.Int(key, def);
+  const std::string err = Tune().In(lo, hi).Check(v);
+  if (!err.empty()) m.Fail(key, err);
   return v;
 }
 
-TerrainDef ReadTerrain(YamlReader& m, TerrainDef t) {
-  t.rolling_resistance = NonNegative(m, "rolling_resistance", t.rolling_resistance);
-  t.shear_slip = Positive(m, "shear_slip", t.shear_slip);
+// A sampling rate in Hz as world steps per sample (rounded; at least one step per sample). A
+// rate not given is the nominal one, or one sample per world step when the step is longer.
+int RateSteps(YamlReader& m, const std::string& key, double* rate, double dt) {
+  if (!m.Has(key)) *rate = std::min(*rate, 1.0 / dt);
+  *rate = Number(m, key, *rate, Tune().Above(0));
+  int steps = 1;
+  const std::string err = StepsPerPeriod(1.0 / *rate, dt, false, &steps);
+  if (!err.empty()) m.Fail(key, "the sample period 1/" + key + " " + err);
+  return steps;
+}
+
+Tune Length() {
+  return Tune().In(kMinLength, kMaxLength);
+}
+Tune Coordinate() {
+  return Tune().In(-kMaxCoordinate, kMaxCoordinate);
+}
+
+void CheckPoint(YamlReader& m, const std::string& key, Vec2 p) {
+  if (!Coordinate().Check(p.x).empty() || !Coordinate().Check(p.y).empty())
+    m.Fail(key, "coordinates must be " + Coordinate().ValidityText() + " m");
+}
+
+// ---- the shared blocks (world, obstacles, patches, body): read by the core's readers, with
+// the tunables of this kind declared and magnitude bounds checked on top ----
+
+WorldDef ReadWorld(YamlReader& w) {
+  w.Real("floor_friction", WorldDef{}.floor_friction,
+         Tune("floor μ").In(0, kMaxFriction).Slider(0.0, 1.5).Group("Floor"));
+  return ReadWorldDef(w);
+}
+
+std::vector<ObstacleDef> ReadObstacleList(YamlReader& root) {
+  std::vector<ObstacleDef> out = ReadObstacles(root);
+  std::vector<YamlReader> items = root.MapList("obstacles");
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const ObstacleDef& o = out[i];
+    YamlReader& m = items[i];
+    if (!Tune().In(0, kMaxFriction).Check(o.friction).empty())
+      m.Fail("friction", "must be " + Tune().In(0, kMaxFriction).ValidityText());
+    switch (o.shape) {
+      case ObstacleDef::Shape::kBox:
+        if (!Length().Check(2 * o.half_x).empty() || !Length().Check(2 * o.half_y).empty())
+          m.Fail("size", "each side must be " + Length().ValidityText() + " m");
+        CheckPoint(m, "center", o.pose.p());
+        break;
+      case ObstacleDef::Shape::kCircle:
+        if (!Length().Check(o.radius).empty())
+          m.Fail("radius", "must be " + Length().ValidityText() + " m");
+        CheckPoint(m, "center", o.pose.p());
+        break;
+      case ObstacleDef::Shape::kPolygon:
+        CheckPoint(m, "center", o.pose.p());
+        for (const Vec2& v : o.vertices) {
+          if (!Tune().In(-kMaxLength, kMaxLength).Check(v.x).empty() ||
+              !Tune().In(-kMaxLength, kMaxLength).Check(v.y).empty())
+            m.Fail("vertices", "vertex coordinates must be in [-1000, 1000] m");
+        }
+        break;
+      case ObstacleDef::Shape::kWall:
+        for (const Vec2& v : o.vertices) CheckPoint(m, "points", v);
+        break;
+    }
+    if (!Tune().In(-kMaxHeading, kMaxHeading).Check(o.pose.theta).empty())
+      m.Fail("angle", "must be " + Tune().In(-kMaxHeading, kMaxHeading).ValidityText() + " rad");
+  }
+  return out;
+}
+
+// A patch: its friction is a tunable (on reset: it lives in the world's patch list); its name
+// addresses keys, terrain entries and metrics, so it is unique and free of '.'.
+void CheckPatch(YamlReader& m, PatchDef& p, std::set<std::string>& names) {
+  if (p.name.find_first_of(".,") != std::string::npos)
+    m.Fail("name", "a patch name must not contain '.' or ',' (names address keys and metrics)");
+  if (p.name == "floor") m.Fail("name", "'floor' names the ground outside every patch");
+  if (!names.insert(p.name).second) m.Fail("name", "duplicate patch name '" + p.name + "'");
+  p.friction =
+      m.Real("friction", p.friction,
+             Tune("μ").In(0, kMaxFriction).Slider(0.0, 1.5).Group("Floor/" + p.name).OnReset());
+  for (const Vec2& v : p.polygon) CheckPoint(m, m.Has("polygon") ? "polygon" : "center", v);
+}
+
+RobotDef ReadBody(YamlReader& b) {
+  RobotDef def = DefaultRobotDef();
+  def.half_length = 0.22;
+  def.half_width = 0.17;
+  def.mass = 10.0;
+  def.collide_with_robots = false;
+  ReadRobotBody(b, def);
+  if (def.shape == RobotDef::Shape::kBox) {
+    if (!Length().Check(2 * def.half_length).empty() || !Length().Check(2 * def.half_width).empty())
+      b.Fail("size", "each side must be " + Length().ValidityText() + " m");
+  } else if (!Length().Check(def.radius).empty()) {
+    b.Fail("radius", "must be " + Length().ValidityText() + " m");
+  }
+  const Tune mass = Tune().In(kMinMass, kMaxMass);
+  if (!mass.Check(def.mass).empty()) b.Fail("mass", "must be " + mass.ValidityText() + " kg");
+  return def;
+}
+
+// ---- this kind's blocks ----
+
+TerrainDef ReadTerrain(YamlReader& m, TerrainDef t, const std::string& group,
+                       const std::string& prefix) {
+  t.rolling_resistance =
+      m.Real("rolling_resistance", t.rolling_resistance,
+             Tune(prefix + "rolling resistance").In(0, 1).Slider(0.0, 0.2).Group(group));
+  t.shear_slip =
+      m.Real("shear_slip", t.shear_slip,
+             Tune(prefix + "shear slip κ0").In(1e-4, 10).Slider(0.005, 0.5, kLog).Group(group));
   m.Finish();
   return t;
 }
 
 void ReadDrive(YamlReader& m, DiffDriveDef& d) {
-  d.wheel_radius = Positive(m, "wheel_radius", d.wheel_radius);
-  d.track_width = Positive(m, "track_width", d.track_width);
-  d.wheel_inertia = Positive(m, "wheel_inertia", d.wheel_inertia);
-  d.caster_load = m.Double("caster_load", d.caster_load);
-  if (!(d.caster_load >= 0.0 && d.caster_load < 1.0)) m.Fail("caster_load", "must be in [0, 1)");
-  d.caster_x = m.Double("caster_x", d.caster_x);
-  d.slip_speed_floor = Positive(m, "slip_speed_floor", d.slip_speed_floor);
-  d.substeps = m.Int("substeps", d.substeps);
-  if (d.substeps < 1 || d.substeps > 1000) m.Fail("substeps", "must be in [1, 1000]");
+  d.wheel_radius = Number(m, "wheel_radius", d.wheel_radius, Length());
+  d.track_width = Number(m, "track_width", d.track_width, Length());
+  d.wheel_inertia = Number(m, "wheel_inertia", d.wheel_inertia, Tune().In(1e-6, 1e3));
+  d.caster_load = Number(m, "caster_load", d.caster_load, Tune().AtLeast(0).Below(1));
+  d.caster_x = Number(m, "caster_x", d.caster_x, Tune().In(-kMaxLength, kMaxLength));
+  d.slip_speed_floor =
+      Number(m, "slip_speed_floor", d.slip_speed_floor, Tune().Above(0).AtMost(100));
+  d.substeps = Count(m, "substeps", d.substeps, 1, 1000);
   YamlReader mo = m.Map("motor");
   DcMotorDef& x = d.motor;
-  x.resistance = Positive(mo, "resistance", x.resistance);
-  x.torque_constant = Positive(mo, "torque_constant", x.torque_constant);
-  x.gear_ratio = Positive(mo, "gear_ratio", x.gear_ratio);
-  x.voltage_max = Positive(mo, "voltage_max", x.voltage_max);
-  x.current_max = Positive(mo, "current_max", x.current_max);
-  x.viscous_friction = NonNegative(mo, "viscous_friction", x.viscous_friction);
+  x.resistance = Number(mo, "resistance", x.resistance, Tune().In(1e-4, 1e4));
+  x.torque_constant = Number(mo, "torque_constant", x.torque_constant, Tune().In(1e-5, 10));
+  x.gear_ratio = Number(mo, "gear_ratio", x.gear_ratio, Tune().In(1e-2, 1e4));
+  x.voltage_max = Number(mo, "voltage_max", x.voltage_max, Tune().In(1e-3, 1e4));
+  x.current_max = Number(mo, "current_max", x.current_max, Tune().In(1e-3, 1e4));
+  x.viscous_friction = Number(mo, "viscous_friction", x.viscous_friction, Tune().In(0, 1e3));
   mo.Finish();
   m.Finish();
 }
 
-void ReadSensors(YamlReader& m, VelocityConfig& c) {
+void ReadSensors(YamlReader& m, VelocityConfig& c, double dt) {
   YamlReader e = m.Map("encoders");
-  c.encoders.rate = Positive(e, "rate", c.encoders.rate);
-  c.encoders.ticks_per_rev = e.Int("ticks_per_rev", c.encoders.ticks_per_rev);
-  if (c.encoders.ticks_per_rev < 1) e.Fail("ticks_per_rev", "must be >= 1");
-  c.encoders.angle_noise = NonNegative(e, "angle_noise", c.encoders.angle_noise);
-  c.encoders.radius_error = e.Double("radius_error", c.encoders.radius_error);
-  c.encoders.track_error = e.Double("track_error", c.encoders.track_error);
-  if (std::abs(c.encoders.radius_error) >= 0.5) e.Fail("radius_error", "must be in (-0.5, 0.5)");
-  if (std::abs(c.encoders.track_error) >= 0.5) e.Fail("track_error", "must be in (-0.5, 0.5)");
+  EncoderDef& enc = c.encoders;
+  const std::string ge = "Noise/encoders";
+  c.every.encoders = RateSteps(e, "rate", &enc.rate, dt);
+  // At most 2^20 counts per turn: tick counts stay far from overflowing over any run.
+  enc.ticks_per_rev = Count(e, "ticks_per_rev", enc.ticks_per_rev, 1, 1 << 20);
+  enc.angle_noise = e.Real("angle_noise", enc.angle_noise,
+                           Tune("angle jitter", "rad").In(0, 1).Slider(0.0, 0.01).Group(ge));
+  enc.radius_error =
+      e.Real("radius_error", enc.radius_error,
+             Tune("radius error").Above(-0.5).Below(0.5).Slider(-0.1, 0.1).Group(ge));
+  enc.track_error = e.Real("track_error", enc.track_error,
+                           Tune("track error").Above(-0.5).Below(0.5).Slider(-0.1, 0.1).Group(ge));
   e.Finish();
 
   YamlReader i = m.Map("imu");
   ImuDef& d = c.imu;
-  d.rate = Positive(i, "rate", d.rate);
-  d.gyro_noise_density = NonNegative(i, "gyro_noise_density", d.gyro_noise_density);
-  d.accel_noise_density = NonNegative(i, "accel_noise_density", d.accel_noise_density);
-  d.gyro_bias = i.Double("gyro_bias", d.gyro_bias);
+  const std::string gi = "Noise/IMU";
+  c.every.imu = RateSteps(i, "rate", &d.rate, dt);
+  d.gyro_noise_density =
+      i.Real("gyro_noise_density", d.gyro_noise_density,
+             Tune("gyro noise", "rad/s/√Hz").In(0, 10).Slider(1e-5, 1e-1, kLog).Group(gi));
+  d.accel_noise_density =
+      i.Real("accel_noise_density", d.accel_noise_density,
+             Tune("accel noise", "m/s²/√Hz").In(0, 100).Slider(1e-4, 1.0, kLog).Group(gi));
+  d.gyro_bias = i.Real("gyro_bias", d.gyro_bias,
+                       Tune("gyro bias", "rad/s").In(-10, 10).Slider(-0.1, 0.1).Group(gi));
   const auto ba = i.Doubles("accel_bias", {d.accel_bias_x, d.accel_bias_y}, 2);
+  const Tune accel_bias = Tune().In(-100, 100);
+  if (!accel_bias.Check(ba[0]).empty() || !accel_bias.Check(ba[1]).empty())
+    i.Fail("accel_bias", "each component must be " + accel_bias.ValidityText() + " m/s²");
   d.accel_bias_x = ba[0];
   d.accel_bias_y = ba[1];
-  d.gyro_bias_rw = NonNegative(i, "gyro_bias_rw", d.gyro_bias_rw);
-  d.accel_bias_rw = NonNegative(i, "accel_bias_rw", d.accel_bias_rw);
+  d.gyro_bias_rw =
+      i.Real("gyro_bias_rw", d.gyro_bias_rw,
+             Tune("gyro bias walk", "rad/s²/√Hz").In(0, 1).Slider(1e-6, 1e-2, kLog).Group(gi));
+  d.accel_bias_rw =
+      i.Real("accel_bias_rw", d.accel_bias_rw,
+             Tune("accel bias walk", "m/s³/√Hz").In(0, 10).Slider(1e-5, 1e-1, kLog).Group(gi));
   i.Finish();
 
   YamlReader k = m.Map("camera");
   CameraDef& cam = c.camera;
-  cam.rate = Positive(k, "rate", cam.rate);
-  cam.fov = k.Double("fov_deg", cam.fov * 180.0 / M_PI) * M_PI / 180.0;
-  if (!(cam.fov > 0.0 && cam.fov < 2.0 * M_PI)) k.Fail("fov_deg", "must be in (0, 360)");
-  cam.range = Positive(k, "range", cam.range);
-  cam.bearing_noise = Positive(k, "bearing_noise", cam.bearing_noise);
-  cam.offset = k.Double("offset", cam.offset);
-  cam.max_features = k.Int("max_features", cam.max_features);
-  if (cam.max_features < 1) k.Fail("max_features", "must be >= 1");
+  const std::string gc = "Noise/camera";
+  c.every.camera = RateSteps(k, "rate", &cam.rate, dt);
+  cam.bearing_noise =
+      k.Real("bearing_noise", cam.bearing_noise,
+             Tune("bearing σ", "rad").In(1e-6, 1).Slider(1e-4, 0.05, kLog).Group(gc));
+  cam.fov = k.Real("fov_deg", cam.fov / kDeg,
+                   Tune("field of view", "°").Above(0).Below(360).Slider(20.0, 180.0).Group(gc)) *
+            kDeg;
+  cam.range = k.Real("range", cam.range,
+                     Tune("range", "m").In(kMinLength, kMaxLength).Slider(1.0, 20.0).Group(gc));
+  cam.max_features = k.Integer("max_features", cam.max_features,
+                               Tune("features per frame").In(1, 1000).Slider(4, 100).Group(gc));
+  cam.offset = Number(k, "offset", cam.offset, Tune().In(-kMaxLength, kMaxLength));
   k.Finish();
   m.Finish();
 }
 
 void ReadEstimator(YamlReader& m, EstimatorSettings& e) {
-  control::vio::SlidingWindowDef& w = e.window;
-  w.window_size = m.Int("window_size", w.window_size);
-  if (w.window_size < 2 || w.window_size > 50) m.Fail("window_size", "must be in [2, 50]");
-  e.keyframe_every = m.Int("keyframe_every", e.keyframe_every);
-  if (e.keyframe_every < 1) m.Fail("keyframe_every", "must be >= 1");
-  w.max_iterations = m.Int("max_iterations", w.max_iterations);
-  if (w.max_iterations < 1) m.Fail("max_iterations", "must be >= 1");
-  w.use_nonholonomic = m.Bool("nonholonomic", w.use_nonholonomic);
-  w.nonholonomic_sigma = Positive(m, "nonholonomic_sigma", w.nonholonomic_sigma);
-  w.min_parallax = m.Double("min_parallax_deg", w.min_parallax * 180.0 / M_PI) * M_PI / 180.0;
-  if (!(w.min_parallax > 0.0)) m.Fail("min_parallax_deg", "must be positive");
-  e.vi_baseline = m.Bool("vi_baseline", e.vi_baseline);
+  cv::SlidingWindowDef& w = e.window;
   YamlReader o = m.Map("odometry");
-  control::vio::OdometryNoise& n = w.odometry;
-  n.speed_noise_density = Positive(o, "speed_noise_density", n.speed_noise_density);
-  n.yaw_rate_noise_density = Positive(o, "yaw_rate_noise_density", n.yaw_rate_noise_density);
-  n.speed_bias_rw = Positive(o, "speed_bias_rw", n.speed_bias_rw);
-  n.yaw_rate_bias_rw = Positive(o, "yaw_rate_bias_rw", n.yaw_rate_bias_rw);
+  cv::OdometryNoise& n = w.odometry;
+  const std::string go = "Estimation/odometry model", gw = "Estimation/window";
+  n.speed_noise_density =
+      o.Real("speed_noise_density", n.speed_noise_density,
+             Tune("speed noise", "m/s/√Hz").In(1e-6, 10).Slider(1e-4, 0.1, kLog).Group(go));
+  n.yaw_rate_noise_density =
+      o.Real("yaw_rate_noise_density", n.yaw_rate_noise_density,
+             Tune("yaw-rate noise", "rad/s/√Hz").In(1e-6, 10).Slider(1e-4, 0.5, kLog).Group(go));
+  n.speed_bias_rw =
+      o.Real("speed_bias_rw", n.speed_bias_rw,
+             Tune("speed bias walk", "m/s²/√Hz").In(1e-6, 10).Slider(1e-4, 1.0, kLog).Group(go));
+  n.yaw_rate_bias_rw = o.Real(
+      "yaw_rate_bias_rw", n.yaw_rate_bias_rw,
+      Tune("yaw-rate bias walk", "rad/s²/√Hz").In(1e-6, 10).Slider(1e-4, 1.0, kLog).Group(go));
   o.Finish();
+  w.nonholonomic_sigma =
+      m.Real("nonholonomic_sigma", w.nonholonomic_sigma,
+             Tune("side-slip σ", "m/s").In(1e-6, 10).Slider(1e-3, 1.0, kLog).Group(gw));
+  w.min_parallax =
+      m.Real("min_parallax_deg", w.min_parallax / kDeg,
+             Tune("min parallax", "°").Above(0).AtMost(90).Slider(0.5, 20.0).Group(gw)) *
+      kDeg;
+  w.window_size = m.Integer("window_size", w.window_size,
+                            Tune("keyframes").In(2, 50).Slider(2, 20).Group(gw).OnReset());
+  e.keyframe_every =
+      m.Integer("keyframe_every", e.keyframe_every,
+                Tune("frames per keyframe").In(1, 1000).Slider(1, 20).Group(gw).OnReset());
+  w.max_iterations = Count(m, "max_iterations", w.max_iterations, 1, 1000);
+  w.use_nonholonomic = m.Bool("nonholonomic", w.use_nonholonomic);
+  e.vi_baseline = m.Bool("vi_baseline", e.vi_baseline);
   m.Finish();
 }
 
 void ReadCommand(YamlReader& m, CommandSettings& c) {
   c.type = m.Choice("type", {"constant", "steps"}, c.type);
-  c.v = m.Double("v", c.v);
-  c.omega = m.Double("omega", c.omega);
-  c.accel_limit = Positive(m, "accel_limit", c.accel_limit);
-  c.angular_accel_limit = Positive(m, "angular_accel_limit", c.angular_accel_limit);
-  c.start_delay = NonNegative(m, "start_delay", c.start_delay);
+  const Tune v_rule = Tune().In(-kMaxSpeed, kMaxSpeed),
+             w_rule = Tune().In(-kMaxYawRate, kMaxYawRate);
+  if (c.type == 0) {
+    // A constant command (or a circle) is tuned live; steps are a script.
+    c.v = m.Real("v", c.v,
+                 Tune("v", "m/s").In(-kMaxSpeed, kMaxSpeed).Slider(-1.0, 1.0).Group("Command"));
+    c.omega =
+        m.Real("omega", c.omega,
+               Tune("ω", "rad/s").In(-kMaxYawRate, kMaxYawRate).Slider(-2.0, 2.0).Group("Command"));
+  } else {
+    c.v = Number(m, "v", c.v, v_rule);
+    c.omega = Number(m, "omega", c.omega, w_rule);
+  }
+  c.accel_limit = Number(m, "accel_limit", c.accel_limit, Tune().Above(0).AtMost(1e12));
+  c.angular_accel_limit =
+      Number(m, "angular_accel_limit", c.angular_accel_limit, Tune().Above(0).AtMost(1e12));
+  c.start_delay = Number(m, "start_delay", c.start_delay, Tune().In(0, kMaxTime));
   std::vector<YamlReader> steps = m.MapList("steps");
   if (c.type == 1 && steps.empty()) m.Fail("steps", "type steps needs a list of {t, v, omega}");
   if (c.type == 0 && !steps.empty()) m.Fail("steps", "only used with type: steps");
   double last_t = -1.0;
   for (YamlReader& s : steps) {
-    control::vio::CommandStep st;
+    cv::CommandStep st;
     st.t = s.RequiredDouble("t");
     if (st.t < 0.0 || st.t <= last_t) s.Fail("t", "step times must be >= 0 and increasing");
+    if (st.t > kMaxTime)
+      s.Fail("t", "must be <= " + std::to_string(static_cast<long>(kMaxTime)) + " s");
     last_t = st.t;
-    st.v = s.Double("v", 0.0);
-    st.omega = s.Double("omega", 0.0);
+    st.v = Number(s, "v", 0.0, v_rule);
+    st.omega = Number(s, "omega", 0.0, w_rule);
     s.Finish();
     c.steps.push_back(st);
   }
   m.Finish();
 }
 
+void ReadLandmarks(YamlReader& l, LandmarkDef& d) {
+  d.count = Count(l, "count", d.count, 0, 100000);
+  const auto area = l.Doubles("area", {d.area[0], d.area[1], d.area[2], d.area[3]}, 4);
+  for (double a : area)
+    if (!Coordinate().Check(a).empty())
+      l.Fail("area", "coordinates must be " + Coordinate().ValidityText() + " m");
+  if (!(area[2] > area[0] && area[3] > area[1])) l.Fail("area", "needs x0 < x1 and y0 < y1");
+  for (int i = 0; i < 4; ++i) d.area[i] = area[i];
+  d.points = l.Points("points", 0);
+  for (const Vec2& p : d.points) CheckPoint(l, "points", p);
+  l.Finish();
+}
+
+void ReadRobots(YamlReader& root, std::vector<RobotSpec>& out) {
+  std::vector<YamlReader> robots = root.MapList("robots");
+  std::set<std::string> names;
+  int index = 0;
+  for (YamlReader& r : robots) {
+    RobotSpec spec;
+    spec.name = r.String("name", "R" + std::to_string(++index));
+    if (!names.insert(spec.name).second) r.Fail("name", "robot names must be unique");
+    if (spec.name.empty() || spec.name.find_first_of(".,") != std::string::npos)
+      r.Fail("name",
+             "a robot name must be non-empty without '.' or ',' (names address keys and events)");
+    const auto pose = r.Doubles("pose", {0.0, 0.0, 0.0}, 3);
+    CheckPoint(r, "pose", {pose[0], pose[1]});
+    if (!Tune().In(-kMaxHeading, kMaxHeading).Check(pose[2]).empty())
+      r.Fail("pose",
+             "the heading must be " + Tune().In(-kMaxHeading, kMaxHeading).ValidityText() + " rad");
+    spec.pose = {pose[0], pose[1], pose[2]};
+    spec.feedback = r.Pick("feedback", FeedbackNames(), spec.feedback,
+                           Tune(spec.name).Group("Localisation/speed feedback"));
+    r.Finish();
+    out.push_back(spec);
+  }
+  if (out.empty()) out.push_back(RobotSpec{});
+}
+
 }  // namespace
 
-control::vio::CommandProfile CommandSettings::Profile() const {
+const std::vector<std::string>& FeedbackNames() {
+  static const std::vector<std::string> names{"odometry", "fused"};
+  return names;
+}
+
+cv::CommandProfile CommandSettings::Profile() const {
   // Zero until start_delay, then the steps shifted by it (or the constant command).
-  std::vector<control::vio::CommandStep> s{{0.0, 0.0, 0.0}};
+  std::vector<cv::CommandStep> s{{0.0, 0.0, 0.0}};
   if (type == 1) {
-    for (control::vio::CommandStep st : steps) {
+    for (cv::CommandStep st : steps) {
       st.t += start_delay;
       s.push_back(st);
     }
   } else {
     s.push_back({start_delay, v, omega});
   }
-  return control::vio::CommandProfile(s, accel_limit, angular_accel_limit);
+  return cv::CommandProfile(s, accel_limit, angular_accel_limit);
 }
 
-VelocityConfig ReadVelocityConfig(YamlReader& root) {
+VelocityConfig ReadVelocityConfig(YamlReader& root, double dt) {
   VelocityConfig c;
-  YamlReader w = root.Map("world");
-  c.world = ReadWorldDef(w);
-  c.obstacles = ReadObstacles(root);
-  c.patches = ReadPatches(root);
-
-  // Terrain beyond friction, by patch name ("floor" where no patch lies). Patches without an
-  // entry behave like the floor; the floor is read first so that they inherit its values.
-  YamlReader t = root.Map("terrain");
-  if (t.Has("floor")) {
-    YamlReader tm = t.Map("floor");
-    c.drive.floor_terrain = ReadTerrain(tm, c.drive.floor_terrain);
+  // Read in the order the GUI lists the tunables: gains, feedback, command, noise, floor,
+  // estimation; then the fixed parts.
+  {
+    YamlReader k = root.Map("control");
+    const std::string g = "Gains/speed PID";
+    c.every.control = RateSteps(k, "rate", &c.control.rate, dt);
+    c.control.kp =
+        k.Real("kp", c.control.kp, Tune("kp", "V·s/m").In(0, kMaxGain).Slider(0.0, 20.0).Group(g));
+    c.control.ki =
+        k.Real("ki", c.control.ki,
+               Tune("ki (per sample)", "V·s/m").In(0, kMaxGain).Slider(0.0, 10.0).Group(g));
+    c.control.kd =
+        k.Real("kd", c.control.kd,
+               Tune("kd (per sample)", "V·s/m").In(0, kMaxGain).Slider(0.0, 10.0).Group(g));
+    k.Finish();
   }
-  std::set<std::string> names;
-  for (const PatchDef& p : c.patches) names.insert(p.name);
-  for (const std::string& name : names)
-    if (t.Has(name) && name != "floor") {
-      YamlReader tm = t.Map(name);
-      c.drive.terrain[name] = ReadTerrain(tm, c.drive.floor_terrain);
+  ReadRobots(root, c.robots);
+  {
+    YamlReader cmd = root.Map("command");
+    ReadCommand(cmd, c.command);
+  }
+  {
+    YamlReader s = root.Map("sensors");
+    ReadSensors(s, c, dt);
+  }
+  {
+    YamlReader w = root.Map("world");
+    c.world = ReadWorld(w);
+  }
+  {
+    // Terrain beyond friction, by patch name ("floor" where no patch lies). Every patch gets an
+    // entry (and its tunables); one not given behaves like the floor, whose values it takes.
+    YamlReader t = root.Map("terrain");
+    YamlReader floor = t.Map("floor");
+    c.drive.floor_terrain = ReadTerrain(floor, c.drive.floor_terrain, "Floor", "floor ");
+    c.patches = ReadPatches(root);
+    std::vector<YamlReader> items = root.MapList("patches");
+    std::set<std::string> names;
+    for (std::size_t i = 0; i < c.patches.size(); ++i) {
+      PatchDef& p = c.patches[i];
+      CheckPatch(items[i], p, names);
+      YamlReader tm = t.Map(p.name);
+      c.drive.terrain[p.name] = ReadTerrain(tm, c.drive.floor_terrain, "Floor/" + p.name, "");
     }
-  t.Finish();
-
-  YamlReader l = root.Map("landmarks");
-  c.landmarks.count = l.Int("count", c.landmarks.count);
-  if (c.landmarks.count < 0) l.Fail("count", "must be >= 0");
-  const auto area = l.Doubles(
-      "area", {c.landmarks.area[0], c.landmarks.area[1], c.landmarks.area[2], c.landmarks.area[3]},
-      4);
-  if (!(area[2] > area[0] && area[3] > area[1])) l.Fail("area", "needs x0 < x1 and y0 < y1");
-  for (int i = 0; i < 4; ++i) c.landmarks.area[i] = area[i];
-  c.landmarks.points = l.Points("points", 0);
-  l.Finish();
-
-  c.body = DefaultRobotDef();
-  c.body.half_length = 0.22;
-  c.body.half_width = 0.17;
-  c.body.mass = 10.0;
-  c.body.collide_with_robots = false;
-  YamlReader b = root.Map("body");
-  ReadRobotBody(b, c.body);
-  YamlReader d = root.Map("drive");
-  ReadDrive(d, c.drive);
-  YamlReader s = root.Map("sensors");
-  ReadSensors(s, c);
-  YamlReader e = root.Map("estimator");
-  ReadEstimator(e, c.estimator);
-
-  YamlReader k = root.Map("control");
-  c.control.rate = Positive(k, "rate", c.control.rate);
-  c.control.kp = NonNegative(k, "kp", c.control.kp);
-  c.control.ki = NonNegative(k, "ki", c.control.ki);
-  c.control.kd = NonNegative(k, "kd", c.control.kd);
-  k.Finish();
-
-  YamlReader cmd = root.Map("command");
-  ReadCommand(cmd, c.command);
-  YamlReader met = root.Map("metrics");
-  c.settle_time = NonNegative(met, "settle_time", c.settle_time);
-  met.Finish();
-
-  std::vector<YamlReader> robots = root.MapList("robots");
-  std::set<std::string> robot_names;
-  int index = 0;
-  for (YamlReader& r : robots) {
-    RobotSpec spec;
-    spec.name = r.String("name", "R" + std::to_string(++index));
-    if (!robot_names.insert(spec.name).second) r.Fail("name", "robot names must be unique");
-    const auto pose = r.Doubles("pose", {0.0, 0.0, 0.0}, 3);
-    spec.pose = {pose[0], pose[1], pose[2]};
-    spec.feedback = r.Choice("feedback", FeedbackNames(), spec.feedback);
-    r.Finish();
-    c.robots.push_back(spec);
+    t.Finish();
   }
-  if (c.robots.empty()) c.robots.push_back(RobotSpec{});
+  {
+    YamlReader e = root.Map("estimator");
+    ReadEstimator(e, c.estimator);
+  }
+  c.obstacles = ReadObstacleList(root);
+  {
+    YamlReader l = root.Map("landmarks");
+    ReadLandmarks(l, c.landmarks);
+  }
+  {
+    YamlReader b = root.Map("body");
+    c.body = ReadBody(b);
+  }
+  {
+    YamlReader d = root.Map("drive");
+    ReadDrive(d, c.drive);
+  }
+  {
+    YamlReader met = root.Map("metrics");
+    c.settle_time = Number(met, "settle_time", c.settle_time, Tune().In(0, kMaxTime));
+    met.Finish();
+  }
   return c;
 }
 
-}  // namespace formsim::sim::vio
+}  // namespace formsim::sim::velocity

@@ -1,8 +1,9 @@
 #pragma once
-/// \file Scenario settings of the velocity-control experiment (type "velocity_control") and
-/// their strict YAML reader. Every value has a default here; the YAML keys are the field names:
+/// \file The parsed configuration of a `type: velocity` scenario (definition structs with
+/// defaults) and its strict reader, which also declares every tunable of the kind.
 ///
-///   world: {floor_friction}        patches: [...]        obstacles: [...]
+/// Scenario layout (every key optional; unknown keys are errors):
+///   world: {floor_friction}      patches: [{name, friction, ...}]      obstacles: [...]
 ///   terrain: {floor: {rolling_resistance, shear_slip}, <patch name>: {...}}
 ///   landmarks: {count, area: [x0, y0, x1, y1], points: [[x, y], ...]}
 ///   body: {shape, size: [length, width], radius, mass, collide_with_robots}  (ReadRobotBody)
@@ -20,7 +21,19 @@
 ///   command: {type: constant|steps, v, omega, steps: [{t, v, omega}], accel_limit,
 ///             angular_accel_limit, start_delay}
 ///   metrics: {settle_time}
-///   robots: [{name, pose: [x, y, θ], feedback: odometry|fused}]
+///   robots: [{name, pose: [x, y, θ], feedback: odometry|fused}]   (one robot R1 when absent)
+///
+/// Every number has a hard range that keeps the run finite (the error message states it):
+/// lengths and radii in [1e-3, 1e3] m, positions within ±1e4 m, masses in [1e-3, 1e6] kg,
+/// friction μ in [0, 10], noise σ and densities >= 0 and bounded, estimator noise model values
+/// >= 1e-6, |v| <= 10 m/s, |ω| <= 20 rad/s, ticks_per_rev <= 2^20, landmark count <= 1e5.
+/// A rate (Hz) gives one sample every round(1 / (rate dt)) world steps and must give at least
+/// one step per sample; a rate not given is its default or 1/dt, whichever is lower. Patch and
+/// robot names address keys and metrics: unique, without '.' or ','.
+///
+/// Live tunables: control gains, command v/ω (constant command), each robot's feedback source,
+/// sensor noise, floor and terrain values, estimator noise model and parallax. On reset: patch
+/// friction, window size, frames per keyframe.
 
 #include <string>
 #include <vector>
@@ -28,21 +41,17 @@
 #include "control/velocity/command_profile.hpp"
 #include "control/velocity/sliding_window_estimator.hpp"
 #include "sim/core/world.hpp"
+#include "sim/core/yaml_reader.hpp"
 #include "sim/velocity/diff_drive.hpp"
 #include "sim/velocity/vio_sensors.hpp"
 
-namespace formsim::sim {
-class YamlReader;
-}
+namespace formsim::sim::velocity {
 
-namespace formsim::sim::vio {
+namespace cv = control::velocity;
 
 /// Where the speed loop takes its speed from (switchable live).
 enum class Feedback { kOdometry = 0, kFused = 1 };
-inline const std::vector<std::string>& FeedbackNames() {
-  static const std::vector<std::string> names{"odometry", "fused"};
-  return names;
-}
+const std::vector<std::string>& FeedbackNames();
 
 struct RobotSpec {
   std::string name = "R1";
@@ -59,8 +68,8 @@ struct LandmarkDef {
 struct EstimatorSettings {
   /// IMU and camera noise are taken from the sensors. Ten keyframes 0.25 s apart: a 2.5 s
   /// window, long enough for landmark baselines that hold the visual scale.
-  control::vio::SlidingWindowDef window = [] {
-    control::vio::SlidingWindowDef d;
+  cv::SlidingWindowDef window = [] {
+    cv::SlidingWindowDef d;
     d.window_size = 10;
     return d;
   }();
@@ -76,12 +85,17 @@ struct ControlSettings {
 struct CommandSettings {
   int type = 0;  ///< 0 constant (also circles: ω ≠ 0), 1 steps
   double v = 0.445, omega = 0.0;
-  std::vector<control::vio::CommandStep> steps;
+  std::vector<cv::CommandStep> steps;
   double accel_limit = 1e9, angular_accel_limit = 1e9;
   /// The robot stands still this long first: the estimators see the IMU at rest, which makes
   /// the accelerometer bias (and with it the visual-inertial scale) observable.
   double start_delay = 1.0;
-  control::vio::CommandProfile Profile() const;
+  cv::CommandProfile Profile() const;
+};
+
+/// World steps per sample of each multi-rate part (from the rates and the world step).
+struct SampleSteps {
+  int imu = 1, encoders = 1, camera = 1, control = 1;
 };
 
 struct VelocityConfig {
@@ -89,7 +103,7 @@ struct VelocityConfig {
   std::vector<ObstacleDef> obstacles;
   std::vector<PatchDef> patches;
   RobotDef body;
-  DiffDriveDef drive;
+  DiffDriveDef drive;  ///< terrain has an entry for every patch (the floor's values if not given)
   EncoderDef encoders;
   ImuDef imu;
   CameraDef camera;
@@ -97,11 +111,13 @@ struct VelocityConfig {
   EstimatorSettings estimator;
   ControlSettings control;
   CommandSettings command;
+  SampleSteps every;
   double settle_time = 3.0;  ///< metrics ignore the start-up transient before this time, s
   std::vector<RobotSpec> robots;
 };
 
-/// Reads everything but the loader's root keys; errors name file, line and key.
-VelocityConfig ReadVelocityConfig(YamlReader& root);
+/// Reads everything but the loader's root keys (strict) and declares the tunables; `dt` is the
+/// world step the rates are checked against. Throws ScenarioError naming file, line and key.
+VelocityConfig ReadVelocityConfig(YamlReader& root, double dt);
 
-}  // namespace formsim::sim::vio
+}  // namespace formsim::sim::velocity

@@ -5,21 +5,14 @@
 #include <cmath>
 #include <cstdio>
 
-#include "control/common/angle.hpp"
+namespace formsim::sim::velocity {
 
-namespace formsim::sim::vio {
+FORMSIM_REGISTER_EXPERIMENT("velocity", VelocityExperiment);
 
 namespace {
 
-constexpr double kDeg = control::kPi / 180.0;
-
-/// World steps between two samples of a sensor running at `rate` Hz.
-int StepsPer(double rate, double dt) {
-  return std::max(1, static_cast<int>(std::lround(1.0 / (rate * dt))));
-}
-
-control::vio::KeyframeState StartState(const Pose2& pose) {
-  control::vio::KeyframeState k;
+cv::KeyframeState StartState(const Pose2& pose) {
+  cv::KeyframeState k;
   k.set_p({pose.x, pose.y});
   k.set_theta(pose.theta);
   return k;
@@ -39,26 +32,15 @@ Pose2 CameraPose(const Robot& robot, double dt) {
 
 }  // namespace
 
-VelocityExperiment::VelocityExperiment(const ExperimentSetup& setup, YamlReader& root)
-    : Experiment(setup), cfg_(ReadVelocityConfig(root)) {
+VelocityExperiment::VelocityExperiment(const ExperimentSetup& setup, const VelocityConfig& config)
+    : ExperimentOf(setup, config) {
   world_.SetDef(cfg_.world);
   for (const ObstacleDef& o : cfg_.obstacles) world_.CreateObstacle(o);
   for (const PatchDef& p : cfg_.patches) world_.CreatePatch(p);
-  // Every patch gets a terrain entry (a copy of the floor's unless given), so it can be tuned.
-  for (const PatchDef& p : cfg_.patches)
-    cfg_.drive.terrain.emplace(p.name, cfg_.drive.floor_terrain);
   command_ = cfg_.command.Profile();
   BuildLandmarks();
 
-  const double dt = setup.dt;
-  imu_every_ = StepsPer(cfg_.imu.rate, dt);
-  enc_every_ = StepsPer(cfg_.encoders.rate, dt);
-  cam_every_ = StepsPer(cfg_.camera.rate, dt);
-  ctrl_every_ = StepsPer(cfg_.control.rate, dt);
-  keyframe_every_ = cfg_.estimator.keyframe_every;
-  fov_deg_ = cfg_.camera.fov / kDeg;
-  parallax_deg_ = cfg_.estimator.window.min_parallax / kDeg;
-
+  const cv::SpeedLoopDef loop = LoopDef();
   for (std::size_t i = 0; i < cfg_.robots.size(); ++i) {
     auto u = std::make_unique<RobotUnit>();
     u->spec = cfg_.robots[i];
@@ -76,14 +58,17 @@ VelocityExperiment::VelocityExperiment(const ExperimentSetup& setup, YamlReader&
     u->odometry.Reset(cfg_.encoders, cfg_.drive, rng_.Fork(base + 1), *u->drive);
     u->imu.Reset(cfg_.imu, rng_.Fork(base + 2), *u->robot);
     u->camera.Reset(cfg_.camera, rng_.Fork(base + 3));
-    u->fused = control::vio::SlidingWindowEstimator(EstimatorDef(true));
-    u->vi = control::vio::SlidingWindowEstimator(EstimatorDef(false));
+    u->fused = cv::SlidingWindowEstimator(EstimatorDef(true));
+    u->vi = cv::SlidingWindowEstimator(EstimatorDef(false));
+    u->loop.SetDef(loop);
     u->last_feedback = u->spec.feedback;
+    const std::string& n = u->spec.name;
+    u->slip = events_.DeclareCondition("slip", n);
+    u->fused_fault = events_.DeclareCondition(event::kFilterFault, n, n + ".fused");
+    u->vi_fault = events_.DeclareCondition(event::kFilterFault, n, n + ".vi_only");
     units_.push_back(std::move(u));
   }
-  ApplySettings();
-  RegisterParams();
-  DeclareColumns();
+  DeclareChannels();
   Start();
 }
 
@@ -99,8 +84,8 @@ void VelocityExperiment::BuildLandmarks() {
   for (const Vec2& p : cfg_.landmarks.points) landmarks_.push_back({id++, p});
 }
 
-control::vio::SlidingWindowDef VelocityExperiment::EstimatorDef(bool use_odometry) const {
-  control::vio::SlidingWindowDef d = cfg_.estimator.window;
+cv::SlidingWindowDef VelocityExperiment::EstimatorDef(bool use_odometry) const {
+  cv::SlidingWindowDef d = cfg_.estimator.window;
   // The estimator knows its sensors' data sheets: IMU and camera noise come from them.
   d.imu.gyro_noise_density = std::max(cfg_.imu.gyro_noise_density, 1e-6);
   d.imu.accel_noise_density = std::max(cfg_.imu.accel_noise_density, 1e-5);
@@ -115,183 +100,123 @@ control::vio::SlidingWindowDef VelocityExperiment::EstimatorDef(bool use_odometr
   return d;
 }
 
-void VelocityExperiment::ApplySettings() {
-  world_.SetDef(cfg_.world);
-  cfg_.camera.fov = fov_deg_ * kDeg;
-  cfg_.estimator.window.min_parallax = parallax_deg_ * kDeg;
-  command_ = cfg_.command.Profile();
-  control::vio::SpeedLoopDef loop;
+cv::SpeedLoopDef VelocityExperiment::LoopDef() const {
+  cv::SpeedLoopDef loop;
   loop.track_width = cfg_.drive.track_width;  // the controller's nominal geometry
   loop.gains.kp = cfg_.control.kp;
   loop.gains.ki = cfg_.control.ki;
   loop.gains.kd = cfg_.control.kd;
   loop.gains.out_min = -cfg_.drive.motor.voltage_max;
   loop.gains.out_max = cfg_.drive.motor.voltage_max;
-  for (auto& u : units_) {
-    u->drive->def().floor_terrain = cfg_.drive.floor_terrain;
-    u->drive->def().terrain = cfg_.drive.terrain;
-    u->odometry.SetDef(cfg_.encoders);
-    u->imu.SetDef(cfg_.imu);
-    u->camera.SetDef(cfg_.camera);
+  return loop;
+}
+
+void VelocityExperiment::ApplyTunables(const VelocityConfig& next) {
+  cfg_ = next;
+  world_.SetDef(cfg_.world);
+  command_ = cfg_.command.Profile();
+  const cv::SpeedLoopDef loop = LoopDef();
+  for (std::size_t i = 0; i < units_.size(); ++i) {
+    RobotUnit& u = *units_[i];
+    u.spec = cfg_.robots[i];
+    u.drive->def() = cfg_.drive;  // terrain; the rest is fixed
+    u.odometry.SetDef(cfg_.encoders);
+    u.imu.SetDef(cfg_.imu);  // a new configured bias moves the current one by the difference
+    u.camera.SetDef(cfg_.camera);
     // Noise edits reach the factors built from now on; the window keeps its size.
-    for (auto* est : {&u->fused, &u->vi}) {
-      const control::vio::SlidingWindowDef d = EstimatorDef(est == &u->fused);
+    for (auto* est : {&u.fused, &u.vi}) {
       const int window = est->def().window_size;
-      est->def() = d;
+      est->def() = EstimatorDef(est == &u.fused);
       est->def().window_size = window;
     }
-    u->loop.SetDef(loop);  // gains only: the PID state (last output, errors) is kept
+    u.loop.SetDef(loop);  // gains only: the PID state (last output, errors) is kept
   }
 }
 
-void VelocityExperiment::RegisterParams() {
-  ControlSettings& c = cfg_.control;
-  params_.AddDouble("control.kp", "Gains/speed PID", "kp", &c.kp, 0.0, 20.0, "V·s/m");
-  params_.AddDouble("control.ki", "Gains/speed PID", "ki (per sample)", &c.ki, 0.0, 10.0, "V·s/m");
-  params_.AddDouble("control.kd", "Gains/speed PID", "kd (per sample)", &c.kd, 0.0, 10.0, "V·s/m");
-  for (auto& u : units_)
-    params_.AddChoice("robots." + u->spec.name + ".feedback", "Localisation/speed feedback",
-                      u->spec.name, &u->spec.feedback, FeedbackNames());
-  if (cfg_.command.type == 0) {
-    params_.AddDouble("command.v", "Command", "v", &cfg_.command.v, -1.0, 1.0, "m/s");
-    params_.AddDouble("command.omega", "Command", "ω", &cfg_.command.omega, -2.0, 2.0, "rad/s");
+void VelocityExperiment::DeclareChannels() {
+  for (const auto& up : units_) {
+    const RobotUnit* u = up.get();
+    const std::string p = u->spec.name + ".";
+    const bool vi = cfg_.estimator.vi_baseline;  // fixed for the run
+    auto add = [&](const char* name, std::function<double()> get) {
+      recorder_.Add(p + name, std::move(get));
+    };
+    recorder_.AddGroup({p + "x", p + "y", p + "theta"}, [u](double* o) {
+      const Pose2 pose = u->robot->pose();
+      o[0] = pose.x, o[1] = pose.y, o[2] = pose.theta;
+    });
+    add("v_true", [u] { return u->robot->forward_speed(); });
+    add("w_true", [u] { return u->robot->yaw_rate(); });
+    add("v_cmd", [u] { return u->v_cmd; });
+    add("w_cmd", [u] { return u->w_cmd; });
+    add("v_odo", [u] { return u->odo.speed; });
+    add("w_odo", [u] { return u->odo.yaw_rate; });
+    add("v_fused", [u] { return u->est_fused.v; });
+    add("w_fused", [u] { return u->est_fused.omega; });
+    add("v_vi", [u, vi] { return vi ? u->est_vi.v : NotSampled(); });
+    add("w_vi", [u, vi] { return vi ? u->est_vi.omega : NotSampled(); });
+    add("v_feedback", [u] { return u->est_feedback.v; });
+    add("err_odo", [u] { return u->odo.speed - u->robot->forward_speed(); });
+    add("err_fused", [u] { return u->est_fused.v - u->robot->forward_speed(); });
+    add("err_vi", [u, vi] { return vi ? u->est_vi.v - u->robot->forward_speed() : NotSampled(); });
+    add("slip_l", [u] { return u->drive->slip_ratio(DiffDrive::kLeft); });
+    add("slip_r", [u] { return u->drive->slip_ratio(DiffDrive::kRight); });
+    add("mu_l", [u] { return u->drive->friction(DiffDrive::kLeft); });
+    add("mu_r", [u] { return u->drive->friction(DiffDrive::kRight); });
+    add("u_l", [u] { return u->drive->voltage(DiffDrive::kLeft); });
+    add("u_r", [u] { return u->drive->voltage(DiffDrive::kRight); });
+    add("i_l", [u] { return u->drive->current(DiffDrive::kLeft); });
+    add("i_r", [u] { return u->drive->current(DiffDrive::kRight); });
+    add("bv", [u] { return u->fused.latest().bv(); });
+    add("bw", [u] { return u->fused.latest().bw(); });
+    add("bg", [u] { return u->fused.latest().bg(); });
+    add("bg_true", [u] { return u->imu.gyro_bias(); });
+    add("ba_x", [u] { return u->fused.latest().ba().x(); });
+    add("ba_y", [u] { return u->fused.latest().ba().y(); });
+    add("landmarks", [u] {
+      int n = 0;
+      for (const auto& l : u->fused.Landmarks()) n += l.initialized ? 1 : 0;
+      return static_cast<double>(n);
+    });
+    add("feedback", [u] { return static_cast<double>(u->spec.feedback); });
+    add("slipping", [u] { return u->drive->slipping() || u->drive->skidding() ? 1.0 : 0.0; });
   }
-
-  EncoderDef& e = cfg_.encoders;
-  params_.AddDouble("sensors.encoders.angle_noise", "Noise/encoders", "angle jitter",
-                    &e.angle_noise, 0.0, 0.01, "rad");
-  params_.AddDouble("sensors.encoders.radius_error", "Noise/encoders", "radius error",
-                    &e.radius_error, -0.1, 0.1);
-  params_.AddDouble("sensors.encoders.track_error", "Noise/encoders", "track error", &e.track_error,
-                    -0.1, 0.1);
-  ImuDef& i = cfg_.imu;
-  params_.AddDouble("sensors.imu.gyro_noise_density", "Noise/IMU", "gyro noise",
-                    &i.gyro_noise_density, 1e-5, 1e-1, "rad/s/√Hz", true);
-  params_.AddDouble("sensors.imu.accel_noise_density", "Noise/IMU", "accel noise",
-                    &i.accel_noise_density, 1e-4, 1.0, "m/s²/√Hz", true);
-  params_.AddDouble("sensors.imu.gyro_bias", "Noise/IMU", "gyro bias", &i.gyro_bias, -0.1, 0.1,
-                    "rad/s");
-  params_.AddDouble("sensors.imu.gyro_bias_rw", "Noise/IMU", "gyro bias walk", &i.gyro_bias_rw,
-                    1e-6, 1e-2, "rad/s²/√Hz", true);
-  params_.AddDouble("sensors.imu.accel_bias_rw", "Noise/IMU", "accel bias walk", &i.accel_bias_rw,
-                    1e-5, 1e-1, "m/s³/√Hz", true);
-  CameraDef& k = cfg_.camera;
-  params_.AddDouble("sensors.camera.bearing_noise", "Noise/camera", "bearing σ", &k.bearing_noise,
-                    1e-4, 0.05, "rad", true);
-  params_.AddDouble("sensors.camera.fov_deg", "Noise/camera", "field of view", &fov_deg_, 20.0,
-                    180.0, "°");
-  params_.AddDouble("sensors.camera.range", "Noise/camera", "range", &k.range, 1.0, 20.0, "m");
-  params_.AddInt("sensors.camera.max_features", "Noise/camera", "features per frame",
-                 &k.max_features, 4, 100);
-
-  params_.AddDouble("world.floor_friction", "Floor", "floor μ", &cfg_.world.floor_friction, 0.0,
-                    1.5);
-  params_.AddDouble("terrain.floor.rolling_resistance", "Floor", "floor rolling resistance",
-                    &cfg_.drive.floor_terrain.rolling_resistance, 0.0, 0.2);
-  params_.AddDouble("terrain.floor.shear_slip", "Floor", "floor shear slip κ0",
-                    &cfg_.drive.floor_terrain.shear_slip, 0.005, 0.5, "", true);
-  for (PatchDef& p : cfg_.patches) {
-    // Patch friction lives in the world's patch list: it takes effect on reset.
-    params_
-        .AddDouble("patches." + p.name + ".friction", "Floor/" + p.name, "μ", &p.friction, 0.0, 1.5)
-        .requires_reset = true;
-    TerrainDef& t = cfg_.drive.terrain[p.name];
-    params_.AddDouble("terrain." + p.name + ".rolling_resistance", "Floor/" + p.name,
-                      "rolling resistance", &t.rolling_resistance, 0.0, 0.2);
-    params_.AddDouble("terrain." + p.name + ".shear_slip", "Floor/" + p.name, "shear slip κ0",
-                      &t.shear_slip, 0.005, 0.5, "", true);
-  }
-
-  control::vio::SlidingWindowDef& w = cfg_.estimator.window;
-  params_.AddDouble("estimator.odometry.speed_noise_density", "Estimation/odometry model",
-                    "speed noise", &w.odometry.speed_noise_density, 1e-4, 0.1, "m/s/√Hz", true);
-  params_.AddDouble("estimator.odometry.yaw_rate_noise_density", "Estimation/odometry model",
-                    "yaw-rate noise", &w.odometry.yaw_rate_noise_density, 1e-4, 0.5, "rad/s/√Hz",
-                    true);
-  params_.AddDouble("estimator.odometry.speed_bias_rw", "Estimation/odometry model",
-                    "speed bias walk", &w.odometry.speed_bias_rw, 1e-4, 1.0, "m/s²/√Hz", true);
-  params_.AddDouble("estimator.odometry.yaw_rate_bias_rw", "Estimation/odometry model",
-                    "yaw-rate bias walk", &w.odometry.yaw_rate_bias_rw, 1e-4, 1.0, "rad/s²/√Hz",
-                    true);
-  params_.AddDouble("estimator.nonholonomic_sigma", "Estimation/window", "side-slip σ",
-                    &w.nonholonomic_sigma, 1e-3, 1.0, "m/s", true);
-  params_.AddDouble("estimator.min_parallax_deg", "Estimation/window", "min parallax",
-                    &parallax_deg_, 0.5, 20.0, "°");
-  params_.AddInt("estimator.window_size", "Estimation/window", "keyframes", &w.window_size, 2, 20)
-      .requires_reset = true;
-  params_
-      .AddInt("estimator.keyframe_every", "Estimation/window", "frames per keyframe",
-              &cfg_.estimator.keyframe_every, 1, 20)
-      .requires_reset = true;
-}
-
-void VelocityExperiment::OnParamsChanged() {
-  ApplySettings();
-}
-
-void VelocityExperiment::DeclareColumns() {
-  recorder_.AddColumn("t");
-  static const char* kCols[] = {
-      "x",       "y",         "theta",   "v_true",    "w_true",   "v_cmd",   "w_cmd",
-      "v_odo",   "w_odo",     "v_fused", "w_fused",   "v_vi",     "w_vi",    "v_feedback",
-      "err_odo", "err_fused", "err_vi",  "slip_l",    "slip_r",   "mu_l",    "mu_r",
-      "u_l",     "u_r",       "i_l",     "i_r",       "bv",       "bw",      "bg",
-      "bg_true", "ba_x",      "ba_y",    "landmarks", "feedback", "slipping"};
-  for (const auto& u : units_)
-    for (const char* c : kCols) {
-      const std::string name = u->spec.name + "." + c;
-      columns_[name] = recorder_.AddColumn(name);
-    }
-}
-
-void VelocityExperiment::CappedEvent(RobotUnit& u, const std::string& kind,
-                                     const std::string& message) {
-  // Slip and saturation can repeat every step on a slippery floor: keep the log readable.
-  constexpr long kMaxEvents = 25;
-  if (kind != "filter_fault" && u.events >= kMaxEvents) return;
-  ++u.events;
-  AddEvent(kind, u.spec.name, message);
 }
 
 void VelocityExperiment::UpdateEstimators(RobotUnit& u, double t) {
   // The estimate the speed loop would use without this update (for the Δv_s compensation).
-  const control::vio::BodyTwist before = u.fused_speed.Peek(u.odo.speed, u.odo.yaw_rate);
+  const cv::BodyTwist before = u.fused_speed.Peek(u.odo.speed, u.odo.yaw_rate);
   const auto t0 = std::chrono::steady_clock::now();
-  const control::vio::UpdateReport r = u.fused.AddKeyframe(t, u.last_obs);
+  const cv::UpdateReport r = u.fused.AddKeyframe(t, u.last_obs);
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   u.update_ms_sum += ms;
   u.update_ms_max = std::max(u.update_ms_max, ms);
   ++u.updates;
-  if (!r.ok) {
-    ++u.faults;
-    char buf[256];
-    std::snprintf(buf, sizeof buf, "fused estimator fault at t=%.3f s: %s (window restarted)", t,
-                  r.message.c_str());
-    CappedEvent(u, "filter_fault", buf);
-  }
-  const control::vio::KeyframeState& k = u.fused.latest();
+  // One event per run of faults; every fault is counted.
+  auto fault = [&](EventLog::ConditionId id, const cv::UpdateReport& rep, const char* which) {
+    if (!rep.ok) ++u.faults;
+    events_.Update(id, t, !rep.ok, [&] {
+      char buf[256];
+      std::snprintf(buf, sizeof buf, "%s estimator fault at t=%.3f s: %s (window restarted)", which,
+                    t, rep.message.c_str());
+      return std::string(buf);
+    });
+  };
+  fault(u.fused_fault, r, "fused");
+  const cv::KeyframeState& k = u.fused.latest();
   u.fused_speed.OnUpdate(k.body_velocity().x(), k.bv(), k.bw());
-  const control::vio::BodyTwist after = u.fused_speed.Peek(u.odo.speed, u.odo.yaw_rate);
+  const cv::BodyTwist after = u.fused_speed.Peek(u.odo.speed, u.odo.yaw_rate);
   u.jump_v += after.v - before.v;
   u.jump_w += after.omega - before.omega;
 
-  if (cfg_.estimator.vi_baseline) {
-    const control::vio::UpdateReport rv = u.vi.AddKeyframe(t, u.last_obs);
-    if (!rv.ok) {
-      ++u.faults;
-      char buf[256];
-      std::snprintf(buf, sizeof buf, "VI-only estimator fault at t=%.3f s: %s (window restarted)",
-                    t, rv.message.c_str());
-      CappedEvent(u, "filter_fault", buf);
-    }
-  }
+  if (cfg_.estimator.vi_baseline) fault(u.vi_fault, u.vi.AddKeyframe(t, u.last_obs), "VI-only");
 }
 
 void VelocityExperiment::Estimate(RobotUnit& u) {
   u.est_fused = u.fused_speed.Estimate(u.odo.speed, u.odo.yaw_rate);
   if (cfg_.estimator.vi_baseline && u.vi.initialized()) {
-    const control::vio::KeyframeState s = u.vi.Propagated();
+    const cv::KeyframeState s = u.vi.Propagated();
     u.est_vi = {s.body_velocity().x(), u.last_gyro - s.bg()};
   }
 }
@@ -300,7 +225,7 @@ void VelocityExperiment::Score(RobotUnit& u) {
   const double t = time();
   if (t < cfg_.settle_time - 1e-9) return;
   const double v = u.robot->forward_speed(), w = u.robot->yaw_rate();
-  const double period = ctrl_every_ * dt();
+  const double period = cfg_.every.control * dt();
   FloorStats& f = u.floors[world_.PatchNameAt(u.robot->pose().p())];
   for (FloorStats* s : {&u.total, &f}) {
     s->odo.Add(u.odo.speed - v);
@@ -323,6 +248,7 @@ void VelocityExperiment::Score(RobotUnit& u) {
 
 void VelocityExperiment::Sense(double t) {
   const long k = steps();
+  const SampleSteps& every = cfg_.every;
   for (auto& up : units_) {
     RobotUnit& u = *up;
     if (k == 0) {
@@ -332,35 +258,35 @@ void VelocityExperiment::Sense(double t) {
       u.vi.Initialize(StartState(u.robot->pose()), u.last_obs);
       continue;
     }
-    if (k % imu_every_ == 0) {
-      const ImuReading r = u.imu.Sample(*u.robot, imu_every_ * dt());
+    if (k % every.imu == 0) {
+      ImuReading r = u.imu.Sample(*u.robot, every.imu * dt());
       u.last_gyro = r.gyro;
+      if (u.imu_offset != 0.0) r.accel.x() += u.imu_offset;
       u.fused.AddImu(r.dt, r.gyro, r.accel);
       u.vi.AddImu(r.dt, r.gyro, r.accel);
     }
-    if (k % enc_every_ == 0) {
-      u.odo = u.odometry.Sample(*u.drive, enc_every_ * dt());
+    if (k % every.encoders == 0) {
+      u.odo = u.odometry.Sample(*u.drive, every.encoders * dt());
       u.fused.AddOdometry(u.odo.dt, u.odo.speed, u.odo.yaw_rate);
     }
-    if (k % cam_every_ == 0) {
+    if (k % every.camera == 0) {
       u.last_obs = u.camera.Observe(CameraPose(*u.robot, dt()), landmarks_, world_);
-      if (++u.camera_frames % keyframe_every_ == 0) UpdateEstimators(u, t);
+      if (++u.camera_frames % cfg_.estimator.keyframe_every == 0) UpdateEstimators(u, t);
     }
-    if (k % ctrl_every_ == 0) {
+    if (k % every.control == 0) {
       Estimate(u);
       Score(u);
     }
-    // Slip events on the transition into slipping (capped).
+    // One slip event on each entry into slipping or skidding.
     const bool slipping = u.drive->slipping() || u.drive->skidding();
-    if (slipping && !u.was_slipping) {
+    events_.Update(u.slip, t, slipping, [&] {
       char buf[160];
       std::snprintf(buf, sizeof buf, "%s at t=%.2f s on '%s' (μ=%.2f)",
                     u.drive->skidding() ? "side skid" : "wheel slip", t,
                     world_.PatchNameAt(u.robot->pose().p()).c_str(),
                     world_.FrictionAt(u.robot->pose().p()));
-      CappedEvent(u, "slip", buf);
-    }
-    u.was_slipping = slipping;
+      return std::string(buf);
+    });
     if (k % 10 == 0) {
       u.trail.push_back(u.robot->pose().p());
       if (u.trail.size() > 2000) u.trail.pop_front();
@@ -369,14 +295,12 @@ void VelocityExperiment::Sense(double t) {
 }
 
 void VelocityExperiment::Control(double t) {
-  const long k = steps();
-  if (k % ctrl_every_ != 0) return;
+  if (steps() % cfg_.every.control != 0) return;
   for (auto& up : units_) {
     RobotUnit& u = *up;
     command_.At(t, u.v_cmd, u.w_cmd);
     const bool fused = u.spec.feedback == static_cast<int>(Feedback::kFused);
-    const control::vio::BodyTwist est =
-        fused ? u.est_fused : control::vio::BodyTwist{u.odo.speed, u.odo.yaw_rate};
+    const cv::BodyTwist est = fused ? u.est_fused : cv::BodyTwist{u.odo.speed, u.odo.yaw_rate};
     // Δv_s compensation: an estimator update (or a switch of the feedback source) moves the
     // estimate without the robot moving differently; the PIDs must not kick on it.
     if (u.last_feedback >= 0 && u.last_feedback != u.spec.feedback) {
@@ -392,54 +316,4 @@ void VelocityExperiment::Control(double t) {
   }
 }
 
-void VelocityExperiment::Record(Recorder& rec) {
-  rec.Set(0, time());
-  for (const auto& up : units_) {
-    const RobotUnit& u = *up;
-    const std::string& p = u.spec.name;
-    auto set = [&](const char* c, double v) { rec.Set(columns_.at(p + "." + c), v); };
-    const Pose2 pose = u.robot->pose();
-    const double v = u.robot->forward_speed(), w = u.robot->yaw_rate();
-    const control::vio::KeyframeState& k = u.fused.latest();
-    set("x", pose.x);
-    set("y", pose.y);
-    set("theta", pose.theta);
-    set("v_true", v);
-    set("w_true", w);
-    set("v_cmd", u.v_cmd);
-    set("w_cmd", u.w_cmd);
-    set("v_odo", u.odo.speed);
-    set("w_odo", u.odo.yaw_rate);
-    set("v_fused", u.est_fused.v);
-    set("w_fused", u.est_fused.omega);
-    set("v_vi", cfg_.estimator.vi_baseline ? u.est_vi.v : NAN);
-    set("w_vi", cfg_.estimator.vi_baseline ? u.est_vi.omega : NAN);
-    set("v_feedback", u.est_feedback.v);
-    set("err_odo", u.odo.speed - v);
-    set("err_fused", u.est_fused.v - v);
-    set("err_vi", cfg_.estimator.vi_baseline ? u.est_vi.v - v : NAN);
-    set("slip_l", u.drive->slip_ratio(DiffDrive::kLeft));
-    set("slip_r", u.drive->slip_ratio(DiffDrive::kRight));
-    set("mu_l", u.drive->friction(DiffDrive::kLeft));
-    set("mu_r", u.drive->friction(DiffDrive::kRight));
-    set("u_l", u.drive->voltage(DiffDrive::kLeft));
-    set("u_r", u.drive->voltage(DiffDrive::kRight));
-    set("i_l", u.drive->current(DiffDrive::kLeft));
-    set("i_r", u.drive->current(DiffDrive::kRight));
-    set("bv", k.bv());
-    set("bw", k.bw());
-    set("bg", k.bg());
-    set("bg_true", u.imu.gyro_bias());
-    set("ba_x", k.ba().x());
-    set("ba_y", k.ba().y());
-    int n = 0;
-    for (const auto& l : u.fused.Landmarks()) n += l.initialized ? 1 : 0;
-    set("landmarks", n);
-    set("feedback", u.spec.feedback);
-    set("slipping", (u.drive->slipping() || u.drive->skidding()) ? 1.0 : 0.0);
-  }
-}
-
-FORMSIM_REGISTER_EXPERIMENT("velocity_control", VelocityExperiment);
-
-}  // namespace formsim::sim::vio
+}  // namespace formsim::sim::velocity

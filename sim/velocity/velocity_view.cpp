@@ -1,21 +1,15 @@
-// Drawing, figures and GUI tables of the velocity-control experiment.
+// Figures and the scene drawing of the velocity-control experiment.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include "sim/velocity/velocity_experiment.hpp"
 
-namespace formsim::sim::vio {
+namespace formsim::sim::velocity {
 
 namespace {
 
-std::string Fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
-Vec2 ToVec2(const control::vio::Vec2d& v) {
+Vec2 ToVec2(const cv::Vec2d& v) {
   return {v.x(), v.y()};
 }
 
@@ -62,8 +56,7 @@ void VelocityExperiment::DrawScene(DrawSink& draw) const {
     if (chain.size() > 1) draw.Polyline(chain, c.WithAlpha(0.9f), 1.5f, false);
     if (!window.empty()) {
       const auto& newest = window.back();
-      const Vec2 kp = ToVec2(newest.p() + control::vio::Rot(newest.theta()) *
-                                              control::vio::Vec2d(cam.offset, 0.0));
+      const Vec2 kp = ToVec2(newest.p() + cv::Rot(newest.theta()) * cv::Vec2d(cam.offset, 0.0));
       for (const auto& l : u.fused.Landmarks()) {
         if (!l.initialized) continue;
         const Vec2 lp = ToVec2(l.position);
@@ -99,123 +92,60 @@ void VelocityExperiment::RobotFigures(const RobotUnit& u, std::vector<FigureSpec
   const std::string who = units_.size() > 1 ? " (" + u.spec.name + ")" : "";
   const bool vi = cfg_.estimator.vi_baseline;
 
-  FigureSpec speed;
-  speed.id = "speed" + suffix;
-  speed.title =
-      "Forward speed: true, odometry, fused" + std::string(vi ? ", visual-inertial" : "") + who;
-  speed.y_label = "v [m/s]";
-  speed.series = {{"commanded", p + "v_cmd", "", {}, {}, 6, true},
-                  {"odometry", p + "v_odo", "", {}, {}, 1},
-                  {"fused", p + "v_fused", "", {}, {}, 2}};
-  if (vi) speed.series.push_back({"visual-inertial only", p + "v_vi", "", {}, {}, 3});
-  speed.series.push_back({"true", p + "v_true", "", {}, {}, 0});
+  FigureSpec speed = TimeFigure(
+      "speed" + suffix,
+      "Forward speed: true, odometry, fused" + std::string(vi ? ", visual-inertial" : "") + who,
+      "v [m/s]",
+      {Line("commanded", p + "v_cmd", 6, true), Line("odometry", p + "v_odo", 1),
+       Line("fused", p + "v_fused", 2)});
+  if (vi) speed.series.push_back(Line("visual-inertial only", p + "v_vi", 3));
+  speed.series.push_back(Line("true", p + "v_true", 0));
   out.push_back(speed);
 
-  FigureSpec err;
-  err.id = "speed_error" + suffix;
-  err.title = "Speed estimate error (estimate − true)" + who;
-  err.y_label = "error [m/s]";
-  err.series = {{"odometry", p + "err_odo", "", {}, {}, 1},
-                {"fused", p + "err_fused", "", {}, {}, 2}};
-  if (vi) err.series.push_back({"visual-inertial only", p + "err_vi", "", {}, {}, 3});
+  FigureSpec err = TimeFigure(
+      "speed_error" + suffix, "Speed estimate error (estimate − true)" + who, "error [m/s]",
+      {Line("odometry", p + "err_odo", 1), Line("fused", p + "err_fused", 2)});
+  if (vi) err.series.push_back(Line("visual-inertial only", p + "err_vi", 3));
   err.reference_lines = {0.0};
   out.push_back(err);
 
-  FigureSpec yaw;
-  yaw.id = "yaw_rate" + suffix;
-  yaw.title = "Yaw rate: true, odometry, fused" + who;
-  yaw.y_label = "ω [rad/s]";
-  yaw.series = {{"commanded", p + "w_cmd", "", {}, {}, 6, true},
-                {"odometry", p + "w_odo", "", {}, {}, 1},
-                {"fused", p + "w_fused", "", {}, {}, 2},
-                {"true", p + "w_true", "", {}, {}, 0}};
-  out.push_back(yaw);
+  out.push_back(
+      TimeFigure("yaw_rate" + suffix, "Yaw rate: true, odometry, fused" + who, "ω [rad/s]",
+                 {Line("commanded", p + "w_cmd", 6, true), Line("odometry", p + "w_odo", 1),
+                  Line("fused", p + "w_fused", 2), Line("true", p + "w_true", 0)}));
 
-  FigureSpec slip;
-  slip.id = "slip" + suffix;
-  slip.title = "Wheel slip ratio κ = (rω − v_contact) / max(|rω|, |v_contact|)" + who;
-  slip.y_label = "κ";
-  slip.series = {{"left wheel", p + "slip_l", "", {}, {}, 0},
-                 {"right wheel", p + "slip_r", "", {}, {}, 1}};
+  FigureSpec slip = TimeFigure(
+      "slip" + suffix, "Wheel slip ratio κ = (rω − v_contact) / max(|rω|, |v_contact|)" + who, "κ",
+      {Line("left wheel", p + "slip_l", 0), Line("right wheel", p + "slip_r", 1)});
   slip.reference_lines = {0.0};
   out.push_back(slip);
 
-  FigureSpec floor;
-  floor.id = "floor" + suffix;
-  floor.title = "Ground friction μ under each wheel" + who;
-  floor.y_label = "μ";
-  floor.series = {{"left wheel", p + "mu_l", "", {}, {}, 0},
-                  {"right wheel", p + "mu_r", "", {}, {}, 1, true}};
-  out.push_back(floor);
+  out.push_back(
+      TimeFigure("floor" + suffix, "Ground friction μ under each wheel" + who, "μ",
+                 {Line("left wheel", p + "mu_l", 0), Line("right wheel", p + "mu_r", 1, true)}));
 
-  FigureSpec bias;
-  bias.id = "biases" + suffix;
-  bias.title = "Bias estimates: odometry speed bias b_v vs true odometry error, gyro bias" + who;
-  bias.y_label = "m/s, rad/s";
-  bias.series = {{"odometry error v_odo − v (true)", p + "err_odo", "", {}, {}, 6},
-                 {"b_v estimated", p + "bv", "", {}, {}, 2},
-                 {"b_ψ estimated", p + "bw", "", {}, {}, 4},
-                 {"gyro bias true", p + "bg_true", "", {}, {}, 0, true},
-                 {"gyro bias estimated", p + "bg", "", {}, {}, 5}};
+  FigureSpec bias = TimeFigure(
+      "biases" + suffix,
+      "Bias estimates: odometry speed bias b_v vs true odometry error, gyro bias" + who,
+      "m/s, rad/s",
+      {Line("odometry error v_odo − v (true)", p + "err_odo", 6),
+       Line("b_v estimated", p + "bv", 2), Line("b_ψ estimated", p + "bw", 4),
+       Line("gyro bias true", p + "bg_true", 0, true), Line("gyro bias estimated", p + "bg", 5)});
   bias.reference_lines = {0.0};
   out.push_back(bias);
 
-  FigureSpec motor;
-  motor.id = "motors" + suffix;
-  motor.title = "Motor voltages from the incremental PIDs" + who;
-  motor.y_label = "V";
-  motor.series = {{"left", p + "u_l", "", {}, {}, 0}, {"right", p + "u_r", "", {}, {}, 1}};
-  out.push_back(motor);
+  out.push_back(TimeFigure("motors" + suffix, "Motor voltages from the incremental PIDs" + who, "V",
+                           {Line("left", p + "u_l", 0), Line("right", p + "u_r", 1)}));
 }
 
 std::vector<FigureSpec> VelocityExperiment::Figures() const {
   std::vector<FigureSpec> out;
   for (const auto& u : units_) RobotFigures(*u, out);
-  FigureSpec traj;
-  traj.id = "trajectory";
-  traj.title = "Trajectories (true)";
-  traj.x_label = "x [m]";
-  traj.y_label = "y [m]";
-  traj.equal_aspect = true;
+  FigureSpec traj = PlaneFigure("trajectory", "Trajectories (true)", {});
   for (const auto& u : units_)
-    traj.series.push_back(
-        {u->spec.name, u->spec.name + ".y", u->spec.name + ".x", {}, {}, u->index});
+    traj.series.push_back(Path(u->spec.name, u->spec.name + ".x", u->spec.name + ".y", u->index));
   out.push_back(traj);
   return out;
 }
 
-std::vector<TableSpec> VelocityExperiment::Tables() const {
-  std::vector<TableSpec> out;
-  TableSpec t;
-  t.title = "Speed estimate RMSE and control error per floor (after settling)";
-  t.header = {"robot", "floor", "odometry", "fused", "VI only", "Δv_c", "Δω_c"};
-  for (const auto& up : units_) {
-    const RobotUnit& u = *up;
-    auto row = [&](const std::string& floor, const FloorStats& s) {
-      const double T = std::max(s.time, 1e-9);
-      t.rows.push_back({u.spec.name + " (" + FeedbackNames()[u.spec.feedback] + ")", floor,
-                        Fmt("%.4f", s.odo.rms()), Fmt("%.4f", s.fused.rms()),
-                        cfg_.estimator.vi_baseline ? Fmt("%.4f", s.vi.rms()) : "-",
-                        Fmt("%.4f", std::abs(s.distance - s.v_cmd_int) / T),
-                        Fmt("%.4f", std::abs(s.turn - s.w_cmd_int) / T)});
-    };
-    row("all", u.total);
-    for (const auto& [name, s] : u.floors) row(name, s);
-  }
-  out.push_back(t);
-
-  TableSpec timing;
-  timing.title = "Estimator run time per update (wall clock)";
-  timing.header = {"robot", "updates", "mean ms", "max ms", "period ms", "faults"};
-  for (const auto& up : units_) {
-    const RobotUnit& u = *up;
-    timing.rows.push_back({u.spec.name, std::to_string(u.updates),
-                           Fmt("%.2f", u.updates ? u.update_ms_sum / u.updates : 0.0),
-                           Fmt("%.2f", u.update_ms_max), Fmt("%.0f", 1000.0 * keyframe_period()),
-                           std::to_string(u.faults)});
-  }
-  out.push_back(timing);
-  return out;
-}
-
-}  // namespace formsim::sim::vio
+}  // namespace formsim::sim::velocity

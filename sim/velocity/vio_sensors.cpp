@@ -5,9 +5,9 @@
 
 #include "control/common/angle.hpp"
 
-namespace formsim::sim::vio {
+namespace formsim::sim::velocity {
 
-using control::vio::Vec2d;
+using control::velocity::Vec2d;
 
 void WheelOdometry::Reset(const EncoderDef& def, const DiffDriveDef& drive, Rng rng,
                           const DiffDrive& d) {
@@ -70,7 +70,7 @@ ImuReading ImuSensor::Sample(const Robot& robot, double dt) {
   // the acceleration rotated into the body frame at the mid-period heading.
   const double rate = control::AngleDiff(theta, last_theta_) / dt;
   const Vec2d a_world((v.x - last_v_.x) / dt, (v.y - last_v_.y) / dt);
-  const Vec2d a_body = control::vio::Rot(last_theta_ + 0.5 * rate * dt).transpose() * a_world;
+  const Vec2d a_body = control::velocity::Rot(last_theta_ + 0.5 * rate * dt).transpose() * a_world;
   last_theta_ = theta;
   last_v_ = v;
   // Bias random walk, then white noise of the averaged sample (density / √dt).
@@ -83,7 +83,7 @@ ImuReading ImuSensor::Sample(const Robot& robot, double dt) {
   return r;
 }
 
-std::vector<control::vio::BearingObservation> BearingCamera::Observe(
+std::vector<control::velocity::BearingObservation> BearingCamera::Observe(
     const Pose2& pose, const std::vector<Landmark>& landmarks, const World& world) {
   const Vec2 cam = pose.ToWorld({def_.offset, 0.0});
   Pose2 cam_pose = pose;
@@ -106,7 +106,7 @@ std::vector<control::vio::BearingObservation> BearingCamera::Observe(
   std::sort(seen.begin(), seen.end(), [](const Candidate& a, const Candidate& b) {
     return a.dist != b.dist ? a.dist < b.dist : a.id < b.id;
   });
-  std::vector<control::vio::BearingObservation> out;
+  std::vector<control::velocity::BearingObservation> out;
   for (const Candidate& c : seen) {
     if (static_cast<int>(out.size()) >= def_.max_features) break;
     if (!world.obstacles().empty()) {
@@ -118,4 +118,4 @@ std::vector<control::vio::BearingObservation> BearingCamera::Observe(
   return out;
 }
 
-}  // namespace formsim::sim::vio
+}  // namespace formsim::sim::velocity

@@ -14,7 +14,7 @@
 #include "sim/core/world.hpp"
 #include "sim/velocity/diff_drive.hpp"
 
-namespace formsim::sim::vio {
+namespace formsim::sim::velocity {
 
 struct EncoderDef {
   double rate = 50.0;         ///< Hz
@@ -61,7 +61,7 @@ struct ImuDef {
 struct ImuReading {
   double dt = 0.0;
   double gyro = 0.0;
-  control::vio::Vec2d accel = control::vio::Vec2d::Zero();
+  control::velocity::Vec2d accel = control::velocity::Vec2d::Zero();
 };
 
 class ImuSensor {
@@ -71,12 +71,12 @@ class ImuSensor {
   const ImuDef& def() const { return def_; }
   ImuReading Sample(const Robot& robot, double dt);
   double gyro_bias() const { return bg_; }
-  control::vio::Vec2d accel_bias() const { return ba_; }
+  control::velocity::Vec2d accel_bias() const { return ba_; }
 
  private:
   ImuDef def_;
   double bg_ = 0.0;
-  control::vio::Vec2d ba_ = control::vio::Vec2d::Zero();
+  control::velocity::Vec2d ba_ = control::velocity::Vec2d::Zero();
   double last_theta_ = 0.0;
   Vec2 last_v_;
   Rng rng_;
@@ -105,7 +105,7 @@ class BearingCamera {
   void SetDef(const CameraDef& def) { def_ = def; }
   const CameraDef& def() const { return def_; }
   /// Bearings of the visible landmarks (in view, in range, not occluded by an obstacle).
-  std::vector<control::vio::BearingObservation> Observe(const Pose2& pose,
+  std::vector<control::velocity::BearingObservation> Observe(const Pose2& pose,
                                                         const std::vector<Landmark>& landmarks,
                                                         const World& world);
 
@@ -114,4 +114,4 @@ class BearingCamera {
   Rng rng_;
 };
 
-}  // namespace formsim::sim::vio
+}  // namespace formsim::sim::velocity

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <memory>
 
-namespace formsim::sim::vio {
+namespace formsim::sim::velocity {
 namespace {
 
 struct Rig {
@@ -93,4 +93,4 @@ TEST(DiffDrive, OppositeVoltagesTurnOnTheSpot) {
 }
 
 }  // namespace
-}  // namespace formsim::sim::vio
+}  // namespace formsim::sim::velocity

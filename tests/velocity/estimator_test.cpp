@@ -8,10 +8,10 @@
 
 #include "tests/velocity/synthetic_run.hpp"
 
-using vio_test::RunSynthetic;
-using vio_test::SyntheticConfig;
-using vio_test::SyntheticSample;
-namespace vio = formsim::control::vio;
+using velocity_test::RunSynthetic;
+using velocity_test::SyntheticConfig;
+using velocity_test::SyntheticSample;
+namespace cv = formsim::control::velocity;
 
 namespace {
 
@@ -28,8 +28,8 @@ double MeanAfter(const std::vector<SyntheticSample>& s, double t_from, F f) {
   return n ? sum / n : NAN;
 }
 
-vio::SlidingWindowDef DefFor(const SyntheticConfig& c) {
-  vio::SlidingWindowDef d;
+cv::SlidingWindowDef DefFor(const SyntheticConfig& c) {
+  cv::SlidingWindowDef d;
   const double imu_dt = c.imu_every * c.fine_dt, odo_dt = c.odo_every * c.fine_dt;
   d.imu.gyro_noise_density = c.gyro_sigma * std::sqrt(imu_dt);
   d.imu.accel_noise_density = c.accel_sigma * std::sqrt(imu_dt);
@@ -46,7 +46,7 @@ TEST(SlidingWindowEstimator, RecoversKnownOdometryAndGyroBias) {
   c.duration = 25.0;
   double max_ms = 0.0;
   // The biases of this run are constant: the estimator is told they wander slowly.
-  vio::SlidingWindowDef d = DefFor(c);
+  cv::SlidingWindowDef d = DefFor(c);
   d.odometry.speed_bias_rw = d.odometry.yaw_rate_bias_rw = 0.002;
   const auto run = RunSynthetic(c, d, &max_ms);
   for (const auto& s : run) ASSERT_TRUE(s.ok) << "fault at t=" << s.t;
@@ -70,7 +70,7 @@ TEST(SlidingWindowEstimator, RecoversKnownOdometryAndGyroBias) {
 TEST(SlidingWindowEstimator, VisualInertialOnlyTracksSpeedWithoutOdometry) {
   SyntheticConfig c;
   c.duration = 20.0;
-  vio::SlidingWindowDef d = DefFor(c);
+  cv::SlidingWindowDef d = DefFor(c);
   d.use_odometry = false;
   d.use_nonholonomic = false;
   const auto run = RunSynthetic(c, d);
@@ -101,7 +101,7 @@ TEST(SlidingWindowEstimator, MarginalisationKeepsTheOptimum) {
 TEST(SlidingWindowEstimator, ShortWindowAgreesWithLongWindow) {
   SyntheticConfig c;
   c.duration = 8.0;
-  vio::SlidingWindowDef small = DefFor(c), big = DefFor(c);
+  cv::SlidingWindowDef small = DefFor(c), big = DefFor(c);
   big.window_size = 40;  // no marginalisation within 8 s (32 keyframes)
   const auto a = RunSynthetic(c, small);
   const auto b = RunSynthetic(c, big);

@@ -8,9 +8,9 @@
 
 #include "control/common/angle.hpp"
 
-namespace vio = formsim::control::vio;
-using vio::KeyframeState;
-using vio::Vec2d;
+namespace cv = formsim::control::velocity;
+using cv::KeyframeState;
+using cv::Vec2d;
 
 namespace {
 
@@ -37,9 +37,9 @@ Eigen::MatrixXd NumericJacobian(const std::function<Eigen::VectorXd(const Keyfra
   return J;
 }
 
-vio::ImuPreintegration SomeImu() {
-  vio::ImuNoise n;
-  vio::ImuPreintegration pre(0.01, Vec2d(0.03, -0.02), n);
+cv::ImuPreintegration SomeImu() {
+  cv::ImuNoise n;
+  cv::ImuPreintegration pre(0.01, Vec2d(0.03, -0.02), n);
   for (int k = 0; k < 40; ++k)
     pre.Integrate(0.005, 0.3 + 0.2 * std::sin(0.1 * k), Vec2d(0.4 * std::cos(0.2 * k), 0.1));
   return pre;
@@ -48,32 +48,32 @@ vio::ImuPreintegration SomeImu() {
 }  // namespace
 
 TEST(Factors, ImuJacobians) {
-  const vio::ImuPreintegration pre = SomeImu();
+  const cv::ImuPreintegration pre = SomeImu();
   const KeyframeState i = MakeState(0.3), j = MakeState(0.8);
-  const vio::ImuFactor f = vio::EvaluateImuFactor(pre, i, j);
+  const cv::ImuFactor f = cv::EvaluateImuFactor(pre, i, j);
   const auto Ji = NumericJacobian(
-      [&](const KeyframeState& x) { return Eigen::VectorXd(vio::EvaluateImuFactor(pre, x, j).r); },
+      [&](const KeyframeState& x) { return Eigen::VectorXd(cv::EvaluateImuFactor(pre, x, j).r); },
       i);
   const auto Jj = NumericJacobian(
-      [&](const KeyframeState& x) { return Eigen::VectorXd(vio::EvaluateImuFactor(pre, i, x).r); },
+      [&](const KeyframeState& x) { return Eigen::VectorXd(cv::EvaluateImuFactor(pre, i, x).r); },
       j);
   EXPECT_LT((Ji - f.Ji).norm() / f.Ji.norm(), 1e-6);
   EXPECT_LT((Jj - f.Jj).norm() / f.Jj.norm(), 1e-6);
 }
 
 TEST(Factors, OdometryJacobians) {
-  vio::OdometryPreintegration pre(0.02, -0.01, vio::OdometryNoise{});
+  cv::OdometryPreintegration pre(0.02, -0.01, cv::OdometryNoise{});
   for (int k = 0; k < 12; ++k) pre.Integrate(0.02, 0.5 + 0.01 * k, 0.3 - 0.02 * k);
   const KeyframeState i = MakeState(0.2), j = MakeState(0.6);
-  const vio::OdometryFactor f = vio::EvaluateOdometryFactor(pre, i, j);
+  const cv::OdometryFactor f = cv::EvaluateOdometryFactor(pre, i, j);
   const auto Ji = NumericJacobian(
       [&](const KeyframeState& x) {
-        return Eigen::VectorXd(vio::EvaluateOdometryFactor(pre, x, j).r);
+        return Eigen::VectorXd(cv::EvaluateOdometryFactor(pre, x, j).r);
       },
       i);
   const auto Jj = NumericJacobian(
       [&](const KeyframeState& x) {
-        return Eigen::VectorXd(vio::EvaluateOdometryFactor(pre, i, x).r);
+        return Eigen::VectorXd(cv::EvaluateOdometryFactor(pre, i, x).r);
       },
       j);
   EXPECT_LT((Ji - f.Ji).norm() / f.Ji.norm(), 1e-6);
@@ -81,10 +81,10 @@ TEST(Factors, OdometryJacobians) {
 }
 
 TEST(Factors, OdometryBiasJacobiansMatchReintegration) {
-  vio::OdometryPreintegration pre(0.0, 0.0, vio::OdometryNoise{});
+  cv::OdometryPreintegration pre(0.0, 0.0, cv::OdometryNoise{});
   for (int k = 0; k < 25; ++k) pre.Integrate(0.02, 0.45, 0.8);
   const double h = 1e-6;
-  vio::OdometryPreintegration p1 = pre;
+  cv::OdometryPreintegration p1 = pre;
   p1.Repropagate(h, 0.0);
   EXPECT_LT(((p1.delta_p() - pre.delta_p()) / h - pre.dp_dbv()).norm(), 1e-5);
   p1 = pre;
@@ -95,14 +95,14 @@ TEST(Factors, OdometryBiasJacobiansMatchReintegration) {
 
 TEST(Factors, BearingAndNonholonomicJacobians) {
   const KeyframeState k = MakeState(0.5);
-  const Vec2d landmark = k.p() + vio::Rot(k.theta()) * Vec2d(3.0, 1.2);
+  const Vec2d landmark = k.p() + cv::Rot(k.theta()) * Vec2d(3.0, 1.2);
   const double z = 0.35;
-  const vio::BearingFactor f = vio::EvaluateBearingFactor(k, landmark, z, 0.01, 0.1);
+  const cv::BearingFactor f = cv::EvaluateBearingFactor(k, landmark, z, 0.01, 0.1);
   EXPECT_GT(f.depth, 0.0);
   const auto Jk = NumericJacobian(
       [&](const KeyframeState& x) {
         return Eigen::VectorXd::Constant(1,
-                                         vio::EvaluateBearingFactor(x, landmark, z, 0.01, 0.1).r);
+                                         cv::EvaluateBearingFactor(x, landmark, z, 0.01, 0.1).r);
       },
       k);
   EXPECT_LT((Jk - f.Jk).norm() / f.Jk.norm(), 1e-6);
@@ -111,15 +111,15 @@ TEST(Factors, BearingAndNonholonomicJacobians) {
     Vec2d lp = landmark, lm = landmark;
     lp(a) += h;
     lm(a) -= h;
-    const double num = (vio::EvaluateBearingFactor(k, lp, z, 0.01, 0.1).r -
-                        vio::EvaluateBearingFactor(k, lm, z, 0.01, 0.1).r) /
+    const double num = (cv::EvaluateBearingFactor(k, lp, z, 0.01, 0.1).r -
+                        cv::EvaluateBearingFactor(k, lm, z, 0.01, 0.1).r) /
                        (2 * h);
     EXPECT_NEAR(num, f.Jf(a), 1e-5 * f.Jf.cwiseAbs().maxCoeff());
   }
-  const vio::NonholonomicFactor nh = vio::EvaluateNonholonomicFactor(k, 0.05);
+  const cv::NonholonomicFactor nh = cv::EvaluateNonholonomicFactor(k, 0.05);
   const auto Jn = NumericJacobian(
       [&](const KeyframeState& x) {
-        return Eigen::VectorXd::Constant(1, vio::EvaluateNonholonomicFactor(x, 0.05).r);
+        return Eigen::VectorXd::Constant(1, cv::EvaluateNonholonomicFactor(x, 0.05).r);
       },
       k);
   EXPECT_LT((Jn - nh.J).norm() / nh.J.norm(), 1e-6);
@@ -127,14 +127,14 @@ TEST(Factors, BearingAndNonholonomicJacobians) {
 
 TEST(Factors, ZeroResidualForConsistentMotion) {
   // A state pair that agrees with the pre-integrated motion gives a zero IMU residual.
-  const vio::ImuPreintegration pre = SomeImu();
+  const cv::ImuPreintegration pre = SomeImu();
   KeyframeState i = MakeState(0.1);
   i.set_bg(pre.lin_bg());
   i.set_ba(pre.lin_ba());
   KeyframeState j = i;
-  const vio::Mat2d R = vio::Rot(i.theta());
+  const cv::Mat2d R = cv::Rot(i.theta());
   j.set_theta(formsim::control::WrapToPi(i.theta() + pre.delta_theta()));
   j.set_v(i.v() + R * pre.delta_v());
   j.set_p(i.p() + i.v() * pre.sum_dt() + R * pre.delta_p());
-  EXPECT_LT(vio::EvaluateImuFactor(pre, i, j).r.norm(), 1e-9);
+  EXPECT_LT(cv::EvaluateImuFactor(pre, i, j).r.norm(), 1e-9);
 }

@@ -8,9 +8,9 @@
 
 #include "sim/core/rng.hpp"
 
-namespace vio = formsim::control::vio;
-using vio::Mat2d;
-using vio::Vec2d;
+namespace cv = formsim::control::velocity;
+using cv::Mat2d;
+using cv::Vec2d;
 
 namespace {
 
@@ -25,7 +25,7 @@ struct KnownMotion {
   Vec2d a(double t) const { return {-0.392 * std::sin(0.7 * t), 0.486 * std::cos(0.9 * t)}; }
   // What an ideal IMU measures at t: yaw rate and specific force in the body frame.
   double gyro(double t) const { return omega(t); }
-  Vec2d accel(double t) const { return vio::Rot(theta(t)).transpose() * a(t); }
+  Vec2d accel(double t) const { return cv::Rot(theta(t)).transpose() * a(t); }
 };
 
 }  // namespace
@@ -33,14 +33,14 @@ struct KnownMotion {
 TEST(ImuPreintegration, MatchesClosedFormMotion) {
   const KnownMotion m;
   const double t0 = 0.7, T = 1.5, dt = 1e-3;
-  vio::ImuPreintegration pre(0.0, Vec2d::Zero(), vio::ImuNoise{});
+  cv::ImuPreintegration pre(0.0, Vec2d::Zero(), cv::ImuNoise{});
   const int n = static_cast<int>(std::lround(T / dt));
   for (int k = 0; k < n; ++k) {
     const double tm = t0 + (k + 0.5) * dt;  // mid-point sampling
     pre.Integrate(dt, m.gyro(tm), m.accel(tm));
   }
   const double t1 = t0 + T;
-  const Mat2d RiT = vio::Rot(m.theta(t0)).transpose();
+  const Mat2d RiT = cv::Rot(m.theta(t0)).transpose();
   EXPECT_NEAR(pre.sum_dt(), T, 1e-12);
   EXPECT_NEAR(pre.delta_theta(), m.theta(t1) - m.theta(t0), 1e-6);
   const Vec2d dv = RiT * (m.v(t1) - m.v(t0));
@@ -60,7 +60,7 @@ TEST(ImuPreintegration, EqualsDirectWorldFrameIntegration) {
   const Vec2d ba(0.05, -0.03);
   formsim::sim::Rng rng(3);
   auto noise = [&rng]() { return 0.05 * rng.Normal(); };
-  vio::ImuPreintegration pre(bg, ba, vio::ImuNoise{});
+  cv::ImuPreintegration pre(bg, ba, cv::ImuNoise{});
   double th = 0.3;
   Vec2d p(1.0, -2.0), v(0.4, 0.1);
   const double th0 = th;
@@ -70,12 +70,12 @@ TEST(ImuPreintegration, EqualsDirectWorldFrameIntegration) {
     const Vec2d acc = m.accel(k * dt) + ba + Vec2d(noise(), noise());
     pre.Integrate(dt, gyro, acc);
     const double w = gyro - bg;
-    const Vec2d a = vio::Rot(th + 0.5 * w * dt) * (acc - ba);
+    const Vec2d a = cv::Rot(th + 0.5 * w * dt) * (acc - ba);
     p += v * dt + 0.5 * a * dt * dt;
     v += a * dt;
     th += w * dt;
   }
-  const Mat2d RiT = vio::Rot(th0).transpose();
+  const Mat2d RiT = cv::Rot(th0).transpose();
   const double T = pre.sum_dt();
   EXPECT_NEAR(pre.delta_theta(), th - th0, 1e-12);
   EXPECT_LT((pre.delta_v() - RiT * (v - v0)).norm(), 1e-12);
@@ -85,11 +85,11 @@ TEST(ImuPreintegration, EqualsDirectWorldFrameIntegration) {
 TEST(ImuPreintegration, BiasJacobiansMatchReintegration) {
   const KnownMotion m;
   const double dt = 0.005;
-  vio::ImuPreintegration pre(0.01, Vec2d(0.02, 0.01), vio::ImuNoise{});
+  cv::ImuPreintegration pre(0.01, Vec2d(0.02, 0.01), cv::ImuNoise{});
   for (int k = 0; k < 200; ++k) pre.Integrate(dt, m.gyro(k * dt) + 0.01, m.accel(k * dt));
   const double h = 1e-6;
   // Gyro bias.
-  vio::ImuPreintegration plus = pre;
+  cv::ImuPreintegration plus = pre;
   plus.Repropagate(pre.lin_bg() + h, pre.lin_ba());
   EXPECT_NEAR((plus.delta_theta() - pre.delta_theta()) / h, pre.dtheta_dbg(), 1e-6);
   EXPECT_LT(((plus.delta_v() - pre.delta_v()) / h - pre.dv_dbg()).norm(), 1e-4);
@@ -114,12 +114,12 @@ TEST(ImuPreintegration, BiasJacobiansMatchReintegration) {
 
 TEST(ImuPreintegration, CovarianceMatchesMonteCarlo) {
   const KnownMotion m;
-  vio::ImuNoise noise;
+  cv::ImuNoise noise;
   noise.gyro_noise_density = 0.01;
   noise.accel_noise_density = 0.05;
   const double dt = 0.01;
   const int n = 50, runs = 3000;
-  vio::ImuPreintegration ref(0.0, Vec2d::Zero(), noise);
+  cv::ImuPreintegration ref(0.0, Vec2d::Zero(), noise);
   for (int k = 0; k < n; ++k) ref.Integrate(dt, m.gyro(k * dt), m.accel(k * dt));
   formsim::sim::Rng rng(11);
   const double sg = noise.gyro_noise_density / std::sqrt(dt);
@@ -128,7 +128,7 @@ TEST(ImuPreintegration, CovarianceMatchesMonteCarlo) {
   auto a = [&]() { return sa * rng.Normal(); };
   Eigen::Matrix<double, 5, 5> cov = Eigen::Matrix<double, 5, 5>::Zero();
   for (int r = 0; r < runs; ++r) {
-    vio::ImuPreintegration pre(0.0, Vec2d::Zero(), noise);
+    cv::ImuPreintegration pre(0.0, Vec2d::Zero(), noise);
     for (int k = 0; k < n; ++k)
       pre.Integrate(dt, m.gyro(k * dt) + g(), m.accel(k * dt) + Vec2d(a(), a()));
     Eigen::Matrix<double, 5, 1> e;

@@ -11,9 +11,9 @@
 #include "control/velocity/sliding_window_estimator.hpp"
 #include "sim/core/rng.hpp"
 
-namespace vio_test {
+namespace velocity_test {
 
-namespace vio = formsim::control::vio;
+namespace cv = formsim::control::velocity;
 
 struct SyntheticConfig {
   double duration = 30.0;
@@ -22,7 +22,7 @@ struct SyntheticConfig {
   int odo_every = 20;      // 50 Hz
   int kf_every = 250;      // 4 Hz
   double gyro_bias = 0.02;
-  vio::Vec2d accel_bias{0.05, -0.03};
+  cv::Vec2d accel_bias{0.05, -0.03};
   double speed_bias = 0.03;                           // odometry b_v, m/s
   double yaw_rate_bias = 0.01;                        // odometry b_ψ, rad/s
   double gyro_sigma = 0.002, accel_sigma = 0.02;      // per-sample white noise at 200 Hz
@@ -44,7 +44,7 @@ struct SyntheticSample {
   double t = 0.0;
   double true_speed = 0.0, est_speed = 0.0, odo_speed = 0.0;
   double bv = 0.0, bw = 0.0, bg = 0.0;
-  vio::Vec2d true_p, est_p;
+  cv::Vec2d true_p, est_p;
   bool ok = true;
 };
 
@@ -52,22 +52,22 @@ struct SyntheticSample {
 // `reopt_change`, when given, receives the largest state change a re-optimisation right after
 // each update makes (zero when the update converged and marginalisation kept the optimum).
 inline std::vector<SyntheticSample> RunSynthetic(const SyntheticConfig& c,
-                                                 vio::SlidingWindowDef def,
+                                                 cv::SlidingWindowDef def,
                                                  double* max_update_ms = nullptr,
                                                  std::vector<double>* reopt_change = nullptr) {
   // The project's portable generator: the same numbers with every standard library.
   formsim::sim::Rng rng(c.seed);
   auto n01 = [&rng]() { return rng.Normal(); };
-  std::vector<vio::Vec2d> lm(c.landmarks);
+  std::vector<cv::Vec2d> lm(c.landmarks);
   for (auto& l : lm) {
     const double x = rng.Uniform(-c.area, c.area);
-    l = vio::Vec2d(x, rng.Uniform(-c.area, c.area));
+    l = cv::Vec2d(x, rng.Uniform(-c.area, c.area));
   }
 
-  auto observe = [&](const vio::Vec2d& p, double th) {
-    std::vector<vio::BearingObservation> obs;
+  auto observe = [&](const cv::Vec2d& p, double th) {
+    std::vector<cv::BearingObservation> obs;
     for (int i = 0; i < c.landmarks; ++i) {
-      const vio::Vec2d q = vio::Rot(th).transpose() * (lm[i] - p);
+      const cv::Vec2d q = cv::Rot(th).transpose() * (lm[i] - p);
       const double b = std::atan2(q.y(), q.x());
       if (q.norm() < c.range && q.norm() > 0.3 && std::abs(b) < 0.5 * c.fov)
         obs.push_back({i, b + c.bearing_sigma * n01()});
@@ -75,33 +75,33 @@ inline std::vector<SyntheticSample> RunSynthetic(const SyntheticConfig& c,
     return obs;
   };
 
-  vio::SlidingWindowEstimator est(def);
-  vio::Vec2d p(0.0, 0.0);
+  cv::SlidingWindowEstimator est(def);
+  cv::Vec2d p(0.0, 0.0);
   double th = 0.0;
-  vio::KeyframeState first;
+  cv::KeyframeState first;
   est.Initialize(first, observe(p, th));
 
   std::vector<SyntheticSample> out;
   const int steps = static_cast<int>(std::lround(c.duration / c.fine_dt));
-  vio::Vec2d p_imu = p, v_imu = vio::Vec2d::Zero();
+  cv::Vec2d p_imu = p, v_imu = cv::Vec2d::Zero();
   double th_imu = th;
   double odo_dist = 0.0, odo_dth = 0.0;
   for (int k = 1; k <= steps; ++k) {
     const double t = k * c.fine_dt, tm = t - 0.5 * c.fine_dt;
     const double v = c.speed(tm), w = c.yaw_rate(tm);
     const double th_mid = th + 0.5 * w * c.fine_dt;
-    p += v * c.fine_dt * vio::Vec2d(std::cos(th_mid), std::sin(th_mid));
+    p += v * c.fine_dt * cv::Vec2d(std::cos(th_mid), std::sin(th_mid));
     th += w * c.fine_dt;
     odo_dist += v * c.fine_dt;
     odo_dth += w * c.fine_dt;
     if (k % c.imu_every == 0) {
       // Interval-mean IMU sample (exact integrals of the motion over the interval).
       const double dt = c.imu_every * c.fine_dt;
-      const vio::Vec2d v_now = c.speed(t) * vio::Vec2d(std::cos(th), std::sin(th));
+      const cv::Vec2d v_now = c.speed(t) * cv::Vec2d(std::cos(th), std::sin(th));
       const double gyro = formsim::control::WrapToPi(th - th_imu) / dt;
-      const vio::Vec2d acc = vio::Rot(th_imu + 0.5 * gyro * dt).transpose() * (v_now - v_imu) / dt;
+      const cv::Vec2d acc = cv::Rot(th_imu + 0.5 * gyro * dt).transpose() * (v_now - v_imu) / dt;
       est.AddImu(dt, gyro + c.gyro_bias + c.gyro_sigma * n01(),
-                 acc + c.accel_bias + c.accel_sigma * vio::Vec2d(n01(), n01()));
+                 acc + c.accel_bias + c.accel_sigma * cv::Vec2d(n01(), n01()));
       v_imu = v_now;
       th_imu = th;
       p_imu = p;
@@ -114,12 +114,12 @@ inline std::vector<SyntheticSample> RunSynthetic(const SyntheticConfig& c,
     }
     if (k % c.kf_every == 0) {
       const auto t0 = std::chrono::steady_clock::now();
-      const vio::UpdateReport r = est.AddKeyframe(t, observe(p, th));
+      const cv::UpdateReport r = est.AddKeyframe(t, observe(p, th));
       const double ms =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       if (max_update_ms) *max_update_ms = std::max(*max_update_ms, ms);
       if (reopt_change) {
-        vio::SlidingWindowEstimator copy = est;
+        cv::SlidingWindowEstimator copy = est;
         copy.Reoptimize();
         double change = 0.0;
         for (std::size_t f = 0; f < est.window().size(); ++f)
@@ -143,4 +143,4 @@ inline std::vector<SyntheticSample> RunSynthetic(const SyntheticConfig& c,
   return out;
 }
 
-}  // namespace vio_test
+}  // namespace velocity_test
