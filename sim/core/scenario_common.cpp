@@ -1,5 +1,6 @@
 // Readers for the scenario blocks every experiment kind shares: world, obstacles, patches,
 // robot bodies.
+#include <set>
 #include <string>
 
 #include "sim/core/world.hpp"
@@ -7,11 +8,11 @@
 
 namespace formsim::sim {
 
-WorldDef ReadWorldDef(YamlReader& m) {
+WorldDef ReadWorldDef(YamlReader& m, bool friction_live) {
   WorldDef def;
-  def.floor_friction = m.Double("floor_friction", def.floor_friction);
-  if (!(def.floor_friction >= 0 && def.floor_friction <= world_limits::kMaxFriction))
-    m.Fail("floor_friction", "must be in [0, 10]");
+  Tune mu = Tune("floor μ").In(0, world_limits::kMaxFriction).Slider(0.0, 1.5).Group("Floor");
+  if (!friction_live) mu.OnReset();
+  def.floor_friction = m.Real("floor_friction", def.floor_friction, mu);
   def.velocity_iterations = m.Int("velocity_iterations", def.velocity_iterations);
   if (def.velocity_iterations < 1 || def.velocity_iterations > 100)
     m.Fail("velocity_iterations", "must be in [1, 100] (Box2D's default is 8)");
@@ -80,19 +81,24 @@ std::vector<ObstacleDef> ReadObstacles(YamlReader& root) {
 std::vector<PatchDef> ReadPatches(YamlReader& root) {
   std::vector<PatchDef> out;
   int index = 0;
+  std::set<std::string> names;
   for (YamlReader& p : root.MapList("patches")) {
     PatchDef def;
     def.name = p.String("name", "patch" + std::to_string(index++));
-    def.friction = p.RequiredDouble("friction");
-    if (!(def.friction >= 0 && def.friction <= world_limits::kMaxFriction))
-      p.Fail("friction", "must be in [0, 10]");
+    if (def.name.empty() || def.name.find_first_of(".,") != std::string::npos)
+      p.Fail("name", "a patch name must be non-empty, without '.' or ',' (names address keys and metrics)");
+    if (def.name == "floor") p.Fail("name", "'floor' names the ground outside every patch");
+    if (!names.insert(def.name).second) p.Fail("name", "duplicate patch name '" + def.name + "'");
+    if (!p.Has("friction")) p.Fail("friction", "required number is missing");
+    def.friction = p.Real("friction", 0.8,
+                          Tune("μ").In(0, world_limits::kMaxFriction).Slider(0.0, 1.5)
+                              .Group("Floor/" + def.name).OnReset());
     if (p.Has("polygon")) {
       def.polygon = p.Points("polygon", 3);
     } else {
-      const auto c = p.Doubles("center", {0, 0}, 2);
+      const auto c = p.Doubles("center", {0, 0}, Tune().In(-world_limits::kExtent, world_limits::kExtent));
       if (!p.Has("size")) p.Fail("size", "a patch needs either polygon: [[x, y], ...] or center + size");
-      const auto s = p.Doubles("size", {1, 1}, 2);
-      if (s[0] <= 0 || s[1] <= 0) p.Fail("size", "must be positive");
+      const auto s = p.Doubles("size", {1, 1}, Tune().In(world_limits::kMinSize, 2 * world_limits::kExtent));
       def.polygon = {{c[0] - s[0] / 2, c[1] - s[1] / 2}, {c[0] + s[0] / 2, c[1] - s[1] / 2},
                      {c[0] + s[0] / 2, c[1] + s[1] / 2}, {c[0] - s[0] / 2, c[1] + s[1] / 2}};
     }

@@ -197,8 +197,12 @@ class World {
 /// Reads the shared scenario blocks into defs: `world:` (floor_friction), `obstacles:` and
 /// `patches:` lists. Defined in scenario_common.cpp. Declared here to keep one place for world setup.
 class YamlReader;
-WorldDef ReadWorldDef(YamlReader& world_map);
+/// `floor_friction` is a tunable (group "Floor"): live when `friction_live` (the kind applies
+/// world friction between steps), else on reset.
+WorldDef ReadWorldDef(YamlReader& world_map, bool friction_live = false);
 std::vector<ObstacleDef> ReadObstacles(YamlReader& root);
+/// Patch names are unique, not "floor" and free of '.' and ',' (they address keys and
+/// metrics); each patch's friction is a tunable "patches.NAME.friction" (on reset).
 std::vector<PatchDef> ReadPatches(YamlReader& root);
 /// Reads a robot body block (shape, size, mass) into def, leaving name/pose to the caller.
 void ReadRobotBody(YamlReader& body_map, RobotDef& def);

@@ -16,38 +16,18 @@ constexpr double kDeg = control::kPi / 180.0;
 constexpr double kMinLength = 1e-3, kMaxLength = 1e3;  // sizes, radii, m
 constexpr double kMaxCoordinate = 1e4;                 // positions, m
 constexpr double kMaxHeading = 1e3;                    // rad
-constexpr double kMinMass = 1e-3, kMaxMass = 1e6;      // kg
-constexpr double kMaxFriction = 10.0;                  // μ
 constexpr double kMaxSpeed = 10.0;                     // commanded |v|, m/s
 constexpr double kMaxYawRate = 20.0;                   // commanded |ω|, rad/s
 constexpr double kMaxGain = 1e3;                       // PID gains, V per m/s
 constexpr double kMaxTime = 1e6;                       // s
 
-// The hard validity of a number that is not a tunable: the same rule (and message) as a
-// tunable's, without entering the parameter table.
-double Number(YamlReader& m, const std::string& key, double def, const Tune& rule) {
-  const double v = m.Double(key, def);
-  const std::string err = rule.Check(v);
-  if (!err.empty()) m.Fail(key, err);
-  return v;
-}
-
-int Count(YamlReader& m, const std::string& key, int def, int lo, int hi) {
-  const int v = m.Int(key, def);
-  const std::string err = Tune().In(lo, hi).Check(v);
-  if (!err.empty()) m.Fail(key, err);
-  return v;
-}
 
 // A sampling rate in Hz as world steps per sample (rounded; at least one step per sample). A
 // rate not given is the nominal one, or one sample per world step when the step is longer.
-int RateSteps(YamlReader& m, const std::string& key, double* rate, double dt) {
+int RateOrNominalSteps(YamlReader& m, const std::string& key, double* rate, double dt) {
   if (!m.Has(key)) *rate = std::min(*rate, 1.0 / dt);
-  *rate = Number(m, key, *rate, Tune().Above(0));
-  int steps = 1;
-  const std::string err = StepsPerPeriod(1.0 / *rate, dt, false, &steps);
-  if (!err.empty()) m.Fail(key, "the sample period 1/" + key + " " + err);
-  return steps;
+  *rate = m.Double(key, *rate, Tune().Above(0));
+  return sim::RateSteps(m, key, *rate, dt);
 }
 
 Tune Length() {
@@ -62,65 +42,6 @@ void CheckPoint(YamlReader& m, const std::string& key, Vec2 p) {
     m.Fail(key, "coordinates must be " + Coordinate().ValidityText() + " m");
 }
 
-// ---- the shared blocks (world, obstacles, patches, body): read by the core's readers, with
-// the tunables of this kind declared and magnitude bounds checked on top ----
-
-WorldDef ReadWorld(YamlReader& w) {
-  w.Real("floor_friction", WorldDef{}.floor_friction,
-         Tune("floor μ").In(0, kMaxFriction).Slider(0.0, 1.5).Group("Floor"));
-  return ReadWorldDef(w);
-}
-
-std::vector<ObstacleDef> ReadObstacleList(YamlReader& root) {
-  std::vector<ObstacleDef> out = ReadObstacles(root);
-  std::vector<YamlReader> items = root.MapList("obstacles");
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    const ObstacleDef& o = out[i];
-    YamlReader& m = items[i];
-    if (!Tune().In(0, kMaxFriction).Check(o.friction).empty())
-      m.Fail("friction", "must be " + Tune().In(0, kMaxFriction).ValidityText());
-    switch (o.shape) {
-      case ObstacleDef::Shape::kBox:
-        if (!Length().Check(2 * o.half_x).empty() || !Length().Check(2 * o.half_y).empty())
-          m.Fail("size", "each side must be " + Length().ValidityText() + " m");
-        CheckPoint(m, "center", o.pose.p());
-        break;
-      case ObstacleDef::Shape::kCircle:
-        if (!Length().Check(o.radius).empty())
-          m.Fail("radius", "must be " + Length().ValidityText() + " m");
-        CheckPoint(m, "center", o.pose.p());
-        break;
-      case ObstacleDef::Shape::kPolygon:
-        CheckPoint(m, "center", o.pose.p());
-        for (const Vec2& v : o.vertices) {
-          if (!Tune().In(-kMaxLength, kMaxLength).Check(v.x).empty() ||
-              !Tune().In(-kMaxLength, kMaxLength).Check(v.y).empty())
-            m.Fail("vertices", "vertex coordinates must be in [-1000, 1000] m");
-        }
-        break;
-      case ObstacleDef::Shape::kWall:
-        for (const Vec2& v : o.vertices) CheckPoint(m, "points", v);
-        break;
-    }
-    if (!Tune().In(-kMaxHeading, kMaxHeading).Check(o.pose.theta).empty())
-      m.Fail("angle", "must be " + Tune().In(-kMaxHeading, kMaxHeading).ValidityText() + " rad");
-  }
-  return out;
-}
-
-// A patch: its friction is a tunable (on reset: it lives in the world's patch list); its name
-// addresses keys, terrain entries and metrics, so it is unique and free of '.'.
-void CheckPatch(YamlReader& m, PatchDef& p, std::set<std::string>& names) {
-  if (p.name.find_first_of(".,") != std::string::npos)
-    m.Fail("name", "a patch name must not contain '.' or ',' (names address keys and metrics)");
-  if (p.name == "floor") m.Fail("name", "'floor' names the ground outside every patch");
-  if (!names.insert(p.name).second) m.Fail("name", "duplicate patch name '" + p.name + "'");
-  p.friction =
-      m.Real("friction", p.friction,
-             Tune("μ").In(0, kMaxFriction).Slider(0.0, 1.5).Group("Floor/" + p.name).OnReset());
-  for (const Vec2& v : p.polygon) CheckPoint(m, m.Has("polygon") ? "polygon" : "center", v);
-}
-
 RobotDef ReadBody(YamlReader& b) {
   RobotDef def = DefaultRobotDef();
   def.half_length = 0.22;
@@ -128,14 +49,6 @@ RobotDef ReadBody(YamlReader& b) {
   def.mass = 10.0;
   def.collide_with_robots = false;
   ReadRobotBody(b, def);
-  if (def.shape == RobotDef::Shape::kBox) {
-    if (!Length().Check(2 * def.half_length).empty() || !Length().Check(2 * def.half_width).empty())
-      b.Fail("size", "each side must be " + Length().ValidityText() + " m");
-  } else if (!Length().Check(def.radius).empty()) {
-    b.Fail("radius", "must be " + Length().ValidityText() + " m");
-  }
-  const Tune mass = Tune().In(kMinMass, kMaxMass);
-  if (!mass.Check(def.mass).empty()) b.Fail("mass", "must be " + mass.ValidityText() + " kg");
   return def;
 }
 
@@ -154,22 +67,22 @@ TerrainDef ReadTerrain(YamlReader& m, TerrainDef t, const std::string& group,
 }
 
 void ReadDrive(YamlReader& m, DiffDriveDef& d) {
-  d.wheel_radius = Number(m, "wheel_radius", d.wheel_radius, Length());
-  d.track_width = Number(m, "track_width", d.track_width, Length());
-  d.wheel_inertia = Number(m, "wheel_inertia", d.wheel_inertia, Tune().In(1e-6, 1e3));
-  d.caster_load = Number(m, "caster_load", d.caster_load, Tune().AtLeast(0).Below(1));
-  d.caster_x = Number(m, "caster_x", d.caster_x, Tune().In(-kMaxLength, kMaxLength));
+  d.wheel_radius = m.Double("wheel_radius", d.wheel_radius, Length());
+  d.track_width = m.Double("track_width", d.track_width, Length());
+  d.wheel_inertia = m.Double("wheel_inertia", d.wheel_inertia, Tune().In(1e-6, 1e3));
+  d.caster_load = m.Double("caster_load", d.caster_load, Tune().AtLeast(0).Below(1));
+  d.caster_x = m.Double("caster_x", d.caster_x, Tune().In(-kMaxLength, kMaxLength));
   d.slip_speed_floor =
-      Number(m, "slip_speed_floor", d.slip_speed_floor, Tune().Above(0).AtMost(100));
-  d.substeps = Count(m, "substeps", d.substeps, 1, 1000);
+      m.Double("slip_speed_floor", d.slip_speed_floor, Tune().Above(0).AtMost(100));
+  d.substeps = m.Int("substeps", d.substeps, Tune().In(1, 1000));
   YamlReader mo = m.Map("motor");
   DcMotorDef& x = d.motor;
-  x.resistance = Number(mo, "resistance", x.resistance, Tune().In(1e-4, 1e4));
-  x.torque_constant = Number(mo, "torque_constant", x.torque_constant, Tune().In(1e-5, 10));
-  x.gear_ratio = Number(mo, "gear_ratio", x.gear_ratio, Tune().In(1e-2, 1e4));
-  x.voltage_max = Number(mo, "voltage_max", x.voltage_max, Tune().In(1e-3, 1e4));
-  x.current_max = Number(mo, "current_max", x.current_max, Tune().In(1e-3, 1e4));
-  x.viscous_friction = Number(mo, "viscous_friction", x.viscous_friction, Tune().In(0, 1e3));
+  x.resistance = mo.Double("resistance", x.resistance, Tune().In(1e-4, 1e4));
+  x.torque_constant = mo.Double("torque_constant", x.torque_constant, Tune().In(1e-5, 10));
+  x.gear_ratio = mo.Double("gear_ratio", x.gear_ratio, Tune().In(1e-2, 1e4));
+  x.voltage_max = mo.Double("voltage_max", x.voltage_max, Tune().In(1e-3, 1e4));
+  x.current_max = mo.Double("current_max", x.current_max, Tune().In(1e-3, 1e4));
+  x.viscous_friction = mo.Double("viscous_friction", x.viscous_friction, Tune().In(0, 1e3));
   mo.Finish();
   m.Finish();
 }
@@ -178,9 +91,9 @@ void ReadSensors(YamlReader& m, VelocityConfig& c, double dt) {
   YamlReader e = m.Map("encoders");
   EncoderDef& enc = c.encoders;
   const std::string ge = "Noise/encoders";
-  c.every.encoders = RateSteps(e, "rate", &enc.rate, dt);
+  c.every.encoders = RateOrNominalSteps(e, "rate", &enc.rate, dt);
   // At most 2^20 counts per turn: tick counts stay far from overflowing over any run.
-  enc.ticks_per_rev = Count(e, "ticks_per_rev", enc.ticks_per_rev, 1, 1 << 20);
+  enc.ticks_per_rev = e.Int("ticks_per_rev", enc.ticks_per_rev, Tune().In(1, 1 << 20));
   enc.angle_noise = e.Real("angle_noise", enc.angle_noise,
                            Tune("angle jitter", "rad").In(0, 1).Slider(0.0, 0.01).Group(ge));
   enc.radius_error =
@@ -193,7 +106,7 @@ void ReadSensors(YamlReader& m, VelocityConfig& c, double dt) {
   YamlReader i = m.Map("imu");
   ImuDef& d = c.imu;
   const std::string gi = "Noise/IMU";
-  c.every.imu = RateSteps(i, "rate", &d.rate, dt);
+  c.every.imu = RateOrNominalSteps(i, "rate", &d.rate, dt);
   d.gyro_noise_density =
       i.Real("gyro_noise_density", d.gyro_noise_density,
              Tune("gyro noise", "rad/s/√Hz").In(0, 10).Slider(1e-5, 1e-1, kLog).Group(gi));
@@ -219,7 +132,7 @@ void ReadSensors(YamlReader& m, VelocityConfig& c, double dt) {
   YamlReader k = m.Map("camera");
   CameraDef& cam = c.camera;
   const std::string gc = "Noise/camera";
-  c.every.camera = RateSteps(k, "rate", &cam.rate, dt);
+  c.every.camera = RateOrNominalSteps(k, "rate", &cam.rate, dt);
   cam.bearing_noise =
       k.Real("bearing_noise", cam.bearing_noise,
              Tune("bearing σ", "rad").In(1e-6, 1).Slider(1e-4, 0.05, kLog).Group(gc));
@@ -230,7 +143,7 @@ void ReadSensors(YamlReader& m, VelocityConfig& c, double dt) {
                      Tune("range", "m").In(kMinLength, kMaxLength).Slider(1.0, 20.0).Group(gc));
   cam.max_features = k.Integer("max_features", cam.max_features,
                                Tune("features per frame").In(1, 1000).Slider(4, 100).Group(gc));
-  cam.offset = Number(k, "offset", cam.offset, Tune().In(-kMaxLength, kMaxLength));
+  cam.offset = k.Double("offset", cam.offset, Tune().In(-kMaxLength, kMaxLength));
   k.Finish();
   m.Finish();
 }
@@ -265,7 +178,7 @@ void ReadEstimator(YamlReader& m, EstimatorSettings& e) {
   e.keyframe_every =
       m.Integer("keyframe_every", e.keyframe_every,
                 Tune("frames per keyframe").In(1, 1000).Slider(1, 20).Group(gw).OnReset());
-  w.max_iterations = Count(m, "max_iterations", w.max_iterations, 1, 1000);
+  w.max_iterations = m.Int("max_iterations", w.max_iterations, Tune().In(1, 1000));
   w.use_nonholonomic = m.Bool("nonholonomic", w.use_nonholonomic);
   e.vi_baseline = m.Bool("vi_baseline", e.vi_baseline);
   m.Finish();
@@ -283,13 +196,13 @@ void ReadCommand(YamlReader& m, CommandSettings& c) {
         m.Real("omega", c.omega,
                Tune("ω", "rad/s").In(-kMaxYawRate, kMaxYawRate).Slider(-2.0, 2.0).Group("Command"));
   } else {
-    c.v = Number(m, "v", c.v, v_rule);
-    c.omega = Number(m, "omega", c.omega, w_rule);
+    c.v = m.Double("v", c.v, v_rule);
+    c.omega = m.Double("omega", c.omega, w_rule);
   }
-  c.accel_limit = Number(m, "accel_limit", c.accel_limit, Tune().Above(0).AtMost(1e12));
+  c.accel_limit = m.Double("accel_limit", c.accel_limit, Tune().Above(0).AtMost(1e12));
   c.angular_accel_limit =
-      Number(m, "angular_accel_limit", c.angular_accel_limit, Tune().Above(0).AtMost(1e12));
-  c.start_delay = Number(m, "start_delay", c.start_delay, Tune().In(0, kMaxTime));
+      m.Double("angular_accel_limit", c.angular_accel_limit, Tune().Above(0).AtMost(1e12));
+  c.start_delay = m.Double("start_delay", c.start_delay, Tune().In(0, kMaxTime));
   std::vector<YamlReader> steps = m.MapList("steps");
   if (c.type == 1 && steps.empty()) m.Fail("steps", "type steps needs a list of {t, v, omega}");
   if (c.type == 0 && !steps.empty()) m.Fail("steps", "only used with type: steps");
@@ -301,8 +214,8 @@ void ReadCommand(YamlReader& m, CommandSettings& c) {
     if (st.t > kMaxTime)
       s.Fail("t", "must be <= " + std::to_string(static_cast<long>(kMaxTime)) + " s");
     last_t = st.t;
-    st.v = Number(s, "v", 0.0, v_rule);
-    st.omega = Number(s, "omega", 0.0, w_rule);
+    st.v = s.Double("v", 0.0, v_rule);
+    st.omega = s.Double("omega", 0.0, w_rule);
     s.Finish();
     c.steps.push_back(st);
   }
@@ -310,7 +223,7 @@ void ReadCommand(YamlReader& m, CommandSettings& c) {
 }
 
 void ReadLandmarks(YamlReader& l, LandmarkDef& d) {
-  d.count = Count(l, "count", d.count, 0, 100000);
+  d.count = l.Int("count", d.count, Tune().In(0, 100000));
   const auto area = l.Doubles("area", {d.area[0], d.area[1], d.area[2], d.area[3]}, 4);
   for (double a : area)
     if (!Coordinate().Check(a).empty())
@@ -375,7 +288,7 @@ VelocityConfig ReadVelocityConfig(YamlReader& root, double dt) {
   {
     YamlReader k = root.Map("control");
     const std::string g = "Gains/speed PID";
-    c.every.control = RateSteps(k, "rate", &c.control.rate, dt);
+    c.every.control = RateOrNominalSteps(k, "rate", &c.control.rate, dt);
     c.control.kp =
         k.Real("kp", c.control.kp, Tune("kp", "V·s/m").In(0, kMaxGain).Slider(0.0, 20.0).Group(g));
     c.control.ki =
@@ -397,7 +310,7 @@ VelocityConfig ReadVelocityConfig(YamlReader& root, double dt) {
   }
   {
     YamlReader w = root.Map("world");
-    c.world = ReadWorld(w);
+    c.world = ReadWorldDef(w, true);
   }
   {
     // Terrain beyond friction, by patch name ("floor" where no patch lies). Every patch gets an
@@ -406,11 +319,8 @@ VelocityConfig ReadVelocityConfig(YamlReader& root, double dt) {
     YamlReader floor = t.Map("floor");
     c.drive.floor_terrain = ReadTerrain(floor, c.drive.floor_terrain, "Floor", "floor ");
     c.patches = ReadPatches(root);
-    std::vector<YamlReader> items = root.MapList("patches");
-    std::set<std::string> names;
     for (std::size_t i = 0; i < c.patches.size(); ++i) {
       PatchDef& p = c.patches[i];
-      CheckPatch(items[i], p, names);
       YamlReader tm = t.Map(p.name);
       c.drive.terrain[p.name] = ReadTerrain(tm, c.drive.floor_terrain, "Floor/" + p.name, "");
     }
@@ -420,7 +330,7 @@ VelocityConfig ReadVelocityConfig(YamlReader& root, double dt) {
     YamlReader e = root.Map("estimator");
     ReadEstimator(e, c.estimator);
   }
-  c.obstacles = ReadObstacleList(root);
+  c.obstacles = ReadObstacles(root);
   {
     YamlReader l = root.Map("landmarks");
     ReadLandmarks(l, c.landmarks);
@@ -435,7 +345,7 @@ VelocityConfig ReadVelocityConfig(YamlReader& root, double dt) {
   }
   {
     YamlReader met = root.Map("metrics");
-    c.settle_time = Number(met, "settle_time", c.settle_time, Tune().In(0, kMaxTime));
+    c.settle_time = met.Double("settle_time", c.settle_time, Tune().In(0, kMaxTime));
     met.Finish();
   }
   return c;

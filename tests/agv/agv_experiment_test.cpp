@@ -256,8 +256,11 @@ TEST(AgvExperiment, TunablesKeepTheirKeysLabelsGroupsAndSliders) {
     EXPECT_EQ(p->tune.log_scale, e.log) << e.key;
     EXPECT_EQ(p->tune.live, std::string(e.key) != "robot.encoders.ticks_per_rev") << e.key;
   }
-  EXPECT_EQ(s.params().size(),
-            33u);  // 1 + 9 estimation + 7 beacon + 2 encoders + 4 wheels + 1 + 9 gains
+  // 1 + 9 estimation + 7 beacon + 2 encoders + 4 wheels + 1 + 9 gains, and the floor's μ
+  // (declared by the shared world reader, on reset).
+  EXPECT_EQ(s.params().size(), 34u);
+  ASSERT_NE(s.params().Find("world.floor_friction"), nullptr);
+  EXPECT_FALSE(s.params().Find("world.floor_friction")->tune.live);
   // Non-tunables stay out of the table; radius errors are tunable only when the list is given.
   EXPECT_EQ(s.params().Find("control.rate"), nullptr);
   EXPECT_EQ(s.params().Find("estimation.p0_xy"), nullptr);

@@ -210,7 +210,14 @@ TEST(InspectionExperiment, TunablesKeepTheirKeysLabelsGroupsAndSliders) {
       {"estimation.heading.mean_window", "Estimation/heading", "heading mean window", "", 1, 50, false, true},
   };
   const ParsedScenario parsed = ParseScenario(ScenarioSource::FromFile(kRoute), {});
-  EXPECT_EQ(parsed.params.size(), old.size());
+  // Beyond the kind's own: the floor's μ and each patch's μ, declared by the shared readers.
+  std::size_t shared = 0;
+  for (const Param& p : parsed.params.all())
+    shared += p.key == "world.floor_friction" ||
+              (p.key.rfind("patches.", 0) == 0 && p.key.size() > 9 &&
+               p.key.substr(p.key.size() - 9) == ".friction");
+  EXPECT_EQ(shared, 2u);
+  EXPECT_EQ(parsed.params.size(), old.size() + shared);
   for (const Old& o : old) {
     const Param* p = parsed.params.Find(o.key);
     ASSERT_NE(p, nullptr) << o.key;
