@@ -137,6 +137,12 @@ int RunGui(const GuiOptions& opt) {
     ImGuiLayer layer;
     ImGui_ImplGlfw_InitForOpenGL(window, true);
     AppUi ui(std::move(session));
+    // Plots keep a bounded history however long the window runs; with --out the rows of the
+    // current run stream to disk as they are recorded.
+    ui.SetRunSetup([&opt](sim::Experiment& e) {
+      e.mutable_recorder().SetHistoryLimit(20000);
+      if (!opt.out_dir.empty()) e.mutable_recorder().StreamTo(sim::CsvPath(opt.out_dir));
+    });
     const auto& speeds = SpeedChoices();
     ui.state().speed_index = static_cast<int>(std::min_element(speeds.begin(), speeds.end(),
                                                                [&](double a, double b) {

@@ -83,7 +83,9 @@ std::vector<std::vector<ImVec2>> ScreenRuns(const PlotSeries& s, double x0, doub
   };
   bool sorted = true;
   for (std::size_t i = 1; i < n && sorted; ++i) sorted = !(s.x[i] < s.x[i - 1]);
-  const bool bucket = sorted && n > static_cast<std::size_t>(2 * (b.x - a.x));
+  // A plot squeezed to nothing (a tiny window) has a negative width: no bucketing then.
+  const double width_px = std::max(0.0, static_cast<double>(b.x - a.x));
+  const bool bucket = sorted && static_cast<double>(n) > 2.0 * width_px;
   std::vector<ImVec2> run;
   int col = INT32_MIN;
   ImVec2 first, mn, mx, last;
@@ -112,7 +114,8 @@ std::vector<std::vector<ImVec2>> ScreenRuns(const PlotSeries& s, double x0, doub
     }
     const ImVec2 p = to_screen(i);
     if (bucket) {
-      const int c = static_cast<int>(std::floor(p.x));
+      // Clamped before the conversion: a point far off screen must not overflow an int.
+      const int c = static_cast<int>(std::floor(std::clamp(p.x, -1e9f, 1e9f)));
       if (c != col) {
         flush_col();
         col = c;

@@ -44,6 +44,11 @@ AppUi::AppUi(sim::Session& borrowed) : session_(&borrowed) {
   SyncScenarioFields();
 }
 
+void AppUi::SetRunSetup(std::function<void(sim::Experiment&)> setup) {
+  run_setup_ = std::move(setup);
+  session_->SetRunSetup(run_setup_);
+}
+
 void AppUi::SetStatus(const std::string& message, bool error) {
   state_.status = message;
   state_.status_is_error = error;
@@ -68,6 +73,10 @@ void AppUi::SyncScenarioFields() {
 }
 
 void AppUi::Adopt(std::unique_ptr<sim::Session> session, const std::string& message) {
+  if (run_setup_) {
+    session_->exp().mutable_recorder().AbandonStream();
+    session->SetRunSetup(run_setup_);
+  }
   owned_ = std::move(session);
   session_ = owned_.get();
   SyncScenarioFields();

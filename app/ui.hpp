@@ -6,6 +6,7 @@
 
 #include <imgui.h>
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -53,6 +54,9 @@ class AppUi {
   explicit AppUi(sim::Session& borrowed);
 
   sim::Session& session() { return *session_; }
+  /// Applied to every experiment of every session the interface runs (the current one, resets,
+  /// and scenarios loaded later): bounded history, streaming of the rows to --out.
+  void SetRunSetup(std::function<void(sim::Experiment&)> setup);
   UiState& state() { return state_; }
 
   /// Advances the simulation for `wall_dt` seconds of real time at the chosen speed (GUI loop).
@@ -105,6 +109,7 @@ class AppUi {
   void DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts);
   void UpdateView(ImVec2 min, ImVec2 max);
 
+  std::function<void(sim::Experiment&)> run_setup_;
   std::unique_ptr<sim::Session> owned_;
   sim::Session* session_ = nullptr;
   UiState state_;

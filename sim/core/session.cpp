@@ -52,6 +52,11 @@ Session::Session(const std::string& file, std::vector<Override> cli_overrides)
 Session::Session(const std::string& file, const std::vector<std::string>& sets, long long seed)
     : Session(file, CliOverrides(sets, seed)) {}
 
+void Session::SetRunSetup(std::function<void(Experiment&)> setup) {
+  run_setup_ = std::move(setup);
+  if (run_setup_) run_setup_(*exp_);
+}
+
 void Session::Reject(const std::string& key, const std::string& why) {
   char t[32];
   std::snprintf(t, sizeof(t), "t=%.2f s ", exp_->time());
@@ -188,6 +193,10 @@ std::string Session::Reset(std::optional<std::uint64_t> seed) {
   try {
     ParsedScenario parsed = ParseScenario(source_, all);
     std::unique_ptr<Experiment> exp = BuildExperiment(parsed);
+    if (run_setup_) {
+      exp_->mutable_recorder().AbandonStream();  // the old run's file goes before the new opens
+      run_setup_(*exp);
+    }
     applied_ = std::move(parsed);
     exp_ = std::move(exp);
   } catch (const std::exception& e) {
@@ -208,6 +217,10 @@ std::string Session::Reload() {
     ScenarioSource source = ScenarioSource::FromFile(source_.file());
     ParsedScenario parsed = ParseScenario(source, cli_);
     std::unique_ptr<Experiment> exp = BuildExperiment(parsed);
+    if (run_setup_) {
+      exp_->mutable_recorder().AbandonStream();
+      run_setup_(*exp);
+    }
     source_ = std::move(source);
     applied_ = std::move(parsed);
     exp_ = std::move(exp);

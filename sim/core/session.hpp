@@ -6,6 +6,7 @@
 /// later reset. Resets and reloads that fail leave the running experiment as it was.
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -22,6 +23,10 @@ class Session {
   Session(const std::string& file, std::vector<Override> cli_overrides);
   /// Same with `--set` strings and a seed (< 0: the scenario's).
   Session(const std::string& file, const std::vector<std::string>& sets, long long seed);
+
+  /// Called with every experiment the session builds (now, and after each reset or reload),
+  /// e.g. to stream its rows to disk and bound the history kept in memory.
+  void SetRunSetup(std::function<void(Experiment&)> setup);
 
   Experiment& exp() { return *exp_; }
   const Experiment& exp() const { return *exp_; }
@@ -88,6 +93,7 @@ class Session {
   std::optional<ParsedScenario> queued_parse_;  ///< the scenario with queued_ applied
   ParsedScenario applied_;
   std::unique_ptr<Experiment> exp_;
+  std::function<void(Experiment&)> run_setup_;
   struct MoveRequest {
     std::string name;
     double x = 0, y = 0;

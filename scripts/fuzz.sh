@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Runs the libFuzzer harnesses (tests/fuzz) under AddressSanitizer and UndefinedBehaviorSanitizer.
+# Usage: scripts/fuzz.sh [SECONDS per harness, default 300] [BUILD folder, default build-asan]
+# Seeds: the shipped scenarios, the invalid fixtures and tests/fuzz/set_seeds; new inputs go to
+# a temporary corpus. A crash is saved in fuzz-artifacts/ and the script fails: turn it into a
+# fixture in tests/fixtures/invalid/ with its expected message, then fix it.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+SECONDS_EACH=${1:-300}
+BUILD=${2:-build-asan}
+[ -x "$BUILD/tests/fuzz/fuzz_scenario" ] || bash scripts/sanitize.sh --build-only "$BUILD"
+export ASAN_OPTIONS=${ASAN_OPTIONS:-halt_on_error=1:detect_leaks=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
+mkdir -p fuzz-artifacts
+CORPUS=$(mktemp -d)
+trap 'rm -rf "$CORPUS"' EXIT
+run() {
+  local harness=$1; shift
+  mkdir -p "$CORPUS/$harness"
+  echo "fuzz: $harness for ${SECONDS_EACH} s"
+  "$BUILD/tests/fuzz/$harness" -max_total_time="$SECONDS_EACH" -timeout=30 -rss_limit_mb=4096 \
+    -max_len=16384 -print_final_stats=1 -artifact_prefix="fuzz-artifacts/$harness-" \
+    "$CORPUS/$harness" "$@" 2>&1 | grep -E "^#[0-9]+.*DONE|stat::number_of_executed_units|ERROR|SUMMARY|Test unit written|deadly" || true
+  # libFuzzer exits non-zero and leaves an artifact when it found something.
+  if ls fuzz-artifacts/"$harness"-* >/dev/null 2>&1; then
+    echo "fuzz: $harness found a failing input: $(ls fuzz-artifacts/"$harness"-*)"
+    return 1
+  fi
+}
+run fuzz_scenario assets/scenarios tests/fixtures/invalid
+run fuzz_set tests/fuzz/set_seeds
+echo "fuzz: no crash, hang or sanitizer report"

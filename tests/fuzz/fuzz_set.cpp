@@ -1,0 +1,49 @@
+// libFuzzer harness for `--set` and GUI edits: the first byte picks a shipped scenario, the
+// rest is a list of "path=value" lines applied as --set overrides (then, if it loads, as live
+// GUI edits of a running session). Errors must be messages, never crashes.
+#include <cstddef>
+#include <cstdint>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "sim/core/scenario_files.hpp"
+#include "sim/core/session.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace formsim::sim;
+  static const std::vector<std::string> scenarios = ShippedScenarios();
+  if (size < 1 || scenarios.empty()) return 0;
+  const std::string& file = scenarios[data[0] % scenarios.size()];
+  std::vector<std::string> lines;
+  std::string cur;
+  for (std::size_t i = 1; i < size; ++i) {
+    if (data[i] == '\n') {
+      lines.push_back(cur);
+      cur.clear();
+    } else {
+      cur += static_cast<char>(data[i]);
+    }
+  }
+  if (!cur.empty()) lines.push_back(cur);
+  if (lines.size() > 16) lines.resize(16);
+  try {
+    Session s(file, lines, -1);
+    for (int k = 0; k < 100 && !s.exp().finished(); ++k) s.Step();
+  } catch (const std::exception&) {
+  }
+  // The same assignments as GUI edits of a running session.
+  try {
+    Session s(file, std::vector<std::string>{}, -1);
+    for (const std::string& l : lines) {
+      const auto eq = l.find('=');
+      if (eq == std::string::npos) continue;
+      s.Edit(l.substr(0, eq), l.substr(eq + 1));
+      for (int k = 0; k < 20 && !s.exp().finished(); ++k) s.Step();
+    }
+    (void)s.Reset();
+    for (int k = 0; k < 20 && !s.exp().finished(); ++k) s.Step();
+  } catch (const std::exception&) {
+  }
+  return 0;
+}
