@@ -25,6 +25,7 @@ namespace {
 struct RunOptions {
   std::string scenario;
   std::string seed;  ///< empty: the scenario's
+  std::string max_steps;  ///< empty: the scenario's (default 1e8)
   std::vector<std::string> sets;
   std::string out_dir;
   bool quiet = false;
@@ -99,7 +100,9 @@ int RunCommand(RunOptions opt) {
     ParseSize(opt.size, &opt.exp.width, &opt.exp.height);
     ParseSize(opt.plot_size, &opt.exp.plot_width, &opt.exp.plot_height);
   }
-  sim::Session session(file, Overrides(opt.sets, opt.seed));
+  std::vector<sim::Override> overrides = Overrides(opt.sets, opt.seed);
+  if (!opt.max_steps.empty()) overrides.push_back({"max_steps", opt.max_steps, "--max-steps", -1});
+  sim::Session session(file, overrides);
   sim::PrepareOutputDir(out);  // fail before simulating, not after
   if (opt.exp.any()) PrepareExport(opt.exp);  // a missing ffmpeg fails before simulating too
   // Rows go to disk as they are recorded; memory keeps a bounded history for the figures.
@@ -213,6 +216,8 @@ int Main(int argc, char** argv) {
   run_cmd->add_option("--set", run.sets, "Override a scenario value: path.to.key=value")
       ->take_all();
   run_cmd->add_option("--out", run.out_dir, "Output folder (default out/<scenario>)");
+  run_cmd->add_option("--max-steps", run.max_steps,
+                      "Allow runs of up to N world steps (default 1e8; longer runs are refused)");
   run_cmd->add_flag("--quiet,-q", run.quiet, "Print nothing but errors");
 
   run_cmd->add_option("--frames", run.exp.frames_dir, "Write PNG frames frame_00000.png... here");

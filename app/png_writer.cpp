@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 
 #include <stb_image.h>
 #include <zlib.h>
@@ -88,6 +89,16 @@ std::vector<std::uint8_t> EncodePng(int width, int height, const std::uint8_t* r
 double WritePng(const std::string& path, int width, int height, const std::uint8_t* rgba) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<std::uint8_t> png = EncodePng(width, height, rgba);
+  // A device or pipe (/dev/full, /dev/stdout) is written as it is: never renamed over.
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) {
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    if (f == nullptr) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+    const bool ok = std::fwrite(png.data(), 1, png.size(), f) == png.size() && std::fflush(f) == 0;
+    const std::string why = std::strerror(errno);
+    if (std::fclose(f) != 0 || !ok) throw std::runtime_error("cannot write " + path + ": " + why);
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
   // Through a temporary name: a failed write (full disk) leaves no truncated PNG behind.
   const std::string tmp = path + ".tmp";
   std::FILE* f = std::fopen(tmp.c_str(), "wb");

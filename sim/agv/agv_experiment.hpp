@@ -40,6 +40,7 @@
 #include "sim/agv/estimate_stats.hpp"
 #include "sim/agv/mecanum_drive.hpp"
 #include "sim/agv/wheel_encoders.hpp"
+#include "sim/core/bounded_history.hpp"
 #include "sim/core/experiment.hpp"
 #include "sim/core/multirate.hpp"
 
@@ -121,7 +122,7 @@ class AgvExperiment : public ExperimentOf<AgvConfig> {
     bool rejected;
     double nis;
   };
-  std::vector<FixRecord> fixes_;  ///< every valid sample (for figures)
+  BoundedHistory<FixRecord> fixes_;  ///< valid samples for the figures (bounded, evenly thinned)
   std::deque<Vec2> trail_true_, trail_fused_, trail_odo_;
   std::vector<Vec2> path_samples_;
 };

@@ -1,5 +1,6 @@
 #include "sim/core/scenario.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -55,6 +56,23 @@ ExperimentSetup ReadRoot(YamlReader& r, const ScenarioSource& src) {
   if (!(s.duration > 0)) r.Fail("duration", "must be positive");
   s.record_every = r.Int("record_every", 1);
   if (s.record_every < 1) r.Fail("record_every", "must be >= 1");
+  // An absurd step count (dt = 1e-9 s, duration = 1e12 s) is refused unless asked for: a run
+  // that long is rarely meant, and it would hold the machine for hours.
+  double max_steps = 1e8;
+  if (r.Has("max_steps")) {
+    const YAML::Node n = r.Raw("max_steps");
+    std::uint64_t v = 0;
+    if (!n.IsScalar() || !ParseUint64(n.Scalar(), &v) || v < 1)
+      r.Fail("max_steps", "must be a whole number of steps >= 1");
+    max_steps = static_cast<double>(v);
+  } else {
+    r.Raw("max_steps");
+  }
+  const double steps = std::ceil(s.duration / s.dt - 1e-9);
+  if (steps > max_steps)
+    r.Fail("duration", "gives " + Sprintf("%.3g", steps) + " steps of dt = " + FormatDouble(s.dt) +
+                           " s, more than max_steps = " + Sprintf("%.3g", max_steps) +
+                           "; raise max_steps (--max-steps N) for a run this long");
   return s;
 }
 

@@ -275,7 +275,7 @@ void InspectionExperiment::Sense(double t) {
 
   ScoreTracking(t);
   if (laser_rate_.Due(steps())) ScanAndFix(t);
-  if (steps() % 10 == 0 && trail_true_.size() < 20000) {
+  if (steps() % 10 == 0) {
     trail_true_.push_back(TruePose().p());
     trail_kf_.push_back(kf_.position());
   }

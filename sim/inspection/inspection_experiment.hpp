@@ -51,6 +51,7 @@
 #include "control/inspection/route.hpp"
 #include "control/inspection/trilateration.hpp"
 #include "sim/core/error_stats.hpp"
+#include "sim/core/bounded_history.hpp"
 #include "sim/core/experiment.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/multirate.hpp"
@@ -170,7 +171,7 @@ class InspectionExperiment : public ExperimentOf<InspectionConfig> {
   Fault fault_ = Fault::kNone;  ///< the first Kalman fault of the current step
   bool completed_ = false;
   double completion_time_ = -1.0;
-  std::vector<Vec2> trail_true_, trail_kf_;
+  BoundedHistory<Vec2> trail_true_, trail_kf_;  ///< the whole run, evenly thinned when long
 };
 
 

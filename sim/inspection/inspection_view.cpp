@@ -51,8 +51,8 @@ void InspectionExperiment::DrawScene(DrawSink& draw) const {
 
   // Trails: truth and Kalman estimate.
   if (trail_true_.size() >= 2)
-    draw.Polyline(trail_true_, Color{0.1f, 0.1f, 0.1f, 0.8f}, 1.5f, true);
-  if (trail_kf_.size() >= 2) draw.Polyline(trail_kf_, kKalmanColor.WithAlpha(0.8f), 1.2f, true);
+    draw.Polyline(trail_true_.items(), Color{0.1f, 0.1f, 0.1f, 0.8f}, 1.5f, true);
+  if (trail_kf_.size() >= 2) draw.Polyline(trail_kf_.items(), kKalmanColor.WithAlpha(0.8f), 1.2f, true);
 
   // Estimates: dead reckoning, raw fix, classical (limit + mean), Kalman with its 3σ ellipse.
   draw.Circle(dr_.pose().p(), 0.05, kDrColor.WithAlpha(0.5f), kDrColor);

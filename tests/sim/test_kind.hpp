@@ -5,10 +5,17 @@
 #include "sim/core/experiment.hpp"
 #include "sim/core/unicycle_drive.hpp"
 
+#include <cmath>
+#include <limits>
+
 namespace formsim::sim::testkind {
 
 struct CircleConfig {
   double v = 1.0, omega = 0.5, sigma = 0.1, v_max_sum = 10.0;
+  /// For the fault tests: at fault_time, make the measured speed (value) or the robot's
+  /// velocity (state) non-finite.
+  int fault = 0;  ///< 0 none, 1 value, 2 state
+  double fault_time = 0.5;
   UnicycleDriveDef drive;
 };
 
@@ -23,6 +30,8 @@ class NoisyCircle : public ExperimentOf<CircleConfig> {
     if (std::abs(c.v) + std::abs(c.omega) >= 4.0) root.Fail("omega", "v + |omega| must be < 4");
     YamlReader drive = root.Map("drive");
     c.drive = ReadUnicycleDrive(drive, "Drive/R1");
+    c.fault = root.Choice("fault", {"none", "value", "state"}, 0);
+    c.fault_time = root.Double("fault_time", c.fault_time);
     return c;
   }
   NoisyCircle(const ExperimentSetup& s, const CircleConfig& c) : ExperimentOf(s, c) {
@@ -53,8 +62,16 @@ class NoisyCircle : public ExperimentOf<CircleConfig> {
   double sigma() const { return cfg_.sigma; }
 
  protected:
-  void Control(double) override { drive_->SetCommand(cfg_.v, cfg_.omega); }
-  void Sense(double) override { measured_ = robot_->forward_speed() + sensor_.Normal(0, cfg_.sigma); }
+  void Control(double t) override {
+    drive_->SetCommand(cfg_.v, cfg_.omega);
+    // A drive that blows up: Box2D integrates an infinite force into the state.
+    if (cfg_.fault == 2 && t >= cfg_.fault_time)
+      robot_->body()->ApplyForceToCenter(b2Vec2(std::numeric_limits<float>::infinity(), 0), true);
+  }
+  void Sense(double t) override {
+    measured_ = robot_->forward_speed() + sensor_.Normal(0, cfg_.sigma);
+    if (cfg_.fault == 1 && t >= cfg_.fault_time) measured_ = std::nan("");
+  }
   void DrawScene(DrawSink&) const override {}
   void ApplyTunables(const CircleConfig& next) override {
     const double sigma = cfg_.sigma;  // OnReset: must not change here
