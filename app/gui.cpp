@@ -4,6 +4,7 @@
 #include <dlfcn.h>
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
+#include <imgui_internal.h>
 
 #include <algorithm>
 #include <chrono>
@@ -175,10 +176,18 @@ int RunGui(const GuiOptions& opt) {
 
       ImGui_ImplGlfw_NewFrame();
       layer.NewFrame();
-      ui.Advance(wall_dt);
       const auto t_ui = Clock::now();
-      const ImVec2 display = ImGui::GetIO().DisplaySize;
-      ui.Draw(display, layer.fonts(), true);
+      try {
+        ui.Advance(wall_dt);
+        ui.Draw(ImGui::GetIO().DisplaySize, layer.fonts(), true);
+      } catch (const std::exception& e) {
+        // Nothing may close the window but the user: close what the frame left open, pause,
+        // and say what happened.
+        ImGui::ErrorCheckEndFrameRecover(nullptr);
+        ui.state().playing = false;
+        ui.state().status = std::string("error (the run is paused): ") + e.what();
+        ui.state().status_is_error = true;
+      }
       int fw = 0, fh = 0;
       glfwGetFramebufferSize(window, &fw, &fh);
       const auto t_gl = Clock::now();
