@@ -7,6 +7,10 @@
 
 namespace formsim::sim {
 
+/// Rows a headless run (`formsim run`, each run of a sweep) keeps in memory for its figures;
+/// the CSV is streamed to disk. The same bound everywhere, so a sweep's run is `formsim run`.
+constexpr std::size_t kRunHistoryRows = 20000;
+
 /// Creates `dir` (and parents) and checks that a file can be written in it, before any work is
 /// done, so a bad folder fails fast. Throws std::runtime_error naming the folder and the reason.
 void PrepareOutputDir(const std::string& dir);
