@@ -109,7 +109,7 @@ int WriteSweepOutputs(const sim::SweepDefinition& def, const std::vector<sim::Sw
   std::vector<std::string> wrote = {"runs.csv", "aggregate.csv"};
   int rc = 0;
   if (figures && !tables.metrics.empty()) {
-    if (metric.empty()) metric = tables.metrics.front();
+    if (metric.empty()) metric = tables.metrics[sim::DefaultMetric(tables)];
     const int m = tables.MetricIndex(metric);
     if (m < 0) {
       std::fprintf(stderr, "formsim: error: --metric '%s': no such metric in the runs (similar: %s); the tables were written\n",
@@ -244,6 +244,7 @@ int StudyCommands::Sweep() {
   }
 
   if (sim::HasManifest(out) && !resume_) {
+    sim::WriteManifest(out, def);  // throws, saying how, when it is another sweep
     const std::size_t have = sim::ReadRecords(out, sim::ReadManifest(out)).size();
     throw std::runtime_error("'" + out + "' holds a sweep already (" + std::to_string(have) +
                              " runs recorded); add --resume to continue it, or choose another --out");

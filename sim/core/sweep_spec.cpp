@@ -289,18 +289,20 @@ SweepDefinition DefineSweep(const ScenarioSource& source, const std::vector<Over
     const Param* p = base.params.Find(key);
     if (p == nullptr) {
       // Say which tunables look alike (same last part or same prefix).
-      std::string near;
-      const std::string last = key.substr(key.rfind('.') + 1);
-      int shown = 0;
+      std::string near, some;
+      const std::size_t dot = key.rfind('.');
+      const std::string last = key.substr(dot == std::string::npos ? 0 : dot + 1);
+      const std::string parent = dot == std::string::npos ? "" : key.substr(0, dot + 1);
+      int shown = 0, listed = 0;
       for (const Param& q : base.params.all()) {
-        const std::string qlast = q.key.substr(q.key.rfind('.') + 1);
-        if ((qlast == last || q.key.rfind(key.substr(0, key.rfind('.') + 1), 0) == 0) && shown < 8) {
+        const std::string qlast = q.key.substr(q.key.rfind('.') == std::string::npos ? 0 : q.key.rfind('.') + 1);
+        if ((qlast == last || (!parent.empty() && q.key.rfind(parent, 0) == 0)) && shown++ < 8)
           near += (near.empty() ? "" : ", ") + q.key;
-          ++shown;
-        }
+        if (listed++ < 8) some += (some.empty() ? "" : ", ") + q.key;
       }
       throw ScenarioError(where, key, "not a tunable of " + source.file() +
-                                          (near.empty() ? "" : " (similar: " + near + ")"));
+                                          (near.empty() ? " (tunables: " + some + (listed > 8 ? ", ..." : "") + ")"
+                                                        : " (similar: " + near + ")"));
     }
     for (const SweepAxis& a : def.axes)
       if (a.key == key) throw ScenarioError(where, key, "varied twice");

@@ -149,6 +149,22 @@ SweepTables BuildSweepTables(const SweepDefinition& def, std::vector<SweepRecord
   return t;
 }
 
+std::size_t DefaultMetric(const SweepTables& t) {
+  for (std::size_t m = 0; m < t.metrics.size(); ++m) {
+    double lo = kNaN, hi = kNaN;
+    for (const auto& point : t.stats) {
+      const MetricStats& s = point[m];
+      if (s.n == 0) continue;
+      for (double v : t.stats.size() == 1 ? std::vector<double>{s.min, s.max} : std::vector<double>{s.mean}) {
+        if (!(v >= lo)) lo = v;
+        if (!(v <= hi)) hi = v;
+      }
+    }
+    if (lo < hi) return m;
+  }
+  return 0;
+}
+
 std::string RankingText(const SweepDefinition& def, const SweepTables& t, int m) {
   std::vector<std::size_t> order(t.points.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;

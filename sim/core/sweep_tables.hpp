@@ -35,6 +35,10 @@ struct SweepTables {
 /// Builds the tables from `records` (any order; each run at most once).
 SweepTables BuildSweepTables(const SweepDefinition& def, std::vector<SweepRecord> records);
 
+/// The metric a sweep shows when none is asked for: the first whose mean differs between
+/// points (or, with one point, whose min and max differ), else the first.
+std::size_t DefaultMetric(const SweepTables& tables);
+
 /// Points sorted by the mean of metric `m` (ascending, points without a value last) as an
 /// aligned text table: the table a sweep of three or more keys shows instead of a figure.
 std::string RankingText(const SweepDefinition& def, const SweepTables& tables, int m);
