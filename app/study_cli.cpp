@@ -45,7 +45,7 @@ class RunsBar {
   void Update(std::size_t done, std::size_t failed, bool force = false) {
     if (!enabled_ || total_ == 0) return;
     const double now = Now();
-    if (!force && now - last_ < 0.1) return;
+    if (!force && done < total_ && now - last_ < 0.1) return;  // the last state always shows
     last_ = now;
     const double f = static_cast<double>(done) / static_cast<double>(total_);
     const int width = 30, filled = static_cast<int>(f * width);
@@ -252,8 +252,8 @@ int StudyCommands::Sweep() {
   sim::WriteManifest(out, def);
   const std::vector<std::size_t> pending = sim::PendingRuns(out, mine);
   if (!quiet_) {
-    std::printf("sweep of %s: %zu points x %zu seeds = %zu runs", file.c_str(), def.points.size(),
-                def.seeds.size(), def.runs());
+    std::printf("sweep of %s: %zu point%s x %zu seed%s = %zu runs", file.c_str(), def.points.size(),
+                def.points.size() == 1 ? "" : "s", def.seeds.size(), def.seeds.size() == 1 ? "" : "s", def.runs());
     if (shard_n > 1) std::printf(", shard %d/%d: %zu runs", shard_k, shard_n, mine.size());
     if (pending.size() != mine.size()) std::printf(", %zu recorded already", mine.size() - pending.size());
     std::printf(", %d jobs\n", jobs);

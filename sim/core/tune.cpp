@@ -78,6 +78,7 @@ struct Context {
   std::exception_ptr error;
   bool stopped = false;
   double worst = -kInf;  // the worst finite objective so far (penalty for failed evaluations)
+  std::vector<double> start_u;  // the start in scaled coordinates
 };
 
 // Runs every seed at `values`; fills the evaluation. Returns false when stopped.
@@ -138,7 +139,11 @@ double Objective(unsigned n, const double* u, double* /*grad*/, void* data) {
   TuneResult& res = *c.result;
   TuneEvaluation ev;
   ev.index = res.history.size() + 1;
-  for (unsigned i = 0; i < n; ++i) ev.values.push_back(ToValue(c.settings->params[i], u[i]));
+  for (unsigned i = 0; i < n; ++i) {
+    // The start point is the scenario's own value exactly, not its image through the scaling.
+    const TuneParam& p = c.settings->params[i];
+    ev.values.push_back(u[i] == c.start_u[i] ? p.start : ToValue(p, u[i]));
+  }
   try {
     if (!Evaluate(c, ev)) {
       c.stopped = true;
@@ -264,6 +269,7 @@ TuneResult RunTune(const ScenarioSource& source, const TuneSettings& s, TaskPool
   // The first steps span 15 % of each interval (NLopt keeps them inside the bounds).
   std::vector<double> lb(n, 0.0), ub(n, 1.0), u(n), step(n, 0.15);
   for (unsigned i = 0; i < n; ++i) u[i] = std::clamp(ToUnit(s.params[i], s.params[i].start), 0.0, 1.0);
+  c.start_u = u;
   nlopt_set_lower_bounds(opt, lb.data());
   nlopt_set_upper_bounds(opt, ub.data());
   nlopt_set_min_objective(opt, Objective, &c);
