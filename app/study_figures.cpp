@@ -128,7 +128,7 @@ bool SweepFigure(const sim::SweepDefinition& def, const sim::SweepTables& t,
   return false;
 }
 
-PlotData TuneConvergenceFigure(const sim::TuneSettings& /*settings*/, const sim::TuneResult& r,
+PlotData TuneConvergenceFigure(const sim::TuneSettings& settings, const sim::TuneResult& r,
                                const std::string& expr) {
   PlotData d;
   // Objectives that span decades read better on a log scale.
@@ -155,7 +155,11 @@ PlotData TuneConvergenceFigure(const sim::TuneSettings& /*settings*/, const sim:
     best.y.push_back(y(b));
   }
   d.series = {each, best};
-  d.title = "formsim tune: " + expr;
+  // A long sum would not fit in the title: name the number of terms instead (history.csv and
+  // best.yaml hold the expression).
+  const std::size_t terms = static_cast<std::size_t>(std::count(expr.begin(), expr.end(), '+')) + 1;
+  d.title = "formsim tune (" + settings.algorithm + ", " + std::to_string(settings.seeds.size()) + " seeds): " +
+            (expr.size() <= 60 ? expr : "sum of " + std::to_string(terms) + " metrics");
   d.x_label = "evaluation";
   d.y_label = log ? "log₁₀ objective" : "objective";
   return d;

@@ -78,7 +78,7 @@ struct Context {
   std::exception_ptr error;
   bool stopped = false;
   double worst = -kInf;  // the worst finite objective so far (penalty for failed evaluations)
-  std::vector<double> start_u;  // the start in scaled coordinates
+  bool out_of_budget = false;
 };
 
 // Runs every seed at `values`; fills the evaluation. Returns false when stopped.
@@ -134,38 +134,54 @@ bool Evaluate(Context& c, TuneEvaluation& ev) {
   return true;
 }
 
-double Objective(unsigned n, const double* u, double* /*grad*/, void* data) {
-  Context& c = *static_cast<Context*>(data);
+// The value the optimiser sees for an evaluation. A failed one (a numerical fault, an invalid
+// combination) is worse than anything seen, but finite, so the optimiser's model stays usable.
+double Seen(const Context& c, const TuneEvaluation& ev) {
+  if (std::isfinite(ev.objective)) return ev.objective;
+  return std::isfinite(c.worst) ? c.worst + std::max(1.0, std::abs(c.worst)) : 1e10;
+}
+
+// Evaluates `values` (or finds them evaluated already) and records the evaluation. Returns
+// false when the optimisation must end: stopped, out of budget, or an error (kept in c.error).
+bool Point(Context& c, const std::vector<double>& values, double* seen) {
   TuneResult& res = *c.result;
+  // A point met again (NLopt's start, a Nelder-Mead revisit) is not run again.
+  for (const TuneEvaluation& e : res.history)
+    if (e.values == values) {
+      *seen = Seen(c, e);
+      return true;
+    }
+  if (static_cast<int>(res.history.size()) >= c.settings->budget) {
+    c.out_of_budget = true;
+    return false;
+  }
   TuneEvaluation ev;
   ev.index = res.history.size() + 1;
-  for (unsigned i = 0; i < n; ++i) {
-    // The start point is the scenario's own value exactly, not its image through the scaling.
-    const TuneParam& p = c.settings->params[i];
-    ev.values.push_back(u[i] == c.start_u[i] ? p.start : ToValue(p, u[i]));
-  }
+  ev.values = values;
   try {
     if (!Evaluate(c, ev)) {
       c.stopped = true;
-      nlopt_force_stop(c.opt);
-      return 0;
+      return false;
     }
   } catch (...) {
     c.error = std::current_exception();
-    nlopt_force_stop(c.opt);
-    return 0;
+    return false;
   }
   res.history.push_back(ev);
-  const TuneEvaluation& best_before = res.history[res.best];
-  if (res.history.size() == 1 || ev.objective < best_before.objective) res.best = res.history.size() - 1;
+  if (res.history.size() == 1 || ev.objective < res.history[res.best].objective) res.best = res.history.size() - 1;
   if (*c.progress) (*c.progress)(res.history.back(), res.history[res.best]);
-  if (std::isfinite(ev.objective)) {
-    c.worst = std::max(c.worst, ev.objective);
-    return ev.objective;
-  }
-  // A failed evaluation (a numerical fault, an invalid combination): worse than anything seen,
-  // but finite so the optimiser's model stays usable.
-  return std::isfinite(c.worst) ? c.worst + std::max(1.0, std::abs(c.worst)) : 1e10;
+  if (std::isfinite(ev.objective)) c.worst = std::max(c.worst, ev.objective);
+  *seen = Seen(c, ev);
+  return true;
+}
+
+double Objective(unsigned n, const double* u, double* /*grad*/, void* data) {
+  Context& c = *static_cast<Context*>(data);
+  std::vector<double> values;
+  for (unsigned i = 0; i < n; ++i) values.push_back(ToValue(c.settings->params[i], u[i]));
+  double seen = 0;
+  if (!Point(c, values, &seen)) nlopt_force_stop(c.opt);
+  return seen;
 }
 
 }  // namespace
@@ -268,19 +284,28 @@ TuneResult RunTune(const ScenarioSource& source, const TuneSettings& s, TaskPool
   Context c{&source, &s, &pool, &progress, &stop, &result, opt, nullptr};
   // The first steps span 15 % of each interval (NLopt keeps them inside the bounds).
   std::vector<double> lb(n, 0.0), ub(n, 1.0), u(n), step(n, 0.15);
-  for (unsigned i = 0; i < n; ++i) u[i] = std::clamp(ToUnit(s.params[i], s.params[i].start), 0.0, 1.0);
-  c.start_u = u;
-  nlopt_set_lower_bounds(opt, lb.data());
-  nlopt_set_upper_bounds(opt, ub.data());
-  nlopt_set_min_objective(opt, Objective, &c);
-  nlopt_set_maxeval(opt, s.budget);
-  nlopt_set_xtol_abs1(opt, 1e-5);  // 1e-5 of each search interval
-  nlopt_set_initial_step(opt, step.data());
-  double fmin = 0;
-  const nlopt_result r = nlopt_optimize(opt, u.data(), &fmin);
+  std::vector<double> start;
+  for (unsigned i = 0; i < n; ++i) {
+    u[i] = std::clamp(ToUnit(s.params[i], s.params[i].start), 0.0, 1.0);
+    start.push_back(s.params[i].start);
+  }
+  // Evaluation 1 is the scenario's own values, exactly (BOBYQA may move its first point away
+  // from a bound).
+  double seen = 0;
+  nlopt_result r = NLOPT_MAXEVAL_REACHED;
+  if (Point(c, start, &seen)) {
+    nlopt_set_lower_bounds(opt, lb.data());
+    nlopt_set_upper_bounds(opt, ub.data());
+    nlopt_set_min_objective(opt, Objective, &c);
+    nlopt_set_maxeval(opt, 2 * s.budget + 10);  // the budget counts new points (Point stops)
+    nlopt_set_xtol_abs1(opt, 1e-5);             // 1e-5 of each search interval
+    nlopt_set_initial_step(opt, step.data());
+    double fmin = 0;
+    r = nlopt_optimize(opt, u.data(), &fmin);
+  }
   nlopt_destroy(opt);
   if (c.error) std::rethrow_exception(c.error);
-  result.stop_reason = c.stopped ? "interrupted" : StopText(r);
+  result.stop_reason = c.stopped ? "interrupted" : c.out_of_budget || r == NLOPT_FORCED_STOP ? "budget used" : StopText(r);
   return result;
 }
 
