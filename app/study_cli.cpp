@@ -136,6 +136,12 @@ int WriteSweepOutputs(const sim::SweepDefinition& def, const std::vector<sim::Sw
   return rc;
 }
 
+// Records a power cut left empty or cut short are removed (and so run again); says so on stderr.
+void RemoveDamaged(const std::string& out, const std::vector<std::size_t>& runs, bool quiet) {
+  for (const std::string& p : sim::RemoveDamagedRecords(out, runs))
+    if (!quiet) std::fprintf(stderr, "formsim: %s was cut short (a power cut?); it runs again\n", p.c_str());
+}
+
 std::vector<sim::SweepRecord> RecordsOf(const std::string& dir, const sim::SweepDefinition& def,
                                         const std::vector<std::size_t>& runs) {
   const std::set<std::size_t> want(runs.begin(), runs.end());
@@ -219,6 +225,7 @@ int StudyCommands::Sweep() {
       throw std::runtime_error("--run " + std::to_string(run_) + ": the sweep has runs 0 ... " + std::to_string(def.runs() - 1));
     sim::WriteManifest(out, def);
     const std::size_t r = static_cast<std::size_t>(run_);
+    RemoveDamaged(out, {r}, quiet_);
     if (sim::PendingRuns(out, {r}).empty()) {
       if (!quiet_) std::printf("run %zu is recorded already in %s\n", r, out.c_str());
       return 0;
@@ -227,6 +234,7 @@ int StudyCommands::Sweep() {
     const auto rec = sim::RunSweepRun(source, def, r, [] { return StopSignal() != 0; });
     if (!rec) return 128 + StopSignal();
     sim::WriteRecord(out, def, *rec);
+    sim::SyncFileSystem(out);
     if (!quiet_) std::printf("run %zu: %s%s\n", r, rec->status.c_str(), rec->message.empty() ? "" : (": " + rec->message).c_str());
     return 0;
   }
@@ -239,17 +247,19 @@ int StudyCommands::Sweep() {
     if (!seeds_.empty()) common += " --seeds " + ShellWord(seeds_);
     if (def.sample_seed != 1) common += " --sample-seed " + std::to_string(def.sample_seed);
     common += " --out " + ShellWord(fs::absolute(out).string()) + " -q --run ";
+    RemoveDamaged(out, mine, false);
     for (std::size_t r : sim::PendingRuns(out, mine)) std::printf("%s%zu\n", common.c_str(), r);
     return 0;
   }
 
   if (sim::HasManifest(out) && !resume_) {
     sim::WriteManifest(out, def);  // throws, saying how, when it is another sweep
-    const std::size_t have = sim::ReadRecords(out, sim::ReadManifest(out)).size();
+    const std::size_t have = def.runs() - sim::PendingRuns(out, sim::ShardRuns(def.runs(), 1, 1)).size();
     throw std::runtime_error("'" + out + "' holds a sweep already (" + std::to_string(have) +
                              " runs recorded); add --resume to continue it, or choose another --out");
   }
   sim::WriteManifest(out, def);
+  RemoveDamaged(out, mine, quiet_);
   const std::vector<std::size_t> pending = sim::PendingRuns(out, mine);
   if (!quiet_) {
     std::printf("sweep of %s: %zu point%s x %zu seed%s = %zu runs", file.c_str(), def.points.size(),
@@ -271,6 +281,7 @@ int StudyCommands::Sweep() {
       },
       [] { return StopSignal() != 0; });
   bar.Done();
+  sim::SyncFileSystem(out);  // the records, synced together
   const double wall = Now() - t0;
   if (StopSignal() != 0) {
     std::fprintf(stderr, "formsim: sweep interrupted by %s: %zu of %zu runs recorded in %s; add --resume to finish it\n",

@@ -306,7 +306,24 @@ SweepRecord ParseRecord(const std::string& text, const SweepDefinition& def, con
 }
 
 void WriteRecord(const std::string& dir, const SweepDefinition& def, const SweepRecord& rec) {
-  WriteFileAtomic(RecordPath(dir, rec.run), RecordText(def, rec));
+  // Temp file + rename: whole or absent whatever happens to the process. Not synced one by one
+  // (an fsync costs as much as a run); SyncFileSystem at the end, RemoveDamagedRecords after a
+  // power cut.
+  WriteFileAtomic(RecordPath(dir, rec.run), RecordText(def, rec), false);
+}
+
+std::vector<std::string> RemoveDamagedRecords(const std::string& dir, const std::vector<std::size_t>& runs) {
+  std::vector<std::string> removed;
+  std::error_code ec;
+  for (std::size_t r : runs) {
+    const std::string path = RecordPath(dir, r);
+    if (!fs::exists(path, ec)) continue;
+    const std::string text = ReadText(path);
+    if (text.size() >= 4 && text.compare(text.size() - 4, 4, "end\n") == 0) continue;
+    fs::remove(path, ec);
+    removed.push_back(path);
+  }
+  return removed;
 }
 
 std::vector<SweepRecord> ReadRecords(const std::string& dir, const SweepDefinition& def) {

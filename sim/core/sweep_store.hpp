@@ -3,8 +3,9 @@
 /// seeds, overrides, the scenario's hash), so shards, resumed sweeps, job lines and `collect`
 /// check that they belong to the same sweep and can rebuild the tables without the scenario.
 /// Each finished run is one file `DIR/runs/NNNNNN.run`, written atomically (temporary file,
-/// fsync, rename): a run is recorded whole or not at all, and a record is never written twice
-/// by a resumed sweep. Both are small line-based texts ("name value", values escaped), with
+/// rename): a run is recorded whole or not at all, and a record is never written twice by a
+/// resumed sweep. Records are synced to disk together when a sweep ends (one fsync per record
+/// would cost as much as the run). Both are small line-based texts ("name value", values escaped), with
 /// every number as its shortest round-trip text.
 
 #include <cstddef>
@@ -50,6 +51,9 @@ std::string RecordText(const SweepDefinition& def, const SweepRecord& rec);
 SweepRecord ParseRecord(const std::string& text, const SweepDefinition& def, const std::string& where);
 /// Writes `rec` atomically into `dir`.
 void WriteRecord(const std::string& dir, const SweepDefinition& def, const SweepRecord& rec);
+/// Removes the records of `runs` that were cut short (empty or without their last line: what a
+/// power cut can leave of a record not yet synced), so that they run again. Returns their paths.
+std::vector<std::string> RemoveDamagedRecords(const std::string& dir, const std::vector<std::size_t>& runs);
 /// Every record in `dir`, sorted by run. Leftover temporaries of interrupted writes are ignored.
 std::vector<SweepRecord> ReadRecords(const std::string& dir, const SweepDefinition& def);
 /// The runs among `runs` that have no record in `dir` yet, in the same order.
