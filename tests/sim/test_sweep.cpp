@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <thread>
 #include <cmath>
 #include <filesystem>
 #include <random>
@@ -197,10 +199,13 @@ TEST(TaskPool, EveryIndexOnceAndErrorsRethrown) {
       pool.ForEach(hits.size(), [&](std::size_t i) { ++hits[i]; });
       for (const auto& h : hits) EXPECT_EQ(h.load(), 1);
     }
+    // Once a task has thrown no further index starts (the others take a while, so that the
+    // throw is seen before the hand-out could finish).
     std::atomic<int> ran{0};
     EXPECT_THROW(pool.ForEach(50, [&](std::size_t i) {
       ++ran;
       if (i == 3) throw std::runtime_error("boom");
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
     }), std::runtime_error);
     EXPECT_LT(ran.load(), 50);
     std::atomic<int> started{0};
