@@ -61,8 +61,8 @@ class ProgressBar {
 bool CheckStopSignal(sim::Experiment& exp) {
   const int sig = StopSignal();
   if (sig == 0) return false;
-  exp.Interrupt("interrupted by " + StopSignalName(sig) +
-                " at t = " + std::to_string(exp.time()) + " s");
+  exp.Interrupt("interrupted by " + StopSignalName(sig) + " at t = " + std::to_string(exp.time()) +
+                " s");
   return true;
 }
 

@@ -206,10 +206,13 @@ void DrawBand(ImDrawList* dl, const PlotSeries& s, ImU32 col,
   const ImDrawListFlags flags = dl->Flags;
   dl->Flags &= ~ImDrawListFlags_AntiAliasedFill;  // no seams between neighbouring quads
   for (std::size_t i = 1; i < n; ++i) {
-    const double v[] = {s.x[i - 1], s.x[i], s.band_lo[i - 1], s.band_hi[i - 1], s.band_lo[i], s.band_hi[i]};
-    if (!std::all_of(std::begin(v), std::end(v), [](double x) { return std::isfinite(x); })) continue;
+    const double v[] = {s.x[i - 1],       s.x[i],       s.band_lo[i - 1],
+                        s.band_hi[i - 1], s.band_lo[i], s.band_hi[i]};
+    if (!std::all_of(std::begin(v), std::end(v), [](double x) { return std::isfinite(x); }))
+      continue;
     dl->AddQuadFilled(to_screen(s.x[i - 1], s.band_lo[i - 1]), to_screen(s.x[i], s.band_lo[i]),
-                      to_screen(s.x[i], s.band_hi[i]), to_screen(s.x[i - 1], s.band_hi[i - 1]), col);
+                      to_screen(s.x[i], s.band_hi[i]), to_screen(s.x[i - 1], s.band_hi[i - 1]),
+                      col);
   }
   dl->Flags = flags;
 }
@@ -218,11 +221,10 @@ void DrawBand(ImDrawList* dl, const PlotSeries& s, ImU32 col,
 
 sim::Color Viridis(double f) {
   // Nine samples of matplotlib's viridis, linearly interpolated.
-  static const float kStops[9][3] = {{0.267f, 0.005f, 0.329f}, {0.279f, 0.175f, 0.483f},
-                                     {0.230f, 0.322f, 0.546f}, {0.173f, 0.449f, 0.558f},
-                                     {0.128f, 0.567f, 0.551f}, {0.153f, 0.683f, 0.502f},
-                                     {0.369f, 0.789f, 0.383f}, {0.678f, 0.864f, 0.190f},
-                                     {0.993f, 0.906f, 0.144f}};
+  static const float kStops[9][3] = {
+      {0.267f, 0.005f, 0.329f}, {0.279f, 0.175f, 0.483f}, {0.230f, 0.322f, 0.546f},
+      {0.173f, 0.449f, 0.558f}, {0.128f, 0.567f, 0.551f}, {0.153f, 0.683f, 0.502f},
+      {0.369f, 0.789f, 0.383f}, {0.678f, 0.864f, 0.190f}, {0.993f, 0.906f, 0.144f}};
   const double x = std::clamp(std::isfinite(f) ? f : 0.0, 0.0, 1.0) * 8.0;
   const int i = std::min(7, static_cast<int>(x));
   const float t = static_cast<float>(x - i);
@@ -298,7 +300,9 @@ PlotLayout DrawPlot(ImDrawList* dl, ImVec2 min, ImVec2 max, const PlotData& data
   if (cat_x) rx.Add(-0.5), rx.Add(static_cast<double>(data.x_tick_labels.size()) - 0.5);
   if (heat || cat_y) {
     ry.Add(-0.5);
-    ry.Add(static_cast<double>(heat ? data.heatmap.rows : static_cast<int>(data.y_tick_labels.size())) - 0.5);
+    ry.Add(static_cast<double>(heat ? data.heatmap.rows
+                                    : static_cast<int>(data.y_tick_labels.size())) -
+           0.5);
   }
   if (heat) rx.Add(-0.5), rx.Add(data.heatmap.columns - 0.5);
   for (double r : data.reference_lines) ry.Add(r);
@@ -342,13 +346,16 @@ PlotLayout DrawPlot(ImDrawList* dl, ImVec2 min, ImVec2 max, const PlotData& data
     }
     float wmax = 0;
     for (double t : cticks) wmax = std::max(wmax, TextSize(tick_font, FormatTick(t, cstep, ce)).x);
-    right_reserve = 12 + 16 + 6 + wmax + 8 + (data.heatmap.value_label.empty() ? 0 : label_font->FontSize + 6);
+    right_reserve =
+        12 + 16 + 6 + wmax + 8 + (data.heatmap.value_label.empty() ? 0 : label_font->FontSize + 6);
   }
   auto x_text = [&](double t) {
-    return cat_x ? data.x_tick_labels[static_cast<std::size_t>(std::llround(t))] : FormatTick(t, xstep, ex);
+    return cat_x ? data.x_tick_labels[static_cast<std::size_t>(std::llround(t))]
+                 : FormatTick(t, xstep, ex);
   };
   auto y_text = [&](double t) {
-    return cat_y ? data.y_tick_labels[static_cast<std::size_t>(std::llround(t))] : FormatTick(t, ystep, ey);
+    return cat_y ? data.y_tick_labels[static_cast<std::size_t>(std::llround(t))]
+                 : FormatTick(t, ystep, ey);
   };
   auto layout = [&]() {
     const float top = min.y + pad + title_h + tick_h * 0.6f;
@@ -550,7 +557,8 @@ PlotLayout DrawPlot(ImDrawList* dl, ImVec2 min, ImVec2 max, const PlotData& data
         if (ts.x + 6 <= hi.x - lo.x && ts.y + 4 <= hi.y - lo.y) {
           const ImVec4 f = ImGui::ColorConvertU32ToFloat4(col);
           const bool light = 0.299f * f.x + 0.587f * f.y + 0.114f * f.z > 0.55f;
-          Text(dl, tick_font, ImVec2(0.5f * (lo.x + hi.x) - ts.x / 2, 0.5f * (lo.y + hi.y) - ts.y / 2),
+          Text(dl, tick_font,
+               ImVec2(0.5f * (lo.x + hi.x) - ts.x / 2, 0.5f * (lo.y + hi.y) - ts.y / 2),
                light ? IM_COL32(20, 20, 20, 255) : IM_COL32(255, 255, 255, 255), txt);
         }
       }
@@ -596,9 +604,10 @@ PlotLayout DrawPlot(ImDrawList* dl, ImVec2 min, ImVec2 max, const PlotData& data
     const int steps = 64;
     for (int k = 0; k < steps; ++k) {
       const float ya = b.y - (b.y - a.y) * k / steps, yb = b.y - (b.y - a.y) * (k + 1) / steps;
-      dl->AddRectFilledMultiColor(ImVec2(x0b, yb), ImVec2(x1b, ya), ToImColor(Viridis((k + 1.0) / steps)),
-                                  ToImColor(Viridis((k + 1.0) / steps)), ToImColor(Viridis(k / double(steps))),
-                                  ToImColor(Viridis(k / double(steps))));
+      dl->AddRectFilledMultiColor(
+          ImVec2(x0b, yb), ImVec2(x1b, ya), ToImColor(Viridis((k + 1.0) / steps)),
+          ToImColor(Viridis((k + 1.0) / steps)), ToImColor(Viridis(k / double(steps))),
+          ToImColor(Viridis(k / double(steps))));
     }
     dl->AddRect(ImVec2(x0b - 1, a.y - 1), ImVec2(x1b + 1, b.y + 1), st.axis_color, 0, 0, 1.0f);
     auto cy = [&](double v) {
@@ -616,7 +625,8 @@ PlotLayout DrawPlot(ImDrawList* dl, ImVec2 min, ImVec2 max, const PlotData& data
     }
     if (ce != 0) Text(dl, tick_font, ImVec2(x0b, a.y - tick_h - 3), st.text_color, PowerLabel(ce));
     if (!data.heatmap.value_label.empty())
-      TextVertical(dl, label_font, ImVec2(x1b + 6 + wmax + 8 + label_font->FontSize / 2, 0.5f * (a.y + b.y)),
+      TextVertical(dl, label_font,
+                   ImVec2(x1b + 6 + wmax + 8 + label_font->FontSize / 2, 0.5f * (a.y + b.y)),
                    st.text_color, data.heatmap.value_label);
   }
 

@@ -7,7 +7,9 @@ namespace formsim::app {
 namespace {
 
 std::atomic<int> g_signal{0};
-extern "C" void OnStopSignal(int sig) { g_signal = sig; }
+extern "C" void OnStopSignal(int sig) {
+  g_signal = sig;
+}
 
 }  // namespace
 
@@ -20,8 +22,12 @@ void InstallStopSignals() {
   std::signal(SIGPIPE, SIG_IGN);
 }
 
-int StopSignal() { return g_signal.load(); }
+int StopSignal() {
+  return g_signal.load();
+}
 
-std::string StopSignalName(int sig) { return sig == SIGINT ? "SIGINT (Ctrl-C)" : "SIGTERM"; }
+std::string StopSignalName(int sig) {
+  return sig == SIGINT ? "SIGINT (Ctrl-C)" : "SIGTERM";
+}
 
 }  // namespace formsim::app

@@ -26,21 +26,24 @@ double Position(const sim::SweepAxis& a, std::size_t i) {
   return a.log_scale ? std::log10(v) : v;
 }
 
-std::string AxisTitle(const sim::SweepAxis& a) { return a.log_scale ? "log₁₀ " + a.key : a.key; }
+std::string AxisTitle(const sim::SweepAxis& a) {
+  return a.log_scale ? "log₁₀ " + a.key : a.key;
+}
 
 std::string SeedsText(const sim::SweepDefinition& def) {
   return std::to_string(def.seeds.size()) + (def.seeds.size() == 1 ? " seed" : " seeds");
 }
 
 // The metric's value in each completed run of point p, in seed order.
-std::vector<std::pair<std::uint64_t, double>> RunValues(const sim::SweepDefinition& def,
-                                                       const std::vector<sim::SweepRecord>& records,
-                                                       std::size_t p, const std::string& metric) {
+std::vector<std::pair<std::uint64_t, double>> RunValues(
+    const sim::SweepDefinition& def, const std::vector<sim::SweepRecord>& records, std::size_t p,
+    const std::string& metric) {
   std::vector<std::pair<std::uint64_t, double>> out;
   for (const sim::SweepRecord& r : records) {
     if (def.PointOf(r.run) != p || r.failed()) continue;
     for (const auto& m : r.metrics)
-      if (m.first == metric && std::isfinite(m.second)) out.emplace_back(def.SeedOf(r.run), m.second);
+      if (m.first == metric && std::isfinite(m.second))
+        out.emplace_back(def.SeedOf(r.run), m.second);
   }
   return out;
 }
@@ -59,7 +62,8 @@ bool SweepFigure(const sim::SweepDefinition& def, const sim::SweepTables& t,
     s.label = "each seed";
     s.markers_only = true;
     s.color = sim::PaletteColor(0);
-    for (std::size_t k = 0; k < def.seeds.size(); ++k) d.x_tick_labels.push_back(std::to_string(def.seeds[k]));
+    for (std::size_t k = 0; k < def.seeds.size(); ++k)
+      d.x_tick_labels.push_back(std::to_string(def.seeds[k]));
     for (const auto& [seed, v] : RunValues(def, records, 0, metric)) {
       const auto it = std::find(def.seeds.begin(), def.seeds.end(), seed);
       s.x.push_back(static_cast<double>(it - def.seeds.begin()));
@@ -78,7 +82,8 @@ bool SweepFigure(const sim::SweepDefinition& def, const sim::SweepTables& t,
     std::vector<std::size_t> order(t.points.size());
     for (std::size_t e = 0; e < order.size(); ++e) order[e] = e;
     auto x_of = [&](std::size_t e) { return Position(a, def.points[t.points[e]][0]); };
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return x_of(i) < x_of(j); });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t i, std::size_t j) { return x_of(i) < x_of(j); });
     PlotSeries mean, seeds;
     mean.label = "mean ± 1σ over " + SeedsText(def);
     mean.color = sim::PaletteColor(0);
@@ -115,7 +120,8 @@ bool SweepFigure(const sim::SweepDefinition& def, const sim::SweepTables& t,
     d.heatmap.value_label = "mean of " + metric;
     for (std::size_t e = 0; e < t.points.size(); ++e) {
       const auto& idx = def.points[t.points[e]];
-      if (t.stats[e][m].n > 0) d.heatmap.values[idx[1] * ax.values.size() + idx[0]] = t.stats[e][m].mean;
+      if (t.stats[e][m].n > 0)
+        d.heatmap.values[idx[1] * ax.values.size() + idx[0]] = t.stats[e][m].mean;
     }
     for (std::size_t i = 0; i < ax.values.size(); ++i) d.x_tick_labels.push_back(Label(ax, i));
     for (std::size_t i = 0; i < ay.values.size(); ++i) d.y_tick_labels.push_back(Label(ay, i));
@@ -158,8 +164,9 @@ PlotData TuneConvergenceFigure(const sim::TuneSettings& settings, const sim::Tun
   // A long sum would not fit in the title: name the number of terms instead (history.csv and
   // best.yaml hold the expression).
   const std::size_t terms = static_cast<std::size_t>(std::count(expr.begin(), expr.end(), '+')) + 1;
-  d.title = "formsim tune (" + settings.algorithm + ", " + std::to_string(settings.seeds.size()) + " seeds): " +
-            (expr.size() <= 60 ? expr : "sum of " + std::to_string(terms) + " metrics");
+  d.title =
+      "formsim tune (" + settings.algorithm + ", " + std::to_string(settings.seeds.size()) +
+      " seeds): " + (expr.size() <= 60 ? expr : "sum of " + std::to_string(terms) + " metrics");
   d.x_label = "evaluation";
   d.y_label = log ? "log₁₀ objective" : "objective";
   return d;

@@ -28,6 +28,7 @@ PlotData TuneConvergenceFigure(const sim::TuneSettings& settings, const sim::Tun
 
 /// Renders `data` headless (OSMesa) as a white paper-style figure and writes it as a PNG.
 /// Throws std::runtime_error when it cannot be written.
-void WriteFigurePng(const PlotData& data, const std::string& path, int width = 960, int height = 600);
+void WriteFigurePng(const PlotData& data, const std::string& path, int width = 960,
+                    int height = 600);
 
 }  // namespace formsim::app

@@ -13,8 +13,8 @@ using namespace formsim::sim;
 namespace {
 
 const ScenarioSource& Source() {
-  static const ScenarioSource s =
-      ScenarioSource::FromFile(std::string(FORMSIM_SOURCE_DIR) + "/assets/scenarios/formation_traj2_ukf.yaml");
+  static const ScenarioSource s = ScenarioSource::FromFile(
+      std::string(FORMSIM_SOURCE_DIR) + "/assets/scenarios/formation_traj2_ukf.yaml");
   return s;
 }
 
@@ -29,13 +29,20 @@ void BM_Sweep200(benchmark::State& state) {
   TaskPool pool(static_cast<int>(state.range(0)));
   for (auto _ : state) {
     std::vector<SweepRecord> recs;
-    RunSweep(Source(), def, runs, pool, [&](const SweepRecord& r, const SweepProgress&) { recs.push_back(r); });
+    RunSweep(Source(), def, runs, pool,
+             [&](const SweepRecord& r, const SweepProgress&) { recs.push_back(r); });
     benchmark::DoNotOptimize(BuildSweepTables(def, recs).aggregate_csv.size());
   }
-  state.counters["runs_per_s"] =
-      benchmark::Counter(static_cast<double>(def.runs()), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["runs_per_s"] = benchmark::Counter(static_cast<double>(def.runs()),
+                                                    benchmark::Counter::kIsIterationInvariantRate);
 }
-BENCHMARK(BM_Sweep200)->ArgName("jobs")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
+BENCHMARK(BM_Sweep200)
+    ->ArgName("jobs")
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(2);
 
 // The same 200 runs, each exactly as `formsim run -q` steps it, one after the other, no sweep.
 void BM_Bare200(benchmark::State& state) {
@@ -47,15 +54,16 @@ void BM_Bare200(benchmark::State& state) {
       benchmark::DoNotOptimize(e->Results().Scalars().size());
     }
   }
-  state.counters["runs_per_s"] =
-      benchmark::Counter(static_cast<double>(def.runs()), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["runs_per_s"] = benchmark::Counter(static_cast<double>(def.runs()),
+                                                    benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_Bare200)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
 
 // One run's load path alone: ParseScenario (the text is read once; parsed per run) + build.
 void BM_ParseAndBuild(benchmark::State& state) {
   const SweepDefinition def = Sweep200();
-  for (auto _ : state) benchmark::DoNotOptimize(BuildExperiment(ParseScenario(Source(), def.RunOverrides(7))));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(BuildExperiment(ParseScenario(Source(), def.RunOverrides(7))));
 }
 BENCHMARK(BM_ParseAndBuild)->Unit(benchmark::kMicrosecond);
 

@@ -59,12 +59,13 @@ std::string TunedScenarioText(const ScenarioSource& source, const std::vector<Ov
   const std::string target_name = path;
   auto verify = [&](const std::string& text) -> std::string {
     try {
-      const ParsedScenario got = ParseScenario(
-          ScenarioSource::FromText(text, target_name, target_dir.string()), {});
+      const ParsedScenario got =
+          ParseScenario(ScenarioSource::FromText(text, target_name, target_dir.string()), {});
       for (const Param& p : expected.params.all()) {
         const Param* q = got.params.Find(p.key);
         if (q == nullptr || q->Text() != p.Text())
-          return "'" + p.key + "' reads back as " + (q ? q->Text() : "missing") + ", not " + p.Text();
+          return "'" + p.key + "' reads back as " + (q ? q->Text() : "missing") + ", not " +
+                 p.Text();
       }
       if (got.setup.seed != expected.setup.seed) return "the seed reads back differently";
     } catch (const std::exception& e) {

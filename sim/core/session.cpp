@@ -46,7 +46,9 @@ std::vector<Override> Session::All(bool with_reset_edits) const {
   return all;
 }
 
-std::vector<Override> Session::EffectiveOverrides() const { return LastValuePerKey(All(true)); }
+std::vector<Override> Session::EffectiveOverrides() const {
+  return LastValuePerKey(All(true));
+}
 
 std::map<std::string, std::string> Session::waiting_for_reset() const {
   std::map<std::string, std::string> out;

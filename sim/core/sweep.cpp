@@ -36,10 +36,10 @@ std::optional<SweepRecord> RunSweepRun(const ScenarioSource& source, const Sweep
   return rec;
 }
 
-SweepProgress RunSweep(const ScenarioSource& source, const SweepDefinition& def,
-                       const std::vector<std::size_t>& runs, TaskPool& pool,
-                       const std::function<void(const SweepRecord&, const SweepProgress&)>& on_record,
-                       const std::function<bool()>& stop) {
+SweepProgress RunSweep(
+    const ScenarioSource& source, const SweepDefinition& def, const std::vector<std::size_t>& runs,
+    TaskPool& pool, const std::function<void(const SweepRecord&, const SweepProgress&)>& on_record,
+    const std::function<bool()>& stop) {
   SweepProgress progress;
   progress.total = runs.size();
   std::mutex mu;

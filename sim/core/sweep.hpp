@@ -38,9 +38,9 @@ struct SweepProgress {
 /// Runs `runs` of `def` on `pool`. Each finished run is handed to `on_record` at once (calls
 /// are serialised; completion order varies, the records do not). Runs abandoned because
 /// `stop()` turned true are not handed over. Returns the final progress.
-SweepProgress RunSweep(const ScenarioSource& source, const SweepDefinition& def,
-                       const std::vector<std::size_t>& runs, TaskPool& pool,
-                       const std::function<void(const SweepRecord&, const SweepProgress&)>& on_record,
-                       const std::function<bool()>& stop = {});
+SweepProgress RunSweep(
+    const ScenarioSource& source, const SweepDefinition& def, const std::vector<std::size_t>& runs,
+    TaskPool& pool, const std::function<void(const SweepRecord&, const SweepProgress&)>& on_record,
+    const std::function<bool()>& stop = {});
 
 }  // namespace formsim::sim

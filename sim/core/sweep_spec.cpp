@@ -38,16 +38,20 @@ struct AxisBuilder {
   const Param& param;
   SweepAxis axis;
 
-  [[noreturn]] void Fail(const std::string& why) const { throw ScenarioError(where, param.key, why); }
+  [[noreturn]] void Fail(const std::string& why) const {
+    throw ScenarioError(where, param.key, why);
+  }
 
   double Number(const std::string& text, const char* what) const {
     double v = 0;
-    if (!ParseFiniteDouble(text, &v)) Fail(std::string("expected a number for ") + what + ", got '" + text + "'");
+    if (!ParseFiniteDouble(text, &v))
+      Fail(std::string("expected a number for ") + what + ", got '" + text + "'");
     return v;
   }
   std::size_t Count(const std::string& text, const char* what) const {
     long long n = 0;
-    if (!ParseInteger(text, 1, 1000000, &n)) Fail(std::string(what) + " must be an integer in 1 ... 1000000, got '" + text + "'");
+    if (!ParseInteger(text, 1, 1000000, &n))
+      Fail(std::string(what) + " must be an integer in 1 ... 1000000, got '" + text + "'");
     return static_cast<std::size_t>(n);
   }
   bool numeric() const { return !axis.categorical(); }
@@ -63,7 +67,8 @@ struct AxisBuilder {
         return;
       }
       Fail("value " + canonical + " appears twice" +
-           (param.kind == Param::Kind::kInt ? " (a range of integers rounds to the same value)" : ""));
+           (param.kind == Param::Kind::kInt ? " (a range of integers rounds to the same value)"
+                                            : ""));
     }
     axis.values.push_back(canonical);
   }
@@ -78,8 +83,7 @@ struct AxisBuilder {
   void Range(const std::vector<std::string>& parts, bool log) {
     if (!numeric()) Fail("a range needs a numeric tunable; list the values or write 'all'");
     const std::size_t o = log ? 1 : 0;
-    if (parts.size() != 3 + o)
-      Fail(log ? "expected log:LO:HI:N" : "expected LO:HI:N");
+    if (parts.size() != 3 + o) Fail(log ? "expected log:LO:HI:N" : "expected LO:HI:N");
     const double lo = Number(parts[o], "LO"), hi = Number(parts[o + 1], "HI");
     const std::size_t n = Count(parts[o + 2], "N");
     if (n < 2) Fail("a range needs N >= 2 (write a single value for one)");
@@ -88,7 +92,8 @@ struct AxisBuilder {
     axis.log_scale = log;
     for (std::size_t i = 0; i < n; ++i) {
       const double f = static_cast<double>(i) / static_cast<double>(n - 1);
-      double v = log ? std::exp(std::log(lo) + f * (std::log(hi) - std::log(lo))) : lo + f * (hi - lo);
+      double v =
+          log ? std::exp(std::log(lo) + f * (std::log(hi) - std::log(lo))) : lo + f * (hi - lo);
       if (i == 0) v = lo;
       if (i + 1 == n) v = hi;
       AddNumber(v);
@@ -101,15 +106,20 @@ struct AxisBuilder {
     const std::size_t n = Count(parts[1], "N");
     axis.random = true;
     if (!numeric()) {
-      if (parts.size() == 4) Fail("LO:HI makes no sense for an enum or a flag; random:N draws among its choices");
+      if (parts.size() == 4)
+        Fail("LO:HI makes no sense for an enum or a flag; random:N draws among its choices");
       return n;
     }
     *lo = parts.size() == 4 ? Number(parts[2], "LO") : param.slider_min();
     *hi = parts.size() == 4 ? Number(parts[3], "HI") : param.slider_max();
-    if (!(*lo < *hi)) Fail("random samples need LO < HI, got [" + FormatDouble(*lo) + ", " + FormatDouble(*hi) + "]");
+    if (!(*lo < *hi))
+      Fail("random samples need LO < HI, got [" + FormatDouble(*lo) + ", " + FormatDouble(*hi) +
+           "]");
     for (double v : {*lo, *hi}) {
       const std::string why = param.tune.Check(v);
-      if (!why.empty()) Fail("the sampling range [" + FormatDouble(*lo) + ", " + FormatDouble(*hi) + "] leaves the valid values: " + why);
+      if (!why.empty())
+        Fail("the sampling range [" + FormatDouble(*lo) + ", " + FormatDouble(*hi) +
+             "] leaves the valid values: " + why);
     }
     axis.log_scale = param.tune.log_scale && *lo > 0;
     return n;
@@ -152,7 +162,8 @@ double SweepAxis::Numeric(std::size_t i) const {
 std::vector<Override> SweepDefinition::RunOverrides(std::size_t run) const {
   std::vector<Override> out = sets;
   const std::size_t p = PointOf(run);
-  for (std::size_t a = 0; a < axes.size(); ++a) out.push_back({axes[a].key, Value(p, a), "--vary", -1});
+  for (std::size_t a = 0; a < axes.size(); ++a)
+    out.push_back({axes[a].key, Value(p, a), "--vary", -1});
   out.push_back({"seed", std::to_string(SeedOf(run)), "--seeds", -1});
   return out;
 }
@@ -228,7 +239,8 @@ std::vector<std::uint64_t> ParseSeeds(const std::string& text, const std::string
     const std::size_t dots = part.find("..");
     std::uint64_t a = 0, b = 0;
     if (dots == std::string::npos) {
-      if (!ParseUint64(part, &a)) throw fail("expected seeds like 1..20 or 1,2,5, got '" + part + "'");
+      if (!ParseUint64(part, &a))
+        throw fail("expected seeds like 1..20 or 1,2,5, got '" + part + "'");
       add(a);
       continue;
     }
@@ -244,7 +256,8 @@ std::vector<std::uint64_t> ParseSeeds(const std::string& text, const std::string
   return out;
 }
 
-std::vector<std::vector<double>> LatinHypercube(std::size_t n, std::size_t dims, std::uint64_t seed) {
+std::vector<std::vector<double>> LatinHypercube(std::size_t n, std::size_t dims,
+                                                std::uint64_t seed) {
   Rng rng(seed);
   std::vector<std::vector<double>> pts(n, std::vector<double>(dims, 0.0));
   std::vector<std::size_t> perm(n);
@@ -252,7 +265,8 @@ std::vector<std::vector<double>> LatinHypercube(std::size_t n, std::size_t dims,
     for (std::size_t i = 0; i < n; ++i) perm[i] = i;
     // Fisher-Yates with our portable generator (std::shuffle is implementation-defined).
     for (std::size_t i = n; i > 1; --i) {
-      const std::size_t j = std::min(i - 1, static_cast<std::size_t>(rng.Uniform() * static_cast<double>(i)));
+      const std::size_t j =
+          std::min(i - 1, static_cast<std::size_t>(rng.Uniform() * static_cast<double>(i)));
       std::swap(perm[i - 1], perm[j]);
     }
     for (std::size_t i = 0; i < n; ++i)
@@ -262,8 +276,8 @@ std::vector<std::vector<double>> LatinHypercube(std::size_t n, std::size_t dims,
 }
 
 SweepDefinition DefineSweep(const ScenarioSource& source, const std::vector<Override>& sets,
-                            const std::vector<std::string>& vary,
-                            std::vector<std::uint64_t> seeds, std::uint64_t sample_seed) {
+                            const std::vector<std::string>& vary, std::vector<std::uint64_t> seeds,
+                            std::uint64_t sample_seed) {
   const ParsedScenario base = ParseScenario(source, sets);
   SweepDefinition def;
   def.scenario = source.file();
@@ -283,9 +297,11 @@ SweepDefinition DefineSweep(const ScenarioSource& source, const std::vector<Over
   for (const std::string& arg : vary) {
     const std::string where = "--vary " + arg;
     const std::size_t eq = arg.find('=');
-    if (eq == std::string::npos || eq == 0) throw ScenarioError(where, "", "expected KEY=SPEC, e.g. robots.R2.follow.k_l=0.05:0.5:10");
+    if (eq == std::string::npos || eq == 0)
+      throw ScenarioError(where, "", "expected KEY=SPEC, e.g. robots.R2.follow.k_l=0.05:0.5:10");
     const std::string key = arg.substr(0, eq), spec = arg.substr(eq + 1);
-    if (key == "seed") throw ScenarioError(where, key, "the seed is varied with --seeds, not --vary");
+    if (key == "seed")
+      throw ScenarioError(where, key, "the seed is varied with --seeds, not --vary");
     const Param* p = base.params.Find(key);
     if (p == nullptr) {
       // Say which tunables look alike (same last part or same prefix).
@@ -295,14 +311,17 @@ SweepDefinition DefineSweep(const ScenarioSource& source, const std::vector<Over
       const std::string parent = dot == std::string::npos ? "" : key.substr(0, dot + 1);
       int shown = 0, listed = 0;
       for (const Param& q : base.params.all()) {
-        const std::string qlast = q.key.substr(q.key.rfind('.') == std::string::npos ? 0 : q.key.rfind('.') + 1);
+        const std::string qlast =
+            q.key.substr(q.key.rfind('.') == std::string::npos ? 0 : q.key.rfind('.') + 1);
         if ((qlast == last || (!parent.empty() && q.key.rfind(parent, 0) == 0)) && shown++ < 8)
           near += (near.empty() ? "" : ", ") + q.key;
         if (listed++ < 8) some += (some.empty() ? "" : ", ") + q.key;
       }
-      throw ScenarioError(where, key, "not a tunable of " + source.file() +
-                                          (near.empty() ? " (tunables: " + some + (listed > 8 ? ", ..." : "") + ")"
-                                                        : " (similar: " + near + ")"));
+      throw ScenarioError(
+          where, key,
+          "not a tunable of " + source.file() +
+              (near.empty() ? " (tunables: " + some + (listed > 8 ? ", ..." : "") + ")"
+                            : " (similar: " + near + ")"));
     }
     for (const SweepAxis& a : def.axes)
       if (a.key == key) throw ScenarioError(where, key, "varied twice");
@@ -311,14 +330,17 @@ SweepDefinition DefineSweep(const ScenarioSource& source, const std::vector<Over
     b.axis.key = key;
     b.axis.spec = spec;
     b.axis.kind = p->kind;
-    b.axis.choices = p->kind == Param::Kind::kBool ? std::vector<std::string>{"false", "true"} : p->choices;
+    b.axis.choices =
+        p->kind == Param::Kind::kBool ? std::vector<std::string>{"false", "true"} : p->choices;
     const std::vector<std::string> parts = Split(spec, ':');
     if (parts[0] == "random") {
       double lo = 0, hi = 0;
       const std::size_t n = b.Random(parts, &lo, &hi);
       if (random_n != 0 && n != random_n)
-        throw ScenarioError(where, key, "every random axis is part of one Latin hypercube and needs the same N (" +
-                                            random_first + " has " + std::to_string(random_n) + ")");
+        throw ScenarioError(
+            where, key,
+            "every random axis is part of one Latin hypercube and needs the same N (" +
+                random_first + " has " + std::to_string(random_n) + ")");
       random_n = n;
       if (random_first.empty()) random_first = key;
       def.axes.push_back(b.axis);

@@ -55,7 +55,9 @@ struct SweepDefinition {
   std::size_t PointOf(std::size_t run) const { return run / seeds.size(); }
   std::uint64_t SeedOf(std::size_t run) const { return seeds[run % seeds.size()]; }
   /// The value of axis `a` at point `p` as YAML text.
-  const std::string& Value(std::size_t p, std::size_t a) const { return axes[a].values[points[p][a]]; }
+  const std::string& Value(std::size_t p, std::size_t a) const {
+    return axes[a].values[points[p][a]];
+  }
   /// --set overrides, then the point's values, then the seed: what ParseScenario gets.
   std::vector<Override> RunOverrides(std::size_t run) const;
   /// The axes that are crossed with each other (no random axis among them).
@@ -72,11 +74,12 @@ std::vector<std::uint64_t> ParseSeeds(const std::string& text, const std::string
 /// be a tunable of the scenario (with `sets` applied) and every value valid for it. Empty
 /// `seeds`: the scenario's own seed. Throws ScenarioError naming the --vary argument.
 SweepDefinition DefineSweep(const ScenarioSource& source, const std::vector<Override>& sets,
-                            const std::vector<std::string>& vary,
-                            std::vector<std::uint64_t> seeds, std::uint64_t sample_seed = 1);
+                            const std::vector<std::string>& vary, std::vector<std::uint64_t> seeds,
+                            std::uint64_t sample_seed = 1);
 
 /// `n` points of a Latin hypercube in [0, 1)^dims: each dimension is cut into n equal strata
 /// and every stratum holds exactly one point. Deterministic for a seed.
-std::vector<std::vector<double>> LatinHypercube(std::size_t n, std::size_t dims, std::uint64_t seed);
+std::vector<std::vector<double>> LatinHypercube(std::size_t n, std::size_t dims,
+                                                std::uint64_t seed);
 
 }  // namespace formsim::sim

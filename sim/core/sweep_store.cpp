@@ -26,12 +26,23 @@ std::string Esc(const std::string& s) {
   out.reserve(s.size());
   for (char c : s) {
     switch (c) {
-      case '\\': out += "\\\\"; break;
-      case ' ': out += "\\s"; break;
-      case '\n': out += "\\n"; break;
-      case '\r': out += "\\r"; break;
-      case '\t': out += "\\t"; break;
-      default: out += c;
+      case '\\':
+        out += "\\\\";
+        break;
+      case ' ':
+        out += "\\s";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      default:
+        out += c;
     }
   }
   return out.empty() ? "\\e" : out;  // an empty field still takes its place
@@ -47,12 +58,23 @@ bool Unesc(const std::string& s, std::string* out) {
     }
     if (++i == s.size()) return false;
     switch (s[i]) {
-      case '\\': *out += '\\'; break;
-      case 's': *out += ' '; break;
-      case 'n': *out += '\n'; break;
-      case 'r': *out += '\r'; break;
-      case 't': *out += '\t'; break;
-      default: return false;
+      case '\\':
+        *out += '\\';
+        break;
+      case 's':
+        *out += ' ';
+        break;
+      case 'n':
+        *out += '\n';
+        break;
+      case 'r':
+        *out += '\r';
+        break;
+      case 't':
+        *out += '\t';
+        break;
+      default:
+        return false;
     }
   }
   return true;
@@ -102,20 +124,26 @@ std::string ReadText(const std::string& path) {
 
 const char* KindName(Param::Kind k) {
   switch (k) {
-    case Param::Kind::kDouble: return "real";
-    case Param::Kind::kInt: return "integer";
-    case Param::Kind::kBool: return "flag";
-    case Param::Kind::kChoice: return "choice";
+    case Param::Kind::kDouble:
+      return "real";
+    case Param::Kind::kInt:
+      return "integer";
+    case Param::Kind::kBool:
+      return "flag";
+    case Param::Kind::kChoice:
+      return "choice";
   }
   return "real";
 }
 
 // Why two definitions of a sweep differ, in words.
 std::string Difference(const SweepDefinition& a, const SweepDefinition& b) {
-  if (a.scenario_sha256 != b.scenario_sha256) return "the scenario's text differs (" + a.scenario + " vs " + b.scenario + ")";
+  if (a.scenario_sha256 != b.scenario_sha256)
+    return "the scenario's text differs (" + a.scenario + " vs " + b.scenario + ")";
   if (a.axes.size() != b.axes.size()) return "the varied keys differ";
   for (std::size_t i = 0; i < a.axes.size(); ++i) {
-    if (a.axes[i].key != b.axes[i].key) return "the varied keys differ (" + a.axes[i].key + " vs " + b.axes[i].key + ")";
+    if (a.axes[i].key != b.axes[i].key)
+      return "the varied keys differ (" + a.axes[i].key + " vs " + b.axes[i].key + ")";
     if (a.axes[i].values != b.axes[i].values) return "the values of " + a.axes[i].key + " differ";
   }
   if (a.seeds != b.seeds) return "the seeds differ";
@@ -125,7 +153,9 @@ std::string Difference(const SweepDefinition& a, const SweepDefinition& b) {
 
 }  // namespace
 
-std::string ManifestPath(const std::string& dir) { return (fs::path(dir) / "sweep.manifest").string(); }
+std::string ManifestPath(const std::string& dir) {
+  return (fs::path(dir) / "sweep.manifest").string();
+}
 
 std::string RecordPath(const std::string& dir, std::size_t run) {
   char name[32];
@@ -142,10 +172,11 @@ std::string ManifestText(const SweepDefinition& def) {
   t += "seeds";
   for (std::uint64_t s : def.seeds) t += " " + std::to_string(s);
   t += "\n";
-  for (const Override& o : def.sets) t += "set " + Esc(o.key) + " " + Esc(o.value) + " " + Esc(o.origin) + "\n";
+  for (const Override& o : def.sets)
+    t += "set " + Esc(o.key) + " " + Esc(o.value) + " " + Esc(o.origin) + "\n";
   for (const SweepAxis& a : def.axes) {
-    t += "axis " + Esc(a.key) + " " + KindName(a.kind) + " " + (a.log_scale ? "log" : "linear") + " " +
-         (a.random ? "random" : "grid") + " " + Esc(a.spec) + "\n";
+    t += "axis " + Esc(a.key) + " " + KindName(a.kind) + " " + (a.log_scale ? "log" : "linear") +
+         " " + (a.random ? "random" : "grid") + " " + Esc(a.spec) + "\n";
     for (const std::string& c : a.choices) t += "choice " + Esc(c) + "\n";
     for (const std::string& v : a.values) t += "value " + Esc(v) + "\n";
   }
@@ -189,11 +220,16 @@ SweepDefinition ParseManifest(const std::string& text, const std::string& where)
       need(6);
       SweepAxis a;
       a.key = f[1];
-      if (f[2] == "real") a.kind = Param::Kind::kDouble;
-      else if (f[2] == "integer") a.kind = Param::Kind::kInt;
-      else if (f[2] == "flag") a.kind = Param::Kind::kBool;
-      else if (f[2] == "choice") a.kind = Param::Kind::kChoice;
-      else in.Fail("unknown axis kind '" + f[2] + "'");
+      if (f[2] == "real")
+        a.kind = Param::Kind::kDouble;
+      else if (f[2] == "integer")
+        a.kind = Param::Kind::kInt;
+      else if (f[2] == "flag")
+        a.kind = Param::Kind::kBool;
+      else if (f[2] == "choice")
+        a.kind = Param::Kind::kChoice;
+      else
+        in.Fail("unknown axis kind '" + f[2] + "'");
       a.log_scale = f[3] == "log";
       a.random = f[4] == "random";
       a.spec = f[5];
@@ -232,7 +268,8 @@ bool HasManifest(const std::string& dir) {
 }
 
 SweepDefinition ReadManifest(const std::string& dir) {
-  if (!HasManifest(dir)) throw std::runtime_error("'" + dir + "' holds no sweep (no sweep.manifest)");
+  if (!HasManifest(dir))
+    throw std::runtime_error("'" + dir + "' holds no sweep (no sweep.manifest)");
   return ParseManifest(ReadText(ManifestPath(dir)), ManifestPath(dir));
 }
 
@@ -240,7 +277,9 @@ void WriteManifest(const std::string& dir, const SweepDefinition& def) {
   PrepareOutputDir(dir);
   std::error_code ec;
   fs::create_directories(fs::path(dir) / "runs", ec);
-  if (ec) throw std::runtime_error("cannot create '" + (fs::path(dir) / "runs").string() + "': " + ec.message());
+  if (ec)
+    throw std::runtime_error("cannot create '" + (fs::path(dir) / "runs").string() +
+                             "': " + ec.message());
   if (HasManifest(dir)) {
     const SweepDefinition there = ReadManifest(dir);
     if (there.id != def.id)
@@ -266,7 +305,8 @@ std::string RecordText(const SweepDefinition& def, const SweepRecord& rec) {
   return t;
 }
 
-SweepRecord ParseRecord(const std::string& text, const SweepDefinition& def, const std::string& where) {
+SweepRecord ParseRecord(const std::string& text, const SweepDefinition& def,
+                        const std::string& where) {
   LineReader in(text, where);
   std::vector<std::string> f;
   if (!in.Next(&f) || f.size() != 4 || f[0] + " " + f[1] + " " + f[2] + " " + f[3] != kRecordHead)
@@ -288,10 +328,14 @@ SweepRecord ParseRecord(const std::string& text, const SweepDefinition& def, con
     } else if (k == "m" && f.size() == 3) {
       double v = 0;
       // nan, inf and -inf are valid metric values (written by FormatDouble).
-      if (f[2] == "nan") v = std::numeric_limits<double>::quiet_NaN();
-      else if (f[2] == "inf") v = std::numeric_limits<double>::infinity();
-      else if (f[2] == "-inf") v = -std::numeric_limits<double>::infinity();
-      else if (!ParseFiniteDouble(f[2], &v)) in.Fail("bad number '" + f[2] + "'");
+      if (f[2] == "nan")
+        v = std::numeric_limits<double>::quiet_NaN();
+      else if (f[2] == "inf")
+        v = std::numeric_limits<double>::infinity();
+      else if (f[2] == "-inf")
+        v = -std::numeric_limits<double>::infinity();
+      else if (!ParseFiniteDouble(f[2], &v))
+        in.Fail("bad number '" + f[2] + "'");
       rec.metrics.emplace_back(f[1], v);
     } else if (k == "end") {
       ended = true;
@@ -312,7 +356,8 @@ void WriteRecord(const std::string& dir, const SweepDefinition& def, const Sweep
   WriteFileAtomic(RecordPath(dir, rec.run), RecordText(def, rec), false);
 }
 
-std::vector<std::string> RemoveDamagedRecords(const std::string& dir, const std::vector<std::size_t>& runs) {
+std::vector<std::string> RemoveDamagedRecords(const std::string& dir,
+                                              const std::vector<std::size_t>& runs) {
   std::vector<std::string> removed;
   std::error_code ec;
   for (std::size_t r : runs) {
@@ -333,15 +378,18 @@ std::vector<SweepRecord> ReadRecords(const std::string& dir, const SweepDefiniti
   if (!fs::is_directory(runs, ec)) return out;
   for (const auto& entry : fs::directory_iterator(runs)) {
     const std::string name = entry.path().filename().string();
-    if (name.size() < 5 || name.compare(name.size() - 4, 4, ".run") != 0) continue;  // .tmp leftovers
+    if (name.size() < 5 || name.compare(name.size() - 4, 4, ".run") != 0)
+      continue;  // .tmp leftovers
     const std::string stem = name.substr(0, name.size() - 4);
     std::uint64_t run = 0;
     if (!ParseUint64(stem, &run)) continue;
     SweepRecord rec = ParseRecord(ReadText(entry.path().string()), def, entry.path().string());
-    if (rec.run != run) throw std::runtime_error(entry.path().string() + ": holds run " + std::to_string(rec.run));
+    if (rec.run != run)
+      throw std::runtime_error(entry.path().string() + ": holds run " + std::to_string(rec.run));
     out.push_back(std::move(rec));
   }
-  std::sort(out.begin(), out.end(), [](const SweepRecord& a, const SweepRecord& b) { return a.run < b.run; });
+  std::sort(out.begin(), out.end(),
+            [](const SweepRecord& a, const SweepRecord& b) { return a.run < b.run; });
   return out;
 }
 
@@ -355,7 +403,8 @@ std::vector<std::size_t> PendingRuns(const std::string& dir, const std::vector<s
 
 std::vector<std::size_t> ShardRuns(std::size_t total, int k, int n) {
   std::vector<std::size_t> out;
-  for (std::size_t r = static_cast<std::size_t>(k - 1); r < total; r += static_cast<std::size_t>(n)) out.push_back(r);
+  for (std::size_t r = static_cast<std::size_t>(k - 1); r < total; r += static_cast<std::size_t>(n))
+    out.push_back(r);
   return out;
 }
 

@@ -5,8 +5,8 @@
 /// Each finished run is one file `DIR/runs/NNNNNN.run`, written atomically (temporary file,
 /// rename): a run is recorded whole or not at all, and a record is never written twice by a
 /// resumed sweep. Records are synced to disk together when a sweep ends (one fsync per record
-/// would cost as much as the run). Both are small line-based texts ("name value", values escaped), with
-/// every number as its shortest round-trip text.
+/// would cost as much as the run). Both are small line-based texts ("name value", values escaped),
+/// with every number as its shortest round-trip text.
 
 #include <cstddef>
 #include <optional>
@@ -48,12 +48,14 @@ bool HasManifest(const std::string& dir);
 std::string RecordText(const SweepDefinition& def, const SweepRecord& rec);
 /// Parses a record; throws std::runtime_error naming `where` when it is malformed or belongs to
 /// another sweep.
-SweepRecord ParseRecord(const std::string& text, const SweepDefinition& def, const std::string& where);
+SweepRecord ParseRecord(const std::string& text, const SweepDefinition& def,
+                        const std::string& where);
 /// Writes `rec` atomically into `dir`.
 void WriteRecord(const std::string& dir, const SweepDefinition& def, const SweepRecord& rec);
 /// Removes the records of `runs` that were cut short (empty or without their last line: what a
 /// power cut can leave of a record not yet synced), so that they run again. Returns their paths.
-std::vector<std::string> RemoveDamagedRecords(const std::string& dir, const std::vector<std::size_t>& runs);
+std::vector<std::string> RemoveDamagedRecords(const std::string& dir,
+                                              const std::vector<std::size_t>& runs);
 /// Every record in `dir`, sorted by run. Leftover temporaries of interrupted writes are ignored.
 std::vector<SweepRecord> ReadRecords(const std::string& dir, const SweepDefinition& def);
 /// The runs among `runs` that have no record in `dir` yet, in the same order.

@@ -46,7 +46,9 @@ MetricStats Stats(const std::vector<double>& v) {
   return s;
 }
 
-std::string Short(double v) { return std::isnan(v) ? "-" : Sprintf("%.4g", v); }
+std::string Short(double v) {
+  return std::isnan(v) ? "-" : Sprintf("%.4g", v);
+}
 
 }  // namespace
 
@@ -155,7 +157,8 @@ std::size_t DefaultMetric(const SweepTables& t) {
     for (const auto& point : t.stats) {
       const MetricStats& s = point[m];
       if (s.n == 0) continue;
-      for (double v : t.stats.size() == 1 ? std::vector<double>{s.min, s.max} : std::vector<double>{s.mean}) {
+      for (double v :
+           t.stats.size() == 1 ? std::vector<double>{s.min, s.max} : std::vector<double>{s.mean}) {
         if (!(v >= lo)) lo = v;
         if (!(v <= hi)) hi = v;
       }
@@ -193,7 +196,8 @@ std::string RankingText(const SweepDefinition& def, const SweepTables& t, int m)
   std::vector<std::size_t> width(head.size(), 0);
   for (const auto& r : rows)
     for (std::size_t c = 0; c < r.size(); ++c) width[c] = std::max(width[c], r[c].size());
-  std::string out = "points sorted by the mean of " + (m >= 0 ? t.metrics[m] : std::string("(no metric)")) +
+  std::string out = "points sorted by the mean of " +
+                    (m >= 0 ? t.metrics[m] : std::string("(no metric)")) +
                     " over the seeds, smallest first\n";
   for (const auto& r : rows) {
     std::string line;

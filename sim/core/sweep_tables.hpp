@@ -23,8 +23,8 @@ struct MetricStats {
 };
 
 struct SweepTables {
-  std::vector<std::string> metrics;  ///< the metric columns, in order
-  std::vector<std::size_t> points;   ///< the points that have at least one record
+  std::vector<std::string> metrics;             ///< the metric columns, in order
+  std::vector<std::size_t> points;              ///< the points that have at least one record
   std::vector<std::size_t> runs, failed;        ///< per entry of `points`
   std::vector<std::vector<MetricStats>> stats;  ///< [entry of points][metric]
   std::string runs_csv, aggregate_csv;

@@ -55,15 +55,24 @@ nlopt_algorithm Algorithm(const std::string& name) {
 
 std::string StopText(nlopt_result r) {
   switch (r) {
-    case NLOPT_SUCCESS: return "converged";
-    case NLOPT_STOPVAL_REACHED: return "target value reached";
-    case NLOPT_FTOL_REACHED: return "converged (objective tolerance)";
-    case NLOPT_XTOL_REACHED: return "converged (parameter tolerance)";
-    case NLOPT_MAXEVAL_REACHED: return "budget used";
-    case NLOPT_MAXTIME_REACHED: return "time limit";
-    case NLOPT_FORCED_STOP: return "stopped";
-    case NLOPT_ROUNDOFF_LIMITED: return "stopped by round-off";
-    default: return std::string("NLopt failed (") + nlopt_result_to_string(r) + ")";
+    case NLOPT_SUCCESS:
+      return "converged";
+    case NLOPT_STOPVAL_REACHED:
+      return "target value reached";
+    case NLOPT_FTOL_REACHED:
+      return "converged (objective tolerance)";
+    case NLOPT_XTOL_REACHED:
+      return "converged (parameter tolerance)";
+    case NLOPT_MAXEVAL_REACHED:
+      return "budget used";
+    case NLOPT_MAXTIME_REACHED:
+      return "time limit";
+    case NLOPT_FORCED_STOP:
+      return "stopped";
+    case NLOPT_ROUNDOFF_LIMITED:
+      return "stopped by round-off";
+    default:
+      return std::string("NLopt failed (") + nlopt_result_to_string(r) + ")";
   }
 }
 
@@ -103,7 +112,8 @@ bool Evaluate(Context& c, TuneEvaluation& ev) {
     const SweepRecord& r = *recs[i];
     if (r.failed()) {
       ++ev.failed_runs;
-      if (ev.message.empty()) ev.message = "seed " + std::to_string(s.seeds[i]) + ": " + r.status + ": " + r.message;
+      if (ev.message.empty())
+        ev.message = "seed " + std::to_string(s.seeds[i]) + ": " + r.status + ": " + r.message;
       continue;
     }
     for (std::size_t t = 0; t < s.objective.size(); ++t) {
@@ -121,7 +131,8 @@ bool Evaluate(Context& c, TuneEvaluation& ev) {
   }
   ev.objective = 0;
   for (std::size_t t = 0; t < s.objective.size(); ++t) {
-    ev.term_means[t] = ev.failed() ? std::nan("") : ev.term_means[t] / static_cast<double>(counted[t]);
+    ev.term_means[t] =
+        ev.failed() ? std::nan("") : ev.term_means[t] / static_cast<double>(counted[t]);
     ev.objective += s.objective[t].weight * ev.term_means[t];
   }
   if (ev.failed()) {
@@ -168,7 +179,8 @@ bool Point(Context& c, const std::vector<double>& values, double* seen) {
     return false;
   }
   res.history.push_back(ev);
-  if (res.history.size() == 1 || ev.objective < res.history[res.best].objective) res.best = res.history.size() - 1;
+  if (res.history.size() == 1 || ev.objective < res.history[res.best].objective)
+    res.best = res.history.size() - 1;
   if (*c.progress) (*c.progress)(res.history.back(), res.history[res.best]);
   if (std::isfinite(ev.objective)) c.worst = std::max(c.worst, ev.objective);
   *seen = Seen(c, ev);
@@ -186,7 +198,9 @@ double Objective(unsigned n, const double* u, double* /*grad*/, void* data) {
 
 }  // namespace
 
-std::vector<std::string> TuneAlgorithms() { return {"bobyqa", "neldermead", "cobyla"}; }
+std::vector<std::string> TuneAlgorithms() {
+  return {"bobyqa", "neldermead", "cobyla"};
+}
 
 std::vector<MetricTerm> ParseMetricExpr(const std::string& expr) {
   auto fail = [&](const std::string& why) {
@@ -235,7 +249,9 @@ TuneParam ParseTuneParam(const std::string& arg, const ParamTable& params) {
   const Param* q = params.Find(p.key);
   if (q == nullptr) throw ScenarioError(where, p.key, "not a tunable of this scenario");
   if (q->kind != Param::Kind::kDouble)
-    throw ScenarioError(where, p.key, "tune searches real-valued tunables; vary integers, flags and enums with formsim sweep");
+    throw ScenarioError(
+        where, p.key,
+        "tune searches real-valued tunables; vary integers, flags and enums with formsim sweep");
   if (colon == std::string::npos) {
     p.lo = q->slider_min();
     p.hi = q->slider_max();
@@ -247,10 +263,15 @@ TuneParam ParseTuneParam(const std::string& arg, const ParamTable& params) {
       throw ScenarioError(where, p.key, "expected KEY or KEY:LO:HI with numbers LO and HI");
     for (double v : {p.lo, p.hi}) {
       const std::string why = q->tune.Check(v);
-      if (!why.empty()) throw ScenarioError(where, p.key, "bound " + FormatDouble(v) + " is not a valid value: " + why);
+      if (!why.empty())
+        throw ScenarioError(where, p.key,
+                            "bound " + FormatDouble(v) + " is not a valid value: " + why);
     }
   }
-  if (!(p.lo < p.hi)) throw ScenarioError(where, p.key, "needs LO < HI, got [" + FormatDouble(p.lo) + ", " + FormatDouble(p.hi) + "]");
+  if (!(p.lo < p.hi))
+    throw ScenarioError(
+        where, p.key,
+        "needs LO < HI, got [" + FormatDouble(p.lo) + ", " + FormatDouble(p.hi) + "]");
   p.log_scale = q->tune.log_scale && p.lo > 0;
   p.start = std::clamp(q->value, p.lo, p.hi);
   return p;
@@ -268,9 +289,10 @@ std::vector<Override> TuneOverrides(const TuneSettings& s, const std::vector<dou
   return out;
 }
 
-TuneResult RunTune(const ScenarioSource& source, const TuneSettings& s, TaskPool& pool,
-                   const std::function<void(const TuneEvaluation&, const TuneEvaluation&)>& progress,
-                   const std::function<bool()>& stop) {
+TuneResult RunTune(
+    const ScenarioSource& source, const TuneSettings& s, TaskPool& pool,
+    const std::function<void(const TuneEvaluation&, const TuneEvaluation&)>& progress,
+    const std::function<bool()>& stop) {
   if (s.params.empty()) throw std::runtime_error("formsim tune: give at least one --param");
   if (s.objective.empty()) throw std::runtime_error("formsim tune: give --metric");
   if (s.seeds.empty()) throw std::runtime_error("formsim tune: give --seeds");
@@ -305,7 +327,9 @@ TuneResult RunTune(const ScenarioSource& source, const TuneSettings& s, TaskPool
   }
   nlopt_destroy(opt);
   if (c.error) std::rethrow_exception(c.error);
-  result.stop_reason = c.stopped ? "interrupted" : c.out_of_budget || r == NLOPT_FORCED_STOP ? "budget used" : StopText(r);
+  result.stop_reason = c.stopped                                   ? "interrupted"
+                       : c.out_of_budget || r == NLOPT_FORCED_STOP ? "budget used"
+                                                                   : StopText(r);
   return result;
 }
 

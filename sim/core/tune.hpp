@@ -55,10 +55,10 @@ struct TuneSettings {
 
 /// One evaluation: a point, the mean of each term's metric over the seeds and the objective.
 struct TuneEvaluation {
-  std::size_t index = 0;               ///< 1-based, in the order NLopt asked
-  std::vector<double> values;          ///< per tunable
-  std::vector<double> term_means;      ///< per term (NaN when a run failed)
-  double objective = 0;                ///< +inf when a run failed (message says which)
+  std::size_t index = 0;           ///< 1-based, in the order NLopt asked
+  std::vector<double> values;      ///< per tunable
+  std::vector<double> term_means;  ///< per term (NaN when a run failed)
+  double objective = 0;            ///< +inf when a run failed (message says which)
   std::size_t failed_runs = 0;
   std::string message;
   bool failed() const { return failed_runs > 0; }
@@ -78,9 +78,10 @@ std::vector<Override> TuneOverrides(const TuneSettings& s, const std::vector<dou
 /// `stop()` turns true the optimisation ends after the current evaluation's runs are
 /// abandoned (that evaluation is not recorded). Throws std::runtime_error when a term names a
 /// metric the runs do not have (after the first evaluation, with the names that exist).
-TuneResult RunTune(const ScenarioSource& source, const TuneSettings& settings, TaskPool& pool,
-                   const std::function<void(const TuneEvaluation&, const TuneEvaluation&)>& progress = {},
-                   const std::function<bool()>& stop = {});
+TuneResult RunTune(
+    const ScenarioSource& source, const TuneSettings& settings, TaskPool& pool,
+    const std::function<void(const TuneEvaluation&, const TuneEvaluation&)>& progress = {},
+    const std::function<bool()>& stop = {});
 
 /// history.csv: eval, the tuned keys, objective, each term's mean, failed_runs, best_so_far,
 /// message; numbers as shortest round-trip text.

@@ -30,7 +30,9 @@ const std::string kSweep =
 const char* kRanking = "ranking_links.R1-R2.max_abs_error_after_settle.phi.txt";
 const char* kPlot = "plot_links.R1-R2.max_abs_error_after_settle.phi.png";
 
-int Formsim(const std::string& args, const std::string& log) { return RunShell(Binary() + " " + args, log); }
+int Formsim(const std::string& args, const std::string& log) {
+  return RunShell(Binary() + " " + args, log);
+}
 
 void ExpectSameTables(const std::string& a, const std::string& b) {
   for (const char* f : {"runs.csv", "aggregate.csv", kRanking}) {
@@ -40,21 +42,28 @@ void ExpectSameTables(const std::string& a, const std::string& b) {
   }
 }
 
-std::size_t Lines(const std::string& text) { return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')); }
+std::size_t Lines(const std::string& text) {
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
 
 std::vector<std::string> SplitCsvLine(const std::string& line) {
   std::vector<std::string> out(1);
   for (char c : line) {
-    if (c == ',') out.emplace_back();
-    else out.back() += c;
+    if (c == ',')
+      out.emplace_back();
+    else
+      out.back() += c;
   }
   return out;
 }
 
 // summary.json's `results` flattened to dotted paths -> number text (a parser just big enough
 // for the summaries formsim writes).
-void Flatten(const std::string& j, std::size_t& i, const std::string& path, std::map<std::string, std::string>& out) {
-  auto ws = [&] { while (i < j.size() && std::isspace(static_cast<unsigned char>(j[i]))) ++i; };
+void Flatten(const std::string& j, std::size_t& i, const std::string& path,
+             std::map<std::string, std::string>& out) {
+  auto ws = [&] {
+    while (i < j.size() && std::isspace(static_cast<unsigned char>(j[i]))) ++i;
+  };
   auto str = [&] {
     std::string s;
     ++i;
@@ -70,7 +79,10 @@ void Flatten(const std::string& j, std::size_t& i, const std::string& path, std:
     ++i;
     for (;;) {
       ws();
-      if (j[i] == '}') { ++i; return; }
+      if (j[i] == '}') {
+        ++i;
+        return;
+      }
       const std::string k = str();
       ws();
       ++i;  // ':'
@@ -88,9 +100,14 @@ void Flatten(const std::string& j, std::size_t& i, const std::string& path, std:
     } while (depth > 0);
     return;
   }
-  if (j[i] == '"') { str(); return; }
+  if (j[i] == '"') {
+    str();
+    return;
+  }
   const std::size_t start = i;
-  while (i < j.size() && j[i] != ',' && j[i] != '}' && !std::isspace(static_cast<unsigned char>(j[i]))) ++i;
+  while (i < j.size() && j[i] != ',' && j[i] != '}' &&
+         !std::isspace(static_cast<unsigned char>(j[i])))
+    ++i;
   out[path] = j.substr(start, i - start);
 }
 
@@ -110,7 +127,10 @@ TEST(SweepCli, JobsOneAndTwoWriteTheSameBytesAndEveryRunIsFormsimRun) {
   // Run 7 (k_phi 0.1, ukf, seed 2) is exactly `formsim run` with those values.
   const std::string r = TempDir("sweep_run7");
   ASSERT_EQ(Formsim("run formation_traj2_ukf -q --set duration=2 --set robots.R2.follow.k_phi=0.1 "
-                    "--set robots.R2.follow.estimator=ukf --seed 2 --out " + r, r + ".log"), 0);
+                    "--set robots.R2.follow.estimator=ukf --seed 2 --out " +
+                        r,
+                    r + ".log"),
+            0);
   const std::string json = ReadText(r + "/summary.json");
   std::size_t at = json.find("\"results\"");
   ASSERT_NE(at, std::string::npos);
@@ -137,22 +157,29 @@ TEST(SweepCli, JobsOneAndTwoWriteTheSameBytesAndEveryRunIsFormsimRun) {
 }
 
 TEST(SweepCli, ShardsCollectToTheSameBytesAndMissingRunsAreNamed) {
-  const std::string whole = TempDir("sweep_whole"), s1 = TempDir("sweep_s1"), s2 = TempDir("sweep_s2"),
-                    merged = TempDir("sweep_merged");
+  const std::string whole = TempDir("sweep_whole"), s1 = TempDir("sweep_s1"),
+                    s2 = TempDir("sweep_s2"), merged = TempDir("sweep_merged");
   ASSERT_EQ(Formsim(kSweep + " -q --out " + whole, whole + ".log"), 0);
   ASSERT_EQ(Formsim(kSweep + " -q --shard 1/2 --out " + s1, s1 + ".log"), 0);
   EXPECT_EQ(Formsim("sweep collect " + s1 + " --out " + merged, merged + ".log"), 2);
-  EXPECT_NE(ReadText(merged + ".log").find("the folders hold 6 of 12 runs (missing: 1, 3, 5, 7, 9, 11)"), std::string::npos)
+  EXPECT_NE(
+      ReadText(merged + ".log").find("the folders hold 6 of 12 runs (missing: 1, 3, 5, 7, 9, 11)"),
+      std::string::npos)
       << ReadText(merged + ".log");
   ASSERT_EQ(Formsim(kSweep + " -q --shard 2/2 --out " + s2, s2 + ".log"), 0);
   ASSERT_EQ(Formsim("sweep collect " + s1 + " " + s2 + " --out " + merged +
-                    " --metric links.R1-R2.max_abs_error_after_settle.phi -q", merged + ".log"), 0)
+                        " --metric links.R1-R2.max_abs_error_after_settle.phi -q",
+                    merged + ".log"),
+            0)
       << ReadText(merged + ".log");
   ExpectSameTables(whole, merged);
   // Shards of another sweep are refused.
   const std::string other = TempDir("sweep_other");
-  ASSERT_EQ(Formsim("sweep formation_traj2_ukf --set duration=1 -q --out " + other, other + ".log"), 0);
-  EXPECT_EQ(Formsim("sweep collect " + s1 + " " + other + " --out " + TempDir("sweep_bad"), other + ".log2"), 2);
+  ASSERT_EQ(Formsim("sweep formation_traj2_ukf --set duration=1 -q --out " + other, other + ".log"),
+            0);
+  EXPECT_EQ(Formsim("sweep collect " + s1 + " " + other + " --out " + TempDir("sweep_bad"),
+                    other + ".log2"),
+            2);
   EXPECT_NE(ReadText(other + ".log2").find("holds another sweep"), std::string::npos);
 }
 
@@ -163,16 +190,23 @@ TEST(SweepCli, ResumeRunsOnlyWhatIsMissingAndJobLinesRecordOnce) {
   for (const char* r : {"000000.run", "000005.run"}) fs::remove(d + "/runs/" + r);
   // What a power cut can leave of a record written but not yet synced: it runs again.
   const std::string cut = ReadText(d + "/runs/000011.run");
-  std::ofstream(d + "/runs/000011.run", std::ios::binary | std::ios::trunc) << cut.substr(0, cut.size() / 2);
+  std::ofstream(d + "/runs/000011.run", std::ios::binary | std::ios::trunc)
+      << cut.substr(0, cut.size() / 2);
   fs::remove(d + "/runs.csv");
   EXPECT_EQ(Formsim(kSweep + " --out " + d, d + ".log"), 2);
-  EXPECT_NE(ReadText(d + ".log").find("holds a sweep already (10 runs recorded); add --resume"), std::string::npos)
+  EXPECT_NE(ReadText(d + ".log").find("holds a sweep already (10 runs recorded); add --resume"),
+            std::string::npos)
       << ReadText(d + ".log");
-  EXPECT_EQ(Formsim("sweep formation_traj2_ukf --vary robots.R2.follow.k_l=0.1,0.2 --out " + d, d + ".log"), 2);
-  EXPECT_NE(ReadText(d + ".log").find("holds another sweep: the varied keys differ"), std::string::npos);
+  EXPECT_EQ(Formsim("sweep formation_traj2_ukf --vary robots.R2.follow.k_l=0.1,0.2 --out " + d,
+                    d + ".log"),
+            2);
+  EXPECT_NE(ReadText(d + ".log").find("holds another sweep: the varied keys differ"),
+            std::string::npos);
   ASSERT_EQ(Formsim(kSweep + " --resume --out " + d, d + ".log"), 0);
-  EXPECT_NE(ReadText(d + ".log").find("12 runs, 9 recorded already"), std::string::npos) << ReadText(d + ".log");
-  EXPECT_NE(ReadText(d + ".log").find("000011.run was cut short (a power cut?); it runs again"), std::string::npos);
+  EXPECT_NE(ReadText(d + ".log").find("12 runs, 9 recorded already"), std::string::npos)
+      << ReadText(d + ".log");
+  EXPECT_NE(ReadText(d + ".log").find("000011.run was cut short (a power cut?); it runs again"),
+            std::string::npos);
   EXPECT_NE(ReadText(d + ".log").find("\n3 runs in "), std::string::npos) << ReadText(d + ".log");
   ExpectSameTables(whole, d);
 
@@ -181,26 +215,35 @@ TEST(SweepCli, ResumeRunsOnlyWhatIsMissingAndJobLinesRecordOnce) {
   ASSERT_EQ(Formsim(kSweep + " --print-jobs --out " + j, j + ".txt"), 0);
   const std::string jobs = ReadText(j + ".txt");
   ASSERT_EQ(Lines(jobs), 12u);
-  EXPECT_EQ(jobs.find(Binary() + " sweep " + fs::canonical(testing::Scenario("formation_traj2_ukf")).string()), 0u) << jobs;
+  EXPECT_EQ(jobs.find(Binary() + " sweep " +
+                      fs::canonical(testing::Scenario("formation_traj2_ukf")).string()),
+            0u)
+      << jobs;
   const std::string first = jobs.substr(0, jobs.find('\n'));
   ASSERT_EQ(RunShell(first, j + ".log"), 0) << ReadText(j + ".log");
   ASSERT_EQ(RunShell(first + " --quiet=false", j + ".log"), 0);
-  EXPECT_NE(ReadText(j + ".log").find("run 0 is recorded already"), std::string::npos) << ReadText(j + ".log");
+  EXPECT_NE(ReadText(j + ".log").find("run 0 is recorded already"), std::string::npos)
+      << ReadText(j + ".log");
   ASSERT_EQ(Formsim(kSweep + " --print-jobs --out " + j, j + ".txt"), 0);
   EXPECT_EQ(Lines(ReadText(j + ".txt")), 11u);
 }
 
 TEST(SweepCli, InterruptedSweepsKeepEveryFinishedRunAndResume) {
   const std::string ref = TempDir("sweep_int_ref"), d = TempDir("sweep_int");
-  const std::string big = " sweep formation_traj2_ukf --set duration=3 --vary robots.R2.follow.k_phi=0.02:0.4:12 --seeds 1..4 -j2 --no-figures";
+  const std::string big =
+      " sweep formation_traj2_ukf --set duration=3 --vary robots.R2.follow.k_phi=0.02:0.4:12 "
+      "--seeds 1..4 -j2 --no-figures";
   ASSERT_EQ(Formsim(big + " -q --out " + ref, ref + ".log"), 0);
   // SIGINT while it runs (or after it ended, on a fast machine: then there is nothing to resume).
-  const int rc = RunShell("(" + Binary() + big + " -q --out " + d + " & pid=$!; sleep 0.4; kill -INT $pid; wait $pid)", d + ".log");
+  const int rc = RunShell(
+      "(" + Binary() + big + " -q --out " + d + " & pid=$!; sleep 0.4; kill -INT $pid; wait $pid)",
+      d + ".log");
   EXPECT_TRUE(rc == 130 || rc == 0) << rc << ReadText(d + ".log");
   if (rc == 130) {
     EXPECT_NE(ReadText(d + ".log").find("add --resume to finish it"), std::string::npos);
   }
-  for (const auto& e : fs::directory_iterator(d + "/runs")) EXPECT_EQ(e.path().extension(), ".run") << "no half-written record";
+  for (const auto& e : fs::directory_iterator(d + "/runs"))
+    EXPECT_EQ(e.path().extension(), ".run") << "no half-written record";
   ASSERT_EQ(Formsim(big + " -q --resume --out " + d, d + ".log"), 0) << ReadText(d + ".log");
   EXPECT_EQ(ReadText(ref + "/runs.csv"), ReadText(d + "/runs.csv"));
   EXPECT_EQ(ReadText(ref + "/aggregate.csv"), ReadText(d + "/aggregate.csv"));
@@ -209,8 +252,11 @@ TEST(SweepCli, InterruptedSweepsKeepEveryFinishedRunAndResume) {
 TEST(SweepCli, FailedRunsAreRecordedAndTheSweepGoesOn) {
   // l2_des = 0.9 cannot close the triangle with l_des = 0.3 and R1-R2 at 0.3: a scenario error.
   const std::string d = TempDir("sweep_fail");
-  ASSERT_EQ(Formsim("sweep formation_traj2_ukf --set duration=1 --vary robots.R3.follow.l2_des=0.3,0.9 -q --out " + d,
-                    d + ".log"), 0)
+  ASSERT_EQ(Formsim("sweep formation_traj2_ukf --set duration=1 --vary "
+                    "robots.R3.follow.l2_des=0.3,0.9 -q --out " +
+                        d,
+                    d + ".log"),
+            0)
       << ReadText(d + ".log");
   const std::string runs = ReadText(d + "/runs.csv");
   EXPECT_NE(runs.find("\n0,0.3,1,"), std::string::npos);
@@ -219,34 +265,48 @@ TEST(SweepCli, FailedRunsAreRecordedAndTheSweepGoesOn) {
   ASSERT_NE(row, std::string::npos) << runs;
   EXPECT_NE(runs.find(",error,", row), std::string::npos) << runs;
   EXPECT_NE(runs.find("robots.R3.follow.l2_des=0.9", row), std::string::npos) << runs;
-  EXPECT_NE(ReadText(d + "/aggregate.csv").find("\n1,0.9,1,1,"), std::string::npos) << "runs 1, failed 1";
+  EXPECT_NE(ReadText(d + "/aggregate.csv").find("\n1,0.9,1,1,"), std::string::npos)
+      << "runs 1, failed 1";
 }
 
 TEST(SweepCli, ProgressBarOnATerminalOnly) {
   const std::string d = TempDir("sweep_bar");
-  const std::string cmd = Binary() + " sweep formation_traj2_ukf --set duration=1 --seeds 1..4 --no-figures --out ";
+  const std::string cmd =
+      Binary() + " sweep formation_traj2_ukf --set duration=1 --seeds 1..4 --no-figures --out ";
   // `script` gives the command a terminal.
   ASSERT_EQ(RunShell("script -qec '" + cmd + d + "/tty' /dev/null", d + "/tty.log"), 0);
-  EXPECT_NE(ReadText(d + "/tty.log").find("4/4 runs, 0 failed, 0:00 left"), std::string::npos) << ReadText(d + "/tty.log");
+  EXPECT_NE(ReadText(d + "/tty.log").find("4/4 runs, 0 failed, 0:00 left"), std::string::npos)
+      << ReadText(d + "/tty.log");
   ASSERT_EQ(RunShell(cmd + d + "/pipe", d + "/pipe.log"), 0);
-  EXPECT_EQ(ReadText(d + "/pipe.log").find('\r'), std::string::npos) << "no bar when not a terminal";
+  EXPECT_EQ(ReadText(d + "/pipe.log").find('\r'), std::string::npos)
+      << "no bar when not a terminal";
   ASSERT_EQ(RunShell("script -qec '" + cmd + d + "/quiet -q' /dev/null", d + "/quiet.log"), 0);
   EXPECT_EQ(ReadText(d + "/quiet.log").find("runs,"), std::string::npos) << "no bar under -q";
 }
 
 TEST(SweepCli, BadInputNamesTheFlag) {
   const std::string d = TempDir("sweep_bad_input");
-  EXPECT_EQ(Formsim("sweep formation_traj2_ukf --vary robots.R2.follow.k_l=-1,0.2 --out " + d, d + ".log"), 2);
-  EXPECT_NE(ReadText(d + ".log").find("--vary robots.R2.follow.k_l=-1,0.2: key 'robots.R2.follow.k_l': value '-1': must be > 0"),
+  EXPECT_EQ(Formsim("sweep formation_traj2_ukf --vary robots.R2.follow.k_l=-1,0.2 --out " + d,
+                    d + ".log"),
+            2);
+  EXPECT_NE(ReadText(d + ".log")
+                .find("--vary robots.R2.follow.k_l=-1,0.2: key 'robots.R2.follow.k_l': value '-1': "
+                      "must be > 0"),
             std::string::npos)
       << ReadText(d + ".log");
   EXPECT_EQ(Formsim("sweep formation_traj2_ukf --seeds 5..1 --out " + d, d + ".log"), 2);
   EXPECT_NE(ReadText(d + ".log").find("--seeds '5..1'"), std::string::npos);
   EXPECT_EQ(Formsim("sweep formation_traj2_ukf --shard 3/2 --out " + d, d + ".log"), 2);
   EXPECT_NE(ReadText(d + ".log").find("--shard '3/2'"), std::string::npos);
-  EXPECT_EQ(Formsim("sweep formation_traj2_ukf --set duration=1 --metric links.R1-R2.nope -q --out " + d + "/m", d + ".log"), 2);
-  EXPECT_NE(ReadText(d + ".log").find("--metric 'links.R1-R2.nope': no such metric"), std::string::npos);
-  EXPECT_FALSE(ReadText(d + "/m/runs.csv").empty()) << "the tables are written before the metric is looked up";
+  EXPECT_EQ(
+      Formsim("sweep formation_traj2_ukf --set duration=1 --metric links.R1-R2.nope -q --out " + d +
+                  "/m",
+              d + ".log"),
+      2);
+  EXPECT_NE(ReadText(d + ".log").find("--metric 'links.R1-R2.nope': no such metric"),
+            std::string::npos);
+  EXPECT_FALSE(ReadText(d + "/m/runs.csv").empty())
+      << "the tables are written before the metric is looked up";
 }
 
 double Number(const std::string& s) {
@@ -257,18 +317,23 @@ double Number(const std::string& s) {
 
 TEST(TuneCli, DeterministicAndBestYamlReproducesTheBestObjective) {
   const std::string tune =
-      " tune formation_traj2_ukf --set duration=3 --param robots.R2.follow.k_l --param robots.R2.follow.k_phi:0.02:0.5"
-      " --metric 'links.R1-R2.max_abs_error_after_settle.phi + 0.5*links.R1-R2.max_abs_error_after_settle.l'"
+      " tune formation_traj2_ukf --set duration=3 --param robots.R2.follow.k_l --param "
+      "robots.R2.follow.k_phi:0.02:0.5"
+      " --metric 'links.R1-R2.max_abs_error_after_settle.phi + "
+      "0.5*links.R1-R2.max_abs_error_after_settle.l'"
       " --seeds 1..2 --budget 8 -q";
   const std::string a = TempDir("tune_a"), b = TempDir("tune_b");
   ASSERT_EQ(Formsim(tune + " -j1 --out " + a, a + ".log"), 0) << ReadText(a + ".log");
-  ASSERT_EQ(Formsim(tune + " -j2 --algorithm bobyqa --out " + b, b + ".log"), 0) << ReadText(b + ".log");
-  for (const char* f : {"history.csv", "best.yaml"}) EXPECT_EQ(ReadText(a + "/" + f), ReadText(b + "/" + f)) << f;
+  ASSERT_EQ(Formsim(tune + " -j2 --algorithm bobyqa --out " + b, b + ".log"), 0)
+      << ReadText(b + ".log");
+  for (const char* f : {"history.csv", "best.yaml"})
+    EXPECT_EQ(ReadText(a + "/" + f), ReadText(b + "/" + f)) << f;
   EXPECT_GT(fs::file_size(a + "/convergence.png"), 5000u);
   const std::string history = ReadText(a + "/history.csv");
   EXPECT_EQ(Lines(history), 9u);
   EXPECT_EQ(history.substr(0, history.find('\n')),
-            "eval,robots.R2.follow.k_l,robots.R2.follow.k_phi,objective,mean.links.R1-R2.max_abs_error_after_settle.phi,"
+            "eval,robots.R2.follow.k_l,robots.R2.follow.k_phi,objective,mean.links.R1-R2.max_abs_"
+            "error_after_settle.phi,"
             "mean.links.R1-R2.max_abs_error_after_settle.l,failed_runs,best_so_far,message");
   // The first evaluation is the scenario's own gains.
   EXPECT_NE(history.find("\n1,0.15,0.08,"), std::string::npos) << history;
@@ -285,7 +350,9 @@ TEST(TuneCli, DeterministicAndBestYamlReproducesTheBestObjective) {
   EXPECT_EQ(yaml.rfind("# formsim tune: ", 0), 0u);
   EXPECT_NE(yaml.find("# Paper 000 (Han, Sun, Zhi 2015)"), std::string::npos);
   const std::string check = TempDir("tune_check");
-  ASSERT_EQ(Formsim("sweep " + a + "/best.yaml --seeds 1..2 -q --no-figures --out " + check, check + ".log"), 0)
+  ASSERT_EQ(Formsim("sweep " + a + "/best.yaml --seeds 1..2 -q --no-figures --out " + check,
+                    check + ".log"),
+            0)
       << ReadText(check + ".log");
   std::stringstream agg(ReadText(check + "/aggregate.csv"));
   std::string h, row;
@@ -302,14 +369,28 @@ TEST(TuneCli, DeterministicAndBestYamlReproducesTheBestObjective) {
 
 TEST(TuneCli, BadInputNamesTheFlag) {
   const std::string d = TempDir("tune_bad");
-  EXPECT_EQ(Formsim("tune formation_traj2_ukf --param robots.R2.follow.estimator --metric x --out " + d, d + ".log"), 2);
+  EXPECT_EQ(
+      Formsim("tune formation_traj2_ukf --param robots.R2.follow.estimator --metric x --out " + d,
+              d + ".log"),
+      2);
   EXPECT_NE(ReadText(d + ".log").find("real-valued"), std::string::npos) << ReadText(d + ".log");
-  EXPECT_EQ(Formsim("tune formation_traj2_ukf --param robots.R2.follow.k_l --metric 'a +' --out " + d, d + ".log"), 2);
+  EXPECT_EQ(
+      Formsim("tune formation_traj2_ukf --param robots.R2.follow.k_l --metric 'a +' --out " + d,
+              d + ".log"),
+      2);
   EXPECT_NE(ReadText(d + ".log").find("--metric 'a +'"), std::string::npos);
-  EXPECT_EQ(Formsim("tune formation_traj2_ukf --set duration=1 --param robots.R2.follow.k_l --metric links.nope --budget 2 --out " + d,
-                    d + ".log"), 2);
-  EXPECT_NE(ReadText(d + ".log").find("no metric 'links.nope'"), std::string::npos) << ReadText(d + ".log");
-  EXPECT_EQ(Formsim("tune formation_traj2_ukf --param robots.R2.follow.k_l --metric x --algorithm newton --out " + d, d + ".log"), 2);
+  EXPECT_EQ(Formsim("tune formation_traj2_ukf --set duration=1 --param robots.R2.follow.k_l "
+                    "--metric links.nope --budget 2 --out " +
+                        d,
+                    d + ".log"),
+            2);
+  EXPECT_NE(ReadText(d + ".log").find("no metric 'links.nope'"), std::string::npos)
+      << ReadText(d + ".log");
+  EXPECT_EQ(Formsim("tune formation_traj2_ukf --param robots.R2.follow.k_l --metric x --algorithm "
+                    "newton --out " +
+                        d,
+                    d + ".log"),
+            2);
   EXPECT_NE(ReadText(d + ".log").find("--algorithm 'newton'"), std::string::npos);
 }
 
@@ -328,7 +409,8 @@ double Distance(Rgb a, sim::Color c) {
 }
 
 // Records with metric m = a given function of the point, for figure tests.
-std::vector<sim::SweepRecord> FakeRecords(const sim::SweepDefinition& d, const std::function<double(std::size_t, std::size_t)>& f) {
+std::vector<sim::SweepRecord> FakeRecords(
+    const sim::SweepDefinition& d, const std::function<double(std::size_t, std::size_t)>& f) {
   std::vector<sim::SweepRecord> out;
   for (std::size_t r = 0; r < d.runs(); ++r) {
     sim::SweepRecord rec;
@@ -341,11 +423,14 @@ std::vector<sim::SweepRecord> FakeRecords(const sim::SweepDefinition& d, const s
 }
 
 TEST(SweepFigures, HeatmapCellsAndColourBarFollowTheMeans) {
-  const sim::ScenarioSource src = sim::ScenarioSource::FromFile(testing::Scenario("formation_traj2_ukf"));
+  const sim::ScenarioSource src =
+      sim::ScenarioSource::FromFile(testing::Scenario("formation_traj2_ukf"));
   const sim::SweepDefinition d = sim::DefineSweep(
-      src, {}, {"robots.R2.follow.k_phi=log:0.01:1:4", "robots.R2.follow.estimator=truth,raw,ukf"}, {1, 2});
+      src, {}, {"robots.R2.follow.k_phi=log:0.01:1:4", "robots.R2.follow.estimator=truth,raw,ukf"},
+      {1, 2});
   // Mean = point index (0 ... 11): bottom-left lowest, top-right highest.
-  const auto recs = FakeRecords(d, [](std::size_t p, std::size_t s) { return static_cast<double>(p) + (s ? 0.5 : -0.5); });
+  const auto recs = FakeRecords(
+      d, [](std::size_t p, std::size_t s) { return static_cast<double>(p) + (s ? 0.5 : -0.5); });
   const sim::SweepTables t = sim::BuildSweepTables(d, recs);
   PlotData fig;
   ASSERT_TRUE(SweepFigure(d, t, recs, 0, &fig));
@@ -357,8 +442,12 @@ TEST(SweepFigures, HeatmapCellsAndColourBarFollowTheMeans) {
   OffscreenRenderer r(w, h);
   const auto& px = r.RenderFigure(fig, w, h);
   const PlotLayout& L = r.last_plot_layout();
-  auto sx = [&](double x) { return L.area_min.x + (x - L.x0) / (L.x1 - L.x0) * (L.area_max.x - L.area_min.x); };
-  auto sy = [&](double y) { return L.area_max.y - (y - L.y0) / (L.y1 - L.y0) * (L.area_max.y - L.area_min.y); };
+  auto sx = [&](double x) {
+    return L.area_min.x + (x - L.x0) / (L.x1 - L.x0) * (L.area_max.x - L.area_min.x);
+  };
+  auto sy = [&](double y) {
+    return L.area_max.y - (y - L.y0) / (L.y1 - L.y0) * (L.area_max.y - L.area_min.y);
+  };
   for (int row = 0; row < 3; ++row)
     for (int col = 0; col < 4; ++col) {
       const double mean = col * 3 + row;  // point = k_phi index * 3 + estimator index
@@ -373,9 +462,13 @@ TEST(SweepFigures, HeatmapCellsAndColourBarFollowTheMeans) {
 }
 
 TEST(SweepFigures, OneKeyGivesMeanBandAndSeeds) {
-  const sim::ScenarioSource src = sim::ScenarioSource::FromFile(testing::Scenario("formation_traj2_ukf"));
-  const sim::SweepDefinition d = sim::DefineSweep(src, {}, {"robots.R2.follow.k_l=0.4,0.1,0.2"}, {1, 2, 3});
-  const auto recs = FakeRecords(d, [](std::size_t p, std::size_t s) { return 10.0 * static_cast<double>(p) + static_cast<double>(s); });
+  const sim::ScenarioSource src =
+      sim::ScenarioSource::FromFile(testing::Scenario("formation_traj2_ukf"));
+  const sim::SweepDefinition d =
+      sim::DefineSweep(src, {}, {"robots.R2.follow.k_l=0.4,0.1,0.2"}, {1, 2, 3});
+  const auto recs = FakeRecords(d, [](std::size_t p, std::size_t s) {
+    return 10.0 * static_cast<double>(p) + static_cast<double>(s);
+  });
   const sim::SweepTables t = sim::BuildSweepTables(d, recs);
   PlotData fig;
   ASSERT_TRUE(SweepFigure(d, t, recs, 0, &fig));
@@ -390,16 +483,22 @@ TEST(SweepFigures, OneKeyGivesMeanBandAndSeeds) {
   const auto& px = r.RenderFigure(fig, 800, 500);
   const PlotLayout& L = r.last_plot_layout();
   // Inside the band, off the line and the grid: the series colour, faded.
-  const float x = static_cast<float>(L.area_min.x + (0.13 - L.x0) / (L.x1 - L.x0) * (L.area_max.x - L.area_min.x));
-  const float y = static_cast<float>(L.area_max.y - (14.3 - L.y0) / (L.y1 - L.y0) * (L.area_max.y - L.area_min.y));
+  const float x = static_cast<float>(L.area_min.x +
+                                     (0.13 - L.x0) / (L.x1 - L.x0) * (L.area_max.x - L.area_min.x));
+  const float y = static_cast<float>(L.area_max.y -
+                                     (14.3 - L.y0) / (L.y1 - L.y0) * (L.area_max.y - L.area_min.y));
   const Rgb band = At(px, 800, x, y);
   const sim::Color c = sim::PaletteColor(0);
   const sim::Color faded{1 - 0.22f * (1 - c.r), 1 - 0.22f * (1 - c.g), 1 - 0.22f * (1 - c.b), 1};
   EXPECT_LT(Distance(band, faded), 20.0) << band.r << "," << band.g << "," << band.b;
   // Three keys: no figure (the ranking stands for it).
-  const sim::SweepDefinition d3 = sim::DefineSweep(
-      src, {}, {"robots.R2.follow.k_l=0.1,0.2", "robots.R2.follow.k_phi=0.1,0.2", "robots.R3.follow.k_l=0.1,0.2"}, {1});
-  const auto recs3 = FakeRecords(d3, [](std::size_t p, std::size_t) { return static_cast<double>(p); });
+  const sim::SweepDefinition d3 =
+      sim::DefineSweep(src, {},
+                       {"robots.R2.follow.k_l=0.1,0.2", "robots.R2.follow.k_phi=0.1,0.2",
+                        "robots.R3.follow.k_l=0.1,0.2"},
+                       {1});
+  const auto recs3 =
+      FakeRecords(d3, [](std::size_t p, std::size_t) { return static_cast<double>(p); });
   EXPECT_FALSE(SweepFigure(d3, sim::BuildSweepTables(d3, recs3), recs3, 0, &fig));
 }
 

@@ -6,12 +6,12 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <thread>
 #include <cmath>
 #include <filesystem>
 #include <random>
 #include <set>
 #include <stdexcept>
+#include <thread>
 
 #include "sim/core/sweep.hpp"
 #include "sim/core/sweep_tables.hpp"
@@ -23,7 +23,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-ScenarioSource Circle() { return ScenarioSource::FromText(testkind::kScenario, "circle.yaml", ""); }
+ScenarioSource Circle() {
+  return ScenarioSource::FromText(testkind::kScenario, "circle.yaml", "");
+}
 
 std::string Dir(const std::string& name) {
   const fs::path p = fs::temp_directory_path() / ("formsim_test_sweep_" + name);
@@ -43,8 +45,10 @@ std::string ErrorOf(const std::function<void()>& f) {
 TEST(ParseSeeds, RangesListsAndErrors) {
   EXPECT_EQ(ParseSeeds("1..3,7"), (std::vector<std::uint64_t>{1, 2, 3, 7}));
   EXPECT_EQ(ParseSeeds("5"), (std::vector<std::uint64_t>{5}));
-  EXPECT_EQ(ParseSeeds("18446744073709551615"), (std::vector<std::uint64_t>{18446744073709551615ULL}));
-  EXPECT_NE(ErrorOf([] { ParseSeeds("3..1"); }).find("--seeds '3..1': the range 3..1 is empty"), std::string::npos);
+  EXPECT_EQ(ParseSeeds("18446744073709551615"),
+            (std::vector<std::uint64_t>{18446744073709551615ULL}));
+  EXPECT_NE(ErrorOf([] { ParseSeeds("3..1"); }).find("--seeds '3..1': the range 3..1 is empty"),
+            std::string::npos);
   EXPECT_NE(ErrorOf([] { ParseSeeds("1,2,1"); }).find("seed 1 appears twice"), std::string::npos);
   for (const char* bad : {"", "a", "1..", "-1", "1.5", "1,,2"})
     EXPECT_NE(ErrorOf([&] { ParseSeeds(bad); }).find("--seeds"), std::string::npos) << bad;
@@ -67,11 +71,12 @@ TEST(LatinHypercube, OnePointPerStratumInEveryDimension) {
 }
 
 TEST(DefineSweep, ListsRangesAndEnumsInCanonicalText) {
-  const SweepDefinition d = DefineSweep(Circle(), {},
-                                        {"v=0.5,1,1.50", "omega=0.1:0.3:3", "drive.mode=all"}, {1, 2});
+  const SweepDefinition d =
+      DefineSweep(Circle(), {}, {"v=0.5,1,1.50", "omega=0.1:0.3:3", "drive.mode=all"}, {1, 2});
   ASSERT_EQ(d.axes.size(), 3u);
   EXPECT_EQ(d.axes[0].values, (std::vector<std::string>{"0.5", "1", "1.5"}));
-  EXPECT_EQ(d.axes[1].values, (std::vector<std::string>{"0.1", "0.2", "0.3"})) << "tidy range values";
+  EXPECT_EQ(d.axes[1].values, (std::vector<std::string>{"0.1", "0.2", "0.3"}))
+      << "tidy range values";
   EXPECT_EQ(d.axes[2].values, (std::vector<std::string>{"ideal", "traction"}));
   EXPECT_TRUE(d.axes[2].categorical());
   EXPECT_EQ(d.points.size(), 18u);
@@ -95,7 +100,8 @@ TEST(DefineSweep, ListsRangesAndEnumsInCanonicalText) {
 }
 
 TEST(DefineSweep, RandomSamplesShareOneHypercubeWithinTheSliderRange) {
-  const SweepDefinition d = DefineSweep(Circle(), {}, {"v=random:10", "omega=0.1,0.2", "sigma=random:10:0.2:0.4"}, {1}, 7);
+  const SweepDefinition d = DefineSweep(
+      Circle(), {}, {"v=random:10", "omega=0.1,0.2", "sigma=random:10:0.2:0.4"}, {1}, 7);
   EXPECT_EQ(d.points.size(), 20u) << "the random axes are paired, the list is crossed with them";
   EXPECT_FALSE(d.IsGrid());
   std::set<int> strata;
@@ -109,20 +115,32 @@ TEST(DefineSweep, RandomSamplesShareOneHypercubeWithinTheSliderRange) {
   }
   EXPECT_EQ(strata.size(), 10u);
   EXPECT_EQ(d.points[0][0], d.points[0][2]);
-  EXPECT_EQ(DefineSweep(Circle(), {}, {"v=random:10", "omega=0.1,0.2", "sigma=random:10:0.2:0.4"}, {1}, 7).id, d.id);
-  EXPECT_NE(DefineSweep(Circle(), {}, {"v=random:10", "omega=0.1,0.2", "sigma=random:10:0.2:0.4"}, {1}, 8).id, d.id);
+  EXPECT_EQ(
+      DefineSweep(Circle(), {}, {"v=random:10", "omega=0.1,0.2", "sigma=random:10:0.2:0.4"}, {1}, 7)
+          .id,
+      d.id);
+  EXPECT_NE(
+      DefineSweep(Circle(), {}, {"v=random:10", "omega=0.1,0.2", "sigma=random:10:0.2:0.4"}, {1}, 8)
+          .id,
+      d.id);
 }
 
 TEST(DefineSweep, ErrorsNameTheArgumentAndTheKey) {
-  auto err = [](std::vector<std::string> vary) { return ErrorOf([&] { DefineSweep(Circle(), {}, vary, {}); }); };
-  EXPECT_EQ(err({"vv=1"}), "--vary vv=1: key 'vv': not a tunable of circle.yaml (tunables: v, omega, sigma, "
-                          "drive.mode, drive.v_max, drive.omega_max)");
-  EXPECT_EQ(err({"drive.mod=1"}), "--vary drive.mod=1: key 'drive.mod': not a tunable of circle.yaml (similar: "
-                                  "drive.mode, drive.v_max, drive.omega_max)");
-  EXPECT_NE(err({"v=-1,1"}).find("--vary v=-1,1: key 'v': value '-1': must be >= 0"), std::string::npos);
+  auto err = [](std::vector<std::string> vary) {
+    return ErrorOf([&] { DefineSweep(Circle(), {}, vary, {}); });
+  };
+  EXPECT_EQ(err({"vv=1"}),
+            "--vary vv=1: key 'vv': not a tunable of circle.yaml (tunables: v, omega, sigma, "
+            "drive.mode, drive.v_max, drive.omega_max)");
+  EXPECT_EQ(err({"drive.mod=1"}),
+            "--vary drive.mod=1: key 'drive.mod': not a tunable of circle.yaml (similar: "
+            "drive.mode, drive.v_max, drive.omega_max)");
+  EXPECT_NE(err({"v=-1,1"}).find("--vary v=-1,1: key 'v': value '-1': must be >= 0"),
+            std::string::npos);
   EXPECT_NE(err({"omega=9"}).find("must be in [-5, 5]"), std::string::npos);
   EXPECT_NE(err({"drive.mode=0:1:3"}).find("a range needs a numeric tunable"), std::string::npos);
-  EXPECT_NE(err({"drive.mode=fast"}).find("'fast' is not one of: ideal, traction"), std::string::npos);
+  EXPECT_NE(err({"drive.mode=fast"}).find("'fast' is not one of: ideal, traction"),
+            std::string::npos);
   EXPECT_NE(err({"v=1:2"}).find("expected LO:HI:N"), std::string::npos);
   EXPECT_NE(err({"v=log:0:1:3"}).find("a log range needs LO > 0"), std::string::npos);
   EXPECT_NE(err({"v=1,1"}).find("appears twice"), std::string::npos);
@@ -142,7 +160,8 @@ TEST(SweepStore, ManifestAndRecordsRoundTripEveryByte) {
   EXPECT_EQ(ManifestText(back), ManifestText(d));
   std::string tampered = ManifestText(d);
   tampered.replace(tampered.find("value ideal"), 11, "value xdeal");
-  EXPECT_NE(ErrorOf([&] { ParseManifest(tampered, "m"); }).find("does not match its id"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { ParseManifest(tampered, "m"); }).find("does not match its id"),
+            std::string::npos);
 
   SweepRecord r;
   r.run = 5;
@@ -160,9 +179,12 @@ TEST(SweepStore, ManifestAndRecordsRoundTripEveryByte) {
   EXPECT_EQ(RecordText(d, r2), RecordText(d, r));
   // A record of another sweep, or a truncated one, is refused.
   const SweepDefinition other = DefineSweep(Circle(), {}, {"v=1,2"}, {1});
-  EXPECT_NE(ErrorOf([&] { ParseRecord(RecordText(other, r), d, "r"); }).find("another sweep"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { ParseRecord(RecordText(other, r), d, "r"); }).find("another sweep"),
+            std::string::npos);
   const std::string text = RecordText(d, r);
-  EXPECT_NE(ErrorOf([&] { ParseRecord(text.substr(0, text.size() - 4), d, "r"); }).find("incomplete"), std::string::npos);
+  EXPECT_NE(
+      ErrorOf([&] { ParseRecord(text.substr(0, text.size() - 4), d, "r"); }).find("incomplete"),
+      std::string::npos);
 }
 
 TEST(SweepStore, ShardsPartitionTheRuns) {
@@ -186,7 +208,9 @@ TEST(SweepStore, WriteManifestRefusesAnotherSweep) {
   const SweepDefinition b = DefineSweep(Circle(), {}, {"v=1,3"}, {1});
   WriteManifest(dir, a);
   WriteManifest(dir, a);  // the same sweep: fine
-  EXPECT_NE(ErrorOf([&] { WriteManifest(dir, b); }).find("holds another sweep: the values of v differ"), std::string::npos);
+  EXPECT_NE(
+      ErrorOf([&] { WriteManifest(dir, b); }).find("holds another sweep: the values of v differ"),
+      std::string::npos);
   fs::remove_all(dir);
 }
 
@@ -202,14 +226,17 @@ TEST(TaskPool, EveryIndexOnceAndErrorsRethrown) {
     // Once a task has thrown no further index starts (the others take a while, so that the
     // throw is seen before the hand-out could finish).
     std::atomic<int> ran{0};
-    EXPECT_THROW(pool.ForEach(50, [&](std::size_t i) {
-      ++ran;
-      if (i == 3) throw std::runtime_error("boom");
-      std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    }), std::runtime_error);
+    EXPECT_THROW(pool.ForEach(50,
+                              [&](std::size_t i) {
+                                ++ran;
+                                if (i == 3) throw std::runtime_error("boom");
+                                std::this_thread::sleep_for(std::chrono::milliseconds(2));
+                              }),
+                 std::runtime_error);
     EXPECT_LT(ran.load(), 50);
     std::atomic<int> started{0};
-    pool.ForEach(100, [&](std::size_t) { ++started; }, [&] { return started.load() >= 10; });
+    pool.ForEach(
+        100, [&](std::size_t) { ++started; }, [&] { return started.load() >= 10; });
     EXPECT_LT(started.load(), 100) << "a stop ends the hand-out";
   }
 }
@@ -220,7 +247,8 @@ SweepTables RunAll(const SweepDefinition& d, int threads, bool shuffle) {
   std::vector<SweepRecord> recs;
   std::vector<std::size_t> runs(d.runs());
   for (std::size_t i = 0; i < runs.size(); ++i) runs[i] = i;
-  RunSweep(Circle(), d, runs, pool, [&](const SweepRecord& r, const SweepProgress&) { recs.push_back(r); });
+  RunSweep(Circle(), d, runs, pool,
+           [&](const SweepRecord& r, const SweepProgress&) { recs.push_back(r); });
   if (shuffle) std::shuffle(recs.begin(), recs.end(), std::mt19937(5));
   return BuildSweepTables(d, recs);
 }
@@ -231,7 +259,8 @@ TEST(RunSweep, TablesDoNotDependOnThreadsOrOrder) {
   EXPECT_EQ(a.runs_csv, b.runs_csv);
   EXPECT_EQ(a.aggregate_csv, b.aggregate_csv);
   // v + |omega| >= 4 breaks the kind's rule across keys: those runs are errors, the rest ran.
-  EXPECT_NE(a.runs_csv.find("\n11,1.5,3.5,2,,error,--vary omega=3.5: key 'omega': v + |omega| must be < 4\n"),
+  EXPECT_NE(a.runs_csv.find(
+                "\n11,1.5,3.5,2,,error,--vary omega=3.5: key 'omega': v + |omega| must be < 4\n"),
             std::string::npos)
       << a.runs_csv;
   EXPECT_EQ(CsvField("a, \"b\"\nc"), "\"a, \"\"b\"\"\nc\"");
@@ -253,7 +282,8 @@ TEST(RunSweep, TablesDoNotDependOnThreadsOrOrder) {
 }
 
 TEST(RunSweep, ARunIsExactlyTheScenarioWithItsOverrides) {
-  const SweepDefinition d = DefineSweep(Circle(), CliOverrides({"sigma=0.3"}, -1), {"v=0.7,1.1"}, {4, 5});
+  const SweepDefinition d =
+      DefineSweep(Circle(), CliOverrides({"sigma=0.3"}, -1), {"v=0.7,1.1"}, {4, 5});
   for (std::size_t r = 0; r < d.runs(); ++r) {
     const auto rec = RunSweepRun(Circle(), d, r);
     ASSERT_TRUE(rec);
@@ -293,7 +323,9 @@ TEST(TuneParam, BoundsFromTheDeclarationOrGiven) {
   EXPECT_EQ(w.start, 0.5);
   auto err = [&](const char* a) { return ErrorOf([&] { ParseTuneParam(a, p.params); }); };
   EXPECT_NE(err("drive.mode").find("real-valued"), std::string::npos);
-  EXPECT_NE(err("v:-1:2").find("--param v:-1:2: key 'v': bound -1 is not a valid value: must be >= 0"), std::string::npos);
+  EXPECT_NE(
+      err("v:-1:2").find("--param v:-1:2: key 'v': bound -1 is not a valid value: must be >= 0"),
+      std::string::npos);
   EXPECT_NE(err("v:2:1").find("LO < HI"), std::string::npos);
   EXPECT_NE(err("vv").find("not a tunable"), std::string::npos);
   EXPECT_NE(err("v:1").find("KEY:LO:HI"), std::string::npos);
@@ -320,7 +352,8 @@ TEST(Tune, FindsTheMinimumAndIsDeterministic) {
   // A term that names no metric fails at once, with the names there are.
   s.objective = ParseMetricExpr("xx");
   TaskPool pool(1);
-  EXPECT_NE(ErrorOf([&] { RunTune(Circle(), s, pool); }).find("no metric 'xx' (similar: x)"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { RunTune(Circle(), s, pool); }).find("no metric 'xx' (similar: x)"),
+            std::string::npos);
 }
 
 TEST(Tune, FailedEvaluationsAreRecordedNotFatal) {
