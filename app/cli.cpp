@@ -3,9 +3,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
-#include <atomic>
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -14,6 +12,8 @@
 
 #include "app/export.hpp"
 #include "app/gui.hpp"
+#include "app/stop_signal.hpp"
+#include "app/study_cli.hpp"
 #include "sim/core/run_output.hpp"
 #include "sim/core/scenario.hpp"
 #include "sim/core/scenario_files.hpp"
@@ -58,30 +58,14 @@ class ProgressBar {
   int last_pct_ = -1;
 };
 
-// Ctrl-C and SIGTERM: the run stops after the current step and writes what it has.
-std::atomic<int> g_signal{0};
-extern "C" void OnStopSignal(int sig) { g_signal = sig; }
-
-void InstallStopSignals() {
-  struct sigaction sa = {};
-  sa.sa_handler = OnStopSignal;
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
-  std::signal(SIGPIPE, SIG_IGN);  // a closed pipe (ffmpeg, `| head`) is an error, not a death
-}
-
 // Stops `exp` when a stop signal arrived. Returns true when it did.
 bool CheckStopSignal(sim::Experiment& exp) {
-  const int sig = g_signal.load();
+  const int sig = StopSignal();
   if (sig == 0) return false;
-  exp.Interrupt(std::string("interrupted by ") + (sig == SIGINT ? "SIGINT (Ctrl-C)" : "SIGTERM") +
-                " at t = " + std::to_string(exp.time()) + " s");
+  exp.Interrupt("interrupted by " + StopSignalName(sig) + " at t = " + std::to_string(exp.time()) +
+                " s");
   return true;
 }
-
-// Rows kept in memory for the figures of a headless run; the CSV is streamed to disk.
-constexpr std::size_t kHistoryRows = 20000;
 
 // The overrides of the command line: every --set in order, then --seed.
 std::vector<sim::Override> Overrides(const std::vector<std::string>& sets, const std::string& seed) {
@@ -108,7 +92,7 @@ int RunCommand(RunOptions opt) {
   // Rows go to disk as they are recorded; memory keeps a bounded history for the figures.
   sim::Recorder& rec = session.exp().mutable_recorder();
   rec.StreamTo(sim::CsvPath(out));
-  rec.SetHistoryLimit(kHistoryRows);
+  rec.SetHistoryLimit(sim::kRunHistoryRows);
   InstallStopSignals();
 
   ProgressBar bar(!opt.quiet);
@@ -177,7 +161,7 @@ int RunCommand(RunOptions opt) {
   } else if (exp.status() == "interrupted") {
     std::fprintf(stderr, "formsim: %s; the results so far were written and marked interrupted\n",
                  exp.stop_reason().c_str());
-    rc = 128 + g_signal.load();
+    rc = 128 + StopSignal();
   }
   if (!write_error.empty()) {
     std::fprintf(stderr, "formsim: error: %s\n", write_error.c_str());
@@ -260,6 +244,8 @@ int Main(int argc, char** argv) {
   gui_cmd->add_option("--out", gui.out_dir, "Write timeseries.csv and summary.json here on exit");
   gui_cmd->add_flag("--timing", gui.timing, "Print frame-time statistics on exit (stderr)");
 
+  StudyCommands study(app);  // sweep, sweep collect, tune
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -268,6 +254,7 @@ int Main(int argc, char** argv) {
   try {
     if (run_cmd->parsed()) return RunCommand(run);
     if (app.got_subcommand("list")) return ListCommand();
+    if (study.parsed()) return study.Run();
     if (gui_cmd->parsed()) {
       ParseSize(gui_size, &gui.width, &gui.height);
       if (gui_speed == "max") {

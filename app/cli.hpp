@@ -1,5 +1,6 @@
 #pragma once
-/// \file The formsim command line: `formsim run`, `formsim list`, `formsim gui`.
+/// \file The formsim command line: `formsim run`, `formsim list`, `formsim gui`, `formsim sweep`,
+/// `formsim sweep collect`, `formsim tune`.
 
 namespace formsim::app {
 

@@ -4,9 +4,11 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 #include "app/imgui_draw_sink.hpp"
 #include "app/polyline_simplify.hpp"
+#include "sim/core/number_format.hpp"
 
 namespace formsim::app {
 namespace {
@@ -173,7 +175,65 @@ void DashedLine(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 col, float th, float o
   DashedPolyline(dl, {a, b}, col, th, on, off);
 }
 
+// Ticks of a categorical axis: every k-th of 0..n-1 so that at most `fit` labels are written.
+std::vector<double> CategoryTicks(std::size_t n, double fit) {
+  const std::size_t step = std::max<std::size_t>(
+      1, static_cast<std::size_t>(std::ceil(static_cast<double>(n) / std::max(1.0, fit))));
+  std::vector<double> t;
+  for (std::size_t k = 0; k < n; k += step) t.push_back(static_cast<double>(k));
+  return t;
+}
+
+// The finite range of a heatmap's values (NaN, NaN when it has none).
+void HeatRange(const PlotHeatmap& h, double* lo, double* hi) {
+  *lo = *hi = kNaN;
+  for (double v : h.values) {
+    if (!std::isfinite(v)) continue;
+    if (!(v >= *lo)) *lo = v;
+    if (!(v <= *hi)) *hi = v;
+  }
+}
+
+ImU32 HeatColor(double v, double lo, double hi) {
+  if (!std::isfinite(v)) return IM_COL32(215, 215, 215, 255);
+  return ToImColor(Viridis(hi > lo ? (v - lo) / (hi - lo) : 0.5));
+}
+
+// Shades the band of a series (between band_lo and band_hi) with one quad per segment.
+void DrawBand(ImDrawList* dl, const PlotSeries& s, ImU32 col,
+              const std::function<ImVec2(double, double)>& to_screen) {
+  const std::size_t n = std::min({s.x.size(), s.band_lo.size(), s.band_hi.size()});
+  const ImDrawListFlags flags = dl->Flags;
+  dl->Flags &= ~ImDrawListFlags_AntiAliasedFill;  // no seams between neighbouring quads
+  for (std::size_t i = 1; i < n; ++i) {
+    const double v[] = {s.x[i - 1],       s.x[i],       s.band_lo[i - 1],
+                        s.band_hi[i - 1], s.band_lo[i], s.band_hi[i]};
+    if (!std::all_of(std::begin(v), std::end(v), [](double x) { return std::isfinite(x); }))
+      continue;
+    dl->AddQuadFilled(to_screen(s.x[i - 1], s.band_lo[i - 1]), to_screen(s.x[i], s.band_lo[i]),
+                      to_screen(s.x[i], s.band_hi[i]), to_screen(s.x[i - 1], s.band_hi[i - 1]),
+                      col);
+  }
+  dl->Flags = flags;
+}
+
 }  // namespace
+
+sim::Color Viridis(double f) {
+  // Nine samples of matplotlib's viridis, linearly interpolated.
+  static const float kStops[9][3] = {
+      {0.267f, 0.005f, 0.329f}, {0.279f, 0.175f, 0.483f}, {0.230f, 0.322f, 0.546f},
+      {0.173f, 0.449f, 0.558f}, {0.128f, 0.567f, 0.551f}, {0.153f, 0.683f, 0.502f},
+      {0.369f, 0.789f, 0.383f}, {0.678f, 0.864f, 0.190f}, {0.993f, 0.906f, 0.144f}};
+  const double x = std::clamp(std::isfinite(f) ? f : 0.0, 0.0, 1.0) * 8.0;
+  const int i = std::min(7, static_cast<int>(x));
+  const float t = static_cast<float>(x - i);
+  sim::Color c;
+  c.r = kStops[i][0] + t * (kStops[i + 1][0] - kStops[i][0]);
+  c.g = kStops[i][1] + t * (kStops[i + 1][1] - kStops[i][1]);
+  c.b = kStops[i][2] + t * (kStops[i + 1][2] - kStops[i][2]);
+  return c;
+}
 
 std::vector<double> NiceTicks(double lo, double hi, int max_ticks, double* step_out) {
   std::vector<double> ticks;
@@ -230,8 +290,21 @@ PlotLayout DrawPlot(ImDrawList* dl, ImVec2 min, ImVec2 max, const PlotData& data
       if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
       rx.Add(s.x[i]);
       ry.Add(s.y[i]);
+      if (i < s.band_lo.size() && i < s.band_hi.size()) ry.Add(s.band_lo[i]), ry.Add(s.band_hi[i]);
     }
   }
+  // Heatmaps and categorical axes: half a cell of room around the first and last category.
+  const bool heat = !data.heatmap.empty();
+  const bool cat_x = !data.x_tick_labels.empty(), cat_y = !data.y_tick_labels.empty();
+  if (heat) rx.Add(0), rx.Add(data.heatmap.columns - 1), ry.Add(0), ry.Add(data.heatmap.rows - 1);
+  if (cat_x) rx.Add(-0.5), rx.Add(static_cast<double>(data.x_tick_labels.size()) - 0.5);
+  if (heat || cat_y) {
+    ry.Add(-0.5);
+    ry.Add(static_cast<double>(heat ? data.heatmap.rows
+                                    : static_cast<int>(data.y_tick_labels.size())) -
+           0.5);
+  }
+  if (heat) rx.Add(-0.5), rx.Add(data.heatmap.columns - 0.5);
   for (double r : data.reference_lines) ry.Add(r);
   if (std::isfinite(data.marker_x)) rx.Add(data.marker_x);
   if (!rx.valid()) rx.lo = 0, rx.hi = 1;
@@ -244,8 +317,8 @@ PlotLayout DrawPlot(ImDrawList* dl, ImVec2 min, ImVec2 max, const PlotData& data
     const double h = ry.lo == 0 ? 1.0 : std::abs(ry.lo) * 0.1;
     ry.lo -= h, ry.hi += h;
   }
-  double x0 = rx.lo, x1 = rx.hi;
-  const double ypad = 0.06 * (ry.hi - ry.lo);
+  double x0 = rx.lo - data.x_margin * (rx.hi - rx.lo), x1 = rx.hi + data.x_margin * (rx.hi - rx.lo);
+  const double ypad = heat || cat_y ? 0.0 : 0.06 * (ry.hi - ry.lo);
   double y0 = ry.lo - ypad, y1 = ry.hi + ypad;
   if (data.equal_aspect) {
     const double xpad = 0.06 * (x1 - x0);
@@ -261,25 +334,58 @@ PlotLayout DrawPlot(ImDrawList* dl, ImVec2 min, ImVec2 max, const PlotData& data
   ImVec2 a, b;  // data area
   int ex = 0, ey = 0;
   double xstep = 1, ystep = 1;
-  float right_reserve = 0;  // room for a legend outside the axes, on the right
+  float right_reserve = 0;  // room for a legend or colour bar outside the axes, on the right
+  double heat_lo = kNaN, heat_hi = kNaN, cstep = 1;
+  int ce = 0;
+  std::vector<double> cticks;
+  if (heat) {
+    HeatRange(data.heatmap, &heat_lo, &heat_hi);
+    if (std::isfinite(heat_lo)) {
+      cticks = NiceTicks(heat_lo, heat_hi, 6, &cstep);
+      ce = AxisExponent(heat_lo, heat_hi);
+    }
+    float wmax = 0;
+    for (double t : cticks) wmax = std::max(wmax, TextSize(tick_font, FormatTick(t, cstep, ce)).x);
+    right_reserve =
+        12 + 16 + 6 + wmax + 8 + (data.heatmap.value_label.empty() ? 0 : label_font->FontSize + 6);
+  }
+  auto x_text = [&](double t) {
+    return cat_x ? data.x_tick_labels[static_cast<std::size_t>(std::llround(t))]
+                 : FormatTick(t, xstep, ex);
+  };
+  auto y_text = [&](double t) {
+    return cat_y ? data.y_tick_labels[static_cast<std::size_t>(std::llround(t))]
+                 : FormatTick(t, ystep, ey);
+  };
   auto layout = [&]() {
     const float top = min.y + pad + title_h + tick_h * 0.6f;
     b.y = max.y - pad - xlabel_h - tick_h - 8;
     a.y = top + (AxisExponent(y0, y1) != 0 ? tick_h + 2 : 0);
     const int ny = std::max(2, static_cast<int>((b.y - a.y) / 45));
-    L.y_ticks = NiceTicks(y0, y1, ny, &ystep);
-    ey = AxisExponent(y0, y1);
+    if (cat_y) {
+      L.y_ticks = CategoryTicks(data.y_tick_labels.size(), (b.y - a.y) / (tick_h + 6));
+      ey = 0;
+    } else {
+      L.y_ticks = NiceTicks(y0, y1, ny, &ystep);
+      ey = AxisExponent(y0, y1);
+    }
     float wmax = 0;
-    for (double t : L.y_ticks)
-      wmax = std::max(wmax, TextSize(tick_font, FormatTick(t, ystep, ey)).x);
+    for (double t : L.y_ticks) wmax = std::max(wmax, TextSize(tick_font, y_text(t)).x);
     a.x = min.x + pad + ylabel_w + wmax + 8;
     b.x = max.x - pad - 14 - right_reserve;
     // Whole pixels, so the frame, grid and ticks are crisp 1-px lines.
     a = ImVec2(std::round(a.x), std::round(a.y));
     b = ImVec2(std::round(b.x), std::round(b.y));
     const int nx = std::max(2, static_cast<int>((b.x - a.x) / 90));
-    L.x_ticks = NiceTicks(x0, x1, nx, &xstep);
-    ex = AxisExponent(x0, x1);
+    if (cat_x) {
+      float lw = 0;
+      for (const std::string& l : data.x_tick_labels) lw = std::max(lw, TextSize(tick_font, l).x);
+      L.x_ticks = CategoryTicks(data.x_tick_labels.size(), (b.x - a.x) / (lw + 12));
+      ex = 0;
+    } else {
+      L.x_ticks = NiceTicks(x0, x1, nx, &xstep);
+      ex = AxisExponent(x0, x1);
+    }
   };
   // Same metres per pixel on both axes: widen whichever range is too narrow.
   auto equalize = [&]() {
@@ -400,21 +506,21 @@ PlotLayout DrawPlot(ImDrawList* dl, ImVec2 min, ImVec2 max, const PlotData& data
   // Grid and ticks as 1-px rectangles on whole pixels (sharp on screen and in PNGs).
   auto px_col = [&](double v) { return std::floor(X(v)); };
   auto px_row = [&](double v) { return std::floor(Y(v)); };
-  for (double t : L.x_ticks)
+  for (double t : heat ? std::vector<double>{} : L.x_ticks)
     dl->AddRectFilled(ImVec2(px_col(t), a.y), ImVec2(px_col(t) + 1, b.y), st.grid_color);
-  for (double t : L.y_ticks)
+  for (double t : heat ? std::vector<double>{} : L.y_ticks)
     dl->AddRectFilled(ImVec2(a.x, px_row(t)), ImVec2(b.x, px_row(t) + 1), st.grid_color);
   for (double t : L.x_ticks) {
     const float x = X(t);
     dl->AddRectFilled(ImVec2(px_col(t), b.y - 5), ImVec2(px_col(t) + 1, b.y), st.axis_color);
-    const std::string s = FormatTick(t, xstep, ex);
+    const std::string s = x_text(t);
     const ImVec2 ts = TextSize(tick_font, s);
     Text(dl, tick_font, ImVec2(x - ts.x / 2, b.y + 5), st.text_color, s);
   }
   for (double t : L.y_ticks) {
     const float y = Y(t);
     dl->AddRectFilled(ImVec2(a.x, px_row(t)), ImVec2(a.x + 5, px_row(t) + 1), st.axis_color);
-    const std::string s = FormatTick(t, ystep, ey);
+    const std::string s = y_text(t);
     const ImVec2 ts = TextSize(tick_font, s);
     Text(dl, tick_font, ImVec2(a.x - 6 - ts.x, y - ts.y / 2), st.text_color, s);
   }
@@ -435,6 +541,32 @@ PlotLayout DrawPlot(ImDrawList* dl, ImVec2 min, ImVec2 max, const PlotData& data
 
   // ---- data ----
   dl->PushClipRect(a, b, true);
+  if (heat) {
+    const PlotHeatmap& h = data.heatmap;
+    for (int r = 0; r < h.rows; ++r)
+      for (int c = 0; c < h.columns; ++c) {
+        const std::size_t k = static_cast<std::size_t>(r) * h.columns + c;
+        const double v = k < h.values.size() ? h.values[k] : kNaN;
+        const ImVec2 lo(std::round(X(c - 0.5)), std::round(Y(r + 0.5)));
+        const ImVec2 hi(std::round(X(c + 0.5)), std::round(Y(r - 0.5)));
+        const ImU32 col = HeatColor(v, heat_lo, heat_hi);
+        dl->AddRectFilled(lo, hi, col);
+        // The value in the cell when it fits, dark on light colours and light on dark ones.
+        const std::string txt = std::isfinite(v) ? sim::Sprintf("%.3g", v) : "no data";
+        const ImVec2 ts = TextSize(tick_font, txt);
+        if (ts.x + 6 <= hi.x - lo.x && ts.y + 4 <= hi.y - lo.y) {
+          const ImVec4 f = ImGui::ColorConvertU32ToFloat4(col);
+          const bool light = 0.299f * f.x + 0.587f * f.y + 0.114f * f.z > 0.55f;
+          Text(dl, tick_font,
+               ImVec2(0.5f * (lo.x + hi.x) - ts.x / 2, 0.5f * (lo.y + hi.y) - ts.y / 2),
+               light ? IM_COL32(20, 20, 20, 255) : IM_COL32(255, 255, 255, 255), txt);
+        }
+      }
+  }
+  for (const auto& s : data.series)
+    if (!s.band_lo.empty())
+      DrawBand(dl, s, ToImColor(s.color.WithAlpha(0.22f)),
+               [&](double x, double y) { return ImVec2(X(x), Y(y)); });
   for (double r : data.reference_lines)
     DashedLine(dl, ImVec2(a.x, Y(r)), ImVec2(b.x, Y(r)), IM_COL32(110, 110, 110, 255), 1.2f, 6, 4);
   if (!data.error.empty()) {
@@ -465,6 +597,38 @@ PlotLayout DrawPlot(ImDrawList* dl, ImVec2 min, ImVec2 max, const PlotData& data
   // The frame: 1-px lines on the pixel column/row just outside the data area on the left and
   // top, and on the last column/row of it on the right and bottom (ImGui insets by 0.5 px).
   dl->AddRect(ImVec2(a.x - 1, a.y - 1), ImVec2(b.x + 1, b.y + 1), st.axis_color, 0, 0, 1.0f);
+
+  // ---- colour bar of a heatmap: the map from bottom (min) to top (max), ticks on its right ----
+  if (heat && !cticks.empty()) {
+    const float x0b = b.x + 12, x1b = x0b + 16;
+    const int steps = 64;
+    for (int k = 0; k < steps; ++k) {
+      const float ya = b.y - (b.y - a.y) * k / steps, yb = b.y - (b.y - a.y) * (k + 1) / steps;
+      dl->AddRectFilledMultiColor(
+          ImVec2(x0b, yb), ImVec2(x1b, ya), ToImColor(Viridis((k + 1.0) / steps)),
+          ToImColor(Viridis((k + 1.0) / steps)), ToImColor(Viridis(k / double(steps))),
+          ToImColor(Viridis(k / double(steps))));
+    }
+    dl->AddRect(ImVec2(x0b - 1, a.y - 1), ImVec2(x1b + 1, b.y + 1), st.axis_color, 0, 0, 1.0f);
+    auto cy = [&](double v) {
+      const double f = heat_hi > heat_lo ? (v - heat_lo) / (heat_hi - heat_lo) : 0.5;
+      return static_cast<float>(b.y - f * (b.y - a.y));
+    };
+    float wmax = 0;
+    for (double t : cticks) {
+      const float y = std::floor(cy(t));
+      dl->AddRectFilled(ImVec2(x1b, y), ImVec2(x1b + 4, y + 1), st.axis_color);
+      const std::string s = FormatTick(t, cstep, ce);
+      const ImVec2 ts = TextSize(tick_font, s);
+      wmax = std::max(wmax, ts.x);
+      Text(dl, tick_font, ImVec2(x1b + 6, y - ts.y / 2), st.text_color, s);
+    }
+    if (ce != 0) Text(dl, tick_font, ImVec2(x0b, a.y - tick_h - 3), st.text_color, PowerLabel(ce));
+    if (!data.heatmap.value_label.empty())
+      TextVertical(dl, label_font,
+                   ImVec2(x1b + 6 + wmax + 8 + label_font->FontSize / 2, 0.5f * (a.y + b.y)),
+                   st.text_color, data.heatmap.value_label);
+  }
 
   // ---- legend ----
   if (!legend_items.empty()) {

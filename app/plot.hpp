@@ -20,6 +20,18 @@ struct PlotSeries {
   sim::Color color;
   bool dashed = false;
   bool markers_only = false;
+  /// A shaded band under the line from band_lo to band_hi at each x (e.g. mean ± 1σ over the
+  /// seeds of a sweep); empty: none.
+  std::vector<double> band_lo, band_hi;
+};
+
+/// A heatmap (a metric over two swept keys): cell (column c, row r) is drawn centred on x = c,
+/// y = r with a colour from the viridis map, and a colour bar is drawn right of the axes.
+struct PlotHeatmap {
+  int columns = 0, rows = 0;
+  std::vector<double> values;  ///< row-major, row 0 at the bottom; NaN: no data (grey)
+  std::string value_label;     ///< the colour bar's label
+  bool empty() const { return columns <= 0 || rows <= 0; }
 };
 
 /// What to draw: a sim::FigureSpec resolved against recorded data (see figure_data.hpp).
@@ -30,6 +42,10 @@ struct PlotData {
   bool equal_aspect = false;
   double marker_x = std::numeric_limits<double>::quiet_NaN();
   bool x_is_time = false;  ///< every series is plotted against "t" (a time cursor makes sense)
+  /// Categorical axes: label k is written at x = k (y = k); no numeric ticks then.
+  std::vector<std::string> x_tick_labels, y_tick_labels;
+  PlotHeatmap heatmap;     ///< drawn beneath the series when not empty
+  double x_margin = 0.0;   ///< room added left and right, as a fraction of the x range
   std::string error;       ///< shown instead of data when the figure could not be resolved
 };
 
@@ -63,6 +79,9 @@ std::string FormatTick(double value, double step, int exponent);
 PlotLayout DrawPlot(ImDrawList* dl, ImVec2 min, ImVec2 max, const PlotData& data,
                     const PlotStyle& style,
                     double cursor_x = std::numeric_limits<double>::quiet_NaN());
+
+/// The viridis colour map at f in [0, 1] (clamped).
+sim::Color Viridis(double f);
 
 /// Value of a series at x by linear interpolation (x ascending); NaN outside or when empty.
 double SampleSeries(const PlotSeries& s, double x);

@@ -39,6 +39,19 @@ cp "$TMP/insp_plots/mf_s.png" "$OUT/inspection_mf_s.png"
 run velocity_constant --out "$TMP/vel" --snapshot "$OUT/velocity_world.png" --plots "$TMP/vel_plots"
 cp "$TMP/vel_plots/speed_R_fused.png" "$OUT/velocity_speed_fused.png"
 cp "$TMP/vel_plots/speed_R_odo.png" "$OUT/velocity_speed_odo.png"
+# Sweeps and tuning: R2's bearing error over k_phi (log range) x estimator, mean of 5 seeds (a
+# heatmap); the AGV's RMS cross-track error against the cross-track kp with a ±1σ band over 5
+# seeds; the convergence of tuning the cross-track PID.
+env -u DISPLAY "$BIN" sweep formation_traj2_ukf --vary robots.R2.follow.k_phi=log:0.01:1:9 \
+  --vary robots.R2.follow.estimator=all --seeds 1..5 --metric links.R1-R2.max_abs_error_after_settle.phi \
+  --out "$TMP/sweep2" -q
+cp "$TMP/sweep2/plot_links.R1-R2.max_abs_error_after_settle.phi.png" "$OUT/sweep_heatmap_traj2_kphi.png"
+env -u DISPLAY "$BIN" sweep agv_fused --vary control.cross.kp=0.25:4:16 --seeds 1..5 \
+  --metric cross_track.rms_m --out "$TMP/sweep1" -q
+cp "$TMP/sweep1/plot_cross_track.rms_m.png" "$OUT/sweep_agv_cross_kp.png"
+env -u DISPLAY "$BIN" tune agv_fused --param control.cross.kp --param control.cross.ki \
+  --param control.cross.kd --metric cross_track.rms_m --seeds 1..5 --budget 80 --out "$TMP/tune" -q
+cp "$TMP/tune/convergence.png" "$OUT/tune_agv_convergence.png"
 # The GUI itself under Xvfb, 7 robots, every plot open, a gain changed live at frame 60.
 if command -v xvfb-run >/dev/null; then
   xvfb-run -a -s "-screen 0 1600x900x24" "$BIN" gui formation_cascade7 --size 1600x900 \

@@ -4,7 +4,9 @@ set -euo pipefail
 PKGS=(build-essential cmake pkg-config libbox2d-dev libeigen3-dev libimgui-dev libglfw3-dev libosmesa6-dev
       libstb-dev libyaml-cpp-dev libcli11-dev libfuzzylite-dev libgtest-dev libgmock-dev libbenchmark-dev
       xvfb xauth ffmpeg fonts-dejavu-core zlib1g-dev
-      clang libclang-rt-14-dev)  # clang: the sanitizer build and the libFuzzer harnesses
+      clang libclang-rt-14-dev  # clang: the sanitizer build and the libFuzzer harnesses
+      libnlopt-dev              # formsim tune: BOBYQA, Nelder-Mead, COBYLA
+      parallel slurm-wlm munge) # the sweep's GNU parallel and single-node Slurm tests
 missing=()
 for p in "${PKGS[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
 if [ ${#missing[@]} -gt 0 ]; then

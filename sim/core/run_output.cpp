@@ -25,7 +25,7 @@ void PrepareOutputDir(const std::string& dir) {
   fs::remove(probe, ec);
 }
 
-void WriteFileAtomic(const std::string& path, const std::string& text) {
+void WriteFileAtomic(const std::string& path, const std::string& text, bool sync) {
   const std::string tmp = path + ".tmp";
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) throw std::runtime_error("cannot write '" + path + "': " + std::strerror(errno));
@@ -42,7 +42,7 @@ void WriteFileAtomic(const std::string& path, const std::string& text) {
     }
     done += static_cast<std::size_t>(n);
   }
-  if (error.empty() && ::fsync(fd) != 0) error = std::strerror(errno);
+  if (sync && error.empty() && ::fsync(fd) != 0) error = std::strerror(errno);
   if (::close(fd) != 0 && error.empty()) error = std::strerror(errno);
   if (!error.empty()) {
     std::remove(tmp.c_str());
@@ -53,6 +53,15 @@ void WriteFileAtomic(const std::string& path, const std::string& text) {
     std::remove(tmp.c_str());
     throw std::runtime_error("cannot move '" + tmp + "' to '" + path + "': " + error);
   }
+}
+
+void SyncFileSystem(const std::string& dir) {
+  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) throw std::runtime_error("cannot open '" + dir + "': " + std::strerror(errno));
+  const int rc = ::syncfs(fd);
+  const int err = errno;
+  ::close(fd);
+  if (rc != 0) throw std::runtime_error("cannot sync '" + dir + "' to disk: " + std::strerror(err));
 }
 
 std::string CsvPath(const std::string& dir) { return (fs::path(dir) / "timeseries.csv").string(); }

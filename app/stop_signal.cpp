@@ -1,0 +1,33 @@
+#include "app/stop_signal.hpp"
+
+#include <atomic>
+#include <csignal>
+
+namespace formsim::app {
+namespace {
+
+std::atomic<int> g_signal{0};
+extern "C" void OnStopSignal(int sig) {
+  g_signal = sig;
+}
+
+}  // namespace
+
+void InstallStopSignals() {
+  struct sigaction sa = {};
+  sa.sa_handler = OnStopSignal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+  std::signal(SIGPIPE, SIG_IGN);
+}
+
+int StopSignal() {
+  return g_signal.load();
+}
+
+std::string StopSignalName(int sig) {
+  return sig == SIGINT ? "SIGINT (Ctrl-C)" : "SIGTERM";
+}
+
+}  // namespace formsim::app

@@ -1,0 +1,60 @@
+#pragma once
+/// \file The study commands: `formsim sweep` (every combination of varied tunables for every
+/// seed, on all cores, resumable, in shards or as one job line per run), `formsim sweep
+/// collect` (merges shards into the tables a one-process sweep writes) and `formsim tune`
+/// (derivative-free optimisation of tunables for a metric averaged over seeds).
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+namespace formsim::app {
+
+class StudyCommands {
+ public:
+  /// Adds `sweep` (with `sweep collect`) and `tune` to `app`.
+  explicit StudyCommands(CLI::App& app);
+  /// True when one of the commands was given on the command line.
+  bool parsed() const;
+  /// Runs the command given. Returns the exit code (0, 2 bad input or failed writes, 128 +
+  /// signal when interrupted). Throws on bad input (the caller prints it and exits 2).
+  int Run();
+
+ private:
+  int Sweep();
+  int Collect();
+  int Tune();
+
+  CLI::App* sweep_ = nullptr;
+  CLI::App* collect_ = nullptr;
+  CLI::App* tune_ = nullptr;
+
+  // sweep
+  std::string scenario_;
+  std::vector<std::string> vary_, sets_;
+  std::string seeds_;
+  std::string sample_seed_ = "1";
+  int jobs_ = 0;  ///< 0: every hardware thread
+  std::string out_;
+  std::string metric_;
+  std::string shard_;
+  bool resume_ = false;
+  bool print_jobs_ = false;
+  long long run_ = -1;  ///< --run I: only run I (a job line)
+  bool quiet_ = false;
+  bool no_figures_ = false;
+  // collect
+  std::vector<std::string> collect_dirs_;
+  std::string collect_out_, collect_metric_;
+  bool collect_quiet_ = false;
+  // tune
+  std::string tune_scenario_;
+  std::vector<std::string> params_, tune_sets_;
+  std::string tune_metric_, tune_seeds_, tune_out_;
+  std::string algorithm_ = "bobyqa";
+  int budget_ = 60;
+  int tune_jobs_ = 0;
+  bool tune_quiet_ = false;
+};
+
+}  // namespace formsim::app

@@ -1,0 +1,46 @@
+#pragma once
+/// \file Running a sweep in-process: each run is the scenario's text (read once) parsed with the
+/// run's overrides ({--set..., key=value..., seed}) through the one load path, built, and
+/// stepped to its end exactly as `formsim run` steps it; its metrics are Metrics::Scalars() of
+/// Results(). Runs go to a TaskPool; a run's result depends on its overrides alone, so the
+/// records are the same with any number of threads and in any order of completion.
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "sim/core/scenario.hpp"
+#include "sim/core/sweep_store.hpp"
+#include "sim/core/task_pool.hpp"
+
+namespace formsim::sim {
+
+/// Runs one parameterisation of `source` to its end and returns its record (run index 0):
+/// status "completed", "numerical_fault" (message: the fault) or "error" (a scenario error or
+/// an exception while building or stepping; message: what it said). When `stop()` turns true
+/// mid-run the run is abandoned and std::nullopt returned.
+std::optional<SweepRecord> RunScenarioOnce(const ScenarioSource& source,
+                                           const std::vector<Override>& overrides,
+                                           const std::function<bool()>& stop = {});
+
+/// Run `run` of `def` (RunScenarioOnce with the run's overrides).
+std::optional<SweepRecord> RunSweepRun(const ScenarioSource& source, const SweepDefinition& def,
+                                       std::size_t run, const std::function<bool()>& stop = {});
+
+/// Where a sweep stands.
+struct SweepProgress {
+  std::size_t total = 0;   ///< runs asked for
+  std::size_t done = 0;    ///< recorded so far (failed ones included)
+  std::size_t failed = 0;  ///< recorded with status other than completed
+};
+
+/// Runs `runs` of `def` on `pool`. Each finished run is handed to `on_record` at once (calls
+/// are serialised; completion order varies, the records do not). Runs abandoned because
+/// `stop()` turned true are not handed over. Returns the final progress.
+SweepProgress RunSweep(
+    const ScenarioSource& source, const SweepDefinition& def, const std::vector<std::size_t>& runs,
+    TaskPool& pool, const std::function<void(const SweepRecord&, const SweepProgress&)>& on_record,
+    const std::function<bool()>& stop = {});
+
+}  // namespace formsim::sim

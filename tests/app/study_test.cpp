@@ -1,0 +1,506 @@
+// formsim sweep, sweep collect and tune end to end (the built binary on shipped scenarios,
+// shortened), and their figures checked on pixels.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+
+#include "app/offscreen_renderer.hpp"
+#include "app/study_figures.hpp"
+#include "sim/core/number_format.hpp"
+#include "sim/core/sweep.hpp"
+#include "tests/app/test_util.hpp"
+
+namespace formsim::app {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::Binary;
+using testing::ReadText;
+using testing::RunShell;
+using testing::TempDir;
+
+// A short sweep of the demo scenario: 3 x 2 points, 2 seeds.
+const std::string kSweep =
+    " sweep formation_traj2_ukf --set duration=2 --vary robots.R2.follow.k_phi=0.05,0.1,0.2"
+    " --vary robots.R2.follow.estimator=raw,ukf --seeds 1..2"
+    " --metric links.R1-R2.max_abs_error_after_settle.phi";
+const char* kRanking = "ranking_links.R1-R2.max_abs_error_after_settle.phi.txt";
+const char* kPlot = "plot_links.R1-R2.max_abs_error_after_settle.phi.png";
+
+int Formsim(const std::string& args, const std::string& log) {
+  return RunShell(Binary() + " " + args, log);
+}
+
+void ExpectSameTables(const std::string& a, const std::string& b) {
+  for (const char* f : {"runs.csv", "aggregate.csv", kRanking}) {
+    const std::string ta = ReadText(a + "/" + f), tb = ReadText(b + "/" + f);
+    EXPECT_FALSE(ta.empty()) << a << "/" << f;
+    EXPECT_EQ(ta, tb) << f << " differs between " << a << " and " << b;
+  }
+}
+
+std::size_t Lines(const std::string& text) {
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+std::vector<std::string> SplitCsvLine(const std::string& line) {
+  std::vector<std::string> out(1);
+  for (char c : line) {
+    if (c == ',')
+      out.emplace_back();
+    else
+      out.back() += c;
+  }
+  return out;
+}
+
+// summary.json's `results` flattened to dotted paths -> number text (a parser just big enough
+// for the summaries formsim writes).
+void Flatten(const std::string& j, std::size_t& i, const std::string& path,
+             std::map<std::string, std::string>& out) {
+  auto ws = [&] {
+    while (i < j.size() && std::isspace(static_cast<unsigned char>(j[i]))) ++i;
+  };
+  auto str = [&] {
+    std::string s;
+    ++i;
+    while (j[i] != '"') {
+      if (j[i] == '\\') ++i;
+      s += j[i++];
+    }
+    ++i;
+    return s;
+  };
+  ws();
+  if (j[i] == '{') {
+    ++i;
+    for (;;) {
+      ws();
+      if (j[i] == '}') {
+        ++i;
+        return;
+      }
+      const std::string k = str();
+      ws();
+      ++i;  // ':'
+      Flatten(j, i, path.empty() ? k : path + "." + k, out);
+      ws();
+      if (j[i] == ',') ++i;
+    }
+  }
+  if (j[i] == '[') {  // not in results; skipped
+    int depth = 0;
+    do {
+      if (j[i] == '[') ++depth;
+      if (j[i] == ']') --depth;
+      ++i;
+    } while (depth > 0);
+    return;
+  }
+  if (j[i] == '"') {
+    str();
+    return;
+  }
+  const std::size_t start = i;
+  while (i < j.size() && j[i] != ',' && j[i] != '}' &&
+         !std::isspace(static_cast<unsigned char>(j[i])))
+    ++i;
+  out[path] = j.substr(start, i - start);
+}
+
+TEST(SweepCli, JobsOneAndTwoWriteTheSameBytesAndEveryRunIsFormsimRun) {
+  const std::string a = TempDir("sweep_j1"), b = TempDir("sweep_j2");
+  ASSERT_EQ(Formsim(kSweep + " --jobs 1 -q --out " + a, a + ".log"), 0) << ReadText(a + ".log");
+  ASSERT_EQ(Formsim(kSweep + " --jobs 2 -q --out " + b, b + ".log"), 0) << ReadText(b + ".log");
+  ExpectSameTables(a, b);
+  // -q prints nothing of its own (a sanitizer build may add its leak-suppression statistics).
+  EXPECT_EQ(ReadText(a + ".log").find("sweep of"), std::string::npos);
+  EXPECT_EQ(ReadText(a + ".log").find("wrote"), std::string::npos);
+  EXPECT_GT(fs::file_size(a + "/" + kPlot), 10000u);
+  const std::string runs = ReadText(a + "/runs.csv");
+  EXPECT_EQ(Lines(runs), 13u);
+  EXPECT_EQ(Lines(ReadText(a + "/aggregate.csv")), 7u);
+
+  // Run 7 (k_phi 0.1, ukf, seed 2) is exactly `formsim run` with those values.
+  const std::string r = TempDir("sweep_run7");
+  ASSERT_EQ(Formsim("run formation_traj2_ukf -q --set duration=2 --set robots.R2.follow.k_phi=0.1 "
+                    "--set robots.R2.follow.estimator=ukf --seed 2 --out " +
+                        r,
+                    r + ".log"),
+            0);
+  const std::string json = ReadText(r + "/summary.json");
+  std::size_t at = json.find("\"results\"");
+  ASSERT_NE(at, std::string::npos);
+  at = json.find(':', at) + 1;
+  std::map<std::string, std::string> results;
+  Flatten(json, at, "", results);
+  std::vector<std::string> lines;
+  std::stringstream ss(runs);
+  for (std::string l; std::getline(ss, l);) lines.push_back(l);
+  const std::vector<std::string> head = SplitCsvLine(lines[0]), row = SplitCsvLine(lines[8]);
+  ASSERT_EQ(row[0], "7");
+  EXPECT_EQ(row[1] + " " + row[2] + " " + row[3], "0.1 ukf 2");
+  int compared = 0;
+  for (std::size_t c = 4; c + 2 < head.size(); ++c) {
+    const auto it = results.find(head[c]);
+    ASSERT_NE(it, results.end()) << head[c];
+    // summary.json writes true/false for flags, the tables 1/0.
+    const std::string want = it->second == "true" ? "1" : it->second == "false" ? "0" : it->second;
+    EXPECT_EQ(row[c], want) << head[c];
+    ++compared;
+  }
+  EXPECT_GT(compared, 40);
+  EXPECT_EQ(row[head.size() - 2], "completed");
+}
+
+TEST(SweepCli, ShardsCollectToTheSameBytesAndMissingRunsAreNamed) {
+  const std::string whole = TempDir("sweep_whole"), s1 = TempDir("sweep_s1"),
+                    s2 = TempDir("sweep_s2"), merged = TempDir("sweep_merged");
+  ASSERT_EQ(Formsim(kSweep + " -q --out " + whole, whole + ".log"), 0);
+  ASSERT_EQ(Formsim(kSweep + " -q --shard 1/2 --out " + s1, s1 + ".log"), 0);
+  EXPECT_EQ(Formsim("sweep collect " + s1 + " --out " + merged, merged + ".log"), 2);
+  EXPECT_NE(
+      ReadText(merged + ".log").find("the folders hold 6 of 12 runs (missing: 1, 3, 5, 7, 9, 11)"),
+      std::string::npos)
+      << ReadText(merged + ".log");
+  ASSERT_EQ(Formsim(kSweep + " -q --shard 2/2 --out " + s2, s2 + ".log"), 0);
+  ASSERT_EQ(Formsim("sweep collect " + s1 + " " + s2 + " --out " + merged +
+                        " --metric links.R1-R2.max_abs_error_after_settle.phi -q",
+                    merged + ".log"),
+            0)
+      << ReadText(merged + ".log");
+  ExpectSameTables(whole, merged);
+  // Shards of another sweep are refused.
+  const std::string other = TempDir("sweep_other");
+  ASSERT_EQ(Formsim("sweep formation_traj2_ukf --set duration=1 -q --out " + other, other + ".log"),
+            0);
+  EXPECT_EQ(Formsim("sweep collect " + s1 + " " + other + " --out " + TempDir("sweep_bad"),
+                    other + ".log2"),
+            2);
+  EXPECT_NE(ReadText(other + ".log2").find("holds another sweep"), std::string::npos);
+}
+
+TEST(SweepCli, ResumeRunsOnlyWhatIsMissingAndJobLinesRecordOnce) {
+  const std::string whole = TempDir("sweep_ref"), d = TempDir("sweep_resume");
+  ASSERT_EQ(Formsim(kSweep + " -q --out " + whole, whole + ".log"), 0);
+  ASSERT_EQ(Formsim(kSweep + " -q --out " + d, d + ".log"), 0);
+  for (const char* r : {"000000.run", "000005.run"}) fs::remove(d + "/runs/" + r);
+  // What a power cut can leave of a record written but not yet synced: it runs again.
+  const std::string cut = ReadText(d + "/runs/000011.run");
+  std::ofstream(d + "/runs/000011.run", std::ios::binary | std::ios::trunc)
+      << cut.substr(0, cut.size() / 2);
+  fs::remove(d + "/runs.csv");
+  EXPECT_EQ(Formsim(kSweep + " --out " + d, d + ".log"), 2);
+  EXPECT_NE(ReadText(d + ".log").find("holds a sweep already (10 runs recorded); add --resume"),
+            std::string::npos)
+      << ReadText(d + ".log");
+  EXPECT_EQ(Formsim("sweep formation_traj2_ukf --vary robots.R2.follow.k_l=0.1,0.2 --out " + d,
+                    d + ".log"),
+            2);
+  EXPECT_NE(ReadText(d + ".log").find("holds another sweep: the varied keys differ"),
+            std::string::npos);
+  ASSERT_EQ(Formsim(kSweep + " --resume --out " + d, d + ".log"), 0);
+  EXPECT_NE(ReadText(d + ".log").find("12 runs, 9 recorded already"), std::string::npos)
+      << ReadText(d + ".log");
+  EXPECT_NE(ReadText(d + ".log").find("000011.run was cut short (a power cut?); it runs again"),
+            std::string::npos);
+  EXPECT_NE(ReadText(d + ".log").find("\n3 runs in "), std::string::npos) << ReadText(d + ".log");
+  ExpectSameTables(whole, d);
+
+  // Job lines: one per run not yet recorded; each records its run once.
+  const std::string j = TempDir("sweep_jobs");
+  ASSERT_EQ(Formsim(kSweep + " --print-jobs --out " + j, j + ".txt"), 0);
+  const std::string jobs = ReadText(j + ".txt");
+  ASSERT_EQ(Lines(jobs), 12u);
+  EXPECT_EQ(jobs.find(Binary() + " sweep " +
+                      fs::canonical(testing::Scenario("formation_traj2_ukf")).string()),
+            0u)
+      << jobs;
+  const std::string first = jobs.substr(0, jobs.find('\n'));
+  ASSERT_EQ(RunShell(first, j + ".log"), 0) << ReadText(j + ".log");
+  ASSERT_EQ(RunShell(first + " --quiet=false", j + ".log"), 0);
+  EXPECT_NE(ReadText(j + ".log").find("run 0 is recorded already"), std::string::npos)
+      << ReadText(j + ".log");
+  ASSERT_EQ(Formsim(kSweep + " --print-jobs --out " + j, j + ".txt"), 0);
+  EXPECT_EQ(Lines(ReadText(j + ".txt")), 11u);
+}
+
+TEST(SweepCli, InterruptedSweepsKeepEveryFinishedRunAndResume) {
+  const std::string ref = TempDir("sweep_int_ref"), d = TempDir("sweep_int");
+  const std::string big =
+      " sweep formation_traj2_ukf --set duration=3 --vary robots.R2.follow.k_phi=0.02:0.4:12 "
+      "--seeds 1..4 -j2 --no-figures";
+  ASSERT_EQ(Formsim(big + " -q --out " + ref, ref + ".log"), 0);
+  // SIGINT while it runs (or after it ended, on a fast machine: then there is nothing to resume).
+  const int rc = RunShell(
+      "(" + Binary() + big + " -q --out " + d + " & pid=$!; sleep 0.4; kill -INT $pid; wait $pid)",
+      d + ".log");
+  EXPECT_TRUE(rc == 130 || rc == 0) << rc << ReadText(d + ".log");
+  if (rc == 130) {
+    EXPECT_NE(ReadText(d + ".log").find("add --resume to finish it"), std::string::npos);
+  }
+  for (const auto& e : fs::directory_iterator(d + "/runs"))
+    EXPECT_EQ(e.path().extension(), ".run") << "no half-written record";
+  ASSERT_EQ(Formsim(big + " -q --resume --out " + d, d + ".log"), 0) << ReadText(d + ".log");
+  EXPECT_EQ(ReadText(ref + "/runs.csv"), ReadText(d + "/runs.csv"));
+  EXPECT_EQ(ReadText(ref + "/aggregate.csv"), ReadText(d + "/aggregate.csv"));
+}
+
+TEST(SweepCli, FailedRunsAreRecordedAndTheSweepGoesOn) {
+  // l2_des = 0.9 cannot close the triangle with l_des = 0.3 and R1-R2 at 0.3: a scenario error.
+  const std::string d = TempDir("sweep_fail");
+  ASSERT_EQ(Formsim("sweep formation_traj2_ukf --set duration=1 --vary "
+                    "robots.R3.follow.l2_des=0.3,0.9 -q --out " +
+                        d,
+                    d + ".log"),
+            0)
+      << ReadText(d + ".log");
+  const std::string runs = ReadText(d + "/runs.csv");
+  EXPECT_NE(runs.find("\n0,0.3,1,"), std::string::npos);
+  EXPECT_NE(runs.find(",completed,\n"), std::string::npos);
+  const std::size_t row = runs.find("\n1,0.9,1,");
+  ASSERT_NE(row, std::string::npos) << runs;
+  EXPECT_NE(runs.find(",error,", row), std::string::npos) << runs;
+  EXPECT_NE(runs.find("robots.R3.follow.l2_des=0.9", row), std::string::npos) << runs;
+  EXPECT_NE(ReadText(d + "/aggregate.csv").find("\n1,0.9,1,1,"), std::string::npos)
+      << "runs 1, failed 1";
+}
+
+TEST(SweepCli, ProgressBarOnATerminalOnly) {
+  const std::string d = TempDir("sweep_bar");
+  const std::string cmd =
+      Binary() + " sweep formation_traj2_ukf --set duration=1 --seeds 1..4 --no-figures --out ";
+  // `script` gives the command a terminal.
+  ASSERT_EQ(RunShell("script -qec '" + cmd + d + "/tty' /dev/null", d + "/tty.log"), 0);
+  EXPECT_NE(ReadText(d + "/tty.log").find("4/4 runs, 0 failed, 0:00 left"), std::string::npos)
+      << ReadText(d + "/tty.log");
+  ASSERT_EQ(RunShell(cmd + d + "/pipe", d + "/pipe.log"), 0);
+  EXPECT_EQ(ReadText(d + "/pipe.log").find('\r'), std::string::npos)
+      << "no bar when not a terminal";
+  ASSERT_EQ(RunShell("script -qec '" + cmd + d + "/quiet -q' /dev/null", d + "/quiet.log"), 0);
+  EXPECT_EQ(ReadText(d + "/quiet.log").find("runs,"), std::string::npos) << "no bar under -q";
+}
+
+TEST(SweepCli, BadInputNamesTheFlag) {
+  const std::string d = TempDir("sweep_bad_input");
+  EXPECT_EQ(Formsim("sweep formation_traj2_ukf --vary robots.R2.follow.k_l=-1,0.2 --out " + d,
+                    d + ".log"),
+            2);
+  EXPECT_NE(ReadText(d + ".log")
+                .find("--vary robots.R2.follow.k_l=-1,0.2: key 'robots.R2.follow.k_l': value '-1': "
+                      "must be > 0"),
+            std::string::npos)
+      << ReadText(d + ".log");
+  EXPECT_EQ(Formsim("sweep formation_traj2_ukf --seeds 5..1 --out " + d, d + ".log"), 2);
+  EXPECT_NE(ReadText(d + ".log").find("--seeds '5..1'"), std::string::npos);
+  EXPECT_EQ(Formsim("sweep formation_traj2_ukf --shard 3/2 --out " + d, d + ".log"), 2);
+  EXPECT_NE(ReadText(d + ".log").find("--shard '3/2'"), std::string::npos);
+  EXPECT_EQ(
+      Formsim("sweep formation_traj2_ukf --set duration=1 --metric links.R1-R2.nope -q --out " + d +
+                  "/m",
+              d + ".log"),
+      2);
+  EXPECT_NE(ReadText(d + ".log").find("--metric 'links.R1-R2.nope': no such metric"),
+            std::string::npos);
+  EXPECT_FALSE(ReadText(d + "/m/runs.csv").empty())
+      << "the tables are written before the metric is looked up";
+}
+
+double Number(const std::string& s) {
+  double v = NAN;
+  sim::ParseFiniteDouble(s, &v);
+  return v;
+}
+
+TEST(TuneCli, DeterministicAndBestYamlReproducesTheBestObjective) {
+  const std::string tune =
+      " tune formation_traj2_ukf --set duration=3 --param robots.R2.follow.k_l --param "
+      "robots.R2.follow.k_phi:0.02:0.5"
+      " --metric 'links.R1-R2.max_abs_error_after_settle.phi + "
+      "0.5*links.R1-R2.max_abs_error_after_settle.l'"
+      " --seeds 1..2 --budget 8 -q";
+  const std::string a = TempDir("tune_a"), b = TempDir("tune_b");
+  ASSERT_EQ(Formsim(tune + " -j1 --out " + a, a + ".log"), 0) << ReadText(a + ".log");
+  ASSERT_EQ(Formsim(tune + " -j2 --algorithm bobyqa --out " + b, b + ".log"), 0)
+      << ReadText(b + ".log");
+  for (const char* f : {"history.csv", "best.yaml"})
+    EXPECT_EQ(ReadText(a + "/" + f), ReadText(b + "/" + f)) << f;
+  EXPECT_GT(fs::file_size(a + "/convergence.png"), 5000u);
+  const std::string history = ReadText(a + "/history.csv");
+  EXPECT_EQ(Lines(history), 9u);
+  EXPECT_EQ(history.substr(0, history.find('\n')),
+            "eval,robots.R2.follow.k_l,robots.R2.follow.k_phi,objective,mean.links.R1-R2.max_abs_"
+            "error_after_settle.phi,"
+            "mean.links.R1-R2.max_abs_error_after_settle.l,failed_runs,best_so_far,message");
+  // The first evaluation is the scenario's own gains.
+  EXPECT_NE(history.find("\n1,0.15,0.08,"), std::string::npos) << history;
+  // The best objective: the last best_so_far.
+  std::stringstream ss(history);
+  std::string line, last;
+  while (std::getline(ss, line)) last = line;
+  const std::vector<std::string> f = SplitCsvLine(last);
+  const double best = Number(f[7]);
+  ASSERT_TRUE(std::isfinite(best));
+
+  // best.yaml keeps the file's comments, loads, and gives that objective again on the same seeds.
+  const std::string yaml = ReadText(a + "/best.yaml");
+  EXPECT_EQ(yaml.rfind("# formsim tune: ", 0), 0u);
+  EXPECT_NE(yaml.find("# Paper 000 (Han, Sun, Zhi 2015)"), std::string::npos);
+  const std::string check = TempDir("tune_check");
+  ASSERT_EQ(Formsim("sweep " + a + "/best.yaml --seeds 1..2 -q --no-figures --out " + check,
+                    check + ".log"),
+            0)
+      << ReadText(check + ".log");
+  std::stringstream agg(ReadText(check + "/aggregate.csv"));
+  std::string h, row;
+  std::getline(agg, h);
+  std::getline(agg, row);
+  const std::vector<std::string> head = SplitCsvLine(h), vals = SplitCsvLine(row);
+  double phi = NAN, l = NAN;
+  for (std::size_t c = 0; c < head.size(); ++c) {
+    if (head[c] == "links.R1-R2.max_abs_error_after_settle.phi.mean") phi = Number(vals[c]);
+    if (head[c] == "links.R1-R2.max_abs_error_after_settle.l.mean") l = Number(vals[c]);
+  }
+  EXPECT_EQ(1.0 * phi + 0.5 * l, best) << "best.yaml reproduces the best objective exactly";
+}
+
+TEST(TuneCli, BadInputNamesTheFlag) {
+  const std::string d = TempDir("tune_bad");
+  EXPECT_EQ(
+      Formsim("tune formation_traj2_ukf --param robots.R2.follow.estimator --metric x --out " + d,
+              d + ".log"),
+      2);
+  EXPECT_NE(ReadText(d + ".log").find("real-valued"), std::string::npos) << ReadText(d + ".log");
+  EXPECT_EQ(
+      Formsim("tune formation_traj2_ukf --param robots.R2.follow.k_l --metric 'a +' --out " + d,
+              d + ".log"),
+      2);
+  EXPECT_NE(ReadText(d + ".log").find("--metric 'a +'"), std::string::npos);
+  EXPECT_EQ(Formsim("tune formation_traj2_ukf --set duration=1 --param robots.R2.follow.k_l "
+                    "--metric links.nope --budget 2 --out " +
+                        d,
+                    d + ".log"),
+            2);
+  EXPECT_NE(ReadText(d + ".log").find("no metric 'links.nope'"), std::string::npos)
+      << ReadText(d + ".log");
+  EXPECT_EQ(Formsim("tune formation_traj2_ukf --param robots.R2.follow.k_l --metric x --algorithm "
+                    "newton --out " +
+                        d,
+                    d + ".log"),
+            2);
+  EXPECT_NE(ReadText(d + ".log").find("--algorithm 'newton'"), std::string::npos);
+}
+
+// --- figures, on pixels -------------------------------------------------------------------
+
+struct Rgb {
+  int r, g, b;
+};
+Rgb At(const std::vector<std::uint8_t>& px, int w, float x, float y) {
+  const std::size_t i = (static_cast<std::size_t>(y) * w + static_cast<std::size_t>(x)) * 4;
+  return {px[i], px[i + 1], px[i + 2]};
+}
+double Distance(Rgb a, sim::Color c) {
+  const double dr = a.r - 255.0 * c.r, dg = a.g - 255.0 * c.g, db = a.b - 255.0 * c.b;
+  return std::sqrt(dr * dr + dg * dg + db * db);
+}
+
+// Records with metric m = a given function of the point, for figure tests.
+std::vector<sim::SweepRecord> FakeRecords(
+    const sim::SweepDefinition& d, const std::function<double(std::size_t, std::size_t)>& f) {
+  std::vector<sim::SweepRecord> out;
+  for (std::size_t r = 0; r < d.runs(); ++r) {
+    sim::SweepRecord rec;
+    rec.run = r;
+    rec.status = "completed";
+    rec.metrics = {{"m", f(d.PointOf(r), r % d.seeds.size())}};
+    out.push_back(rec);
+  }
+  return out;
+}
+
+TEST(SweepFigures, HeatmapCellsAndColourBarFollowTheMeans) {
+  const sim::ScenarioSource src =
+      sim::ScenarioSource::FromFile(testing::Scenario("formation_traj2_ukf"));
+  const sim::SweepDefinition d = sim::DefineSweep(
+      src, {}, {"robots.R2.follow.k_phi=log:0.01:1:4", "robots.R2.follow.estimator=truth,raw,ukf"},
+      {1, 2});
+  // Mean = point index (0 ... 11): bottom-left lowest, top-right highest.
+  const auto recs = FakeRecords(
+      d, [](std::size_t p, std::size_t s) { return static_cast<double>(p) + (s ? 0.5 : -0.5); });
+  const sim::SweepTables t = sim::BuildSweepTables(d, recs);
+  PlotData fig;
+  ASSERT_TRUE(SweepFigure(d, t, recs, 0, &fig));
+  ASSERT_EQ(fig.heatmap.columns, 4);
+  ASSERT_EQ(fig.heatmap.rows, 3);
+  EXPECT_EQ(fig.x_tick_labels, (std::vector<std::string>{"0.01", "0.04642", "0.2154", "1"}));
+  EXPECT_EQ(fig.y_tick_labels, (std::vector<std::string>{"truth", "raw", "ukf"}));
+  const int w = 800, h = 500;
+  OffscreenRenderer r(w, h);
+  const auto& px = r.RenderFigure(fig, w, h);
+  const PlotLayout& L = r.last_plot_layout();
+  auto sx = [&](double x) {
+    return L.area_min.x + (x - L.x0) / (L.x1 - L.x0) * (L.area_max.x - L.area_min.x);
+  };
+  auto sy = [&](double y) {
+    return L.area_max.y - (y - L.y0) / (L.y1 - L.y0) * (L.area_max.y - L.area_min.y);
+  };
+  for (int row = 0; row < 3; ++row)
+    for (int col = 0; col < 4; ++col) {
+      const double mean = col * 3 + row;  // point = k_phi index * 3 + estimator index
+      // A corner of the cell (the centre holds the value as text).
+      const Rgb c = At(px, w, static_cast<float>(sx(col - 0.4)), static_cast<float>(sy(row + 0.4)));
+      EXPECT_LT(Distance(c, Viridis(mean / 11.0)), 12.0) << "cell " << col << "," << row;
+    }
+  // The colour bar right of the axes: yellow at the top, dark violet at the bottom.
+  const float bar_x = L.area_max.x + 20;
+  EXPECT_LT(Distance(At(px, w, bar_x, L.area_min.y + 2), Viridis(1.0)), 25.0);
+  EXPECT_LT(Distance(At(px, w, bar_x, L.area_max.y - 2), Viridis(0.0)), 25.0);
+}
+
+TEST(SweepFigures, OneKeyGivesMeanBandAndSeeds) {
+  const sim::ScenarioSource src =
+      sim::ScenarioSource::FromFile(testing::Scenario("formation_traj2_ukf"));
+  const sim::SweepDefinition d =
+      sim::DefineSweep(src, {}, {"robots.R2.follow.k_l=0.4,0.1,0.2"}, {1, 2, 3});
+  const auto recs = FakeRecords(d, [](std::size_t p, std::size_t s) {
+    return 10.0 * static_cast<double>(p) + static_cast<double>(s);
+  });
+  const sim::SweepTables t = sim::BuildSweepTables(d, recs);
+  PlotData fig;
+  ASSERT_TRUE(SweepFigure(d, t, recs, 0, &fig));
+  ASSERT_EQ(fig.series.size(), 2u);
+  // Sorted by the key: 0.1 (point 1), 0.2 (point 2), 0.4 (point 0).
+  EXPECT_EQ(fig.series[0].x, (std::vector<double>{0.1, 0.2, 0.4}));
+  EXPECT_EQ(fig.series[0].y, (std::vector<double>{11, 21, 1}));
+  EXPECT_EQ(fig.series[0].band_hi[0], 12.0);  // mean + sample std (1)
+  EXPECT_EQ(fig.series[1].x.size(), 9u);
+  EXPECT_TRUE(fig.series[1].markers_only);
+  OffscreenRenderer r(800, 500);
+  const auto& px = r.RenderFigure(fig, 800, 500);
+  const PlotLayout& L = r.last_plot_layout();
+  // Inside the band, off the line and the grid: the series colour, faded.
+  const float x = static_cast<float>(L.area_min.x +
+                                     (0.13 - L.x0) / (L.x1 - L.x0) * (L.area_max.x - L.area_min.x));
+  const float y = static_cast<float>(L.area_max.y -
+                                     (14.3 - L.y0) / (L.y1 - L.y0) * (L.area_max.y - L.area_min.y));
+  const Rgb band = At(px, 800, x, y);
+  const sim::Color c = sim::PaletteColor(0);
+  const sim::Color faded{1 - 0.22f * (1 - c.r), 1 - 0.22f * (1 - c.g), 1 - 0.22f * (1 - c.b), 1};
+  EXPECT_LT(Distance(band, faded), 20.0) << band.r << "," << band.g << "," << band.b;
+  // Three keys: no figure (the ranking stands for it).
+  const sim::SweepDefinition d3 =
+      sim::DefineSweep(src, {},
+                       {"robots.R2.follow.k_l=0.1,0.2", "robots.R2.follow.k_phi=0.1,0.2",
+                        "robots.R3.follow.k_l=0.1,0.2"},
+                       {1});
+  const auto recs3 =
+      FakeRecords(d3, [](std::size_t p, std::size_t) { return static_cast<double>(p); });
+  EXPECT_FALSE(SweepFigure(d3, sim::BuildSweepTables(d3, recs3), recs3, 0, &fig));
+}
+
+}  // namespace
+}  // namespace formsim::app
