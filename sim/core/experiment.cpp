@@ -64,9 +64,10 @@ bool Experiment::CheckRobots() {
 }
 
 void Experiment::CheckRow() {
-  const std::size_t row = recorder_.rows() - 1;
-  for (std::size_t c = 0; c < recorder_.columns(); ++c) {
-    const double v = recorder_.At(row, static_cast<int>(c));
+  // The row just sampled (the bounded history may not keep it).
+  const std::vector<double>& row = recorder_.last_sample();
+  for (std::size_t c = 0; c < row.size(); ++c) {
+    const double v = row[c];
     if (std::isfinite(v) || IsNotSampled(v)) continue;
     // The column's first part names the robot ("R2.x_est") or the link ("R1-R2.phi_est").
     const std::string& name = recorder_.names()[c];

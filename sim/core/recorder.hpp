@@ -51,6 +51,8 @@ class Recorder {
   /// reached every second row is dropped and from then on only every 2nd (4th, ...) sampled
   /// row is kept, so memory stays bounded however long the run. 0: keep every row (default).
   void SetHistoryLimit(std::size_t max_rows);
+  /// The row sampled last, whether the history kept it or not (for checks on every row).
+  const std::vector<double>& last_sample() const { return scratch_; }
   /// Rows sampled since the start (kept in memory or not).
   std::size_t rows_sampled() const { return sampled_; }
   /// 1 while every sampled row is in memory; 2, 4, ... after decimation.

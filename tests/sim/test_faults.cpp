@@ -57,6 +57,15 @@ TEST(NumericalFault, ANonFiniteStateStopsBeforeTheSensorsSeeIt) {
   EXPECT_EQ(e->steps(), steps);
 }
 
+TEST(NumericalFault, IsFoundOnEveryRowEvenWhenTheHistoryDropsIt) {
+  auto e = LoadExperimentFromText(testkind::kScenario, "a.yaml",
+                                  {"fault=value", "fault_time=0.77", "duration=2"});
+  e->mutable_recorder().SetHistoryLimit(4);  // most rows are not kept in memory
+  while (!e->finished()) e->Step();
+  EXPECT_EQ(e->status(), "numerical_fault");
+  EXPECT_NEAR(e->time(), 0.77, 1e-9);
+}
+
 TEST(Interrupt, MarksTheRunAndKeepsItsResults) {
   auto e = LoadExperimentFromText(testkind::kScenario, "a.yaml");
   for (int i = 0; i < 10; ++i) e->Step();
