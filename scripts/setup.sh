@@ -4,6 +4,7 @@ set -euo pipefail
 PKGS=(build-essential cmake pkg-config libbox2d-dev libeigen3-dev libimgui-dev libglfw3-dev libosmesa6-dev
       libstb-dev libyaml-cpp-dev libcli11-dev libfuzzylite-dev libgtest-dev libgmock-dev libbenchmark-dev
       xvfb xauth ffmpeg fonts-dejavu-core zlib1g-dev
+      libcairo2-dev libfreetype-dev poppler-utils libxml2-utils  # vector figures; PDF and SVG checks in tests
       clang libclang-rt-14-dev)  # clang: the sanitizer build and the libFuzzer harnesses
 missing=()
 for p in "${PKGS[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
