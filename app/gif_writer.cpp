@@ -113,17 +113,7 @@ void GifWriter::Close() {
       << ShellQuote(partial);
   const int second = std::system(cmd.str().c_str());
   Cleanup();
-  std::error_code ec;
-  if (!ExitedOk(second)) {
-    fs::remove(partial, ec);
-    throw std::runtime_error("ffmpeg failed writing " + path_);
-  }
-  fs::rename(partial, path_, ec);
-  if (ec) {
-    const std::string why = ec.message();
-    fs::remove(partial, ec);
-    throw std::runtime_error("cannot move the GIF into place at " + path_ + ": " + why);
-  }
+  FinishPartial(second, partial, path_);
 }
 
 }  // namespace formsim::app

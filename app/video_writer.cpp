@@ -43,6 +43,20 @@ std::string PartialPath(const std::string& path) {
       .string();
 }
 
+void FinishPartial(int status, const std::string& partial, const std::string& path) {
+  std::error_code ec;
+  if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    fs::remove(partial, ec);
+    throw std::runtime_error("ffmpeg failed writing " + path);
+  }
+  fs::rename(partial, path, ec);
+  if (ec) {
+    const std::string why = ec.message();
+    fs::remove(partial, ec);
+    throw std::runtime_error("cannot move " + path + " into place: " + why);
+  }
+}
+
 std::string FindOnPath(const std::string& program) {
   const char* path = std::getenv("PATH");
   if (path == nullptr) return "";
@@ -106,17 +120,7 @@ void VideoWriter::Close() {
   if (pipe_ == nullptr) return;
   const int status = pclose(pipe_);
   pipe_ = nullptr;
-  std::error_code ec;
-  if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    fs::remove(partial_, ec);
-    throw std::runtime_error("ffmpeg failed writing " + path_);
-  }
-  fs::rename(partial_, path_, ec);
-  if (ec) {
-    const std::string why = ec.message();
-    fs::remove(partial_, ec);
-    throw std::runtime_error("cannot move the video into place at " + path_ + ": " + why);
-  }
+  FinishPartial(status, partial_, path_);
 }
 
 }  // namespace formsim::app

@@ -18,6 +18,11 @@ std::string ShellQuote(const std::string& s);
 /// A temporary name next to `path` with the same extension: "dir/.name.partial.ext".
 std::string PartialPath(const std::string& path);
 
+/// After ffmpeg ended with `status` (from pclose or system) writing `partial`: moves it to
+/// `path` when ffmpeg succeeded, else removes it; throws std::runtime_error naming `path` when
+/// ffmpeg failed or the file could not be moved. Nothing is left at either name on failure.
+void FinishPartial(int status, const std::string& partial, const std::string& path);
+
 class VideoWriter {
  public:
   /// Checks that ffmpeg is on PATH and the size is even (yuv420p), then starts it writing `path`.

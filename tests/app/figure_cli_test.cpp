@@ -73,7 +73,7 @@ TEST(FigureCli, FailingFfmpegLeavesNoFileAndKeepsTheResults) {
          "echo 'ffmpeg: simulated failure' >&2\nexit 1\n";
   }
   chmod((dir + "/bin/ffmpeg").c_str(), 0755);
-  for (const std::string out : {"--video " + dir + "/v.mp4", "--gif " + dir + "/v.gif"}) {
+  for (const std::string& out : {"--video " + dir + "/v.mp4", "--gif " + dir + "/v.gif"}) {
     const int rc = RunShell("env -u DISPLAY PATH=" + dir + "/bin:/usr/bin:/bin " + Binary() +
                                 " run formation_traj2 --set duration=1 -q --size 320x200 --out " +
                                 dir + "/out " + out,
@@ -114,6 +114,27 @@ TEST(FigureCli, GifHasTheRequestedFramesSizeAndLoops) {
   EXPECT_LT(bytes.size(), 1u << 20);
 }
 
+// The target for slides: the 10 s figure-eight at 640 px wide under 5 MB.
+TEST(FigureCli, TenSecondFigureEightGifIsUnderFiveMegabytes) {
+  if (FindOnPath("ffprobe").empty()) GTEST_SKIP() << "ffprobe not installed";
+  const std::string dir = TempDir("cli_gif_10s");
+  const std::string gif = dir + "/f8.gif";
+  ASSERT_EQ(
+      RunShell(RunCmd("formation_traj2 --set duration=10 -q --out " + dir + "/out --gif " + gif),
+               dir + "/log.txt"),
+      0)
+      << ReadText(dir + "/log.txt");
+  ASSERT_EQ(RunShell("ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+                     "stream=nb_read_frames,width -of default=nw=1 " +
+                         gif,
+                     dir + "/probe.txt"),
+            0);
+  const std::string probe = ReadText(dir + "/probe.txt");
+  EXPECT_NE(probe.find("nb_read_frames=150"), std::string::npos) << probe;  // 15 fps default
+  EXPECT_NE(probe.find("width=640"), std::string::npos) << probe;
+  EXPECT_LT(fs::file_size(gif), 5u * 1000 * 1000);
+}
+
 TEST(FigureCli, LongExportShowsFramesAndTimeLeftOnATerminal) {
   if (FindOnPath("script").empty()) GTEST_SKIP() << "script (util-linux) not installed";
   const std::string dir = TempDir("cli_progress");
@@ -143,7 +164,7 @@ TEST(FigureCli, FiguresCommandDrawsEveryFigureOfEveryScenarioLikeRun) {
       0)
       << ReadText(dir + "/log.txt");
   EXPECT_NE(ReadText(dir + "/log.txt").find("for 2 scenarios"), std::string::npos);
-  for (const std::string scen : {"formation_traj2", "agv_odometry_only"}) {
+  for (const char* scen : {"formation_traj2", "agv_odometry_only"}) {
     const std::string d = dir + "/figs/" + scen;
     ASSERT_TRUE(fs::is_directory(d)) << d;
     long svg = 0, png = 0;
@@ -179,7 +200,7 @@ TEST(FigureCli, GuiThemeColoursTheWindow) {
   if (FindOnPath("xvfb-run").empty()) GTEST_SKIP() << "xvfb-run not installed";
   const std::string dir = TempDir("cli_gui_theme");
   std::vector<std::uint8_t> light, dark;
-  for (const std::string theme : {"light", "dark"}) {
+  for (const std::string& theme : std::vector<std::string>{"light", "dark"}) {
     const std::string shot = dir + "/" + theme + ".png";
     ASSERT_EQ(RunShell("xvfb-run -a -s '-screen 0 1280x800x24' " + Binary() +
                            " gui formation_traj2 --size 960x600 --exit-after 5 --theme " + theme +

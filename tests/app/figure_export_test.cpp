@@ -14,6 +14,7 @@
 #include "app/imgui_canvas.hpp"
 #include "app/offscreen_renderer.hpp"
 #include "app/png_writer.hpp"
+#include "app/progress.hpp"
 #include "app/svg_writer.hpp"
 #include "app/vector_canvas.hpp"
 #include "app/video_writer.hpp"
@@ -119,6 +120,13 @@ TEST(FigureFormats, ListsExtensionsAndFolderNames) {
   EXPECT_THROW(FormatOfFile("a/b.jpg", "--snapshot"), std::runtime_error);
   EXPECT_THROW(CheckFolderName("p.svg", "--plots", ""), std::runtime_error);
   EXPECT_NO_THROW(CheckFolderName("plots", "--plots", ""));
+}
+
+TEST(ProgressLine, TimeLeftReadsAsAClock) {
+  EXPECT_EQ(ProgressLine::Clock(5.4), "0:05");
+  EXPECT_EQ(ProgressLine::Clock(72), "1:12");
+  EXPECT_EQ(ProgressLine::Clock(3723), "1:02:03");
+  EXPECT_EQ(ProgressLine::Clock(NAN), "0:00");
 }
 
 TEST(Themes, ParseAndPrintStylesAreGreyAndDistinct) {
@@ -266,9 +274,10 @@ TEST_F(FigureRun, SvgAndPdfKeepTextAndPathsAndLookLikeThePng) {
     EXPECT_NE(text.find(data.x_label), std::string::npos) << fig.id << ":\n" << text;
     EXPECT_NE(text.find(data.y_label), std::string::npos) << fig.id << ":\n" << text;
     EXPECT_NE(text.find(data.title), std::string::npos) << fig.id << ":\n" << text;
-    for (const auto& series : data.series)
-      if (!series.label.empty())
-        EXPECT_NE(text.find(series.label), std::string::npos) << fig.id << ": " << series.label;
+    for (const auto& series : data.series) {
+      if (series.label.empty()) continue;
+      EXPECT_NE(text.find(series.label), std::string::npos) << fig.id << ": " << series.label;
+    }
     // The PDF drawn back at 96 dpi looks like the PNG: nearly every pixel within a small
     // difference (anti-aliasing differs at edges).
     Shell("pdftoppm -r 96 -png -singlefile " + stem + ".pdf " + dir + "/back", &rc, dir);
