@@ -85,7 +85,7 @@ void GifFrameSize(const ExportOptions& opt, int* width, int* height) {
 void PrepareExport(const ExportOptions& opt) {
   if (!(opt.fps > 0 && opt.fps <= 1000))
     throw std::runtime_error("--fps must be in (0, 1000], got " + std::to_string(opt.fps));
-  if (!(opt.dpi >= 24 && opt.dpi <= 1200)) ParseDpi(opt.dpi);
+  ParseDpi(opt.dpi);
   if (!opt.video.empty()) {
     VideoWriter::CheckAvailable(opt.video, opt.width, opt.height);
     CheckFileName(opt.video, "--video");
@@ -340,6 +340,7 @@ ExportStats RunWithExport(sim::Session& session, const ExportOptions& opt,
         }
         framed = true;
         WritePng(snap, renderer.width(), renderer.height(), px->data(), opt.dpi);
+        ++st.snapshots;
       } else {
         if (!framed)
           FrameWorldView(exp, static_cast<float>(opt.width), static_cast<float>(opt.height), view,
@@ -350,6 +351,7 @@ ExportStats RunWithExport(sim::Session& session, const ExportOptions& opt,
         size.height = {static_cast<double>(opt.height), "px"};
         WriteVectorFigure(RecordWorld(exp, view, theme, caption), FormatOfFile(snap, "--snapshot"),
                           size, caption, snap);
+        ++st.snapshots;
       }
     } catch (const std::exception& e) {
       fail(e.what());

@@ -39,7 +39,7 @@ struct ExportOptions {
 
 /// Where the time went (seconds of wall time unless said otherwise).
 struct ExportStats {
-  long frames = 0, gif_frames = 0, figures = 0, figure_files = 0;
+  long frames = 0, gif_frames = 0, figures = 0, figure_files = 0, snapshots = 0;
   double wall = 0, sim = 0, build = 0, gl = 0, copy = 0, video = 0;
   double png_cpu = 0;      ///< summed over worker threads
   double png_blocked = 0;  ///< main thread waiting for a free queue slot

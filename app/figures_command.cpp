@@ -70,8 +70,7 @@ int Worker(const Job& job, ExportOptions opt, int fd) {
                        " s: " + session.exp().stop_reason() + " (figures show it up to there)\n");
       code = std::max(code, 3);
     }
-    WriteAll(fd, "F " + std::to_string(st.figure_files + static_cast<long>(opt.snapshots.size())) +
-                     "\n");
+    WriteAll(fd, "F " + std::to_string(st.figure_files + st.snapshots) + "\n");
     return code;
   } catch (const std::exception& e) {
     std::string msg = e.what();

@@ -163,7 +163,9 @@ TEST(FigureCli, FiguresCommandDrawsEveryFigureOfEveryScenarioLikeRun) {
                dir + "/log.txt"),
       0)
       << ReadText(dir + "/log.txt");
-  EXPECT_NE(ReadText(dir + "/log.txt").find("for 2 scenarios"), std::string::npos);
+  const std::string log = ReadText(dir + "/log.txt");
+  EXPECT_NE(log.find("for 2 scenarios"), std::string::npos) << log;
+  long files = 0;
   for (const char* scen : {"formation_traj2", "agv_odometry_only"}) {
     const std::string d = dir + "/figs/" + scen;
     ASSERT_TRUE(fs::is_directory(d)) << d;
@@ -174,7 +176,10 @@ TEST(FigureCli, FiguresCommandDrawsEveryFigureOfEveryScenarioLikeRun) {
     EXPECT_GE(svg, 3) << scen;
     EXPECT_TRUE(fs::exists(d + "/world.svg")) << scen;
     EXPECT_TRUE(fs::exists(d + "/world.png")) << scen;
+    files += svg + png;
   }
+  // The count it reports is the files it wrote.
+  EXPECT_NE(log.find("wrote " + std::to_string(files) + " files"), std::string::npos) << log;
   // The same figure as `formsim run --plots` writes, byte for byte.
   ASSERT_EQ(RunShell(RunCmd("formation_traj2 -q --out " + dir + "/run --plots " + dir +
                             "/plots --plot-format svg"),
