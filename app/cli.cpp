@@ -14,8 +14,8 @@
 
 #include "app/export.hpp"
 #include "app/figures_command.hpp"
-#include "app/progress.hpp"
 #include "app/gui.hpp"
+#include "app/progress.hpp"
 #include "sim/core/run_output.hpp"
 #include "sim/core/scenario.hpp"
 #include "sim/core/scenario_files.hpp"
@@ -229,9 +229,9 @@ int Main(int argc, char** argv) {
   run_cmd->add_option("--dpi", run.exp.dpi,
                       "Pixels per inch of PNG figures and snapshot (default 96: one pixel per "
                       "px; 300 for print)");
-  run_cmd->add_option("--theme", run.theme,
-                      std::string("Colours of frames, snapshot and figures: ") + ThemeNames() +
-                          " (default light)");
+  run_cmd->add_option(
+      "--theme", run.theme,
+      std::string("Colours of frames, snapshot and figures: ") + ThemeNames() + " (default light)");
   run_cmd->add_option("--video", run.exp.video,
                       "Write an MP4 video (.mp4, .mkv or .mov; needs ffmpeg on PATH)");
   run_cmd->add_option("--gif", run.exp.gif,
@@ -289,8 +289,8 @@ int Main(int argc, char** argv) {
   gui_cmd->add_option("--out", gui.out_dir, "Write timeseries.csv and summary.json here on exit");
   std::string gui_theme = "light";
   gui_cmd->add_option("--theme", gui_theme,
-                      std::string("Colours of the panels, world view and plots: ") +
-                          ThemeNames() + " (default light)");
+                      std::string("Colours of the panels, world view and plots: ") + ThemeNames() +
+                          " (default light)");
   gui_cmd->add_flag("--timing", gui.timing, "Print frame-time statistics on exit (stderr)");
 
   try {

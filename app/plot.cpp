@@ -393,8 +393,10 @@ PlotLayout DrawPlot(Canvas& cv, ImVec2 min, ImVec2 max, const PlotData& data, co
     for (const auto& run : ScreenRuns(s, x0, x1, y0, y1, a, b)) {
       if (s.markers_only) {
         for (const ImVec2& p : run) {
-          if (look.hollow_markers) cv.StrokeCircle(p, 2.6f, look.color, 1.2f);
-          else cv.FillCircle(p, 2.6f, look.color);
+          if (look.hollow_markers)
+            cv.StrokeCircle(p, 2.6f, look.color, 1.2f);
+          else
+            cv.FillCircle(p, 2.6f, look.color);
         }
       } else if (run.size() > 1) {
         cv.Polyline(run.data(), static_cast<int>(run.size()), stroke);
@@ -429,8 +431,10 @@ PlotLayout DrawPlot(Canvas& cv, ImVec2 min, ImVec2 max, const PlotData& data, co
       const ImVec2 p0(x + 7, cy), p1(x + 7 + sample_w, cy);
       if (s.markers_only) {
         const ImVec2 c(0.5f * (p0.x + p1.x), cy);
-        if (look.hollow_markers) cv.StrokeCircle(c, 3.0f, look.color, 1.2f);
-        else cv.FillCircle(c, 3.0f, look.color);
+        if (look.hollow_markers)
+          cv.StrokeCircle(c, 3.0f, look.color, 1.2f);
+        else
+          cv.FillCircle(c, 3.0f, look.color);
       } else {
         cv.Line(p0, p1, {look.color, line_w, look.dash});
       }

@@ -65,8 +65,7 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
             ImGui::Text("%s = %.4g", data.x_label.c_str(), x);
             for (const auto& s : data.series) {
               const double y = SampleSeries(s, x);
-              if (std::isfinite(y))
-              {
+              if (std::isfinite(y)) {
                 const sim::Color c = style.theme->Series(s.color, s.style_index, s.dashed).color;
                 ImGui::TextColored(ImVec4(c.r, c.g, c.b, 1), "%s: %.5g", s.label.c_str(), y);
               }
