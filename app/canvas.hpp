@@ -26,8 +26,10 @@ struct LineDash {
 
 /// How a line is drawn.
 struct Stroke {
+  Stroke(sim::Color c, float w = 1.0f, LineDash d = LineDash::Solid())
+      : color(c), width(w), dash(d) {}
   sim::Color color;
-  float width = 1.0f;
+  float width;
   LineDash dash;
 };
 

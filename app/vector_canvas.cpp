@@ -13,7 +13,10 @@ VectorCanvas::VectorCanvas(float width, float height) {
 }
 
 VectorOp& VectorCanvas::Add(VectorOp::Kind kind, sim::Color color) {
-  fig_.ops.push_back(VectorOp{kind, {}, color});
+  VectorOp op;
+  op.kind = kind;
+  op.color = color;
+  fig_.ops.push_back(std::move(op));
   return fig_.ops.back();
 }
 

@@ -22,7 +22,7 @@ struct VectorOp {
     kPushClip,
     kPopClip
   };
-  Kind kind;
+  Kind kind = Kind::kFillRect;
   std::vector<ImVec2> pts;  ///< rect: min, max; path: its points; circle, text: one point
   sim::Color color;
   float width = 0;  ///< stroke width
