@@ -11,7 +11,9 @@
 #include <stdexcept>
 
 #include "app/export.hpp"
+#include "app/figures_command.hpp"
 #include "app/gui.hpp"
+#include "app/progress.hpp"
 #include "app/stop_signal.hpp"
 #include "app/study_cli.hpp"
 #include "sim/core/run_output.hpp"
@@ -29,34 +31,15 @@ struct RunOptions {
   std::vector<std::string> sets;
   std::string out_dir;
   bool quiet = false;
-  ExportOptions exp;  // --frames, --snapshot, --plots, --video, --fps, --size, --ui
+  ExportOptions exp;  // --frames, --snapshot, --plots, --video, --gif, --fps, --size, --ui
   std::string size = "1280x720";
   std::string plot_size = "960x600";
+  std::string plot_format = "png";
+  std::string snapshot;
+  std::string theme = "light";
   bool timing = false;
 };
 
-// Draws "[=====>    ] 42% t=4.20 s" on stderr, only when stderr is a terminal.
-class ProgressBar {
- public:
-  explicit ProgressBar(bool enabled) : enabled_(enabled && isatty(STDERR_FILENO)) {}
-  void Update(double fraction, double t) {
-    if (!enabled_) return;
-    const int pct = static_cast<int>(fraction * 100.0);
-    if (pct == last_pct_) return;
-    last_pct_ = pct;
-    const int width = 30, filled = static_cast<int>(fraction * width);
-    std::fprintf(stderr, "\r[%s%s] %3d%% t=%.2f s", std::string(filled, '=').c_str(),
-                 std::string(width - filled, ' ').c_str(), pct, t);
-    std::fflush(stderr);
-  }
-  void Done() {
-    if (enabled_) std::fprintf(stderr, "\r%60s\r", "");
-  }
-
- private:
-  bool enabled_;
-  int last_pct_ = -1;
-};
 
 // Stops `exp` when a stop signal arrived. Returns true when it did.
 bool CheckStopSignal(sim::Experiment& exp) {
@@ -80,10 +63,12 @@ int RunCommand(RunOptions opt) {
   const std::string file = sim::ResolveScenario(opt.scenario);
   const std::string out =
       opt.out_dir.empty() ? "out/" + std::filesystem::path(file).stem().string() : opt.out_dir;
-  if (opt.exp.any()) {
-    ParseSize(opt.size, &opt.exp.width, &opt.exp.height);
-    ParseSize(opt.plot_size, &opt.exp.plot_width, &opt.exp.plot_height);
-  }
+  if (!opt.snapshot.empty()) opt.exp.snapshots = {opt.snapshot};
+  ParseSize(opt.size, &opt.exp.width, &opt.exp.height, "--size");
+  opt.exp.plot_size = ParseFigureSize(opt.plot_size, "--plot-size");
+  opt.exp.plot_formats = ParseFigureFormats(opt.plot_format, "--plot-format");
+  opt.exp.dpi = ParseDpi(opt.exp.dpi);
+  opt.exp.theme = ParseTheme(opt.theme, "--theme");
   std::vector<sim::Override> overrides = Overrides(opt.sets, opt.seed);
   if (!opt.max_steps.empty()) overrides.push_back({"max_steps", opt.max_steps, "--max-steps", -1});
   sim::Session session(file, overrides);
@@ -95,7 +80,7 @@ int RunCommand(RunOptions opt) {
   rec.SetHistoryLimit(sim::kRunHistoryRows);
   InstallStopSignals();
 
-  ProgressBar bar(!opt.quiet);
+  ProgressLine bar(!opt.quiet);
   const auto t0 = std::chrono::steady_clock::now();
   ExportStats st;
   std::string write_error;
@@ -109,8 +94,18 @@ int RunCommand(RunOptions opt) {
   if (opt.exp.any()) {
     st = RunWithExport(
         session, opt.exp,
-        [&](double f, double t) {
-          bar.Update(f, t);
+        [&](const ExportProgress& p) {
+          if (!p.status.empty()) {
+            bar.Status(p.status);
+          } else {
+            char detail[96];
+            std::snprintf(detail, sizeof(detail), "t=%.2f s", p.t);
+            std::string d = detail;
+            if (p.frames_total > 0)
+              d += "  " + std::to_string(p.frames) + "/" + std::to_string(p.frames_total) +
+                   " frames";
+            bar.Update(p.fraction, d);
+          }
           CheckStopSignal(session.exp());
         },
         write_results);
@@ -120,7 +115,9 @@ int RunCommand(RunOptions opt) {
     while (!exp.finished()) {
       exp.Step();
       if ((exp.steps() & 63) == 0) {
-        bar.Update(exp.time() / duration, exp.time());
+        char detail[48];
+        std::snprintf(detail, sizeof(detail), "t=%.2f s", exp.time());
+        bar.Update(exp.time() / duration, detail);
         CheckStopSignal(exp);
       }
     }
@@ -139,9 +136,12 @@ int RunCommand(RunOptions opt) {
       if (!opt.exp.frames_dir.empty())
         std::printf(", %ld frames in %s", st.frames, opt.exp.frames_dir.c_str());
       if (!opt.exp.plots_dir.empty())
-        std::printf(", %ld figures in %s", st.figures, opt.exp.plots_dir.c_str());
+        std::printf(", %ld figures (%ld files) in %s", st.figures, st.figure_files,
+                    opt.exp.plots_dir.c_str());
       if (!opt.exp.video.empty() && st.error.empty()) std::printf(", %s", opt.exp.video.c_str());
-      if (!opt.exp.snapshot.empty() && st.error.empty()) std::printf(", %s", opt.exp.snapshot.c_str());
+      if (!opt.exp.gif.empty() && st.error.empty())
+        std::printf(", %s (%ld frames)", opt.exp.gif.c_str(), st.gif_frames);
+      if (!opt.snapshot.empty() && st.error.empty()) std::printf(", %s", opt.snapshot.c_str());
       std::printf("\n");
     }
   }
@@ -207,16 +207,51 @@ int Main(int argc, char** argv) {
   run_cmd->add_option("--frames", run.exp.frames_dir, "Write PNG frames frame_00000.png... here");
   run_cmd->add_option("--fps", run.exp.fps, "Frames per second of simulated time (default 30)");
   run_cmd->add_option("--size", run.size, "Frame size WIDTHxHEIGHT (default 1280x720)");
-  run_cmd->add_option("--snapshot", run.exp.snapshot, "Write the final view as a PNG");
-  run_cmd->add_option("--plots", run.exp.plots_dir, "Write one PNG per figure (file = figure id)");
-  run_cmd->add_option("--plot-size", run.plot_size, "Figure size WIDTHxHEIGHT (default 960x600)");
-  run_cmd->add_option("--video", run.exp.video, "Write an MP4 video (needs ffmpeg on PATH)");
+  run_cmd->add_option("--snapshot", run.snapshot,
+                      "Write the final view: F.png, F.svg or F.pdf (format by extension)");
+  run_cmd->add_option("--plots", run.exp.plots_dir,
+                      "Write every figure into this folder (file = figure id, see --plot-format)");
+  run_cmd->add_option("--plot-format", run.plot_format,
+                      "Figure formats: any of png,svg,pdf, comma-separated (default png)");
+  run_cmd->add_option("--plot-size", run.plot_size,
+                      "Figure size WIDTHxHEIGHT in px, cm, mm or in (default 960x600, e.g. "
+                      "8.5cmx6cm)");
+  run_cmd->add_option("--dpi", run.exp.dpi,
+                      "Pixels per inch of PNG figures and snapshot (default 96: one pixel per "
+                      "px; 300 for print)");
+  run_cmd->add_option(
+      "--theme", run.theme,
+      std::string("Colours of frames, snapshot and figures: ") + ThemeNames() + " (default light)");
+  run_cmd->add_option("--video", run.exp.video,
+                      "Write an MP4 video (.mp4, .mkv or .mov; needs ffmpeg on PATH)");
+  run_cmd->add_option("--gif", run.exp.gif,
+                      "Write a looping animated GIF for slides (needs ffmpeg on PATH)");
+  run_cmd->add_option("--gif-fps", run.exp.gif_fps, "Frames per second of the GIF (default 15)");
+  run_cmd->add_option("--gif-width", run.exp.gif_width,
+                      "Width of the GIF in pixels (default 640; height keeps --size's aspect)");
   run_cmd->add_flag("--ui", run.exp.ui, "Draw the GUI panels into frames and snapshot");
   run_cmd->add_flag("--whole-run", run.exp.whole_run,
                     "Camera keeps everything since the start in view (default: tracks the robots)");
   run_cmd->add_flag("--timing", run.timing, "Print where the export time went (stderr)");
 
   app.add_subcommand("list", "List the shipped scenarios");
+
+  FiguresOptions figs;
+  CLI::App* figs_cmd = app.add_subcommand(
+      "figures", "Render every figure of scenarios (default: all shipped) on all cores");
+  figs_cmd->add_option("scenarios", figs.scenarios, "Scenario names or YAML paths");
+  figs_cmd->add_option("--out", figs.out_dir, "Output folder: DIR/<scenario>/<figure>.<format>")
+      ->required();
+  figs_cmd->add_option("--plot-format", figs.formats,
+                       "Formats: any of png,svg,pdf, comma-separated (default png)");
+  figs_cmd->add_option("--plot-size", figs.plot_size,
+                       "Figure size WIDTHxHEIGHT in px, cm, mm or in (default 960x600)");
+  figs_cmd->add_option("--size", figs.size, "World view size WIDTHxHEIGHT (default 1280x720)");
+  figs_cmd->add_option("--dpi", figs.dpi, "Pixels per inch of PNG files (default 96)");
+  figs_cmd->add_option("--theme", figs.theme,
+                       std::string("Colours: ") + ThemeNames() + " (default light)");
+  figs_cmd->add_option("--jobs,-j", figs.jobs, "Scenarios at once (default: one per core)");
+  figs_cmd->add_flag("--quiet,-q", figs.quiet, "Print nothing but errors");
 
   GuiOptions gui;
   std::string gui_size = "1600x900", gui_speed = "1";
@@ -242,6 +277,10 @@ int Main(int argc, char** argv) {
                       "reset-seed N, reload, load S, open P, save P, play, pause, step, "
                       "screenshot P, action ID)");
   gui_cmd->add_option("--out", gui.out_dir, "Write timeseries.csv and summary.json here on exit");
+  std::string gui_theme = "light";
+  gui_cmd->add_option("--theme", gui_theme,
+                      std::string("Colours of the panels, world view and plots: ") + ThemeNames() +
+                          " (default light)");
   gui_cmd->add_flag("--timing", gui.timing, "Print frame-time statistics on exit (stderr)");
 
   StudyCommands study(app);  // sweep, sweep collect, tune
@@ -255,8 +294,10 @@ int Main(int argc, char** argv) {
     if (run_cmd->parsed()) return RunCommand(run);
     if (app.got_subcommand("list")) return ListCommand();
     if (study.parsed()) return study.Run();
+    if (figs_cmd->parsed()) return FiguresCommand(figs);
     if (gui_cmd->parsed()) {
-      ParseSize(gui_size, &gui.width, &gui.height);
+      ParseSize(gui_size, &gui.width, &gui.height, "--size");
+      gui.theme = ParseTheme(gui_theme, "--theme");
       if (gui_speed == "max") {
         gui.speed = 0.0;
       } else {

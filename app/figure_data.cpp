@@ -17,7 +17,8 @@ PlotData ResolveFigure(const sim::FigureSpec& spec, const sim::Recorder& rec) {
     p.label = s.label;
     p.dashed = s.dashed;
     p.markers_only = s.markers_only;
-    p.color = sim::PaletteColor(s.color_index >= 0 ? s.color_index : static_cast<int>(i));
+    p.style_index = s.color_index >= 0 ? s.color_index : static_cast<int>(i);
+    p.color = sim::PaletteColor(p.style_index);
     if (s.column.empty() || !(s.x_column.empty() || s.x_column == "t")) d.x_is_time = false;
     if (s.column.empty()) {
       p.x = s.x;

@@ -135,9 +135,10 @@ int RunGui(const GuiOptions& opt) {
 
   int exit_code = 0;
   {
-    ImGuiLayer layer;
+    ImGuiLayer layer(GetTheme(opt.theme));
     ImGui_ImplGlfw_InitForOpenGL(window, true);
     AppUi ui(std::move(session));
+    ui.state().theme = opt.theme;
     // Plots keep a bounded history however long the window runs; with --out the rows of the
     // current run stream to disk as they are recorded.
     ui.SetRunSetup([&opt](sim::Experiment& e) {
@@ -191,7 +192,8 @@ int RunGui(const GuiOptions& opt) {
       int fw = 0, fh = 0;
       glfwGetFramebufferSize(window, &fw, &fh);
       const auto t_gl = Clock::now();
-      layer.Render(fw, fh, 0.96f, 0.96f, 0.95f);
+      const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
+      layer.Render(fw, fh, bg.x, bg.y, bg.z);
       if (opt.timing) {
         GlFinish();  // attribute the rasterisation to this frame
         sim_ms.push_back(ui.state().sim_ms);

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "app/theme.hpp"
+
 namespace formsim::app {
 
 struct GuiOptions {
@@ -24,6 +26,7 @@ struct GuiOptions {
   std::string script;
   std::string out_dir;  ///< write timeseries.csv and summary.json here on exit
   bool timing = false;  ///< print frame-time statistics on exit
+  ThemeId theme = ThemeId::kLight;
 };
 
 /// One scripted GUI action: at frame `frame`, `action` ("edit k=v", "reset", "reset-seed 7",

@@ -9,7 +9,7 @@
 
 namespace formsim::app {
 
-ImGuiLayer::ImGuiLayer() {
+ImGuiLayer::ImGuiLayer(const Theme& theme) {
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGuiIO& io = ImGui::GetIO();
@@ -17,14 +17,13 @@ ImGuiLayer::ImGuiLayer() {
   io.LogFilename = nullptr;
   fonts_ = LoadFonts();
 
-  ImGui::StyleColorsLight();
   ImGuiStyle& style = ImGui::GetStyle();
   style.WindowRounding = 0.0f;
   style.FrameRounding = 3.0f;
   style.GrabRounding = 3.0f;
   style.WindowBorderSize = 1.0f;
   style.ItemSpacing = ImVec2(8, 5);
-  style.Colors[ImGuiCol_WindowBg] = ImVec4(0.96f, 0.96f, 0.95f, 1.0f);
+  ApplyImGuiTheme(theme);
 
   if (!ImGui_ImplOpenGL3_Init("#version 330 core"))
     throw std::runtime_error("ImGui OpenGL3 backend failed to initialise");
@@ -35,10 +34,26 @@ ImGuiLayer::~ImGuiLayer() {
   ImGui::DestroyContext();
 }
 
+void ImGuiLayer::SetFontScale(float scale) {
+  if (scale == fonts_.scale) return;
+  ImGuiIO& io = ImGui::GetIO();
+  io.Fonts->Clear();
+  fonts_ = LoadFonts(scale);
+  io.Fonts->Build();
+  ImGui_ImplOpenGL3_DestroyFontsTexture();
+  if (!ImGui_ImplOpenGL3_CreateFontsTexture())
+    throw std::runtime_error("ImGui: cannot upload the font atlas at scale " +
+                             std::to_string(scale));
+}
+
+void ImGuiLayer::SetTheme(const Theme& theme) {
+  ApplyImGuiTheme(theme);
+}
+
 void ImGuiLayer::NewHeadlessFrame(int width, int height, float dt) {
   ImGuiIO& io = ImGui::GetIO();
   io.DisplaySize = ImVec2(static_cast<float>(width), static_cast<float>(height));
-  io.DisplayFramebufferScale = ImVec2(1, 1);
+  io.DisplayFramebufferScale = ImVec2(fonts_.scale, fonts_.scale);
   io.DeltaTime = dt > 0 ? dt : 1.0f / 30.0f;
   ImGui_ImplOpenGL3_NewFrame();
   ImGui::NewFrame();

@@ -42,8 +42,10 @@ void OffscreenContext::Resize(int width, int height) {
                              std::to_string(height) + " is out of range (1..8192)");
   width_ = width;
   height_ = height;
-  buffer_.assign(static_cast<std::size_t>(width) * height * 4, 0);
-  if (!OSMesaMakeCurrent(static_cast<OSMesaContext>(context_), buffer_.data(), GL_UNSIGNED_BYTE,
+  if (buffers_.size() > 2 && buffers_.count({width, height}) == 0) buffers_.clear();
+  buffer_ = &buffers_[{width, height}];
+  buffer_->resize(static_cast<std::size_t>(width) * height * 4, 0);
+  if (!OSMesaMakeCurrent(static_cast<OSMesaContext>(context_), buffer_->data(), GL_UNSIGNED_BYTE,
                          width, height))
     throw std::runtime_error("OSMesa: cannot bind a " + std::to_string(width) + "x" +
                              std::to_string(height) + " buffer");

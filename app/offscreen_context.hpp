@@ -4,6 +4,8 @@
 /// loader header that the rest of app uses).
 
 #include <cstdint>
+#include <map>
+#include <utility>
 #include <vector>
 
 namespace formsim::app {
@@ -17,18 +19,21 @@ class OffscreenContext {
   OffscreenContext(const OffscreenContext&) = delete;
   OffscreenContext& operator=(const OffscreenContext&) = delete;
 
-  /// Rebinds the context to a buffer of a new size (e.g. figures after frames).
+  /// Rebinds the context to a buffer of a new size (e.g. figures after frames). The buffers of
+  /// the last sizes are kept, so alternating between two sizes (video and GIF frames) costs no
+  /// allocation.
   void Resize(int width, int height);
   int width() const { return width_; }
   int height() const { return height_; }
   /// The rendered image, RGBA, top row first, valid after Finish().
-  const std::vector<std::uint8_t>& pixels() const { return buffer_; }
+  const std::vector<std::uint8_t>& pixels() const { return *buffer_; }
   /// Waits for rendering to complete.
   void Finish();
 
  private:
   void* context_ = nullptr;
-  std::vector<std::uint8_t> buffer_;
+  std::map<std::pair<int, int>, std::vector<std::uint8_t>> buffers_;  ///< by size
+  std::vector<std::uint8_t>* buffer_ = nullptr;                       ///< the bound one
   int width_ = 0, height_ = 0;
 };
 

@@ -1,7 +1,9 @@
 #include "app/offscreen_renderer.hpp"
 
 #include <chrono>
+#include <cmath>
 
+#include "app/imgui_canvas.hpp"
 #include "app/ui.hpp"
 #include "app/world_view.hpp"
 
@@ -12,18 +14,41 @@ double Now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
+int Device(int logical, float scale) {
+  return static_cast<int>(std::lround(logical * static_cast<double>(scale)));
+}
+
 }  // namespace
 
-OffscreenRenderer::OffscreenRenderer(int width, int height) : ctx_(width, height), layer_() {}
+OffscreenRenderer::OffscreenRenderer(int width, int height, const Theme& theme, float scale)
+    : ctx_(Device(width, scale), Device(height, scale)),
+      theme_(theme),
+      layer_(theme),
+      logical_w_(width),
+      logical_h_(height) {
+  layer_.SetFontScale(scale);
+}
+
+void OffscreenRenderer::Resize(int width, int height) {
+  logical_w_ = width;
+  logical_h_ = height;
+  const int w = Device(width, scale()), h = Device(height, scale());
+  if (w != ctx_.width() || h != ctx_.height()) ctx_.Resize(w, h);
+}
+
+void OffscreenRenderer::SetScale(float scale) {
+  layer_.SetFontScale(scale);
+  Resize(logical_w_, logical_h_);
+}
 
 void OffscreenRenderer::Begin() {
   t_begin_ = Now();
-  layer_.NewHeadlessFrame(ctx_.width(), ctx_.height(), 1.0f / 30.0f);
+  layer_.NewHeadlessFrame(logical_w_, logical_h_, 1.0f / 30.0f);
 }
 
-const std::vector<std::uint8_t>& OffscreenRenderer::End(float r, float g, float b) {
+const std::vector<std::uint8_t>& OffscreenRenderer::End(sim::Color clear) {
   const double t1 = Now();
-  layer_.Render(ctx_.width(), ctx_.height(), r, g, b);
+  layer_.Render(ctx_.width(), ctx_.height(), clear.r, clear.g, clear.b);
   ctx_.Finish();
   const double t2 = Now();
   times_.build += t1 - t_begin_;
@@ -34,43 +59,39 @@ const std::vector<std::uint8_t>& OffscreenRenderer::End(float r, float g, float 
 const std::vector<std::uint8_t>& OffscreenRenderer::RenderWorld(const sim::Experiment& exp,
                                                                 View& view, AutoFit& fit, bool jump,
                                                                 const std::string& caption) {
+  FrameWorldView(exp, static_cast<float>(logical_w_), static_cast<float>(logical_h_), view, fit,
+                 jump);
+  return RenderWorldAs(exp, view, caption);
+}
+
+const std::vector<std::uint8_t>& OffscreenRenderer::RenderWorldAs(const sim::Experiment& exp,
+                                                                  const View& view,
+                                                                  const std::string& caption) {
   Begin();
-  view.min = ImVec2(0, 0);
-  view.max = ImVec2(static_cast<float>(ctx_.width()), static_cast<float>(ctx_.height()));
-  Vec2 lo, hi;
-  exp.Bounds(lo, hi);
-  fit.Update(view, lo, hi, jump ? 1.0 : 0.15);
   WorldViewOptions opt;
   opt.caption = caption;
-  DrawWorldView(ImGui::GetBackgroundDrawList(), view, exp, layer_.fonts(), opt);
-  return End(0.98f, 0.98f, 0.97f);
+  ImGuiCanvas canvas(ImGui::GetBackgroundDrawList(), layer_.fonts());
+  DrawWorldView(canvas, view, exp, theme_, opt);
+  return End(theme_.background);
 }
 
 const std::vector<std::uint8_t>& OffscreenRenderer::RenderUi(AppUi& ui) {
   Begin();
-  ui.Draw(ImVec2(static_cast<float>(ctx_.width()), static_cast<float>(ctx_.height())),
-          layer_.fonts(), false);
-  return End(0.96f, 0.96f, 0.95f);
-}
-
-PlotStyle OffscreenRenderer::PaperStyle() const {
-  PlotStyle s;
-  s.title_font = layer_.fonts().title;
-  s.label_font = layer_.fonts().label;
-  s.tick_font = layer_.fonts().small;
-  s.line_width = 2.0f;
-  s.padding = 14.0f;
-  return s;
+  ui.Draw(ImVec2(static_cast<float>(logical_w_), static_cast<float>(logical_h_)), layer_.fonts(),
+          false);
+  const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
+  return End({bg.x, bg.y, bg.z, 1.0f});
 }
 
 const std::vector<std::uint8_t>& OffscreenRenderer::RenderFigure(const PlotData& data, int width,
                                                                  int height) {
-  if (width != ctx_.width() || height != ctx_.height()) ctx_.Resize(width, height);
+  Resize(width, height);
   Begin();
+  ImGuiCanvas canvas(ImGui::GetBackgroundDrawList(), layer_.fonts());
   last_layout_ =
-      DrawPlot(ImGui::GetBackgroundDrawList(), ImVec2(0, 0),
-               ImVec2(static_cast<float>(width), static_cast<float>(height)), data, PaperStyle());
-  return End(1.0f, 1.0f, 1.0f);
+      DrawPlot(canvas, ImVec2(0, 0), ImVec2(static_cast<float>(width), static_cast<float>(height)),
+               data, FigureStyle(theme_));
+  return End(theme_.background);
 }
 
 }  // namespace formsim::app

@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <functional>
 
-#include "app/imgui_draw_sink.hpp"
 #include "app/polyline_simplify.hpp"
 #include "sim/core/number_format.hpp"
 
@@ -14,34 +13,6 @@ namespace formsim::app {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-ImFont* Or(ImFont* f) {
-  return f != nullptr ? f : ImGui::GetFont();
-}
-
-ImVec2 TextSize(ImFont* f, const std::string& s) {
-  return f->CalcTextSizeA(f->FontSize, FLT_MAX, 0.0f, s.c_str());
-}
-
-void Text(ImDrawList* dl, ImFont* f, ImVec2 pos, ImU32 col, const std::string& s) {
-  dl->AddText(f, f->FontSize, ImVec2(std::round(pos.x), std::round(pos.y)), col, s.c_str());
-}
-
-// Text rotated 90° counter-clockwise (reads bottom to top), centred on `center`: the usual
-// y-axis label. ImGui has no rotated text, so we rotate the glyph vertices after AddText.
-void TextVertical(ImDrawList* dl, ImFont* f, ImVec2 center, ImU32 col, const std::string& s) {
-  const ImVec2 ext = TextSize(f, s);
-  dl->PushClipRect(ImVec2(-1e5f, -1e5f), ImVec2(1e5f, 1e5f), false);  // no culling before rotating
-  const int v0 = dl->VtxBuffer.Size;
-  dl->AddText(f, f->FontSize,
-              ImVec2(std::round(center.x - ext.x / 2), std::round(center.y - ext.y / 2)), col,
-              s.c_str());
-  for (int i = v0; i < dl->VtxBuffer.Size; ++i) {
-    const ImVec2 p = dl->VtxBuffer[i].pos;
-    dl->VtxBuffer[i].pos = ImVec2(center.x + (p.y - center.y), center.y - (p.x - center.x));
-  }
-  dl->PopClipRect();
-}
 
 // "×10⁻⁴" with Unicode superscripts.
 std::string PowerLabel(int e) {
@@ -140,41 +111,6 @@ std::vector<std::vector<ImVec2>> ScreenRuns(const PlotSeries& s, double x0, doub
   return runs;
 }
 
-void DashedPolyline(ImDrawList* dl, const std::vector<ImVec2>& pts, ImU32 col, float th,
-                    float on = 8.0f, float off = 5.0f) {
-  float phase = 0;  // distance into the current on+off period
-  std::vector<ImVec2> dash;
-  for (std::size_t i = 1; i < pts.size(); ++i) {
-    ImVec2 a = pts[i - 1];
-    const ImVec2 b = pts[i];
-    float len = std::hypot(b.x - a.x, b.y - a.y);
-    while (len > 0) {
-      const bool drawing = phase < on;
-      const float left = drawing ? on - phase : on + off - phase;
-      const float step = std::min(left, len);
-      const ImVec2 c(a.x + (b.x - a.x) * step / len, a.y + (b.y - a.y) * step / len);
-      if (drawing) {
-        if (dash.empty()) dash.push_back(a);
-        dash.push_back(c);
-      }
-      phase += step;
-      if (drawing && phase >= on && dash.size() > 1) {
-        dl->AddPolyline(dash.data(), static_cast<int>(dash.size()), col, ImDrawFlags_None, th);
-        dash.clear();
-      }
-      if (phase >= on + off) phase = 0;
-      len -= step;
-      a = c;
-    }
-  }
-  if (dash.size() > 1)
-    dl->AddPolyline(dash.data(), static_cast<int>(dash.size()), col, ImDrawFlags_None, th);
-}
-
-void DashedLine(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 col, float th, float on, float off) {
-  DashedPolyline(dl, {a, b}, col, th, on, off);
-}
-
 // Ticks of a categorical axis: every k-th of 0..n-1 so that at most `fit` labels are written.
 std::vector<double> CategoryTicks(std::size_t n, double fit) {
   const std::size_t step = std::max<std::size_t>(
@@ -194,27 +130,34 @@ void HeatRange(const PlotHeatmap& h, double* lo, double* hi) {
   }
 }
 
-ImU32 HeatColor(double v, double lo, double hi) {
-  if (!std::isfinite(v)) return IM_COL32(215, 215, 215, 255);
-  return ToImColor(Viridis(hi > lo ? (v - lo) / (hi - lo) : 0.5));
+sim::Color HeatColor(double v, double lo, double hi) {
+  if (!std::isfinite(v)) return sim::Color{0.84f, 0.84f, 0.84f, 1};
+  return Viridis(hi > lo ? (v - lo) / (hi - lo) : 0.5);
 }
 
-// Shades the band of a series (between band_lo and band_hi) with one quad per segment.
-void DrawBand(ImDrawList* dl, const PlotSeries& s, ImU32 col,
+// Shades the band of a series (between band_lo and band_hi): each finite run of points as one
+// polygon (upper edge forward, lower edge back), in chunks so no polygon gets large.
+void DrawBand(Canvas& cv, const PlotSeries& s, sim::Color col,
               const std::function<ImVec2(double, double)>& to_screen) {
   const std::size_t n = std::min({s.x.size(), s.band_lo.size(), s.band_hi.size()});
-  const ImDrawListFlags flags = dl->Flags;
-  dl->Flags &= ~ImDrawListFlags_AntiAliasedFill;  // no seams between neighbouring quads
-  for (std::size_t i = 1; i < n; ++i) {
-    const double v[] = {s.x[i - 1],       s.x[i],       s.band_lo[i - 1],
-                        s.band_hi[i - 1], s.band_lo[i], s.band_hi[i]};
-    if (!std::all_of(std::begin(v), std::end(v), [](double x) { return std::isfinite(x); }))
-      continue;
-    dl->AddQuadFilled(to_screen(s.x[i - 1], s.band_lo[i - 1]), to_screen(s.x[i], s.band_lo[i]),
-                      to_screen(s.x[i], s.band_hi[i]), to_screen(s.x[i - 1], s.band_hi[i - 1]),
-                      col);
+  auto finite = [&](std::size_t i) {
+    return std::isfinite(s.x[i]) && std::isfinite(s.band_lo[i]) && std::isfinite(s.band_hi[i]);
+  };
+  constexpr std::size_t kChunk = 64;
+  std::size_t i = 0;
+  while (i < n) {
+    while (i < n && !finite(i)) ++i;
+    std::size_t j = i;
+    while (j < n && finite(j) && j - i < kChunk) ++j;
+    if (j - i >= 2) {
+      std::vector<ImVec2> poly;
+      for (std::size_t k = i; k < j; ++k) poly.push_back(to_screen(s.x[k], s.band_hi[k]));
+      for (std::size_t k = j; k-- > i;) poly.push_back(to_screen(s.x[k], s.band_lo[k]));
+      cv.FillPolygon(poly.data(), static_cast<int>(poly.size()), col);
+    }
+    // The next chunk starts at this chunk's last point, so they join.
+    i = (j < n && finite(j) && j - i >= kChunk) ? j - 1 : j;
   }
-  dl->Flags = flags;
 }
 
 }  // namespace
@@ -274,13 +217,28 @@ double SampleSeries(const PlotSeries& s, double x) {
   return s.y[i - 1] + t * (s.y[i] - s.y[i - 1]);
 }
 
-PlotLayout DrawPlot(ImDrawList* dl, ImVec2 min, ImVec2 max, const PlotData& data,
-                    const PlotStyle& st, double cursor_x) {
+PlotStyle FigureStyle(const Theme& theme) {
+  PlotStyle s;
+  s.title_font = FontRole::kTitle;
+  s.label_font = FontRole::kLabel;
+  s.tick_font = FontRole::kSmall;
+  s.line_width = 2.0f;
+  s.padding = 14.0f;
+  s.theme = &theme;
+  return s;
+}
+
+PlotLayout DrawPlot(Canvas& cv, ImVec2 min, ImVec2 max, const PlotData& data, const PlotStyle& st,
+                    double cursor_x) {
   PlotLayout L;
-  ImFont* title_font = Or(st.title_font);
-  ImFont* label_font = Or(st.label_font);
-  ImFont* tick_font = Or(st.tick_font);
-  dl->AddRectFilled(min, max, st.background);
+  const Theme& th = *st.theme;
+  const FontRole title_font = st.title_font, label_font = st.label_font, tick_font = st.tick_font;
+  auto TextSize = [&](FontRole f, const std::string& s) { return cv.TextSize(f, s); };
+  auto Text = [&](FontRole f, ImVec2 pos, sim::Color col, const std::string& s) {
+    cv.Text(pos, f, col, s);
+  };
+  const float line_w = st.line_width * th.line_scale;
+  cv.FillRect(min, max, th.background);
 
   // ---- data ranges ----
   Range rx, ry;
@@ -327,10 +285,10 @@ PlotLayout DrawPlot(ImDrawList* dl, ImVec2 min, ImVec2 max, const PlotData& data
 
   // ---- frame layout (margins depend on tick label widths, so ticks first) ----
   const float pad = st.padding;
-  const float title_h = (st.show_title && !data.title.empty()) ? title_font->FontSize + 8 : 0;
-  const float tick_h = tick_font->FontSize;
-  const float xlabel_h = data.x_label.empty() ? 0 : label_font->FontSize + 4;
-  const float ylabel_w = data.y_label.empty() ? 0 : label_font->FontSize + 6;
+  const float title_h = (st.show_title && !data.title.empty()) ? cv.FontSize(title_font) + 8 : 0;
+  const float tick_h = cv.FontSize(tick_font);
+  const float xlabel_h = data.x_label.empty() ? 0 : cv.FontSize(label_font) + 4;
+  const float ylabel_w = data.y_label.empty() ? 0 : cv.FontSize(label_font) + 6;
   ImVec2 a, b;  // data area
   int ex = 0, ey = 0;
   double xstep = 1, ystep = 1;
@@ -346,8 +304,8 @@ PlotLayout DrawPlot(ImDrawList* dl, ImVec2 min, ImVec2 max, const PlotData& data
     }
     float wmax = 0;
     for (double t : cticks) wmax = std::max(wmax, TextSize(tick_font, FormatTick(t, cstep, ce)).x);
-    right_reserve =
-        12 + 16 + 6 + wmax + 8 + (data.heatmap.value_label.empty() ? 0 : label_font->FontSize + 6);
+    right_reserve = 12 + 16 + 6 + wmax + 8 +
+                    (data.heatmap.value_label.empty() ? 0 : cv.FontSize(label_font) + 6);
   }
   auto x_text = [&](double t) {
     return cat_x ? data.x_tick_labels[static_cast<std::size_t>(std::llround(t))]
@@ -409,7 +367,7 @@ PlotLayout DrawPlot(ImDrawList* dl, ImVec2 min, ImVec2 max, const PlotData& data
   for (std::size_t i = 0; i < data.series.size(); ++i)
     if (!data.series[i].label.empty()) legend_items.push_back(static_cast<int>(i));
   ImVec2 leg_size(0, 0);
-  const float row_h = label_font->FontSize + 4, sample_w = 26;
+  const float row_h = cv.FontSize(label_font) + 4, sample_w = 26;
   int leg_cols = 1;
   float col_w = 0;
   if (!legend_items.empty()) {
@@ -500,47 +458,47 @@ PlotLayout DrawPlot(ImDrawList* dl, ImVec2 min, ImVec2 max, const PlotData& data
   // ---- title, grid, ticks, labels ----
   if (title_h > 0) {
     const ImVec2 ts = TextSize(title_font, data.title);
-    Text(dl, title_font, ImVec2(0.5f * (a.x + b.x) - ts.x / 2, min.y + pad), st.text_color,
-         data.title);
+    Text(title_font, ImVec2(0.5f * (a.x + b.x) - ts.x / 2, min.y + pad), th.text, data.title);
   }
   // Grid and ticks as 1-px rectangles on whole pixels (sharp on screen and in PNGs).
   auto px_col = [&](double v) { return std::floor(X(v)); };
   auto px_row = [&](double v) { return std::floor(Y(v)); };
-  for (double t : heat ? std::vector<double>{} : L.x_ticks)
-    dl->AddRectFilled(ImVec2(px_col(t), a.y), ImVec2(px_col(t) + 1, b.y), st.grid_color);
-  for (double t : heat ? std::vector<double>{} : L.y_ticks)
-    dl->AddRectFilled(ImVec2(a.x, px_row(t)), ImVec2(b.x, px_row(t) + 1), st.grid_color);
+  if (!heat) {  // a heatmap's cells are its grid
+    for (double t : L.x_ticks)
+      cv.FillRect(ImVec2(px_col(t), a.y), ImVec2(px_col(t) + 1, b.y), th.grid);
+    for (double t : L.y_ticks)
+      cv.FillRect(ImVec2(a.x, px_row(t)), ImVec2(b.x, px_row(t) + 1), th.grid);
+  }
   for (double t : L.x_ticks) {
     const float x = X(t);
-    dl->AddRectFilled(ImVec2(px_col(t), b.y - 5), ImVec2(px_col(t) + 1, b.y), st.axis_color);
+    cv.FillRect(ImVec2(px_col(t), b.y - 5), ImVec2(px_col(t) + 1, b.y), th.axis);
     const std::string s = x_text(t);
     const ImVec2 ts = TextSize(tick_font, s);
-    Text(dl, tick_font, ImVec2(x - ts.x / 2, b.y + 5), st.text_color, s);
+    Text(tick_font, ImVec2(x - ts.x / 2, b.y + 5), th.text, s);
   }
   for (double t : L.y_ticks) {
     const float y = Y(t);
-    dl->AddRectFilled(ImVec2(a.x, px_row(t)), ImVec2(a.x + 5, px_row(t) + 1), st.axis_color);
+    cv.FillRect(ImVec2(a.x, px_row(t)), ImVec2(a.x + 5, px_row(t) + 1), th.axis);
     const std::string s = y_text(t);
     const ImVec2 ts = TextSize(tick_font, s);
-    Text(dl, tick_font, ImVec2(a.x - 6 - ts.x, y - ts.y / 2), st.text_color, s);
+    Text(tick_font, ImVec2(a.x - 6 - ts.x, y - ts.y / 2), th.text, s);
   }
-  if (ey != 0) Text(dl, tick_font, ImVec2(a.x, a.y - tick_h - 3), st.text_color, PowerLabel(ey));
+  if (ey != 0) Text(tick_font, ImVec2(a.x, a.y - tick_h - 3), th.text, PowerLabel(ey));
   if (ex != 0) {
     const std::string s = PowerLabel(ex);
-    Text(dl, tick_font, ImVec2(b.x - TextSize(tick_font, s).x, b.y + 5 + tick_h + 2), st.text_color,
-         s);
+    Text(tick_font, ImVec2(b.x - TextSize(tick_font, s).x, b.y + 5 + tick_h + 2), th.text, s);
   }
   if (!data.x_label.empty()) {
     const ImVec2 ts = TextSize(label_font, data.x_label);
-    Text(dl, label_font, ImVec2(0.5f * (a.x + b.x) - ts.x / 2, max.y - pad - ts.y), st.text_color,
+    Text(label_font, ImVec2(0.5f * (a.x + b.x) - ts.x / 2, max.y - pad - ts.y), th.text,
          data.x_label);
   }
   if (!data.y_label.empty())
-    TextVertical(dl, label_font, ImVec2(min.x + pad + label_font->FontSize / 2, 0.5f * (a.y + b.y)),
-                 st.text_color, data.y_label);
+    cv.TextVertical(ImVec2(min.x + pad + cv.FontSize(label_font) / 2, 0.5f * (a.y + b.y)),
+                    label_font, th.text, data.y_label);
 
   // ---- data ----
-  dl->PushClipRect(a, b, true);
+  cv.PushClip(a, b);
   if (heat) {
     const PlotHeatmap& h = data.heatmap;
     for (int r = 0; r < h.rows; ++r)
@@ -549,54 +507,52 @@ PlotLayout DrawPlot(ImDrawList* dl, ImVec2 min, ImVec2 max, const PlotData& data
         const double v = k < h.values.size() ? h.values[k] : kNaN;
         const ImVec2 lo(std::round(X(c - 0.5)), std::round(Y(r + 0.5)));
         const ImVec2 hi(std::round(X(c + 0.5)), std::round(Y(r - 0.5)));
-        const ImU32 col = HeatColor(v, heat_lo, heat_hi);
-        dl->AddRectFilled(lo, hi, col);
+        const sim::Color col = HeatColor(v, heat_lo, heat_hi);
+        cv.FillRect(lo, hi, col);
         // The value in the cell when it fits, dark on light colours and light on dark ones.
         const std::string txt = std::isfinite(v) ? sim::Sprintf("%.3g", v) : "no data";
         const ImVec2 ts = TextSize(tick_font, txt);
         if (ts.x + 6 <= hi.x - lo.x && ts.y + 4 <= hi.y - lo.y) {
-          const ImVec4 f = ImGui::ColorConvertU32ToFloat4(col);
-          const bool light = 0.299f * f.x + 0.587f * f.y + 0.114f * f.z > 0.55f;
-          Text(dl, tick_font,
-               ImVec2(0.5f * (lo.x + hi.x) - ts.x / 2, 0.5f * (lo.y + hi.y) - ts.y / 2),
-               light ? IM_COL32(20, 20, 20, 255) : IM_COL32(255, 255, 255, 255), txt);
+          const bool light = 0.299f * col.r + 0.587f * col.g + 0.114f * col.b > 0.55f;
+          Text(tick_font, ImVec2(0.5f * (lo.x + hi.x) - ts.x / 2, 0.5f * (lo.y + hi.y) - ts.y / 2),
+               light ? sim::Color{0.08f, 0.08f, 0.08f, 1} : sim::Color{1, 1, 1, 1}, txt);
         }
       }
   }
   for (const auto& s : data.series)
     if (!s.band_lo.empty())
-      DrawBand(dl, s, ToImColor(s.color.WithAlpha(0.22f)),
+      DrawBand(cv, s, th.Series(s.color, s.style_index, false).color.WithAlpha(0.22f),
                [&](double x, double y) { return ImVec2(X(x), Y(y)); });
   for (double r : data.reference_lines)
-    DashedLine(dl, ImVec2(a.x, Y(r)), ImVec2(b.x, Y(r)), IM_COL32(110, 110, 110, 255), 1.2f, 6, 4);
-  if (!data.error.empty()) {
-    Text(dl, label_font, ImVec2(a.x + 8, a.y + 8), IM_COL32(180, 30, 30, 255), data.error);
-  }
+    cv.Line(ImVec2(a.x, Y(r)), ImVec2(b.x, Y(r)), {th.reference, 1.2f, LineDash::Dashes(6, 4)});
+  if (!data.error.empty()) Text(label_font, ImVec2(a.x + 8, a.y + 8), th.error, data.error);
   for (const auto& s : data.series) {
-    const ImU32 col = ToImColor(s.color);
+    const SeriesLook look = th.Series(s.color, s.style_index, s.dashed);
+    const Stroke stroke{look.color, line_w, look.dash};
     for (const auto& run : ScreenRuns(s, x0, x1, y0, y1, a, b)) {
       if (s.markers_only) {
-        for (const ImVec2& p : run) dl->AddCircleFilled(p, 2.6f, col, 8);
-      } else if (s.dashed) {
-        DashedPolyline(dl, run, col, st.line_width);
+        for (const ImVec2& p : run) {
+          if (look.hollow_markers)
+            cv.StrokeCircle(p, 2.6f, look.color, 1.2f);
+          else
+            cv.FillCircle(p, 2.6f, look.color);
+        }
       } else if (run.size() > 1) {
-        dl->AddPolyline(run.data(), static_cast<int>(run.size()), col, ImDrawFlags_None,
-                        st.line_width);
+        cv.Polyline(run.data(), static_cast<int>(run.size()), stroke);
       } else {
-        dl->AddCircleFilled(run[0], st.line_width, col, 8);
+        cv.FillCircle(run[0], line_w, look.color);
       }
     }
   }
   if (std::isfinite(data.marker_x))
-    DashedLine(dl, ImVec2(X(data.marker_x), a.y), ImVec2(X(data.marker_x), b.y),
-               IM_COL32(200, 40, 40, 255), 1.5f, 5, 3);
+    cv.Line(ImVec2(X(data.marker_x), a.y), ImVec2(X(data.marker_x), b.y),
+            {th.marker, 1.5f, LineDash::Dashes(5, 3)});
   if (std::isfinite(cursor_x) && cursor_x >= x0 && cursor_x <= x1)
-    dl->AddLine(ImVec2(X(cursor_x), a.y), ImVec2(X(cursor_x), b.y), IM_COL32(60, 60, 60, 160),
-                1.0f);
-  dl->PopClipRect();
+    cv.Line(ImVec2(X(cursor_x), a.y), ImVec2(X(cursor_x), b.y), {th.cursor, 1.0f});
+  cv.PopClip();
   // The frame: 1-px lines on the pixel column/row just outside the data area on the left and
-  // top, and on the last column/row of it on the right and bottom (ImGui insets by 0.5 px).
-  dl->AddRect(ImVec2(a.x - 1, a.y - 1), ImVec2(b.x + 1, b.y + 1), st.axis_color, 0, 0, 1.0f);
+  // top, and on the last column/row of it on the right and bottom.
+  cv.StrokeRect(ImVec2(a.x - 1, a.y - 1), ImVec2(b.x + 1, b.y + 1), th.axis, 1.0f);
 
   // ---- colour bar of a heatmap: the map from bottom (min) to top (max), ticks on its right ----
   if (heat && !cticks.empty()) {
@@ -604,12 +560,9 @@ PlotLayout DrawPlot(ImDrawList* dl, ImVec2 min, ImVec2 max, const PlotData& data
     const int steps = 64;
     for (int k = 0; k < steps; ++k) {
       const float ya = b.y - (b.y - a.y) * k / steps, yb = b.y - (b.y - a.y) * (k + 1) / steps;
-      dl->AddRectFilledMultiColor(
-          ImVec2(x0b, yb), ImVec2(x1b, ya), ToImColor(Viridis((k + 1.0) / steps)),
-          ToImColor(Viridis((k + 1.0) / steps)), ToImColor(Viridis(k / double(steps))),
-          ToImColor(Viridis(k / double(steps))));
+      cv.FillRect(ImVec2(x0b, std::floor(yb)), ImVec2(x1b, std::ceil(ya)), Viridis((k + 0.5) / steps));
     }
-    dl->AddRect(ImVec2(x0b - 1, a.y - 1), ImVec2(x1b + 1, b.y + 1), st.axis_color, 0, 0, 1.0f);
+    cv.StrokeRect(ImVec2(x0b - 1, a.y - 1), ImVec2(x1b + 1, b.y + 1), th.axis, 1.0f);
     auto cy = [&](double v) {
       const double f = heat_hi > heat_lo ? (v - heat_lo) / (heat_hi - heat_lo) : 0.5;
       return static_cast<float>(b.y - f * (b.y - a.y));
@@ -617,17 +570,16 @@ PlotLayout DrawPlot(ImDrawList* dl, ImVec2 min, ImVec2 max, const PlotData& data
     float wmax = 0;
     for (double t : cticks) {
       const float y = std::floor(cy(t));
-      dl->AddRectFilled(ImVec2(x1b, y), ImVec2(x1b + 4, y + 1), st.axis_color);
+      cv.FillRect(ImVec2(x1b, y), ImVec2(x1b + 4, y + 1), th.axis);
       const std::string s = FormatTick(t, cstep, ce);
       const ImVec2 ts = TextSize(tick_font, s);
       wmax = std::max(wmax, ts.x);
-      Text(dl, tick_font, ImVec2(x1b + 6, y - ts.y / 2), st.text_color, s);
+      Text(tick_font, ImVec2(x1b + 6, y - ts.y / 2), th.text, s);
     }
-    if (ce != 0) Text(dl, tick_font, ImVec2(x0b, a.y - tick_h - 3), st.text_color, PowerLabel(ce));
+    if (ce != 0) Text(tick_font, ImVec2(x0b, a.y - tick_h - 3), th.text, PowerLabel(ce));
     if (!data.heatmap.value_label.empty())
-      TextVertical(dl, label_font,
-                   ImVec2(x1b + 6 + wmax + 8 + label_font->FontSize / 2, 0.5f * (a.y + b.y)),
-                   st.text_color, data.heatmap.value_label);
+      cv.TextVertical(ImVec2(x1b + 6 + wmax + 8 + cv.FontSize(label_font) / 2, 0.5f * (a.y + b.y)),
+                      label_font, th.text, data.heatmap.value_label);
   }
 
   // ---- legend ----
@@ -635,23 +587,25 @@ PlotLayout DrawPlot(ImDrawList* dl, ImVec2 min, ImVec2 max, const PlotData& data
     ImVec2 lo, hi;
     corner_box(corner, lo, hi);
     L.legend_min = lo, L.legend_max = hi;
-    dl->AddRectFilled(lo, hi, IM_COL32(255, 255, 255, 235), 3.0f);
-    dl->AddRect(lo, hi, IM_COL32(170, 170, 170, 255), 3.0f);
+    cv.FillRect(lo, hi, th.legend_fill, 3.0f);
+    cv.StrokeRect(lo, hi, th.legend_border, 1.0f, 3.0f);
     for (std::size_t k = 0; k < legend_items.size(); ++k) {
       const auto& s = data.series[legend_items[k]];
-      const ImU32 col = ToImColor(s.color);
+      const SeriesLook look = th.Series(s.color, s.style_index, s.dashed);
       const float x = lo.x + col_w * static_cast<float>(k % leg_cols);
       const float y = lo.y + 4 + row_h * static_cast<float>(k / leg_cols);
       const float cy = y + row_h / 2;
       const ImVec2 p0(x + 7, cy), p1(x + 7 + sample_w, cy);
       if (s.markers_only) {
-        dl->AddCircleFilled(ImVec2(0.5f * (p0.x + p1.x), cy), 3.0f, col, 8);
-      } else if (s.dashed) {
-        DashedLine(dl, p0, p1, col, st.line_width, 7, 4);
+        const ImVec2 c(0.5f * (p0.x + p1.x), cy);
+        if (look.hollow_markers)
+          cv.StrokeCircle(c, 3.0f, look.color, 1.2f);
+        else
+          cv.FillCircle(c, 3.0f, look.color);
       } else {
-        dl->AddLine(p0, p1, col, st.line_width);
+        cv.Line(p0, p1, {look.color, line_w, look.dash});
       }
-      Text(dl, label_font, ImVec2(p1.x + 7, y + 2), st.text_color, s.label);
+      Text(label_font, ImVec2(p1.x + 7, y + 2), th.text, s.label);
     }
   }
   return L;

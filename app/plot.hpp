@@ -1,8 +1,8 @@
 #pragma once
 /// \file Our plot widget (ImPlot is not packaged in Debian): axes with ticks and units, grid,
 /// several series with a legend placed off the data, autoscale, a time cursor, horizontal
-/// reference lines, dashed and marker series and an equal-aspect mode. Drawn into any ImGui
-/// draw list: live in the GUI, and into white PNGs for exported figures.
+/// reference lines, dashed and marker series and an equal-aspect mode. Drawn onto a Canvas: live
+/// in the GUI, into PNG figures, and recorded for SVG and PDF, all by the same code.
 
 #include <imgui.h>
 
@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "app/canvas.hpp"
+#include "app/theme.hpp"
 #include "sim/core/draw.hpp"
 
 namespace formsim::app {
@@ -18,6 +20,7 @@ struct PlotSeries {
   std::string label;
   std::vector<double> x, y;
   sim::Color color;
+  int style_index = 0;  ///< palette index: the print theme's dash pattern and grey
   bool dashed = false;
   bool markers_only = false;
   /// A shaded band under the line from band_lo to band_hi at each x (e.g. mean ± 1σ over the
@@ -50,17 +53,18 @@ struct PlotData {
 };
 
 struct PlotStyle {
-  ImFont* title_font = nullptr;  ///< nullptr: ImGui's current font
-  ImFont* label_font = nullptr;
-  ImFont* tick_font = nullptr;
+  FontRole title_font = FontRole::kTitle;
+  FontRole label_font = FontRole::kLabel;
+  FontRole tick_font = FontRole::kSmall;
   bool show_title = true;
-  float line_width = 2.0f;
-  ImU32 background = IM_COL32(255, 255, 255, 255);
-  ImU32 axis_color = IM_COL32(40, 40, 40, 255);
-  ImU32 grid_color = IM_COL32(225, 225, 225, 255);
-  ImU32 text_color = IM_COL32(20, 20, 20, 255);
+  float line_width = 2.0f;  ///< data lines, before the theme's line scale
   float padding = 10.0f;
+  const Theme* theme = &GetTheme(ThemeId::kLight);  ///< colours, series looks
 };
+
+/// The style of exported figures (PNG, SVG, PDF alike): 16 px labels, 14 px ticks, 17 px bold
+/// title, 2 px lines.
+PlotStyle FigureStyle(const Theme& theme);
 
 /// Where things ended up, for hit-testing and tests.
 struct PlotLayout {
@@ -75,8 +79,8 @@ std::vector<double> NiceTicks(double lo, double hi, int max_ticks, double* step 
 /// Tick label for `value` given the tick step and a shared power of ten `exponent`.
 std::string FormatTick(double value, double step, int exponent);
 
-/// Draws the plot into `dl` inside [min, max]. `cursor_x` (NaN: none) draws a time cursor.
-PlotLayout DrawPlot(ImDrawList* dl, ImVec2 min, ImVec2 max, const PlotData& data,
+/// Draws the plot onto `canvas` inside [min, max]. `cursor_x` (NaN: none) draws a time cursor.
+PlotLayout DrawPlot(Canvas& canvas, ImVec2 min, ImVec2 max, const PlotData& data,
                     const PlotStyle& style,
                     double cursor_x = std::numeric_limits<double>::quiet_NaN());
 

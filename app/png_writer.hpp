@@ -13,11 +13,14 @@
 namespace formsim::app {
 
 /// Encodes an RGBA image (top row first) as PNG bytes (RGB when every pixel is opaque).
-std::vector<std::uint8_t> EncodePng(int width, int height, const std::uint8_t* rgba);
+/// `dpi` > 0 records the resolution (pHYs), so documents place the picture at its printed size.
+std::vector<std::uint8_t> EncodePng(int width, int height, const std::uint8_t* rgba,
+                                    double dpi = 0);
 
 /// Encodes an RGBA image (top row first) as PNG (RGB when every pixel is opaque) and writes it.
 /// Throws std::runtime_error naming the file on failure. Returns the encoding time in seconds.
-double WritePng(const std::string& path, int width, int height, const std::uint8_t* rgba);
+double WritePng(const std::string& path, int width, int height, const std::uint8_t* rgba,
+                double dpi = 0);
 
 /// Decodes a PNG file into RGBA (for tests and tools). Throws on failure.
 std::vector<std::uint8_t> ReadPng(const std::string& path, int* width, int* height);

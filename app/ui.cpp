@@ -361,7 +361,7 @@ void AppUi::DrawScenarioSection() {
   const sim::ExperimentSetup& setup = session_->exp().setup();
   ImGui::TextWrapped("%s", setup.name.c_str());
   if (!setup.description.empty()) {
-    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.35f, 0.35f, 0.35f, 1));
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
     ImGui::TextWrapped("%s", setup.description.c_str());
     ImGui::PopStyleColor();
   }
@@ -486,6 +486,15 @@ void AppUi::DrawViewSection() {
   ImGui::Checkbox("grid", &state_.grid);
   ImGui::SameLine();
   ImGui::Checkbox("coordinates", &state_.coordinates);
+  ImGui::SetNextItemWidth(140);
+  if (ImGui::BeginCombo("theme", GetTheme(state_.theme).name)) {
+    for (ThemeId id : {ThemeId::kLight, ThemeId::kDark, ThemeId::kPrint, ThemeId::kHighContrast})
+      if (ImGui::Selectable(GetTheme(id).name, id == state_.theme)) {
+        state_.theme = id;
+        ApplyImGuiTheme(GetTheme(id));
+      }
+    ImGui::EndCombo();
+  }
   if (ImGui::Button("Screenshot (s)")) state_.screenshot_requested = true;
   ImGui::TextDisabled("wheel: zoom, right-drag: pan,\nleft-drag a robot or obstacle while paused");
 }

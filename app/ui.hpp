@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "app/fonts.hpp"
+#include "app/theme.hpp"
 #include "app/view.hpp"
 #include "sim/core/session.hpp"
 
@@ -32,6 +33,7 @@ struct UiState {
   int follow = -1;  ///< robot index to follow, -1 none
   bool grid = true;
   bool coordinates = true;
+  ThemeId theme = ThemeId::kLight;          ///< colours of the panels, the world view and the plots
   std::map<std::string, bool> plot_closed;  ///< figure id -> hidden by the user
   bool screenshot_requested = false;
   std::string screenshot_path;  ///< where the requested screenshot goes ("" = numbered name)

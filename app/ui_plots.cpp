@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "app/figure_data.hpp"
+#include "app/imgui_canvas.hpp"
 #include "app/ui.hpp"
 
 namespace formsim::app {
@@ -38,11 +39,13 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
       const float avail_h = ImGui::GetContentRegionAvail().y;
       const float h = std::max(220.0f, open_count > 0 ? avail_h / std::min(open_count, 3) - 6 : 0);
       PlotStyle style;
-      style.title_font = fonts.label;
-      style.label_font = fonts.ui;
-      style.tick_font = fonts.small;
+      style.title_font = FontRole::kLabel;
+      style.label_font = FontRole::kUi;
+      style.tick_font = FontRole::kSmall;
       style.line_width = 1.6f;
       style.padding = 6;
+      style.theme = &GetTheme(state_.theme);
+      ImGuiCanvas canvas(ImGui::GetWindowDrawList(), fonts);
       for (std::size_t i = 0; i < figures.size(); ++i) {
         if (!is_open(figures[i])) continue;
         const ImVec2 p0 = ImGui::GetCursorScreenPos();
@@ -50,8 +53,8 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
         ImGui::Dummy(ImVec2(w, h));
         if (!ImGui::IsItemVisible()) continue;  // scrolled away: skip the work
         const PlotData data = ResolveFigure(figures[i], exp.recorder());
-        const PlotLayout L = DrawPlot(ImGui::GetWindowDrawList(), p0, ImVec2(p0.x + w, p0.y + h),
-                                      data, style, data.x_is_time ? exp.time() : std::nan(""));
+        const PlotLayout L = DrawPlot(canvas, p0, ImVec2(p0.x + w, p0.y + h), data, style,
+                                      data.x_is_time ? exp.time() : std::nan(""));
         // Hovering shows each series' value under the mouse.
         if (ImGui::IsItemHovered() && !data.equal_aspect) {
           const ImVec2 m = ImGui::GetIO().MousePos;
@@ -62,9 +65,10 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
             ImGui::Text("%s = %.4g", data.x_label.c_str(), x);
             for (const auto& s : data.series) {
               const double y = SampleSeries(s, x);
-              if (std::isfinite(y))
-                ImGui::TextColored(ImVec4(s.color.r, s.color.g, s.color.b, 1), "%s: %.5g",
-                                   s.label.c_str(), y);
+              if (std::isfinite(y)) {
+                const sim::Color c = style.theme->Series(s.color, s.style_index, s.dashed).color;
+                ImGui::TextColored(ImVec4(c.r, c.g, c.b, 1), "%s: %.5g", s.label.c_str(), y);
+              }
             }
             ImGui::EndTooltip();
           }

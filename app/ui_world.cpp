@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "app/imgui_canvas.hpp"
 #include "app/ui.hpp"
 #include "app/world_view.hpp"
 
@@ -85,7 +86,7 @@ void AppUi::DrawWorldMouse(const View& view) {
     char buf[64];
     std::snprintf(buf, sizeof(buf), "x %.3f m, y %.3f m", m.x, m.y);
     ImGui::GetWindowDrawList()->AddText(ImVec2(view.min.x + 44, view.max.y - 42),
-                                        IM_COL32(90, 90, 90, 255), buf);
+                                        ToImColor(GetTheme(state_.theme).coordinates), buf);
   }
 }
 
@@ -108,7 +109,8 @@ void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool in
   WorldViewOptions opt;
   opt.grid = state_.grid;
   opt.coordinates = state_.coordinates;
-  DrawWorldView(ImGui::GetWindowDrawList(), state_.view, session_->exp(), fonts, opt);
+  ImGuiCanvas canvas(ImGui::GetWindowDrawList(), fonts);
+  DrawWorldView(canvas, state_.view, session_->exp(), GetTheme(state_.theme), opt);
   if (interactive) DrawWorldMouse(state_.view);
   ImGui::End();
   ImGui::PopStyleVar();

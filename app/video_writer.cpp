@@ -3,13 +3,33 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <csignal>
 #include <cstdlib>
+#include <filesystem>
 #include <sstream>
 #include <stdexcept>
 
+namespace fs = std::filesystem;
+
 namespace formsim::app {
 namespace {
+
+std::string Extension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+// ffmpeg's muxer for our extensions (given explicitly: the partial name must not decide).
+const char* Muxer(const std::string& ext) {
+  if (ext == ".mp4") return "mp4";
+  if (ext == ".mov") return "mov";
+  if (ext == ".mkv") return "matroska";
+  return nullptr;
+}
+
+}  // namespace
 
 std::string ShellQuote(const std::string& s) {
   std::string out = "'";
@@ -17,7 +37,25 @@ std::string ShellQuote(const std::string& s) {
   return out + "'";
 }
 
-}  // namespace
+std::string PartialPath(const std::string& path) {
+  const fs::path p(path);
+  return (p.parent_path() / ("." + p.stem().string() + ".partial" + p.extension().string()))
+      .string();
+}
+
+void FinishPartial(int status, const std::string& partial, const std::string& path) {
+  std::error_code ec;
+  if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    fs::remove(partial, ec);
+    throw std::runtime_error("ffmpeg failed writing " + path);
+  }
+  fs::rename(partial, path, ec);
+  if (ec) {
+    const std::string why = ec.message();
+    fs::remove(partial, ec);
+    throw std::runtime_error("cannot move " + path + " into place: " + why);
+  }
+}
 
 std::string FindOnPath(const std::string& program) {
   const char* path = std::getenv("PATH");
@@ -32,7 +70,14 @@ std::string FindOnPath(const std::string& program) {
   return "";
 }
 
-void VideoWriter::CheckAvailable(int width, int height) {
+void VideoWriter::CheckAvailable(const std::string& path, int width, int height) {
+  const std::string ext = Extension(path);
+  if (ext == ".gif")
+    throw std::runtime_error("--video '" + path + "': for an animated GIF use --gif " + path +
+                             " (palette-optimised, looping); --video writes .mp4, .mkv or .mov");
+  if (Muxer(ext) == nullptr)
+    throw std::runtime_error("--video '" + path +
+                             "': the file name must end in .mp4, .mkv or .mov (H.264 video)");
   if (FindOnPath("ffmpeg").empty())
     throw std::runtime_error(
         "--video needs the program 'ffmpeg', which is not on PATH (Debian: apt-get install "
@@ -43,19 +88,25 @@ void VideoWriter::CheckAvailable(int width, int height) {
 }
 
 VideoWriter::VideoWriter(const std::string& path, int width, int height, double fps)
-    : path_(path), frame_bytes_(static_cast<std::size_t>(width) * height * 4) {
-  CheckAvailable(width, height);
+    : path_(path),
+      partial_(PartialPath(path)),
+      frame_bytes_(static_cast<std::size_t>(width) * height * 4) {
+  CheckAvailable(path, width, height);
   std::signal(SIGPIPE, SIG_IGN);  // a dying ffmpeg becomes a write error, not a crash
   std::ostringstream cmd;
   cmd << "ffmpeg -y -loglevel error -f rawvideo -pix_fmt rgba -s " << width << "x" << height
       << " -r " << fps << " -i - -c:v libx264 -preset veryfast -crf 20 -pix_fmt yuv420p "
-      << "-movflags +faststart " << ShellQuote(path);
+      << "-movflags +faststart -f " << Muxer(Extension(path)) << " " << ShellQuote(partial_);
   pipe_ = popen(cmd.str().c_str(), "w");
   if (pipe_ == nullptr) throw std::runtime_error("cannot start ffmpeg for " + path);
 }
 
 VideoWriter::~VideoWriter() {
-  if (pipe_ != nullptr) pclose(pipe_);
+  if (pipe_ != nullptr) {
+    pclose(pipe_);
+    std::error_code ec;
+    fs::remove(partial_, ec);
+  }
 }
 
 void VideoWriter::Write(const std::vector<std::uint8_t>& rgba) {
@@ -69,8 +120,7 @@ void VideoWriter::Close() {
   if (pipe_ == nullptr) return;
   const int status = pclose(pipe_);
   pipe_ = nullptr;
-  if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    throw std::runtime_error("ffmpeg failed writing " + path_);
+  FinishPartial(status, partial_, path_);
 }
 
 }  // namespace formsim::app

@@ -3,20 +3,19 @@
 #include <cmath>
 #include <cstdio>
 
-#include "app/imgui_draw_sink.hpp"
+#include "app/canvas_draw_sink.hpp"
 #include "app/plot.hpp"
 
 namespace formsim::app {
 namespace {
 
-void Label(ImDrawList* dl, ImFont* f, ImVec2 pos, ImU32 col, const std::string& s,
-           bool backdrop = true) {
-  const ImVec2 ext = f->CalcTextSizeA(f->FontSize, 1e9f, 0.0f, s.c_str());
+void Label(Canvas& cv, const Theme& th, FontRole f, ImVec2 pos, sim::Color col,
+           const std::string& s) {
+  const ImVec2 ext = cv.TextSize(f, s);
   pos = ImVec2(std::round(pos.x), std::round(pos.y));
-  if (backdrop)
-    dl->AddRectFilled(ImVec2(pos.x - 4, pos.y - 2), ImVec2(pos.x + ext.x + 4, pos.y + ext.y + 2),
-                      IM_COL32(255, 255, 255, 215), 3.0f);
-  dl->AddText(f, f->FontSize, pos, col, s.c_str());
+  cv.FillRect(ImVec2(pos.x - 4, pos.y - 2), ImVec2(pos.x + ext.x + 4, pos.y + ext.y + 2),
+              th.backdrop.WithAlpha(0.84f), 3.0f);
+  cv.Text(pos, f, col, s);
 }
 
 std::string MetreText(double v, double step) {
@@ -36,10 +35,19 @@ double GridStep(double ppm, double min_px) {
   return step;
 }
 
-void DrawWorldView(ImDrawList* dl, const View& view, const sim::Experiment& exp, const Fonts& fonts,
+void FrameWorldView(const sim::Experiment& exp, float width, float height, View& view, AutoFit& fit,
+                    bool jump) {
+  view.min = ImVec2(0, 0);
+  view.max = ImVec2(width, height);
+  Vec2 lo, hi;
+  exp.Bounds(lo, hi);
+  fit.Update(view, lo, hi, jump ? 1.0 : 0.15);
+}
+
+void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, const Theme& th,
                    const WorldViewOptions& opt) {
-  dl->PushClipRect(view.min, view.max, true);
-  dl->AddRectFilled(view.min, view.max, kWorldBackground);
+  cv.PushClip(view.min, view.max);
+  cv.FillRect(view.min, view.max, th.background);
   const Vec2 wlo = view.ToWorld(ImVec2(view.min.x, view.max.y));
   const Vec2 whi = view.ToWorld(ImVec2(view.max.x, view.min.y));
   const double major = GridStep(view.scale, 70.0);
@@ -49,49 +57,46 @@ void DrawWorldView(ImDrawList* dl, const View& view, const sim::Experiment& exp,
     const double minor = major / 5.0 * view.scale >= 12.0 ? major / 5.0 : major / 2.0;
     // Grid lines are pixel-aligned 1-px rectangles, not anti-aliased lines: crisper, and far
     // cheaper for the software rasteriser (long thin AA quads cost it ~8 ms per frame).
-    auto vline = [&](float sx, ImU32 col, float th) {
+    auto vline = [&](float sx, sim::Color col) {
       const float x = std::floor(sx);
-      dl->AddRectFilled(ImVec2(x, view.min.y), ImVec2(x + th, view.max.y), col);
+      cv.FillRect(ImVec2(x, view.min.y), ImVec2(x + 1, view.max.y), col);
     };
-    auto hline = [&](float sy, ImU32 col, float th) {
+    auto hline = [&](float sy, sim::Color col) {
       const float y = std::floor(sy);
-      dl->AddRectFilled(ImVec2(view.min.x, y), ImVec2(view.max.x, y + th), col);
+      cv.FillRect(ImVec2(view.min.x, y), ImVec2(view.max.x, y + 1), col);
     };
-    auto lines = [&](double step, ImU32 col, float th) {
+    auto lines = [&](double step, sim::Color col) {
       for (double x = std::ceil(wlo.x / step) * step; x <= whi.x; x += step)
-        vline(view.ToScreen({x, 0}).x, col, th);
+        vline(view.ToScreen({x, 0}).x, col);
       for (double y = std::ceil(wlo.y / step) * step; y <= whi.y; y += step)
-        hline(view.ToScreen({0, y}).y, col, th);
+        hline(view.ToScreen({0, y}).y, col);
     };
-    if (minor * view.scale >= 10.0) lines(minor, IM_COL32(236, 236, 232, 255), 1.0f);
-    lines(major, IM_COL32(212, 212, 206, 255), 1.0f);
+    if (minor * view.scale >= 10.0) lines(minor, th.world_minor);
+    lines(major, th.world_major);
     const ImVec2 o = view.ToScreen({0, 0});
-    vline(o.x, IM_COL32(170, 170, 165, 255), 1.0f);
-    hline(o.y, IM_COL32(170, 170, 165, 255), 1.0f);
+    vline(o.x, th.world_axis);
+    hline(o.y, th.world_axis);
   }
 
-  ImDrawSink sink(dl, view, fonts.small);
+  CanvasDrawSink sink(cv, view, th, FontRole::kSmall);
   exp.Draw(sink);
 
   // Coordinates of the major grid lines along the bottom and left edges, in metres.
-  const ImU32 ink = IM_COL32(70, 70, 70, 255);
   if (opt.grid && opt.coordinates) {
+    const float fs = cv.FontSize(FontRole::kSmall);
     for (double x = std::ceil(wlo.x / major) * major; x <= whi.x; x += major) {
       const float sx = view.ToScreen({x, 0}).x;
       if (sx < view.min.x + 40 || sx > view.max.x - 30) continue;
       const std::string s = MetreText(x, major);
-      const float w = fonts.small->CalcTextSizeA(fonts.small->FontSize, 1e9f, 0, s.c_str()).x;
-      dl->AddText(fonts.small, fonts.small->FontSize,
-                  ImVec2(std::round(sx - w / 2), view.max.y - fonts.small->FontSize - 3),
-                  IM_COL32(120, 120, 120, 255), s.c_str());
+      const float w = cv.TextSize(FontRole::kSmall, s).x;
+      cv.Text(ImVec2(std::round(sx - w / 2), view.max.y - fs - 3), FontRole::kSmall, th.coordinates,
+              s);
     }
     for (double y = std::ceil(wlo.y / major) * major; y <= whi.y; y += major) {
       const float sy = view.ToScreen({0, y}).y;
       if (sy < view.min.y + 60 || sy > view.max.y - 40) continue;
-      const std::string s = MetreText(y, major);
-      dl->AddText(fonts.small, fonts.small->FontSize,
-                  ImVec2(view.min.x + 4, std::round(sy - fonts.small->FontSize / 2)),
-                  IM_COL32(120, 120, 120, 255), s.c_str());
+      cv.Text(ImVec2(view.min.x + 4, std::round(sy - fs / 2)), FontRole::kSmall, th.coordinates,
+              MetreText(y, major));
     }
   }
 
@@ -104,25 +109,26 @@ void DrawWorldView(ImDrawList* dl, const View& view, const sim::Experiment& exp,
       std::snprintf(buf, sizeof(buf), "%g m", major);
     else
       std::snprintf(buf, sizeof(buf), "%g cm", major * 100.0);
-    const ImVec2 ext = fonts.label->CalcTextSizeA(fonts.label->FontSize, 1e9f, 0, buf);
-    dl->AddRectFilled(ImVec2(p0.x - 8, p0.y - ext.y - 10), ImVec2(p1.x + 8, p1.y + 10),
-                      IM_COL32(255, 255, 255, 215), 3.0f);
-    dl->AddLine(p0, p1, ink, 3.0f);
-    dl->AddLine(ImVec2(p0.x, p0.y - 6), ImVec2(p0.x, p0.y + 6), ink, 2.0f);
-    dl->AddLine(ImVec2(p1.x, p1.y - 6), ImVec2(p1.x, p1.y + 6), ink, 2.0f);
-    dl->AddText(fonts.label, fonts.label->FontSize,
-                ImVec2(std::round(0.5f * (p0.x + p1.x) - ext.x / 2), p0.y - ext.y - 6), ink, buf);
+    const ImVec2 ext = cv.TextSize(FontRole::kLabel, buf);
+    cv.FillRect(ImVec2(p0.x - 8, p0.y - ext.y - 10), ImVec2(p1.x + 8, p1.y + 10),
+                th.backdrop.WithAlpha(0.84f), 3.0f);
+    const sim::Color ink = th.axis;
+    cv.Line(p0, p1, {ink, 3.0f});
+    cv.Line(ImVec2(p0.x, p0.y - 6), ImVec2(p0.x, p0.y + 6), {ink, 2.0f});
+    cv.Line(ImVec2(p1.x, p1.y - 6), ImVec2(p1.x, p1.y + 6), {ink, 2.0f});
+    cv.Text(ImVec2(std::round(0.5f * (p0.x + p1.x) - ext.x / 2), p0.y - ext.y - 6),
+            FontRole::kLabel, ink, buf);
   }
 
   if (opt.time_label) {
     char buf[64];
     std::snprintf(buf, sizeof(buf), "t = %.2f s", exp.time());
-    Label(dl, fonts.title, ImVec2(view.min.x + 12, view.min.y + 10), IM_COL32(20, 20, 20, 255),
-          buf);
+    Label(cv, th, FontRole::kTitle, ImVec2(view.min.x + 12, view.min.y + 10), th.text, buf);
     if (!opt.caption.empty())
-      Label(dl, fonts.small, ImVec2(view.min.x + 12, view.min.y + 36), ink, opt.caption);
+      Label(cv, th, FontRole::kSmall, ImVec2(view.min.x + 12, view.min.y + 36), th.axis,
+            opt.caption);
   }
-  dl->PopClipRect();
+  cv.PopClip();
 }
 
 }  // namespace formsim::app

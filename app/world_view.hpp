@@ -1,10 +1,9 @@
 #pragma once
-/// \file The world view: light background, metre grid with coordinates, scale bar, simulated
-/// time, then everything the experiment draws through sim::DrawSink.
+/// \file The world view: background, metre grid with coordinates, scale bar, simulated time, then
+/// everything the experiment draws through sim::DrawSink, onto any Canvas in any theme.
 
-#include <imgui.h>
-
-#include "app/fonts.hpp"
+#include "app/canvas.hpp"
+#include "app/theme.hpp"
 #include "app/view.hpp"
 #include "sim/core/experiment.hpp"
 
@@ -18,14 +17,16 @@ struct WorldViewOptions {
   std::string caption;      ///< drawn under the time (scenario name)
 };
 
-/// Background colour of the world view (light, so it prints well).
-constexpr ImU32 kWorldBackground = IM_COL32(250, 250, 247, 255);
-
-/// Draws the experiment into `view`'s rectangle of `dl` (clipped to it).
-void DrawWorldView(ImDrawList* dl, const View& view, const sim::Experiment& exp, const Fonts& fonts,
+/// Draws the experiment into `view`'s rectangle of `canvas` (clipped to it).
+void DrawWorldView(Canvas& canvas, const View& view, const sim::Experiment& exp, const Theme& theme,
                    const WorldViewOptions& opt = {});
 
 /// Grid spacing in metres for a zoom: 1-2-5 steps at least `min_px` pixels apart.
 double GridStep(double pixels_per_metre, double min_px);
+
+/// Points `view` at the experiment in a `width` x `height` frame: the camera `fit` moves towards
+/// the experiment's bounds (at once when `jump`, else smoothly, as frames of a video do).
+void FrameWorldView(const sim::Experiment& exp, float width, float height, View& view, AutoFit& fit,
+                    bool jump);
 
 }  // namespace formsim::app

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates every PNG in screenshots/ with the headless mode (no display needed) and the GUI
+# Regenerates every picture in screenshots/ with the headless mode (no display needed) and the GUI
 # under Xvfb. Usage: scripts/screenshots.sh [path/to/formsim]   (default: build/formsim, built
 # with scripts/build.sh when missing). Each picture is listed below with what it shows.
 set -euo pipefail
@@ -12,33 +12,48 @@ TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
 run() { env -u DISPLAY "$BIN" run "$@" -q; }
 
+# Every paper figure of the scenarios shown below, drawn by `formsim figures` on all cores as PNG
+# and SVG (into FIGS/<scenario>/<figure>.<format>).
+env -u DISPLAY "$BIN" figures formation_traj2_ukf agv_fused agv_odometry_only inspection_u_route \
+  velocity_constant --out "$TMP/figs" --plot-format png,svg --quiet
+FIGS="$TMP/figs"
+
 # World view mid-run: the figure-eight cascade with a UKF per link (t = 5.5 s), tracking camera.
 run formation_traj2_ukf --set duration=5.5 --out "$TMP/a" --snapshot "$OUT/world_traj2_ukf.png"
 # The whole 7-robot cascade run seen at once (camera keeps everything since the start).
 run formation_cascade7 --out "$TMP/b" --snapshot "$OUT/world_cascade7_whole_run.png" --whole-run
-# Paper-style figures (Fig. 3 (a)-(e) and the UKF estimation error) of the figure-eight run.
-run formation_traj2_ukf --out "$TMP/c" --plots "$TMP/plots"
-for f in "$TMP"/plots/*.png; do cp "$f" "$OUT/traj2_ukf_$(basename "$f")"; done
+# Paper-style figures (Fig. 3 (a)-(e) and the UKF estimation error) of the figure-eight run;
+# (a) also as SVG, the vector figure of the README.
+for f in "$FIGS"/formation_traj2_ukf/*.png; do
+  [ "$(basename "$f")" = world.png ] && continue
+  cp "$f" "$OUT/traj2_ukf_$(basename "$f")"
+done
+cp "$FIGS/formation_traj2_ukf/trajectories.svg" "$OUT/traj2_ukf_trajectories.svg"
+# Themes: the distance errors for a dark room, for print (greys told apart by dash patterns) and
+# for a projector (high contrast); the light theme is the figure above.
+for theme in dark print high-contrast; do
+  run formation_traj2_ukf --out "$TMP/theme_$theme" --plots "$TMP/theme_$theme/plots" \
+    --plot-size 640x400 --theme "$theme"
+  cp "$TMP/theme_$theme/plots/distance_error.png" "$OUT/theme_${theme}_distance_error.png"
+done
 # The interface drawn headless (--ui) into a frame, as a video made with --ui would show it.
 run formation_traj2 --set duration=6 --out "$TMP/d" --snapshot "$OUT/ui_headless_traj2.png" \
   --ui --size 1600x900
 # Mecanum AGV (paper 002): world view at the end of the fused run and the Fig. 6-style tracks of
 # the fused and odometry-only runs.
-run agv_fused --out "$TMP/agv" --snapshot "$OUT/agv_world.png" --plots "$TMP/agv_plots"
-cp "$TMP/agv_plots/trajectory.png" "$OUT/agv_fused_trajectory.png"
-run agv_odometry_only --out "$TMP/agv_odo" --plots "$TMP/agv_odo_plots"
-cp "$TMP/agv_odo_plots/trajectory.png" "$OUT/agv_odometry_trajectory.png"
+run agv_fused --out "$TMP/agv" --snapshot "$OUT/agv_world.png"
+cp "$FIGS/agv_fused/trajectory.png" "$OUT/agv_fused_trajectory.png"
+cp "$FIGS/agv_odometry_only/trajectory.png" "$OUT/agv_odometry_trajectory.png"
 # Inspection robot (paper 003): laser rays and posts mid-run, Fig. 8 style X coordinates, and the
 # lateral-offset membership functions with the current input marked.
 run inspection_u_route --set duration=20 --out "$TMP/insp_mid" --snapshot "$OUT/inspection_world.png"
-run inspection_u_route --out "$TMP/insp" --plots "$TMP/insp_plots"
-cp "$TMP/insp_plots/fig8_x.png" "$OUT/inspection_fig8_x.png"
-cp "$TMP/insp_plots/mf_s.png" "$OUT/inspection_mf_s.png"
+cp "$FIGS/inspection_u_route/fig8_x.png" "$OUT/inspection_fig8_x.png"
+cp "$FIGS/inspection_u_route/mf_s.png" "$OUT/inspection_mf_s.png"
 # Velocity control (paper 004): two robots crossing floors of different friction, keyframes and
 # tracked features; the speed of the robot whose loop is fed by the fused estimate.
-run velocity_constant --out "$TMP/vel" --snapshot "$OUT/velocity_world.png" --plots "$TMP/vel_plots"
-cp "$TMP/vel_plots/speed_R_fused.png" "$OUT/velocity_speed_fused.png"
-cp "$TMP/vel_plots/speed_R_odo.png" "$OUT/velocity_speed_odo.png"
+run velocity_constant --out "$TMP/vel" --snapshot "$OUT/velocity_world.png"
+cp "$FIGS/velocity_constant/speed_R_fused.png" "$OUT/velocity_speed_fused.png"
+cp "$FIGS/velocity_constant/speed_R_odo.png" "$OUT/velocity_speed_odo.png"
 # Sweeps and tuning: R2's bearing error over k_phi (log range) x estimator, mean of 5 seeds (a
 # heatmap); the AGV's RMS cross-track error against the cross-track kp with a ±1σ band over 5
 # seeds; the convergence of tuning the cross-track PID.
@@ -60,4 +75,4 @@ if command -v xvfb-run >/dev/null; then
 else
   echo "screenshots: xvfb-run not installed, GUI screenshot skipped" >&2
 fi
-ls -1 "$OUT"/*.png
+ls -1 "$OUT"/*.png "$OUT"/*.svg

@@ -6,7 +6,8 @@ PKGS=(build-essential cmake pkg-config libbox2d-dev libeigen3-dev libimgui-dev l
       xvfb xauth ffmpeg fonts-dejavu-core zlib1g-dev
       clang libclang-rt-14-dev  # clang: the sanitizer build and the libFuzzer harnesses
       libnlopt-dev              # formsim tune: BOBYQA, Nelder-Mead, COBYLA
-      parallel slurm-wlm munge) # the sweep's GNU parallel and single-node Slurm tests
+      parallel slurm-wlm munge  # the sweep's GNU parallel and single-node Slurm tests
+      libcairo2-dev libfreetype-dev poppler-utils libxml2-utils)  # vector figures; PDF and SVG checks
 missing=()
 for p in "${PKGS[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
 if [ ${#missing[@]} -gt 0 ]; then

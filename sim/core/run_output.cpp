@@ -1,6 +1,7 @@
 #include "sim/core/run_output.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -26,7 +27,10 @@ void PrepareOutputDir(const std::string& dir) {
 }
 
 void WriteFileAtomic(const std::string& path, const std::string& text, bool sync) {
-  const std::string tmp = path + ".tmp";
+  // A device or pipe (/dev/stdout, a link to /dev/full) is written as it is, never renamed over.
+  struct stat st {};
+  const bool special = ::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode);
+  const std::string tmp = special ? path : path + ".tmp";
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) throw std::runtime_error("cannot write '" + path + "': " + std::strerror(errno));
   // Every write checked, then flushed to the disk before the rename makes the file visible:
@@ -42,12 +46,13 @@ void WriteFileAtomic(const std::string& path, const std::string& text, bool sync
     }
     done += static_cast<std::size_t>(n);
   }
-  if (sync && error.empty() && ::fsync(fd) != 0) error = std::strerror(errno);
+  if (sync && !special && error.empty() && ::fsync(fd) != 0) error = std::strerror(errno);
   if (::close(fd) != 0 && error.empty()) error = std::strerror(errno);
   if (!error.empty()) {
-    std::remove(tmp.c_str());
+    if (!special) std::remove(tmp.c_str());
     throw std::runtime_error("cannot write '" + path + "': " + error);
   }
+  if (special) return;
   if (std::rename(tmp.c_str(), path.c_str()) != 0) {
     error = std::strerror(errno);
     std::remove(tmp.c_str());

@@ -86,9 +86,9 @@ TEST(HeadlessRender, FiguresHaveAxesTicksAndData) {
     const PlotLayout& L = r.last_plot_layout();
     EXPECT_GE(L.x_ticks.size(), 2u) << fig.id;
     EXPECT_GE(L.y_ticks.size(), 2u) << fig.id;
-    // White paper background in the corner, dark axis lines along the left and bottom edges.
+    // Light paper background in the corner, dark axis lines along the left and bottom edges.
     const Rgb corner = At(px, w, 2, 2);
-    EXPECT_GT(corner.r + corner.g + corner.b, 3 * 250) << fig.id;
+    EXPECT_GT(corner.r + corner.g + corner.b, 3 * 245) << fig.id;
     int dark_left = 0, dark_bottom = 0;
     const int ax = static_cast<int>(std::round(L.area_min.x)),
               by = static_cast<int>(std::round(L.area_max.y));
@@ -128,13 +128,12 @@ TEST(HeadlessExport, FramesSnapshotAndPlotsHaveTheRightCountAndSize) {
   sim::Session s(Scenario("formation_traj2"), {"duration=1.0"}, -1);
   ExportOptions opt;
   opt.frames_dir = dir + "/frames";
-  opt.snapshot = dir + "/snap.png";
+  opt.snapshots = {dir + "/snap.png"};
   opt.plots_dir = dir + "/plots";
   opt.fps = 12;
   opt.width = 320;
   opt.height = 200;
-  opt.plot_width = 400;
-  opt.plot_height = 300;
+  opt.plot_size = ParseFigureSize("400x300", "--plot-size");
   const ExportStats st = RunWithExport(s, opt);
   EXPECT_TRUE(s.exp().finished());
   const long expected = FrameCount(1.0, s.exp().dt(), 12);
@@ -155,7 +154,7 @@ TEST(HeadlessExport, FramesSnapshotAndPlotsHaveTheRightCountAndSize) {
     EXPECT_EQ(h, 200);
     EXPECT_GT(NonBackgroundFraction(px), 0.02);
   }
-  ReadPng(opt.snapshot, &w, &h);
+  ReadPng(opt.snapshots[0], &w, &h);
   EXPECT_EQ(w, 320);
   for (const auto& fig : s.exp().Figures()) {
     ReadPng(opt.plots_dir + "/" + fig.id + ".png", &w, &h);

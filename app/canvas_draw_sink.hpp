@@ -1,23 +1,23 @@
 #pragma once
-/// \file sim::DrawSink implemented over an ImGui draw list through a View: the one drawing path
-/// of the world view, in the GUI window and in headless frames alike.
+/// \file sim::DrawSink implemented on a Canvas through a View: the one drawing path of the world
+/// view, in the GUI window, headless frames, and SVG / PDF snapshots alike. The theme decides
+/// how the experiment's colours are shown.
 
-#include <imgui.h>
+#include <vector>
 
+#include "app/canvas.hpp"
+#include "app/theme.hpp"
 #include "app/view.hpp"
 #include "sim/core/draw.hpp"
 
 namespace formsim::app {
 
-inline ImU32 ToImColor(sim::Color c) {
-  return ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, c.a));
-}
-
-class ImDrawSink : public sim::DrawSink {
+class CanvasDrawSink : public sim::DrawSink {
  public:
-  /// `label_font` draws Text() labels; `line_scale` multiplies every line thickness.
-  ImDrawSink(ImDrawList* list, const View& view, ImFont* label_font, float line_scale = 1.0f)
-      : dl_(list), view_(view), font_(label_font), line_scale_(line_scale) {}
+  /// Text() labels use `label_font`; every line thickness is multiplied by the theme's scale.
+  CanvasDrawSink(Canvas& canvas, const View& view, const Theme& theme,
+                 FontRole label_font = FontRole::kSmall)
+      : cv_(canvas), view_(view), theme_(theme), font_(label_font) {}
 
   void Polygon(const std::vector<Vec2>& pts, sim::Color fill, sim::Color outline) override;
   void Circle(Vec2 center, double radius, sim::Color fill, sim::Color outline) override;
@@ -31,14 +31,14 @@ class ImDrawSink : public sim::DrawSink {
   void Flash(Vec2 p, double radius, sim::Color color, float age) override;
 
  private:
-  void FillSimplePolygon(const std::vector<ImVec2>& pts, ImU32 col);
+  float Width(float px) const { return px * theme_.line_scale; }
   /// Labels already drawn this frame: a label that would overlap one is skipped (zoomed-out
   /// views of many robots stay readable instead of turning into a smudge of text).
   std::vector<ImVec4> labels_;
-  ImDrawList* dl_;
+  Canvas& cv_;
   const View& view_;
-  ImFont* font_;
-  float line_scale_;
+  const Theme& theme_;
+  FontRole font_;
 };
 
 }  // namespace formsim::app
