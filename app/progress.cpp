@@ -63,7 +63,7 @@ void ProgressLine::Update(double fraction, const std::string& detail) {
   std::snprintf(pct, sizeof(pct), " %3d%%  ", static_cast<int>(fraction * 100));
   const double elapsed = Seconds(std::chrono::steady_clock::now() - start_);
   std::string left = "";
-  if (fraction > 0.01 && elapsed > 1.0)
+  if (fraction > 0.01 && elapsed > 0.25)  // shown with the first line (after 0.5 s)
     left = "  " + Clock(elapsed * (1 - fraction) / fraction) + " left";
   Print(bar + pct + detail + left);
 }
