@@ -171,7 +171,7 @@ std::vector<FigureSpec> InspectionExperiment::Figures() const {
     f.x_label = v.name == "dphi" ? "Δφ [deg]" : v.name == "s" ? "s [m]" : v.name;
     int color = 0;
     for (const auto& term : v.terms) {
-      SeriesSpec s = Line(v.input ? term.name : term.name + " (" + Sprintf("%.4g", term.centroid) + ")", "", color++);
+      SeriesSpec s = Line(term.name, "", color++);
       s.x = term.x;
       s.y = term.y;
       f.series.push_back(std::move(s));
