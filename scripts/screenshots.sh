@@ -33,7 +33,7 @@ cp "$TMP/agv_odo_plots/trajectory.png" "$OUT/agv_odometry_trajectory.png"
 run inspection_u_route --set duration=20 --out "$TMP/insp_mid" --snapshot "$OUT/inspection_world.png"
 run inspection_u_route --out "$TMP/insp" --plots "$TMP/insp_plots"
 cp "$TMP/insp_plots/fig8_x.png" "$OUT/inspection_fig8_x.png"
-cp "$TMP/insp_plots/mf_s.png" "$OUT/inspection_mf_s.png"
+cp "$TMP/insp_plots/mf_s_near.png" "$OUT/inspection_mf_s.png"
 # Velocity control (paper 004): two robots crossing floors of different friction, keyframes and
 # tracked features; the speed of the robot whose loop is fed by the fused estimate.
 run velocity_constant --out "$TMP/vel" --snapshot "$OUT/velocity_world.png" --plots "$TMP/vel_plots"

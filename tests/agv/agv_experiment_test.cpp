@@ -213,6 +213,43 @@ TEST(AgvExperiment, EveryLiveModeShowsInColumnsFiguresAndResults) {
   }
 }
 
+// The paper's Fig. 6 as two figures of every run: (a) the beacon's own readings, outliers
+// included, (b) the fused estimate at every control period, both over the desired path; (b)
+// says which filter made it.
+TEST(AgvExperiment, Fig6PointSetsOfTheBeaconAndTheFusedEstimate) {
+  for (const char* gate : {"true", "false"}) {
+    const auto e = RunToEnd(kFused, {std::string("estimation.gate=") + gate});
+    const AgvExperiment& a = Agv(e);
+    const FigureSpec *fa = nullptr, *fb = nullptr;
+    const auto figs = e->Figures();
+    for (const FigureSpec& f : figs) {
+      if (f.id == "fig6a_beacon_points") fa = &f;
+      if (f.id == "fig6b_fused_points") fb = &f;
+    }
+    ASSERT_NE(fa, nullptr);
+    ASSERT_NE(fb, nullptr);
+    EXPECT_TRUE(fa->equal_aspect && fb->equal_aspect);
+    ASSERT_EQ(fa->series.size(), 2u);  // desired path, beacon readings
+    const SeriesSpec& readings = fa->series[1];
+    EXPECT_TRUE(readings.markers_only);
+    EXPECT_EQ(static_cast<long>(readings.x.size()),
+              a.beacon_counts().samples - a.beacon_counts().dropouts);
+    // The interference outliers are in it: some readings lie 0.2 m or more off the path.
+    int far = 0;
+    for (std::size_t i = 0; i < readings.x.size(); ++i)
+      far += a.config().path.Project({readings.x[i], readings.y[i]}).cross_track > 0.15 ||
+             a.config().path.Project({readings.x[i], readings.y[i]}).cross_track < -0.15;
+    EXPECT_GE(far, a.beacon_counts().outliers / 2);
+    ASSERT_EQ(fb->series.size(), 2u);  // desired path, fused estimate
+    EXPECT_TRUE(fb->series[1].markers_only);
+    EXPECT_EQ(fb->series[1].x_column, "fused_x");
+    EXPECT_EQ(fb->series[1].column, "fused_y");
+    EXPECT_NE(fb->title.find(std::string(gate) == "true" ? "our innovation gate" : "plain"),
+              std::string::npos)
+        << fb->title;
+  }
+}
+
 // The gate and adaptive R are live switches too: the results and the innovation figure follow.
 TEST(AgvExperiment, LiveFilterSwitchesShowInResultsAndFigures) {
   Session s(kFused, {"estimation.gate=false", "duration=20"}, -1);
