@@ -546,7 +546,8 @@ void SlidingWindowEstimator::ReanchorLandmarks(long keep_from) {
 void SlidingWindowEstimator::ReanchorPrior(const std::vector<Reanchoring>& moves) {
   if (moves.empty()) return;
   // Keyframes a move needs that the prior lacks are appended (no information yet, linearised
-  // at the current estimate).
+  // at the current estimate). The new anchor may be newer than the last marginalisation; the
+  // old one is in the prior whenever the landmark is (both were in the window then).
   const int n_old = prior_.dim();
   auto has_frame = [this](long id) {
     for (const PriorVar& v : prior_.vars)
@@ -554,8 +555,8 @@ void SlidingWindowEstimator::ReanchorPrior(const std::vector<Reanchoring>& moves
     return false;
   };
   for (const Reanchoring& m : moves)
-    if (!has_frame(m.new_anchor))
-      prior_.vars.push_back({true, m.new_anchor, kD, FrameById(frames_, m.new_anchor).x});
+    for (long id : {m.old_anchor, m.new_anchor})
+      if (!has_frame(id)) prior_.vars.push_back({true, id, kD, FrameById(frames_, id).x});
   std::map<std::pair<bool, long>, int> at;  // offset of each variable
   int n = 0;
   for (const PriorVar& v : prior_.vars) {
@@ -565,7 +566,7 @@ void SlidingWindowEstimator::ReanchorPrior(const std::vector<Reanchoring>& moves
   auto lin_of = [this](bool frame, long id) -> const Eigen::VectorXd& {
     for (const PriorVar& v : prior_.vars)
       if (v.frame == frame && v.id == id) return v.x_lin;
-    return prior_.vars.front().x_lin;  // unreachable: every variable looked up is in the prior
+    return prior_.vars.front().x_lin;  // unreachable: both anchors and the landmark are in it
   };
   // The prior's old coordinates in the new ones: dx_old = a + T dx_new, T the (padded) identity
   // except on the two rows of each moved landmark:
