@@ -19,6 +19,15 @@
 #include "sim/core/session.hpp"
 #include "tests/support/invalid_fixtures.hpp"
 
+// Built with AddressSanitizer (scripts/sanitize.sh)?
+#if defined(__SANITIZE_ADDRESS__)
+#define FORMSIM_TEST_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define FORMSIM_TEST_ASAN 1
+#endif
+#endif
+
 namespace formsim::sim::velocity {
 namespace {
 
@@ -130,6 +139,11 @@ TEST(VelocityExperiment, FusedSpeedBeatsOdometryWhenWheelsSlipOnLowFriction) {
 // odometry goes wrong comes after 22 s. Measured on seeds 1-3 (inverse depth): fused 0.0081-
 // 0.0082, VI-only 0.0083-0.0129, odometry 0.0149 m/s.
 TEST(VelocityExperiment, FusedBeatsVisualInertialAndOdometryOnVelocityConstant) {
+#ifdef FORMSIM_TEST_ASAN
+  // Three 40 s runs of two sliding windows take minutes under the sanitizer; the same code
+  // paths run there in the shorter velocity tests, this claim is checked in the Release suite.
+  GTEST_SKIP() << "a numerical claim over three full runs: checked in the Release suite";
+#endif
   std::ifstream in(kScenarios + "velocity_constant.yaml");
   std::stringstream ss;
   ss << in.rdbuf();
