@@ -175,10 +175,9 @@ AnchorCoordinates EvaluateAnchorCoordinates(const KeyframeState& anchor, const V
 }
 
 InverseDepthBearingFactor EvaluateInverseDepthBearingFactor(const KeyframeState& k,
-                                                            const KeyframeState& anchor,
-                                                            double psi, double rho,
-                                                            double bearing, double sigma,
-                                                            double camera_offset) {
+                                                            const KeyframeState& anchor, double psi,
+                                                            double rho, double bearing,
+                                                            double sigma, double camera_offset) {
   const AnchoredPoint a = EvaluateAnchoredPoint(anchor, psi, rho, camera_offset);
   const BearingFactor b = EvaluateBearingFactor(k, a.f, bearing, sigma, camera_offset);
   InverseDepthBearingFactor f;

@@ -64,7 +64,7 @@ BearingFactor EvaluateBearingFactor(const KeyframeState& k, const Vec2d& landmar
 /// position is f = c_a + u(θ_a + ψ) / ρ, with c_a = p_a + R(θ_a) [offset, 0]ᵀ the anchor's
 /// camera centre and u(φ) = [cos φ, sin φ]ᵀ.
 struct AnchoredPoint {
-  Vec2d f = Vec2d::Zero();                                               ///< world position
+  Vec2d f = Vec2d::Zero();  ///< world position
   Eigen::Matrix<double, 2, KeyframeState::kDim> Ja =
       Eigen::Matrix<double, 2, KeyframeState::kDim>::Zero();  ///< ∂f/∂(anchor state)
   Vec2d Jpsi = Vec2d::Zero();                                 ///< ∂f/∂ψ
@@ -95,10 +95,9 @@ struct InverseDepthBearingFactor {
   double depth = 0.0;  ///< depth in the observing camera (> 0 in front of it)
 };
 InverseDepthBearingFactor EvaluateInverseDepthBearingFactor(const KeyframeState& k,
-                                                            const KeyframeState& anchor,
-                                                            double psi, double rho,
-                                                            double bearing, double sigma,
-                                                            double camera_offset);
+                                                            const KeyframeState& anchor, double psi,
+                                                            double rho, double bearing,
+                                                            double sigma, double camera_offset);
 
 /// Square root U of an information matrix, UᵀU = cov⁻¹, from the covariance (Cholesky with a
 /// tiny jitter so that a zero-length interval stays finite).

@@ -326,13 +326,14 @@ double SlidingWindowEstimator::Linearize(const std::deque<KeyframeState>& frames
           continue;
         }
         const std::size_t s = static_cast<std::size_t>(fid - id0);
-        const InverseDepthBearingFactor f = EvaluateInverseDepthBearingFactor(
-            frames[s], frames[a], track.psi, track.inv_depth, z, def_.bearing_sigma,
-            def_.camera_offset);
+        const InverseDepthBearingFactor f =
+            EvaluateInverseDepthBearingFactor(frames[s], frames[a], track.psi, track.inv_depth, z,
+                                              def_.bearing_sigma, def_.camera_offset);
         cost += 0.5 * f.r * f.r;
         if (lin)
-          AccumulateRow(*H, *g, f.r,
-                        {{layout.frame_offset[s], f.Jk}, {layout.frame_offset[a], f.Ja}, {ol, f.Jl}});
+          AccumulateRow(
+              *H, *g, f.r,
+              {{layout.frame_offset[s], f.Jk}, {layout.frame_offset[a], f.Ja}, {ol, f.Jl}});
       }
       continue;
     }
@@ -438,9 +439,9 @@ void SlidingWindowEstimator::RemoveOutliers() {
                (position - frames_.back().p()).norm() > 2.0 * def_.max_landmark_range ||
                (inverse_depth() && !(t.inv_depth > 0.0 && t.inv_depth * def_.min_depth <= 1.0));
     for (std::size_t o = 0; o < t.obs.size() && !bad; ++o) {
-      const BearingFactor b = EvaluateBearingFactor(FrameById(frames_, t.obs[o].first), position,
-                                                    t.obs[o].second, def_.bearing_sigma,
-                                                    def_.camera_offset);
+      const BearingFactor b =
+          EvaluateBearingFactor(FrameById(frames_, t.obs[o].first), position, t.obs[o].second,
+                                def_.bearing_sigma, def_.camera_offset);
       // Behind the camera, or a residual beyond 6 σ (a chi-square gate for one degree).
       bad = b.depth < def_.min_depth || std::abs(b.r) > 6.0;
     }

@@ -72,12 +72,13 @@ Metrics AgvExperiment::Results() const {
       cross_track_.rms() * 1000, cross_track_.max_abs * 1000, cfg_.completion_tolerance * 1000);
   m.AddNote(line);
   // Wall-clock cost of one loop: printed, never in summary.json (which must be reproducible).
-  std::snprintf(line, sizeof line,
-                "control loop: %.2f Hz measured (%ld iterations in %.1f s); one iteration "
-                "(estimators + tracker) %.1f us mean, %.1f us max of wall clock",
-                T > 0.0 ? static_cast<double>(control_updates_) / T : 0.0, control_updates_, T,
-                control_updates_ ? 1000.0 * loop_ms_sum_ / static_cast<double>(control_updates_) : 0.0,
-                1000.0 * loop_ms_max_);
+  std::snprintf(
+      line, sizeof line,
+      "control loop: %.2f Hz measured (%ld iterations in %.1f s); one iteration "
+      "(estimators + tracker) %.1f us mean, %.1f us max of wall clock",
+      T > 0.0 ? static_cast<double>(control_updates_) / T : 0.0, control_updates_, T,
+      control_updates_ ? 1000.0 * loop_ms_sum_ / static_cast<double>(control_updates_) : 0.0,
+      1000.0 * loop_ms_max_);
   m.AddNote(line);
 
   Metrics::Table loc;

@@ -133,12 +133,12 @@ std::vector<FigureSpec> AgvExperiment::Figures() const {
   }
   fig6a.series.push_back(beacon_points);
   figs.push_back(fig6a);
-  FigureSpec fig6b = PlaneFigure(
-      "fig6b_fused_points",
-      std::string("Fig. 6(b): after Kalman fusion, ") +
-          (cfg_.filter.gate ? "with our innovation gate" : "the paper's plain filter") +
-          " (robot driven by the " + mode + " estimate)",
-      {path});
+  FigureSpec fig6b =
+      PlaneFigure("fig6b_fused_points",
+                  std::string("Fig. 6(b): after Kalman fusion, ") +
+                      (cfg_.filter.gate ? "with our innovation gate" : "the paper's plain filter") +
+                      " (robot driven by the " + mode + " estimate)",
+                  {path});
   SeriesSpec fused_points = Path("fused estimate", "fused_x", "fused_y", kFusedColor);
   fused_points.markers_only = true;
   fig6b.series.push_back(fused_points);

@@ -183,7 +183,8 @@ std::vector<FigureSpec> InspectionExperiment::Figures() const {
       set.x = v.output_set.x;
       set.y = v.output_set.y;
       f.series.push_back(std::move(set));
-      f.title = "Membership functions, " + v.name + "; dashed: fired set, marker: its weighted average";
+      f.title =
+          "Membership functions, " + v.name + "; dashed: fired set, marker: its weighted average";
     }
     f.marker_x = v.value;
     figs.push_back(f);

@@ -2,8 +2,6 @@
 // through sim::Session, the rule base reload action, outputs and the invalid scenario fixtures.
 #include <gtest/gtest.h>
 
-#include "tests/support/invalid_fixtures.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -16,6 +14,7 @@
 #include "sim/core/scenario.hpp"
 #include "sim/core/session.hpp"
 #include "sim/inspection/inspection_experiment.hpp"
+#include "tests/support/invalid_fixtures.hpp"
 
 namespace formsim::sim::inspection {
 namespace {

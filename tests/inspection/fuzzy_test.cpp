@@ -41,19 +41,18 @@ const std::array<const char*, 5> kSpeed = {"STOP", "SLOW", "MID", "FAST", "FULL"
 const std::array<double, 9> kSPeak = {-0.3, -0.1, -0.04, -0.015, 0.0, 0.015, 0.04, 0.1, 0.3};
 const std::array<double, 5> kDPeak = {-12.0, -4.0, 0.0, 4.0, 12.0};
 // Steering table (u3 term per cell, rows s, columns dphi), as in the FLL header.
-const char* const kSteer[9][5] = {
-    {"PB", "PB", "PB", "PS", "Z"},    {"PB", "PB", "PB", "PS", "Z"},
-    {"PB", "PB", "PBM", "PSM", "NSM"}, {"PB", "PB", "PS", "Z", "NS"},
-    {"PB", "PS", "Z", "NS", "NB"},    {"PS", "Z", "NS", "NB", "NB"},
-    {"PSM", "NSM", "NBM", "NB", "NB"}, {"Z", "NS", "NB", "NB", "NB"},
-    {"Z", "NS", "NB", "NB", "NB"}};
+const char* const kSteer[9][5] = {{"PB", "PB", "PB", "PS", "Z"},     {"PB", "PB", "PB", "PS", "Z"},
+                                  {"PB", "PB", "PBM", "PSM", "NSM"}, {"PB", "PB", "PS", "Z", "NS"},
+                                  {"PB", "PS", "Z", "NS", "NB"},     {"PS", "Z", "NS", "NB", "NB"},
+                                  {"PSM", "NSM", "NBM", "NB", "NB"}, {"Z", "NS", "NB", "NB", "NB"},
+                                  {"Z", "NS", "NB", "NB", "NB"}};
 // Speed levels u1 / u2 per cell.
-const int kLeft[9][5] = {{2, 2, 2, 2, 2}, {2, 2, 2, 2, 2}, {3, 3, 3, 3, 3}, {3, 3, 3, 3, 3},
-                         {3, 3, 3, 3, 2}, {3, 3, 3, 2, 2}, {3, 3, 2, 2, 2}, {2, 2, 1, 1, 1},
-                         {2, 2, 1, 1, 1}};
-const int kRight[9][5] = {{1, 1, 1, 2, 2}, {1, 1, 1, 2, 2}, {2, 2, 2, 3, 3}, {2, 2, 3, 3, 3},
-                          {2, 3, 3, 3, 3}, {3, 3, 3, 3, 3}, {3, 3, 3, 3, 3}, {2, 2, 2, 2, 2},
-                          {2, 2, 2, 2, 2}};
+const int kLeft[9][5] = {{2, 2, 2, 2, 2}, {2, 2, 2, 2, 2}, {3, 3, 3, 3, 3},
+                         {3, 3, 3, 3, 3}, {3, 3, 3, 3, 2}, {3, 3, 3, 2, 2},
+                         {3, 3, 2, 2, 2}, {2, 2, 1, 1, 1}, {2, 2, 1, 1, 1}};
+const int kRight[9][5] = {{1, 1, 1, 2, 2}, {1, 1, 1, 2, 2}, {2, 2, 2, 3, 3},
+                          {2, 2, 3, 3, 3}, {2, 3, 3, 3, 3}, {3, 3, 3, 3, 3},
+                          {3, 3, 3, 3, 3}, {2, 2, 2, 2, 2}, {2, 2, 2, 2, 2}};
 
 int U3Index(const std::string& term) {
   for (int i = 0; i < 9; ++i)
@@ -66,12 +65,14 @@ double Tri(double x, double a, double b, double c) {
   if (x <= a || x >= c) return x == b ? 1.0 : 0.0;
   return x < b ? (x - a) / (b - a) : (c - x) / (c - b);
 }
-double RampUp(double x, double a, double b) { return std::clamp((x - a) / (b - a), 0.0, 1.0); }
+double RampUp(double x, double a, double b) {
+  return std::clamp((x - a) / (b - a), 0.0, 1.0);
+}
 std::array<double, 9> MuS(double s) {
   const auto& p = kSPeak;
-  return {RampUp(-s, 0.1, 0.3),      Tri(s, -0.3, -0.1, -0.04), Tri(s, -0.1, -0.04, -0.015),
+  return {RampUp(-s, 0.1, 0.3),       Tri(s, -0.3, -0.1, -0.04),  Tri(s, -0.1, -0.04, -0.015),
           Tri(s, -0.04, -0.015, 0.0), Tri(s, -0.015, 0.0, 0.015), Tri(s, 0.0, 0.015, 0.04),
-          Tri(s, 0.015, 0.04, 0.1),  Tri(s, 0.04, 0.1, 0.3),     RampUp(s, p[7], p[8])};
+          Tri(s, 0.015, 0.04, 0.1),   Tri(s, 0.04, 0.1, 0.3),     RampUp(s, p[7], p[8])};
 }
 std::array<double, 5> MuD(double d) {
   return {RampUp(-d, 4.0, 12.0), Tri(d, -12.0, -4.0, 0.0), Tri(d, -4.0, 0.0, 4.0),
@@ -154,7 +155,9 @@ TEST(Fuzzy, RuleTableCellByCell) {
   auto u3_of = [](int index) {
     return index == 0 ? 220.0 + 35.0 / 3.0 : index == 8 ? 500.0 - 35.0 / 3.0 : 220.0 + 35.0 * index;
   };
-  auto level_of = [](int level) { return level == 0 ? 1.0 / 3.0 : level == 4 ? 4.0 - 1.0 / 3.0 : level; };
+  auto level_of = [](int level) {
+    return level == 0 ? 1.0 / 3.0 : level == 4 ? 4.0 - 1.0 / 3.0 : level;
+  };
   for (int a = 0; a < 9; ++a)
     for (int b = 0; b < 5; ++b) {
       SCOPED_TRACE(std::string("s is ") + kS[a] + ", dphi is " + kD[b]);

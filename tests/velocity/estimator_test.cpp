@@ -220,8 +220,8 @@ TEST(SlidingWindowEstimator, PriorIsTheDenseSchurComplement) {
         first[before.keys[static_cast<std::size_t>(i)]] = i;
       std::vector<int> kept;
       for (std::size_t i = 0; i < after.keys.size(); ++i) {
-        const int j = i > 0 && after.keys[i] == after.keys[i - 1] ? kept.back() + 1
-                                                                  : first.at(after.keys[i]);
+        const int j =
+            i > 0 && after.keys[i] == after.keys[i - 1] ? kept.back() + 1 : first.at(after.keys[i]);
         kept.push_back(j);
       }
       std::vector<int> removed;

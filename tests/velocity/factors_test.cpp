@@ -172,9 +172,11 @@ TEST(Factors, InverseDepthBearingJacobians) {
       Vec2d fp = p.f, fm = p.f;
       fp(i) += h;
       fm(i) -= h;
-      const auto cp = cv::EvaluateAnchorCoordinates(a, fp, off), cm = cv::EvaluateAnchorCoordinates(a, fm, off);
+      const auto cp = cv::EvaluateAnchorCoordinates(a, fp, off),
+                 cm = cv::EvaluateAnchorCoordinates(a, fm, off);
       EXPECT_NEAR(((row == 0 ? cp.psi : cp.rho) - (row == 0 ? cm.psi : cm.rho)) / (2 * h),
-                  ac.Jf(row, i), 1e-6) << row << " " << i;
+                  ac.Jf(row, i), 1e-6)
+          << row << " " << i;
     }
   }
 }
