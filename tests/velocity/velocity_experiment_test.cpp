@@ -63,6 +63,13 @@ TEST(VelocityExperiment, EveryScenarioLoadsAndRuns) {
   for (const auto& entry : std::filesystem::directory_iterator(kScenarios)) {
     const std::string stem = entry.path().filename().string();
     if (stem.rfind("velocity_", 0) != 0) continue;
+    // Each scenario with either landmark parameterisation.
+    auto world_points = RunToEnd(LoadExperiment(
+        entry.path().string(), {"duration=1.5", "estimator.landmarks=world_point"}));
+    for (int i = 0; i < Vel(world_points).robot_count(); ++i) {
+      EXPECT_GT(Vel(world_points).unit(i).updates, 3) << stem;
+      EXPECT_EQ(Vel(world_points).unit(i).faults, 0) << stem;
+    }
     auto exp = RunToEnd(LoadExperiment(entry.path().string(), {"duration=1.5"}));
     EXPECT_EQ(exp->setup().type, "velocity") << stem;
     EXPECT_FALSE(exp->setup().description.empty()) << stem;
