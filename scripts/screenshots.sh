@@ -48,7 +48,7 @@ cp "$FIGS/agv_odometry_only/trajectory.png" "$OUT/agv_odometry_trajectory.png"
 # lateral-offset membership functions with the current input marked.
 run inspection_u_route --set duration=20 --out "$TMP/insp_mid" --snapshot "$OUT/inspection_world.png"
 cp "$FIGS/inspection_u_route/fig8_x.png" "$OUT/inspection_fig8_x.png"
-cp "$FIGS/inspection_u_route/mf_s.png" "$OUT/inspection_mf_s.png"
+cp "$FIGS/inspection_u_route/mf_s_near.png" "$OUT/inspection_mf_s.png"
 # Velocity control (paper 004): two robots crossing floors of different friction, keyframes and
 # tracked features; the speed of the robot whose loop is fed by the fused estimate.
 run velocity_constant --out "$TMP/vel" --snapshot "$OUT/velocity_world.png"

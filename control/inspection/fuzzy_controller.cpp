@@ -69,26 +69,6 @@ std::string TermOf(const std::string& text, const std::string& variable) {
   return std::string();
 }
 
-// Centroid of an output term: exact for the piecewise-linear and symmetric shapes, numerical
-// (fuzzylite's Centroid) over [lo, hi] otherwise.
-double TermCentroid(const fl::Term* t, double lo, double hi) {
-  if (const auto* k = dynamic_cast<const fl::Constant*>(t)) return k->getValue();
-  if (const auto* tri = dynamic_cast<const fl::Triangle*>(t))
-    return (tri->getVertexA() + tri->getVertexB() + tri->getVertexC()) / 3.0;
-  if (const auto* tr = dynamic_cast<const fl::Trapezoid*>(t)) {
-    const double a = tr->getVertexA(), b = tr->getVertexB(), c = tr->getVertexC(),
-                 d = tr->getVertexD();
-    const double den = 3.0 * (d + c - a - b);
-    if (den > 0.0) return ((d * d + c * d + c * c) - (a * a + a * b + b * b)) / den;
-    return 0.5 * (b + c);
-  }
-  if (const auto* r = dynamic_cast<const fl::Rectangle*>(t))
-    return 0.5 * (r->getStart() + r->getEnd());
-  if (const auto* g = dynamic_cast<const fl::Gaussian*>(t)) return g->getMean();
-  if (const auto* bell = dynamic_cast<const fl::Bell*>(t)) return bell->getCenter();
-  return fl::Centroid(10000).defuzzify(t, lo, hi);
-}
-
 }  // namespace
 
 FuzzyController::FuzzyController() = default;
@@ -133,36 +113,29 @@ void FuzzyController::LoadText(const std::string& fll, const std::string& origin
     info.terms = SampleTerms(v->terms(), info.min, info.max);
     vars.push_back(info);
   }
-  // Outputs: keep the shapes for plotting, evaluate with constants at their centroids.
+  // Outputs: the paper's weighted average over the universe is fuzzylite's Centroid.
   for (const char* name : kOutputs) {
     fl::OutputVariable* v = engine->getOutputVariable(name);
     if (v->numberOfTerms() == 0) Fail(origin, std::string("output '") + name + "' has no terms");
-    if (!dynamic_cast<fl::WeightedAverage*>(v->getDefuzzifier()))
+    if (!dynamic_cast<fl::Centroid*>(v->getDefuzzifier()))
       Fail(origin, std::string("output '") + name +
-                       "': defuzzifier must be WeightedAverage (the paper's weighted average)");
+                       "': defuzzifier must be Centroid (the paper's weighted average over the "
+                       "universe, section 2)");
+    if (!v->fuzzyOutput()->getAggregation())
+      Fail(origin, std::string("output '") + name + "': an aggregation operator is needed");
     FuzzyVariableInfo info;
     info.name = name;
     info.input = false;
     info.min = v->getMinimum();
     info.max = v->getMaximum();
-    const double span = info.max - info.min;
     info.terms = SampleTerms(v->terms(), info.min, info.max);
-    for (std::size_t i = 0; i < v->numberOfTerms(); ++i) {
-      fl::Term* t = v->getTerm(i);
-      const double c = TermCentroid(t, info.min - span, info.max + span);
-      if (!std::isfinite(c))
-        Fail(origin,
-             std::string("output '") + name + "' term '" + t->getName() + "' has no centroid");
-      info.terms[i].centroid = c;
-      delete v->removeTerm(i);
-      v->insertTerm(new fl::Constant(info.terms[i].name, c), i);
-    }
-    static_cast<fl::WeightedAverage*>(v->getDefuzzifier())
-        ->setType(fl::WeightedDefuzzifier::TakagiSugeno);
+    info.output_set.name = "output set";
+    info.output_set.x = info.terms.front().x;
+    info.output_set.y.assign(info.output_set.x.size(), 0.0);
     vars.push_back(info);
   }
-  // (Re)load every rule against the converted output terms; a rule naming an unknown variable
-  // or term is an error that quotes the rule.
+  // (Re)load every rule; a rule naming an unknown variable or term is an error that quotes the
+  // rule.
   std::vector<FuzzyRuleInfo> rules;
   for (std::size_t b = 0; b < engine->numberOfRuleBlocks(); ++b) {
     fl::RuleBlock* block = engine->getRuleBlock(b);
@@ -192,6 +165,15 @@ void FuzzyController::LoadText(const std::string& fll, const std::string& origin
   origin_ = origin;
   rules_ = std::move(rules);
   variables_ = std::move(vars);
+}
+
+void FuzzyController::SampleOutputSets() {
+  for (auto& v : variables_) {
+    if (v.input) continue;
+    const fl::Aggregated* set = engine_->getOutputVariable(v.name)->fuzzyOutput();
+    for (std::size_t i = 0; i < v.output_set.x.size(); ++i)
+      v.output_set.y[i] = set->membership(v.output_set.x[i]);
+  }
 }
 
 double FuzzyController::u3_center() const {
@@ -232,6 +214,7 @@ FuzzyOutputs FuzzyController::Process(double s, double dphi_deg) {
       if (v.name == "u1" || v.name == "u2") v.value = 0.0;
       if (v.name == "u3") v.value = out.u3;
     }
+    SampleOutputSets();
     return out;
   }
   out.ok = true;
@@ -243,6 +226,7 @@ FuzzyOutputs FuzzyController::Process(double s, double dphi_deg) {
     if (v.name == "u2") v.value = u2;
     if (v.name == "u3") v.value = u3;
   }
+  SampleOutputSets();
   return out;
 }
 

@@ -3,11 +3,14 @@
 /// from an FLL file the user can edit and reload (assets/fuzzy/inspection.fll).
 ///
 /// Inputs: `s` (lateral offset, m) and `dphi` (heading error, degrees). Outputs: `u1`, `u2`
-/// (left / right drive speed levels) and `u3` (steering servo command). Defuzzification is the
-/// paper's weighted average; fuzzylite's WeightedAverage evaluates Takagi-Sugeno terms, so on
-/// loading every output term is replaced by a Constant at its centroid (computed over the
-/// term's support, the range widened by one span each side so end terms keep their peak). The
-/// original shapes are kept for the membership plots.
+/// (left / right drive speed levels) and `u3` (steering servo command).
+///
+/// Inference is Mamdani: each rule's firing strength clips its output terms (the FLL's
+/// implication), the clipped sets of all rules are aggregated (the FLL's aggregation) into one
+/// output fuzzy set per output, and that set is defuzzified by the paper's weighted average
+/// over the universe (section 2): every element x_i of the output's range weighs by its
+/// membership u_i, x0 = Σ x_i u_i / Σ u_i. That is fuzzylite's Centroid defuzzifier, whose
+/// resolution is the number of elements; the loader refuses any other defuzzifier.
 
 #include <memory>
 #include <string>
@@ -31,7 +34,6 @@ struct FuzzyOutputs {
 struct FuzzyTermCurve {
   std::string name;
   std::vector<double> x, y;
-  double centroid = 0.0;  ///< the constant used by the weighted average (outputs)
 };
 
 /// A linguistic variable with its terms and its current value.
@@ -41,6 +43,9 @@ struct FuzzyVariableInfo {
   double min = 0.0, max = 1.0;
   double value = 0.0;
   std::vector<FuzzyTermCurve> terms;
+  /// Outputs: the aggregated output fuzzy set of the last Process() on the terms' grid (what
+  /// the weighted average defuzzified; all zero when no rule fired).
+  FuzzyTermCurve output_set;
 };
 
 /// A rule and how strongly it fired in the last Process().
@@ -78,6 +83,7 @@ class FuzzyController {
   double u3_center() const;
 
  private:
+  void SampleOutputSets();
   std::unique_ptr<fl::Engine> engine_;
   std::string origin_;
   std::vector<FuzzyRuleInfo> rules_;

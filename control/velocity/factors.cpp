@@ -140,4 +140,54 @@ BearingFactor EvaluateBearingFactor(const KeyframeState& k, const Vec2d& landmar
   return f;
 }
 
+AnchoredPoint EvaluateAnchoredPoint(const KeyframeState& anchor, double psi, double rho,
+                                    double camera_offset) {
+  AnchoredPoint a;
+  const Vec2d o(camera_offset, 0.0);
+  const Mat2d R = Rot(anchor.theta());
+  const double phi = anchor.theta() + psi;
+  const Vec2d u(std::cos(phi), std::sin(phi));
+  a.f = anchor.p() + R * o + u / rho;
+  a.Ja.block<2, 2>(0, S::kP) = Mat2d::Identity();
+  a.Jpsi = J90() * u / rho;
+  a.Ja.col(S::kTheta) = J90() * R * o + a.Jpsi;
+  a.Jrho = -u / (rho * rho);
+  return a;
+}
+
+AnchorCoordinates EvaluateAnchorCoordinates(const KeyframeState& anchor, const Vec2d& f,
+                                            double camera_offset) {
+  AnchorCoordinates c;
+  const Vec2d o(camera_offset, 0.0);
+  const Mat2d R = Rot(anchor.theta());
+  const Vec2d d = f - anchor.p() - R * o;
+  const double n2 = std::max(d.squaredNorm(), 1e-24), n = std::sqrt(n2);
+  c.psi = WrapToPi(std::atan2(d.y(), d.x()) - anchor.theta());
+  c.rho = 1.0 / n;
+  c.Jf.row(0) = Eigen::RowVector2d(-d.y(), d.x()) / n2;
+  c.Jf.row(1) = -d.transpose() / (n2 * n);
+  const Vec2d dd_dtheta = -J90() * R * o;  // ∂d/∂θ_a
+  c.Ja.setZero();
+  c.Ja.block<2, 2>(0, S::kP) = -c.Jf;
+  c.Ja.col(S::kTheta) = c.Jf * dd_dtheta;
+  c.Ja(0, S::kTheta) -= 1.0;
+  return c;
+}
+
+InverseDepthBearingFactor EvaluateInverseDepthBearingFactor(const KeyframeState& k,
+                                                            const KeyframeState& anchor, double psi,
+                                                            double rho, double bearing,
+                                                            double sigma, double camera_offset) {
+  const AnchoredPoint a = EvaluateAnchoredPoint(anchor, psi, rho, camera_offset);
+  const BearingFactor b = EvaluateBearingFactor(k, a.f, bearing, sigma, camera_offset);
+  InverseDepthBearingFactor f;
+  f.r = b.r;
+  f.Jk = b.Jk;
+  f.Ja = b.Jf * a.Ja;
+  f.Jl(0, 0) = b.Jf * a.Jpsi;
+  f.Jl(0, 1) = b.Jf * a.Jrho;
+  f.depth = b.depth;
+  return f;
+}
+
 }  // namespace formsim::control::velocity

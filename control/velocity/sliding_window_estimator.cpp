@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 
 #include "control/common/angle.hpp"
 #include "control/velocity/factors.hpp"
@@ -33,6 +34,27 @@ void Accumulate(Eigen::MatrixXd& H, Eigen::VectorXd& g, const Res& r, int oa, co
   }
 }
 
+/// A one-row residual's Jacobian block at `offset` in the normal equations (offset < 0: the
+/// block is not a variable of this system).
+struct RowBlock {
+  int offset;
+  Eigen::Ref<const Eigen::RowVectorXd> J;
+};
+
+/// Adds JᵀJ and Jᵀr of a one-row residual touching the given blocks (all distinct).
+void AccumulateRow(Eigen::MatrixXd& H, Eigen::VectorXd& g, double r,
+                   std::initializer_list<RowBlock> blocks) {
+  for (const RowBlock& a : blocks) {
+    if (a.offset < 0) continue;
+    const int na = static_cast<int>(a.J.size());
+    g.segment(a.offset, na) += a.J.transpose() * r;
+    for (const RowBlock& b : blocks)
+      if (b.offset >= 0)
+        H.block(a.offset, b.offset, na, static_cast<int>(b.J.size())).noalias() +=
+            a.J.transpose() * b.J;
+  }
+}
+
 KeyframeState::Vector StateDiff(const KeyframeState::Vector& a, const KeyframeState::Vector& b) {
   KeyframeState::Vector d = a - b;
   d(KeyframeState::kTheta) = WrapToPi(d(KeyframeState::kTheta));
@@ -49,15 +71,11 @@ Eigen::MatrixXd PseudoInverse(const Eigen::MatrixXd& A) {
   return es.eigenvectors() * inv.asDiagonal() * es.eigenvectors().transpose();
 }
 
-/// Symmetric and positive semi-definite despite round-off (negative eigenvalues clipped).
+/// The symmetric part. A Schur complement of a positive semi-definite matrix is positive
+/// semi-definite; round-off only breaks its symmetry (and may leave eigenvalues of the order of
+/// 1e-16 of the largest slightly negative, far below what the window's factors add).
 Eigen::MatrixXd Symmetrised(const Eigen::MatrixXd& A) {
-  Eigen::MatrixXd S = 0.5 * (A + A.transpose());
-  if (S.size() == 0) return S;
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(S);
-  if (es.info() == Eigen::Success && es.eigenvalues().minCoeff() < 0.0)
-    S = es.eigenvectors() * es.eigenvalues().cwiseMax(0.0).asDiagonal() *
-        es.eigenvectors().transpose();
-  return S;
+  return 0.5 * (A + A.transpose());
 }
 
 bool AllFinite(const std::deque<KeyframeState>& frames) {
@@ -79,6 +97,31 @@ ImuPreintegration SlidingWindowEstimator::NewImu() const {
 OdometryPreintegration SlidingWindowEstimator::NewOdometry() const {
   const KeyframeState& k = frames_.back();
   return OdometryPreintegration(k.bv(), k.bw(), def_.odometry);
+}
+
+Eigen::VectorXd SlidingWindowEstimator::LandmarkValue(const Track& t) const {
+  if (inverse_depth()) return Eigen::Vector2d(t.psi, t.inv_depth);
+  return t.position;
+}
+
+Vec2d SlidingWindowEstimator::Position(const std::deque<KeyframeState>& frames,
+                                       const Track& t) const {
+  if (!inverse_depth()) return t.position;
+  return EvaluateAnchoredPoint(FrameById(frames, t.anchor), t.psi, t.inv_depth, def_.camera_offset)
+      .f;
+}
+
+SlidingWindowEstimator::Layout SlidingWindowEstimator::FullLayout() const {
+  Layout layout;
+  for (std::size_t s = 0; s < frames_.size(); ++s)
+    layout.frame_offset.push_back(kD * static_cast<int>(s));
+  layout.dim = kD * static_cast<int>(frames_.size());
+  for (const auto& [id, track] : tracks_)
+    if (track.initialized) {
+      layout.landmark_offset[id] = layout.dim;
+      layout.dim += kLandmarkDim;
+    }
+  return layout;
 }
 
 void SlidingWindowEstimator::Initialize(const KeyframeState& first,
@@ -153,10 +196,19 @@ void SlidingWindowEstimator::InitialiseLandmarks() {
     }
     const TriangulationResult tri =
         Triangulate(rays, def_.min_parallax, def_.min_depth, def_.max_landmark_range);
-    if (tri.ok) {
-      track.initialized = true;
-      track.position = tri.point;
+    if (!tri.ok) continue;
+    if (inverse_depth()) {
+      // Anchored at the first keyframe that saw it, at the triangulated point.
+      const long fid = track.obs.front().first;
+      const AnchorCoordinates c = EvaluateAnchorCoordinates(
+          frames_[static_cast<std::size_t>(fid - id0)], tri.point, def_.camera_offset);
+      if (!(c.rho > 0.0 && c.rho * def_.min_depth <= 1.0)) continue;
+      track.anchor = fid;
+      track.psi = c.psi;
+      track.inv_depth = c.rho;
     }
+    track.initialized = true;
+    track.position = tri.point;
   }
 }
 
@@ -200,7 +252,8 @@ double SlidingWindowEstimator::Linearize(const std::deque<KeyframeState>& frames
         dx.segment<kD>(pos) = StateDiff(frames[slot].x, v.x_lin);
         offset[a] = layout.frame_offset[slot];
       } else {
-        dx.segment<2>(pos) = tracks.at(static_cast<int>(v.id)).position - v.x_lin;
+        dx.segment(pos, v.dim) = LandmarkValue(tracks.at(static_cast<int>(v.id))) - v.x_lin;
+        if (inverse_depth()) dx(pos) = WrapToPi(dx(pos));  // ψ
         auto it = layout.landmark_offset.find(static_cast<int>(v.id));
         offset[a] = it == layout.landmark_offset.end() ? -1 : it->second;
       }
@@ -252,13 +305,38 @@ double SlidingWindowEstimator::Linearize(const std::deque<KeyframeState>& frames
     }
   }
 
-  // Bearings of initialised landmarks (only those taken from the oldest keyframe when
-  // marginalising).
+  // Bearings of initialised landmarks (only the residuals that touch the oldest keyframe when
+  // marginalising). With inverse depth the anchor's own bearing is not a residual.
   int count = 0;
   for (const auto& [id, track] : tracks) {
     if (!track.initialized) continue;
     auto it = layout.landmark_offset.find(id);
     const int ol = it == layout.landmark_offset.end() ? -1 : it->second;
+    if (inverse_depth()) {
+      const std::size_t a = static_cast<std::size_t>(track.anchor - id0);
+      for (const auto& [fid, z] : track.obs) {
+        if (marg && fid != id0 && track.anchor != id0) continue;
+        ++count;
+        if (fid == track.anchor) {
+          // From its anchor the landmark's bearing is ψ itself.
+          const double w = 1.0 / std::max(def_.bearing_sigma, 1e-12);
+          const double r = w * WrapToPi(track.psi - z);
+          cost += 0.5 * r * r;
+          if (lin) AccumulateRow(*H, *g, r, {{ol, Eigen::RowVector2d(w, 0.0)}});
+          continue;
+        }
+        const std::size_t s = static_cast<std::size_t>(fid - id0);
+        const InverseDepthBearingFactor f =
+            EvaluateInverseDepthBearingFactor(frames[s], frames[a], track.psi, track.inv_depth, z,
+                                              def_.bearing_sigma, def_.camera_offset);
+        cost += 0.5 * f.r * f.r;
+        if (lin)
+          AccumulateRow(
+              *H, *g, f.r,
+              {{layout.frame_offset[s], f.Jk}, {layout.frame_offset[a], f.Ja}, {ol, f.Jl}});
+      }
+      continue;
+    }
     for (const auto& [fid, z] : track.obs) {
       if (marg && fid != id0) continue;
       const std::size_t s = static_cast<std::size_t>(fid - id0);
@@ -266,9 +344,7 @@ double SlidingWindowEstimator::Linearize(const std::deque<KeyframeState>& frames
                                                     def_.bearing_sigma, def_.camera_offset);
       cost += 0.5 * f.r * f.r;
       ++count;
-      if (lin)
-        Accumulate(*H, *g, Eigen::Matrix<double, 1, 1>(f.r), layout.frame_offset[s], f.Jk, ol,
-                   f.Jf);
+      if (lin) AccumulateRow(*H, *g, f.r, {{layout.frame_offset[s], f.Jk}, {ol, f.Jf}});
     }
   }
   if (n_obs) *n_obs = count;
@@ -276,14 +352,7 @@ double SlidingWindowEstimator::Linearize(const std::deque<KeyframeState>& frames
 }
 
 bool SlidingWindowEstimator::Optimize(UpdateReport& report) {
-  Layout layout;
-  for (std::size_t s = 0; s < frames_.size(); ++s) layout.frame_offset.push_back(kD * s);
-  layout.dim = kD * static_cast<int>(frames_.size());
-  for (const auto& [id, track] : tracks_)
-    if (track.initialized) {
-      layout.landmark_offset[id] = layout.dim;
-      layout.dim += 2;
-    }
+  const Layout layout = FullLayout();
   report.landmarks = static_cast<int>(layout.landmark_offset.size());
 
   Eigen::MatrixXd H, Hc;
@@ -322,8 +391,14 @@ bool SlidingWindowEstimator::Optimize(UpdateReport& report) {
       frames[s].x += delta.segment<kD>(kD * s);
       frames[s].set_theta(WrapToPi(frames[s].theta()));
     }
-    for (const auto& [id, off] : layout.landmark_offset)
-      tracks[id].position += delta.segment<2>(off);
+    for (const auto& [id, off] : layout.landmark_offset) {
+      if (inverse_depth()) {
+        tracks[id].psi = WrapToPi(tracks[id].psi + delta(off));
+        tracks[id].inv_depth += delta(off + 1);
+      } else {
+        tracks[id].position += delta.segment<2>(off);
+      }
+    }
 
     const double new_cost = Linearize(frames, tracks, layout, Selection::kAll, &Hc, &gc, nullptr);
     if (std::isfinite(new_cost) && new_cost < cost && Hc.allFinite() && gc.allFinite()) {
@@ -356,16 +431,17 @@ bool SlidingWindowEstimator::Optimize(UpdateReport& report) {
 }
 
 void SlidingWindowEstimator::RemoveOutliers() {
-  const long id0 = frames_.front().id;
   std::vector<int> bad_ids;
   for (const auto& [id, t] : tracks_) {
     if (!t.initialized) continue;
-    bool bad = !t.position.allFinite() ||
-               (t.position - frames_.back().p()).norm() > 2.0 * def_.max_landmark_range;
+    const Vec2d position = Position(frames_, t);
+    bool bad = !position.allFinite() ||
+               (position - frames_.back().p()).norm() > 2.0 * def_.max_landmark_range ||
+               (inverse_depth() && !(t.inv_depth > 0.0 && t.inv_depth * def_.min_depth <= 1.0));
     for (std::size_t o = 0; o < t.obs.size() && !bad; ++o) {
-      const KeyframeState& f = frames_[static_cast<std::size_t>(t.obs[o].first - id0)];
-      const BearingFactor b = EvaluateBearingFactor(f, t.position, t.obs[o].second,
-                                                    def_.bearing_sigma, def_.camera_offset);
+      const BearingFactor b =
+          EvaluateBearingFactor(FrameById(frames_, t.obs[o].first), position, t.obs[o].second,
+                                def_.bearing_sigma, def_.camera_offset);
       // Behind the camera, or a residual beyond 6 σ (a chi-square gate for one degree).
       bad = b.depth < def_.min_depth || std::abs(b.r) > 6.0;
     }
@@ -417,8 +493,135 @@ void SlidingWindowEstimator::MarginalizeLandmarksFromPrior(const std::vector<int
   prior_.vars = std::move(kept);
 }
 
+void SlidingWindowEstimator::ReanchorLandmarks(long keep_from) {
+  std::vector<Reanchoring> moves;
+  std::vector<int> dropped;
+  for (auto& [id, track] : tracks_) {
+    if (!track.initialized || track.anchor >= keep_from) continue;
+    const auto next = std::find_if(track.obs.begin(), track.obs.end(),
+                                   [keep_from](const auto& o) { return o.first >= keep_from; });
+    if (next == track.obs.end()) continue;  // leaves the window with its anchor
+    const KeyframeState& a = FrameById(frames_, track.anchor);
+    const KeyframeState& b = FrameById(frames_, next->first);
+    // The same point in the new anchor's coordinates: an exact change of variables.
+    const Vec2d f = Position(frames_, track);
+    const AnchorCoordinates nb = EvaluateAnchorCoordinates(b, f, def_.camera_offset);
+    if (!(nb.rho > 0.0 && nb.rho * def_.min_depth <= 1.0) || !std::isfinite(nb.psi)) {
+      dropped.push_back(id);
+      continue;
+    }
+    if (InPrior(id)) {
+      // The prior's old (ψ, ρ) as a function of (old anchor, new anchor, new (ψ, ρ)).
+      const AnchoredPoint p = EvaluateAnchoredPoint(b, nb.psi, nb.rho, def_.camera_offset);
+      const AnchorCoordinates old = EvaluateAnchorCoordinates(a, p.f, def_.camera_offset);
+      Reanchoring m;
+      m.id = id;
+      m.old_anchor = track.anchor;
+      m.new_anchor = next->first;
+      m.old_value = Eigen::Vector2d(old.psi, old.rho);
+      m.new_value = Eigen::Vector2d(nb.psi, nb.rho);
+      m.Ja = old.Ja;
+      m.Jb = old.Jf * p.Ja;
+      m.Jl.col(0) = old.Jf * p.Jpsi;
+      m.Jl.col(1) = old.Jf * p.Jrho;
+      moves.push_back(m);
+    }
+    track.anchor = next->first;
+    track.psi = nb.psi;
+    track.inv_depth = nb.rho;
+  }
+  ReanchorPrior(moves);
+  // Landmarks behind their new anchor leave the window (their past information stays in the
+  // prior) and are tracked again from scratch.
+  std::vector<int> in_prior;
+  for (int id : dropped)
+    if (InPrior(id)) in_prior.push_back(id);
+  MarginalizeLandmarksFromPrior(in_prior);
+  for (int id : dropped) {
+    Track& t = tracks_[id];
+    t.initialized = false;
+    t.anchor = -1;
+  }
+}
+
+void SlidingWindowEstimator::ReanchorPrior(const std::vector<Reanchoring>& moves) {
+  if (moves.empty()) return;
+  // Keyframes a move needs that the prior lacks are appended (no information yet, linearised
+  // at the current estimate). The new anchor may be newer than the last marginalisation; the
+  // old one is in the prior whenever the landmark is (both were in the window then).
+  const int n_old = prior_.dim();
+  auto has_frame = [this](long id) {
+    for (const PriorVar& v : prior_.vars)
+      if (v.frame && v.id == id) return true;
+    return false;
+  };
+  for (const Reanchoring& m : moves)
+    for (long id : {m.old_anchor, m.new_anchor})
+      if (!has_frame(id)) prior_.vars.push_back({true, id, kD, FrameById(frames_, id).x});
+  std::map<std::pair<bool, long>, int> at;  // offset of each variable
+  int n = 0;
+  for (const PriorVar& v : prior_.vars) {
+    at[{v.frame, v.id}] = n;
+    n += v.dim;
+  }
+  auto lin_of = [this](bool frame, long id) -> const Eigen::VectorXd& {
+    for (const PriorVar& v : prior_.vars)
+      if (v.frame == frame && v.id == id) return v.x_lin;
+    return prior_.vars.front().x_lin;  // unreachable: both anchors and the landmark are in it
+  };
+  // The prior's old coordinates in the new ones: dx_old = a + T dx_new, T the (padded) identity
+  // except on the two rows of each moved landmark:
+  //   d(ψ, ρ)_old = a + Ja dx_a + Jb dx_b + Jl d(ψ, ρ)_new,
+  // dx_a, dx_b being the prior's own coordinates of the anchors (deviations from its
+  // linearisation point). With T = E + U Dᵀ (U picks those rows): H' = TᵀHT, g' = Tᵀ(g + H a).
+  const int k = 2 * static_cast<int>(moves.size());
+  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(n, k);
+  Eigen::VectorXd a_full = Eigen::VectorXd::Zero(n_old);
+  std::vector<int> rows(static_cast<std::size_t>(k));
+  for (std::size_t i = 0; i < moves.size(); ++i) {
+    const Reanchoring& m = moves[i];
+    const int r = at.at({false, m.id}), oa = at.at({true, m.old_anchor}),
+              ob = at.at({true, m.new_anchor});
+    const KeyframeState::Vector da =
+        StateDiff(FrameById(frames_, m.old_anchor).x, lin_of(true, m.old_anchor));
+    const KeyframeState::Vector db =
+        StateDiff(FrameById(frames_, m.new_anchor).x, lin_of(true, m.new_anchor));
+    Eigen::Vector2d dv = m.old_value - lin_of(false, m.id);
+    dv(0) = WrapToPi(dv(0));
+    a_full.segment<2>(r) = dv - m.Ja * da - m.Jb * db;
+    for (int j = 0; j < 2; ++j) {
+      const int c = 2 * static_cast<int>(i) + j;
+      rows[static_cast<std::size_t>(c)] = r + j;
+      D.block(oa, c, kD, 1) += m.Ja.row(j).transpose();
+      D.block(ob, c, kD, 1) += m.Jb.row(j).transpose();
+      D.block(r, c, 2, 1) += m.Jl.row(j).transpose();
+      D(r + j, c) -= 1.0;
+    }
+  }
+  Eigen::MatrixXd Hp = Eigen::MatrixXd::Zero(n, n);
+  Hp.topLeftCorner(n_old, n_old) = prior_.H;
+  Eigen::VectorXd ga = Eigen::VectorXd::Zero(n);
+  ga.head(n_old) = prior_.g + prior_.H * a_full;
+  Eigen::MatrixXd HU(n, k), UHU(k, k);
+  Eigen::VectorXd gU(k);
+  for (int i = 0; i < k; ++i) {
+    const int ri = rows[static_cast<std::size_t>(i)];
+    HU.col(i) = Hp.col(ri);
+    gU(i) = ga(ri);
+    for (int j = 0; j < k; ++j) UHU(i, j) = Hp(ri, rows[static_cast<std::size_t>(j)]);
+  }
+  const Eigen::MatrixXd HUDt = HU * D.transpose();
+  prior_.H = Symmetrised(Hp + HUDt + HUDt.transpose() + D * UHU * D.transpose());
+  prior_.g = ga + D * gU;
+  for (const Reanchoring& m : moves)
+    for (PriorVar& v : prior_.vars)
+      if (!v.frame && v.id == m.id) v.x_lin = m.new_value;
+}
+
 bool SlidingWindowEstimator::Marginalize(std::string& error) {
   const long id0 = frames_.front().id;
+  // Normally done before the solve (AddKeyframe); here it only catches what is left.
+  if (inverse_depth()) ReanchorLandmarks(frames_[1].id);
   // Removed: the oldest keyframe. Kept: every other keyframe, the initialised landmarks it saw
   // and the landmarks already in the prior.
   Layout layout;
@@ -437,8 +640,8 @@ bool SlidingWindowEstimator::Marginalize(std::string& error) {
     const bool seen = !track.obs.empty() && track.obs.front().first == id0;
     if (!seen && !InPrior(id)) continue;
     layout.landmark_offset[id] = layout.dim;
-    layout.dim += 2;
-    kept.push_back({false, id, 2, track.position});
+    layout.dim += kLandmarkDim;
+    kept.push_back({false, id, kLandmarkDim, LandmarkValue(track)});
   }
   const int k = layout.dim - m;
 
@@ -542,6 +745,11 @@ UpdateReport SlidingWindowEstimator::AddKeyframe(double t,
   AddObservations(k.id, obs);
   RepropagateIfNeeded();
   InitialiseLandmarks();
+  // Landmarks anchored at keyframes that this update will marginalise move to a keyframe that
+  // stays, before the solve, so that marginalising them afterwards keeps the optimum.
+  const int window = std::max(def_.window_size, 2);
+  if (inverse_depth() && static_cast<int>(frames_.size()) > window)
+    ReanchorLandmarks(frames_[frames_.size() - static_cast<std::size_t>(window)].id);
 
   if (!Optimize(report)) {
     report.ok = false;
@@ -582,7 +790,7 @@ std::vector<SlidingWindowEstimator::LandmarkView> SlidingWindowEstimator::Landma
     LandmarkView v;
     v.id = id;
     v.initialized = track.initialized;
-    v.position = track.position;
+    v.position = track.initialized ? Position(frames_, track) : track.position;
     v.observations = static_cast<int>(track.obs.size());
     v.seen_in_latest = !track.obs.empty() && track.obs.back().first == newest;
     out.push_back(v);

@@ -1,6 +1,7 @@
 #include "sim/agv/agv_experiment.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "control/common/angle.hpp"
@@ -202,8 +203,16 @@ void AgvExperiment::Estimate(double t) {
   if (!tracking_done_) Score();
 }
 
+namespace {
+double MillisecondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
 void AgvExperiment::Control(double t) {
   if (!control_.Due(steps())) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  ++control_updates_;
   const double period = cfg_.control_every * setup_.dt;
   // Track the path with the chosen estimate; map the twist to wheel speeds (eq. 19).
   cmd_twist_ = tracker_.Step(ControlPose(), period);
@@ -214,6 +223,10 @@ void AgvExperiment::Control(double t) {
   wheel_cmd_ = ca::InverseKinematics(cfg_.drive.geometry, cmd_twist_);
   ca::ScaleToLimit(wheel_cmd_, cfg_.drive.wheel_speed_max);
   drive_->SetWheelCommand(wheel_cmd_);
+  const double ms = estimate_ms_ + MillisecondsSince(t0);
+  estimate_ms_ = 0.0;
+  loop_ms_sum_ += ms;
+  loop_ms_max_ = std::max(loop_ms_max_, ms);
 }
 
 void AgvExperiment::Sense(double t) {
@@ -239,7 +252,9 @@ void AgvExperiment::Sense(double t) {
   if (!control_.Due(steps())) return;
   // Estimators run on the control grid, here so that a recorded row holds truth and estimates
   // of the same instant; Control(t) then uses them.
+  const auto t0 = std::chrono::steady_clock::now();
   Estimate(t);
+  estimate_ms_ = MillisecondsSince(t0);
   // Trails for drawing (bounded).
   auto push = [](std::deque<Vec2>& d, Vec2 p) {
     d.push_back(p);

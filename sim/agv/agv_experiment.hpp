@@ -70,6 +70,9 @@ class AgvExperiment : public ExperimentOf<AgvConfig> {
   const EstimateStats& beacon_stats() const { return stats_beacon_; }
   const EstimateStats& fused_stats() const { return stats_fused_; }
   const BeaconCounts& beacon_counts() const { return counts_; }
+  /// Control loop iterations (estimators, tracker, wheel commands) run so far; their number
+  /// per simulated second is the measured loop rate of the results.
+  long control_updates() const { return control_updates_; }
   /// The loop (or open path) was finished by the tracker with the true cross-track error never
   /// above `metrics.completion_tolerance`.
   bool completed() const;
@@ -114,6 +117,11 @@ class AgvExperiment : public ExperimentOf<AgvConfig> {
   BeaconCounts counts_;
   bool tracking_done_ = false;
   double done_time_ = -1.0;
+  // The loop as run: iterations, and the wall-clock time of each (estimators in Sense plus the
+  // tracker in the next Control), reported as a printed note, never in summary.json.
+  long control_updates_ = 0;
+  double estimate_ms_ = 0.0;  ///< wall clock of the latest Estimate(), added to its loop
+  double loop_ms_sum_ = 0.0, loop_ms_max_ = 0.0;
 
   // Drawing and figure data (bounded histories).
   struct FixRecord {

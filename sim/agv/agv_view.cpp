@@ -119,6 +119,31 @@ std::vector<FigureSpec> AgvExperiment::Figures() const {
   traj.series.push_back(Path("fused estimate", "fused_x", "fused_y", kFusedColor));
   figs.push_back(traj);
 
+  // The paper's Fig. 6 as its two point sets on the desired path: (a) what the beacon alone
+  // reads (interference outliers and dropouts included), (b) the Kalman-fused estimate at every
+  // control period. Run agv_beacon_only for (a) as the paper drove it, agv_fused for (b).
+  FigureSpec fig6a = PlaneFigure(
+      "fig6a_beacon_points",
+      "Fig. 6(a): beacon alone, before filtering (robot driven by the " + mode + " estimate)", {});
+  fig6a.series.push_back(path);
+  SeriesSpec beacon_points = Markers("beacon readings", kBeaconColor);
+  for (const FixRecord& f : fixes_) {
+    beacon_points.x.push_back(f.pose.x);
+    beacon_points.y.push_back(f.pose.y);
+  }
+  fig6a.series.push_back(beacon_points);
+  figs.push_back(fig6a);
+  FigureSpec fig6b =
+      PlaneFigure("fig6b_fused_points",
+                  std::string("Fig. 6(b): after Kalman fusion, ") +
+                      (cfg_.filter.gate ? "with our innovation gate" : "the paper's plain filter") +
+                      " (robot driven by the " + mode + " estimate)",
+                  {path});
+  SeriesSpec fused_points = Path("fused estimate", "fused_x", "fused_y", kFusedColor);
+  fused_points.markers_only = true;
+  fig6b.series.push_back(fused_points);
+  figs.push_back(fig6b);
+
   FigureSpec cross =
       TimeFigure("cross_track", "True cross-track error (" + mode + " localisation)", "e_d [mm]",
                  {Line("cross-track error", "cross_track_mm", kTruthColor)});

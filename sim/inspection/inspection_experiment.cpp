@@ -313,6 +313,7 @@ void InspectionExperiment::ScoreTracking(double t) {
     lateral_tracking_.Add(s_true_);
     dphi_tracking_.Add(Deg(dphi_true_));
   }
+  if (pr.on_arc) lateral_turn_.Add(s_true_);
 }
 
 void InspectionExperiment::ScanAndFix(double t) {

@@ -90,6 +90,8 @@ class InspectionExperiment : public ExperimentOf<InspectionConfig> {
   const ErrorStats& lateral() const { return lateral_; }
   /// Lateral offset after the start transient (route progress beyond metrics.transient_m).
   const ErrorStats& lateral_tracking() const { return lateral_tracking_; }
+  /// Lateral offset while the true robot is on the turn (the arc of the route).
+  const ErrorStats& lateral_turn() const { return lateral_turn_; }
   long scans() const { return scans_; }
   long fixes() const { return fixes_; }
   long control_updates() const { return control_updates_; }
@@ -163,7 +165,7 @@ class InspectionExperiment : public ExperimentOf<InspectionConfig> {
 
   // Metrics.
   ErrorStats err_raw_, err_classic_, err_kf_, err_dr_, err_kf_x_, err_kf_y_, err_heading_;
-  ErrorStats lateral_, lateral_tracking_, dphi_tracking_;
+  ErrorStats lateral_, lateral_tracking_, lateral_turn_, dphi_tracking_;
   std::array<long, 5> status_counts_{};
   long scans_ = 0, fixes_ = 0, control_updates_ = 0, no_rule_steps_ = 0;
   long kf_gated_ = 0, kf_reinit_ = 0, kf_faults_ = 0, slip_steps_ = 0, sense_steps_ = 0;

@@ -53,6 +53,7 @@ Metrics InspectionExperiment::Results() const {
   SetStats(m, "tracking.lateral_offset_m", lateral_);
   m.Set("tracking.transient_m", cfg_.transient_m);
   SetStats(m, "tracking.lateral_offset_after_transient_m", lateral_tracking_);
+  SetStats(m, "tracking.lateral_offset_turn_m", lateral_turn_);
   SetStats(m, "tracking.heading_error_after_transient_deg", dphi_tracking_);
   m.Set("tracking.lateral_bound_m", cfg_.lateral_bound);
   const bool within = lateral_tracking_.n > 0 && lateral_tracking_.max_abs <= cfg_.lateral_bound;
@@ -97,6 +98,7 @@ Metrics InspectionExperiment::Results() const {
   stats_table("tracking (true robot vs route):", "error",
               {{"lateral offset, whole run [m]", "tracking.lateral_offset_m"},
                {"lateral offset, after start [m]", "tracking.lateral_offset_after_transient_m"},
+               {"lateral offset, on the turn [m]", "tracking.lateral_offset_turn_m"},
                {"heading error, after start [deg]", "tracking.heading_error_after_transient_deg"}});
 
   Metrics::Table counts;

@@ -171,13 +171,42 @@ std::vector<FigureSpec> InspectionExperiment::Figures() const {
     f.x_label = v.name == "dphi" ? "Δφ [deg]" : v.name == "s" ? "s [m]" : v.name;
     int color = 0;
     for (const auto& term : v.terms) {
-      SeriesSpec s = Line(v.input ? term.name : term.name + " (" + Sprintf("%.4g", term.centroid) + ")", "", color++);
+      SeriesSpec s = Line(term.name, "", color++);
       s.x = term.x;
       s.y = term.y;
       f.series.push_back(std::move(s));
     }
+    if (!v.input) {
+      // What the last decision defuzzified: the rules' clipped terms joined, and (the marker)
+      // its weighted average over the universe.
+      SeriesSpec set = Line("fired set", "", 9, true);
+      set.x = v.output_set.x;
+      set.y = v.output_set.y;
+      f.series.push_back(std::move(set));
+      f.title =
+          "Membership functions, " + v.name + "; dashed: fired set, marker: its weighted average";
+    }
     f.marker_x = v.value;
     figs.push_back(f);
+    if (v.name == "s") {
+      // The terms near the path are centimetres wide: the same functions within ±0.35 m.
+      FigureSpec zoom = f;
+      zoom.id = "mf_s_near";
+      zoom.title = "Membership functions, s within 0.35 m of the path";
+      for (SeriesSpec& series : zoom.series) {
+        SeriesSpec kept = series;
+        kept.x.clear();
+        kept.y.clear();
+        for (std::size_t i = 0; i < series.x.size(); ++i)
+          if (std::abs(series.x[i]) <= 0.35) {
+            kept.x.push_back(series.x[i]);
+            kept.y.push_back(series.y[i]);
+          }
+        series = std::move(kept);
+      }
+      if (std::abs(zoom.marker_x) > 0.35) zoom.marker_x = std::nan("");
+      figs.push_back(zoom);
+    }
   }
   return figs;
 }

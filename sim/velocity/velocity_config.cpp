@@ -178,6 +178,9 @@ void ReadEstimator(YamlReader& m, EstimatorSettings& e) {
   e.keyframe_every =
       m.Integer("keyframe_every", e.keyframe_every,
                 Tune("frames per keyframe").In(1, 1000).Slider(1, 20).Group(gw).OnReset());
+  w.landmarks = static_cast<cv::LandmarkParam>(
+      m.Pick("landmarks", {"inverse_depth", "world_point"}, static_cast<int>(w.landmarks),
+             Tune("landmark parameterisation").Group(gw).OnReset()));
   w.max_iterations = m.Int("max_iterations", w.max_iterations, Tune().In(1, 1000));
   w.use_nonholonomic = m.Bool("nonholonomic", w.use_nonholonomic);
   e.vi_baseline = m.Bool("vi_baseline", e.vi_baseline);

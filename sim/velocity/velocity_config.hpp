@@ -15,8 +15,8 @@
 ///             gyro_bias_rw, accel_bias_rw}, camera: {rate, fov_deg, range, bearing_noise, offset,
 ///             max_features}}   (see vio_sensors.hpp)
 ///   estimator: {window_size, keyframe_every, max_iterations, nonholonomic, nonholonomic_sigma,
-///               min_parallax_deg, vi_baseline, odometry: {speed_noise_density,
-///               yaw_rate_noise_density, speed_bias_rw, yaw_rate_bias_rw}}
+///               min_parallax_deg, landmarks: inverse_depth|world_point, vi_baseline, odometry:
+///               {speed_noise_density, yaw_rate_noise_density, speed_bias_rw, yaw_rate_bias_rw}}
 ///   control: {rate, kp, ki, kd}
 ///   command: {type: constant|steps, v, omega, steps: [{t, v, omega}], accel_limit,
 ///             angular_accel_limit, start_delay}

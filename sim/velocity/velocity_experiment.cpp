@@ -123,11 +123,14 @@ void VelocityExperiment::ApplyTunables(const VelocityConfig& next) {
     u.odometry.SetDef(cfg_.encoders);
     u.imu.SetDef(cfg_.imu);  // a new configured bias moves the current one by the difference
     u.camera.SetDef(cfg_.camera);
-    // Noise edits reach the factors built from now on; the window keeps its size.
+    // Noise edits reach the factors built from now on; the window keeps its size and its
+    // landmark parameterisation (both apply on reset).
     for (auto* est : {&u.fused, &u.vi}) {
       const int window = est->def().window_size;
+      const cv::LandmarkParam landmarks = est->def().landmarks;
       est->def() = EstimatorDef(est == &u.fused);
       est->def().window_size = window;
+      est->def().landmarks = landmarks;
     }
     u.loop.SetDef(loop);  // gains only: the PID state (last output, errors) is kept
   }

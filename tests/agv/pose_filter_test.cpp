@@ -48,6 +48,65 @@ TEST(PoseFilter, PredictIsDeadReckoningFromLastFusedPose) {
   EXPECT_NEAR(f.covariance()(0, 0), p0 * p0 + q * q, 1e-15);
 }
 
+// The paper's filter (A = I, B = T·I, H = I, diagonal Q and R) against its closed form over
+// several predict / fuse cycles with periods T ≠ 1 and R > 0: x⁻ = x + T·u (u the odometry twist
+// in the world at the mid-step heading), P⁻ = P + Q·T, K = P⁻ (P⁻ + R)⁻¹, x = x⁻ + K (z − x⁻),
+// P = (I − K) P⁻. Every matrix is diagonal, so the closed form is per component.
+TEST(PoseFilter, PredictAndFuseMatchTheClosedFormWithPeriodNotOne) {
+  PoseFilterDef def;
+  def.q_xy = 0.02;
+  def.q_theta = 0.03;
+  def.r_xy = 0.015;
+  def.r_theta = 0.02;
+  def.p0_xy = 0.04;
+  def.p0_theta = 0.05;
+  def.gate = false;
+  def.adaptive_r = false;
+  PoseFilter f(def);
+  f.Reset({1.0, 2.0, 0.3});
+  double x[3] = {1.0, 2.0, 0.3};
+  double P[3] = {def.p0_xy * def.p0_xy, def.p0_xy * def.p0_xy, def.p0_theta * def.p0_theta};
+  const double q[3] = {def.q_xy * def.q_xy, def.q_xy * def.q_xy, def.q_theta * def.q_theta};
+  const double R[3] = {def.r_xy * def.r_xy, def.r_xy * def.r_xy, def.r_theta * def.r_theta};
+  const double periods[] = {1.0 / 15.0, 0.1, 0.025, 0.3};
+  for (int k = 0; k < 4; ++k) {
+    const double T = periods[k];
+    const BodyTwist odo{0.3, 0.1 * (k - 1), 0.2 - 0.15 * k};
+    ASSERT_TRUE(f.Predict(odo, T));
+    const double th = x[2] + 0.5 * odo.omega * T;
+    const double u[3] = {odo.vx * std::cos(th) - odo.vy * std::sin(th),
+                         odo.vx * std::sin(th) + odo.vy * std::cos(th), odo.omega};
+    for (int i = 0; i < 3; ++i) {
+      x[i] += T * u[i];
+      P[i] += q[i] * T;
+    }
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(f.covariance()(i, i), P[i], 1e-15) << k << " " << i;
+    EXPECT_NEAR(f.pose().x, x[0], 1e-12) << k;
+    EXPECT_NEAR(f.pose().y, x[1], 1e-12) << k;
+    EXPECT_NEAR(f.pose().theta, x[2], 1e-12) << k;
+    // A beacon sample a few centimetres off the prediction.
+    const Pose2 z{x[0] + 0.03, x[1] - 0.02, x[2] + 0.01};
+    const double zz[3] = {z.x, z.y, z.theta};
+    ASSERT_EQ(f.Fuse(z).outcome, FuseReport::Outcome::kAccepted);
+    for (int i = 0; i < 3; ++i) {
+      const double K = P[i] / (P[i] + R[i]);
+      x[i] += K * (zz[i] - x[i]);
+      P[i] *= 1.0 - K;
+    }
+    EXPECT_NEAR(f.pose().x, x[0], 1e-12) << k;
+    EXPECT_NEAR(f.pose().y, x[1], 1e-12) << k;
+    EXPECT_NEAR(f.pose().theta, x[2], 1e-12) << k;
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(f.covariance()(i, i), P[i], 1e-12 * P[i]) << k << " " << i;
+      for (int j = 0; j < 3; ++j) {
+        if (j != i) {
+          EXPECT_EQ(f.covariance()(i, j), 0.0);
+        }
+      }
+    }
+  }
+}
+
 TEST(PoseFilter, GateRejectsOneMetreOutlierAndAcceptsNormalSamples) {
   PoseFilterDef def;
   def.gate = true;

@@ -2,8 +2,7 @@
 // through sim::Session, the rule base reload action, outputs and the invalid scenario fixtures.
 #include <gtest/gtest.h>
 
-#include "tests/support/invalid_fixtures.hpp"
-
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +14,7 @@
 #include "sim/core/scenario.hpp"
 #include "sim/core/session.hpp"
 #include "sim/inspection/inspection_experiment.hpp"
+#include "tests/support/invalid_fixtures.hpp"
 
 namespace formsim::sim::inspection {
 namespace {
@@ -81,6 +81,12 @@ TEST(InspectionExperiment, CompletesTheURouteWithinTheLateralBound) {
   EXPECT_LT(x.lateral_tracking().max_abs, x.config().lateral_bound);
   EXPECT_LT(x.lateral_tracking().max_abs, 0.1);
   EXPECT_LT(x.lateral_tracking().rms(), 0.03);
+  // The paper's controller alone steers the 2.5 m turn from a steady offset (no feed-forward):
+  // the rule base keeps it within centimetres (19 cm with the former gentle table).
+  ASSERT_GT(x.lateral_turn().n, 1000);
+  EXPECT_LT(x.lateral_turn().rms(), 0.04);
+  EXPECT_LT(x.lateral_turn().max_abs, 0.08);
+  EXPECT_EQ(*e->Results().Find("control.feedforward"), 0.0);
   EXPECT_GT(x.fixes(), 0.95 * x.scans());
   EXPECT_LT(x.error_kalman().rms(), 0.05);
   EXPECT_LT(x.error_kalman().rms(), x.error_raw().rms());
@@ -102,6 +108,22 @@ TEST(InspectionExperiment, CompletesTheURouteWithinTheLateralBound) {
   EXPECT_NE(e->SummaryText().find("controller uses the kalman estimate"), std::string::npos);
 }
 
+// Our addition: the arc's steering angle fed forward on the turn, so the rules only correct.
+// Up to the end of the turn (65 s) the same seed tracks the turn closer than the paper's
+// controller alone (seed 5: 0.8 vs 1.5 cm RMS).
+TEST(InspectionExperiment, FeedForwardScenarioTracksTheTurnCloser) {
+  auto paper = LoadExperiment(kRoute, {"duration=65"});
+  auto ff = LoadExperiment(kDir + "inspection_u_route_feedforward.yaml", {"duration=65"});
+  RunToEnd(*paper);
+  RunToEnd(*ff);
+  const auto& a = AsInspection(paper).lateral_turn();
+  const auto& b = AsInspection(ff).lateral_turn();
+  ASSERT_GT(a.n, 1000);
+  ASSERT_GT(b.n, 1000);
+  EXPECT_EQ(*ff->Results().Find("control.feedforward"), 1.0);
+  EXPECT_LT(b.rms(), 0.75 * a.rms());
+}
+
 TEST(InspectionExperiment, WithoutKalmanTheClassicalChainDrives) {
   auto e = LoadExperiment(kDir + "inspection_no_kalman.yaml");
   auto& x = AsInspection(e);
@@ -111,6 +133,27 @@ TEST(InspectionExperiment, WithoutKalmanTheClassicalChainDrives) {
   // The classical filter smooths the raw fixes, the Kalman filter (running alongside) more.
   EXPECT_LT(x.error_classical().rms(), x.error_raw().rms());
   EXPECT_LT(x.error_kalman().rms(), x.error_classical().rms());
+}
+
+// The paper's claim for its Kalman filter (section 3): it localises better than the limit and
+// mean filters. On the first straight of every seed tried the Kalman error is well under the
+// classical one (measured ratios 0.38-0.59, mean 0.48 on seeds 1-4; a fixed-gain 0.1 "filter"
+// gives 0.68-0.86, mean 0.74).
+TEST(InspectionExperiment, KalmanFixesBeatLimitAndMeanByAClearMarginOnEverySeed) {
+  double sum = 0.0;
+  const int seeds[] = {1, 2, 3, 4};
+  for (int seed : seeds) {
+    auto e = LoadExperiment(kRoute, {"duration=30"}, seed);
+    auto& x = AsInspection(e);
+    RunToEnd(*e);
+    ASSERT_GT(x.error_kalman().n, 1000) << seed;
+    ASSERT_EQ(x.error_kalman().n, x.error_classical().n) << seed;
+    const double ratio = x.error_kalman().rms() / x.error_classical().rms();
+    EXPECT_LT(ratio, 0.65) << "seed " << seed;
+    EXPECT_LT(x.error_kalman().max_abs, x.error_classical().max_abs) << "seed " << seed;
+    sum += ratio;
+  }
+  EXPECT_LT(sum / 4.0, 0.55);
 }
 
 std::vector<double> AllValues(const Recorder& r) {
@@ -405,17 +448,30 @@ TEST(InspectionExperiment, DrawsRaysFiguresAndTheRuleTable) {
     }
     if (f.id.rfind("mf_", 0) == 0) {
       ++membership;
-      EXPECT_TRUE(std::isfinite(f.marker_x)) << f.id;
+      // The zoom on s near the path marks the input only while it is within 0.35 m.
+      if (f.id != "mf_s_near") {
+        EXPECT_TRUE(std::isfinite(f.marker_x)) << f.id;
+      }
     }
   }
-  EXPECT_EQ(membership, 5);
+  EXPECT_EQ(membership, 6);  // s, s near the path, Δφ, u1, u2, u3
   const auto tables = e->Tables();
   ASSERT_EQ(tables.size(), 1u);  // the rules; the counts are metrics now
   ASSERT_EQ(tables[0].rows.size(), 45u);
   ASSERT_EQ(tables[0].row_strength.size(), 45u);
-  double total = 0.0;
-  for (double w : tables[0].row_strength) total += w;
-  EXPECT_NEAR(total, 1.0, 1e-9);  // product t-norm on partitions of unity
+  const double strongest =
+      *std::max_element(tables[0].row_strength.begin(), tables[0].row_strength.end());
+  EXPECT_GT(strongest, 0.0);
+  // The u3 figure shows the fired set: clipped at the rules' strengths, so its peak is the
+  // strongest rule's (every u3 term reaches 1 inside the range).
+  bool shown = false;
+  for (const FigureSpec& f : e->Figures())
+    for (const SeriesSpec& s : f.series)
+      if (f.id == "mf_u3" && s.label == "fired set") {
+        shown = true;
+        EXPECT_NEAR(*std::max_element(s.y.begin(), s.y.end()), strongest, 1e-12);
+      }
+  EXPECT_TRUE(shown);
   // The results' tables cover what the GUI's localisation table showed.
   const auto gui = e->Results().GuiTables();
   ASSERT_EQ(gui.size(), 3u);

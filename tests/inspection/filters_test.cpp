@@ -50,6 +50,50 @@ TEST(AxisKalman, ConvergesOnAStaticRobot) {
   EXPECT_LT(kf.axis_y().gain(), 0.01);
 }
 
+// The per-axis filter against the closed-form scalar recursion of section 1.3, step by step:
+// P⁻ = P + q_per_m·|Δ| + q_per_s·Δt, K = P⁻ / (P⁻ + R), x = x⁻ + K (z − x⁻), P = (1 − K) P⁻,
+// with motion along both axes (heading 30° from +Y), a varying step and R > 0. A fixed gain, a
+// gain from the wrong variance or an update that skips the prediction's variance all fail it.
+TEST(AxisKalman, StateVarianceAndGainFollowTheClosedForm) {
+  ins::AxisKalmanDef def;
+  def.q_per_m = 2e-4;
+  def.q_per_s = 1e-5;
+  def.r = 4e-3;
+  def.p0 = 1e-2;
+  def.nis_gate = 0.0;  // every fix accepted
+  ins::PositionKalman kf(def);
+  kf.Reset({3.3, 2.0});
+  double x[2] = {3.3, 2.0}, P[2] = {def.p0, def.p0};
+  const double theta = M_PI / 6.0;
+  formsim::sim::Rng rng(3);
+  for (int k = 0; k < 60; ++k) {
+    const double ds = 0.004 + 0.002 * (k % 5), dt = 0.01 + 0.005 * (k % 3);
+    ASSERT_TRUE(kf.Predict(ds, theta, dt));
+    const double du[2] = {ds * std::sin(theta), ds * std::cos(theta)};
+    for (int a = 0; a < 2; ++a) {
+      x[a] += du[a];
+      P[a] += def.q_per_m * std::abs(du[a]) + def.q_per_s * dt;
+    }
+    if (k % 4 != 3) continue;  // a fix every fourth step (odometry runs faster than the laser)
+    const Vec2 z{x[0] + rng.Normal(0.0, 0.06), x[1] + rng.Normal(0.0, 0.06)};
+    const auto r = kf.Update(z);
+    ASSERT_EQ(r.x, ins::AxisUpdate::kAccepted);
+    ASSERT_EQ(r.y, ins::AxisUpdate::kAccepted);
+    const double zz[2] = {z.x, z.y};
+    const ins::AxisKalman* axis[2] = {&kf.axis_x(), &kf.axis_y()};
+    for (int a = 0; a < 2; ++a) {
+      const double K = P[a] / (P[a] + def.r);
+      x[a] += K * (zz[a] - x[a]);
+      P[a] *= 1.0 - K;
+      EXPECT_NEAR(axis[a]->gain(), K, 1e-12 * K) << "step " << k << " axis " << a;
+      EXPECT_NEAR(axis[a]->P(), P[a], 1e-12 * P[a]) << "step " << k << " axis " << a;
+      EXPECT_NEAR(axis[a]->x(), x[a], 1e-12) << "step " << k << " axis " << a;
+    }
+  }
+  // The gain has settled well below the first one (the variance shrank from P0).
+  EXPECT_LT(kf.axis_x().gain(), 0.5 * def.p0 / (def.p0 + def.r));
+}
+
 TEST(AxisKalman, PredictFollowsDeadReckoning) {
   ins::PositionKalman kf;
   kf.Reset({0.0, 0.0});

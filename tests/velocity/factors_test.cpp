@@ -125,6 +125,62 @@ TEST(Factors, BearingAndNonholonomicJacobians) {
   EXPECT_LT((Jn - nh.J).norm() / nh.J.norm(), 1e-6);
 }
 
+// The inverse-depth landmark: the bearing factor's Jacobians w.r.t. the observing keyframe,
+// the anchor keyframe, ψ and ρ against central differences; the anchored point lies on the
+// ray ψ from the anchor's camera at distance 1/ρ; the anchor coordinates of a point invert it,
+// with their Jacobians.
+TEST(Factors, InverseDepthBearingJacobians) {
+  const KeyframeState k = MakeState(0.5), a = MakeState(0.1);
+  const double psi = 0.2, rho = 0.25, z = 0.35, sigma = 0.01, off = 0.1;
+  const cv::InverseDepthBearingFactor f =
+      cv::EvaluateInverseDepthBearingFactor(k, a, psi, rho, z, sigma, off);
+  auto r_of = [&](const KeyframeState& kk, const KeyframeState& aa, double pp, double rr) {
+    return Eigen::VectorXd::Constant(
+        1, cv::EvaluateInverseDepthBearingFactor(kk, aa, pp, rr, z, sigma, off).r);
+  };
+  const auto Jk = NumericJacobian([&](const KeyframeState& x) { return r_of(x, a, psi, rho); }, k);
+  const auto Ja = NumericJacobian([&](const KeyframeState& x) { return r_of(k, x, psi, rho); }, a);
+  EXPECT_LT((Jk - f.Jk).norm() / f.Jk.norm(), 1e-6);
+  EXPECT_LT((Ja - f.Ja).norm() / f.Ja.norm(), 1e-6);
+  EXPECT_GT(f.Ja.norm(), 0.1 * f.Jk.norm());  // the anchor's pose matters
+  const double h = 1e-7;
+  EXPECT_NEAR((r_of(k, a, psi + h, rho)(0) - r_of(k, a, psi - h, rho)(0)) / (2 * h), f.Jl(0),
+              1e-6 * std::abs(f.Jl(0)));
+  EXPECT_NEAR((r_of(k, a, psi, rho + h)(0) - r_of(k, a, psi, rho - h)(0)) / (2 * h), f.Jl(1),
+              1e-6 * std::abs(f.Jl(1)));
+  // The point: on the ray ψ from the anchor's camera, 1/ρ away.
+  const cv::AnchoredPoint p = cv::EvaluateAnchoredPoint(a, psi, rho, off);
+  const Vec2d c = a.p() + cv::Rot(a.theta()) * Vec2d(off, 0.0);
+  EXPECT_NEAR((p.f - c).norm(), 1.0 / rho, 1e-12);
+  EXPECT_NEAR(std::atan2((p.f - c).y(), (p.f - c).x()), a.theta() + psi, 1e-12);
+  // Seen from its anchor the bearing factor is ψ − z.
+  EXPECT_NEAR(cv::EvaluateInverseDepthBearingFactor(a, a, psi, rho, z, sigma, off).r,
+              (psi - z) / sigma, 1e-9);
+  // Its anchor coordinates give ψ and ρ back; Jacobians by differences.
+  const cv::AnchorCoordinates ac = cv::EvaluateAnchorCoordinates(a, p.f, off);
+  EXPECT_NEAR(ac.psi, psi, 1e-12);
+  EXPECT_NEAR(ac.rho, rho, 1e-12);
+  for (int row = 0; row < 2; ++row) {
+    const auto Jc = NumericJacobian(
+        [&](const KeyframeState& x) {
+          const cv::AnchorCoordinates c2 = cv::EvaluateAnchorCoordinates(x, p.f, off);
+          return Eigen::VectorXd::Constant(1, row == 0 ? c2.psi : c2.rho);
+        },
+        a);
+    EXPECT_LT((Jc - ac.Ja.row(row)).norm() / ac.Ja.row(row).norm(), 1e-6) << row;
+    for (int i = 0; i < 2; ++i) {
+      Vec2d fp = p.f, fm = p.f;
+      fp(i) += h;
+      fm(i) -= h;
+      const auto cp = cv::EvaluateAnchorCoordinates(a, fp, off),
+                 cm = cv::EvaluateAnchorCoordinates(a, fm, off);
+      EXPECT_NEAR(((row == 0 ? cp.psi : cp.rho) - (row == 0 ? cm.psi : cm.rho)) / (2 * h),
+                  ac.Jf(row, i), 1e-6)
+          << row << " " << i;
+    }
+  }
+}
+
 TEST(Factors, ZeroResidualForConsistentMotion) {
   // A state pair that agrees with the pre-integrated motion gives a zero IMU residual.
   const cv::ImuPreintegration pre = SomeImu();

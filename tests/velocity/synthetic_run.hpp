@@ -50,11 +50,12 @@ struct SyntheticSample {
 
 // Runs the estimator configured by `def` over the synthetic data; one sample per keyframe.
 // `reopt_change`, when given, receives the largest state change a re-optimisation right after
-// each update makes (zero when the update converged and marginalisation kept the optimum).
-inline std::vector<SyntheticSample> RunSynthetic(const SyntheticConfig& c,
-                                                 cv::SlidingWindowDef def,
-                                                 double* max_update_ms = nullptr,
-                                                 std::vector<double>* reopt_change = nullptr) {
+// each update makes (zero when the update converged and marginalisation kept the optimum);
+// `after_update`, when given, sees the estimator after every update.
+inline std::vector<SyntheticSample> RunSynthetic(
+    const SyntheticConfig& c, cv::SlidingWindowDef def, double* max_update_ms = nullptr,
+    std::vector<double>* reopt_change = nullptr,
+    const std::function<void(const cv::SlidingWindowEstimator&)>& after_update = nullptr) {
   // The project's portable generator: the same numbers with every standard library.
   formsim::sim::Rng rng(c.seed);
   auto n01 = [&rng]() { return rng.Normal(); };
@@ -118,6 +119,7 @@ inline std::vector<SyntheticSample> RunSynthetic(const SyntheticConfig& c,
       const double ms =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       if (max_update_ms) *max_update_ms = std::max(*max_update_ms, ms);
+      if (after_update) after_update(est);
       if (reopt_change) {
         cv::SlidingWindowEstimator copy = est;
         copy.Reoptimize();
