@@ -6,8 +6,16 @@
 
 namespace formsim::sim {
 
-Experiment::Experiment(const ExperimentSetup& setup) : setup_(setup), rng_(setup.seed) {
+Experiment::Experiment(const ExperimentSetup& setup)
+    : setup_(setup), pool_(std::make_unique<ThreadPool>(ThreadPool::DefaultThreads())), rng_(setup.seed) {
   recorder_.Add("t", [this] { return time_; });
+  recorder_.SetPool(pool_.get());
+}
+
+void Experiment::SetThreads(int threads) {
+  if (threads == pool_->threads()) return;
+  pool_ = std::make_unique<ThreadPool>(threads);
+  recorder_.SetPool(pool_.get());
 }
 Experiment::~Experiment() = default;
 

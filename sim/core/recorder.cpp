@@ -1,5 +1,6 @@
 #include "sim/core/recorder.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cerrno>
@@ -10,11 +11,22 @@
 #include <unistd.h>
 
 #include "sim/core/number_format.hpp"
+#include "sim/core/thread_pool.hpp"
 
 namespace formsim::sim {
 
 namespace {
 constexpr std::uint64_t kNotSampledBits = 0x7ff80000'5e1f0001ULL;  // quiet NaN, own payload
+// Rows at least this wide are formatted in blocks of this many columns on the pool.
+constexpr std::size_t kBlockColumns = 1024;
+
+// Cells [begin, end) of a row, each preceded by a comma except column 0; not sampled: empty.
+void AppendCells(const double* v, std::size_t begin, std::size_t end, std::string& out) {
+  for (std::size_t c = begin; c < end; ++c) {
+    if (c) out += ',';
+    if (!IsNotSampled(v[c])) AppendDouble(out, v[c]);
+  }
+}
 }  // namespace
 
 double NotSampled() {
@@ -109,18 +121,34 @@ int Recorder::Column(const std::string& name) const {
   return it == index_.end() ? -1 : it->second;
 }
 
+void Recorder::FormatRow(const double* values, std::string& line) {
+  const std::size_t n = names_.size();
+  if (pool_ == nullptr || pool_->threads() < 2 || n < 2 * kBlockColumns) {
+    AppendCells(values, 0, n, line);
+  } else {
+    // Fixed blocks of columns, each into its own buffer, joined in order: the same bytes
+    // whatever the number of threads.
+    const std::size_t blocks = (n + kBlockColumns - 1) / kBlockColumns;
+    if (block_text_.size() < blocks) block_text_.resize(blocks);
+    pool_->ParallelFor(blocks, [&](std::size_t b0, std::size_t b1) {
+      for (std::size_t b = b0; b < b1; ++b) {
+        block_text_[b].clear();
+        AppendCells(values, b * kBlockColumns, std::min(n, (b + 1) * kBlockColumns), block_text_[b]);
+      }
+    });
+    for (std::size_t b = 0; b < blocks; ++b) line += block_text_[b];
+  }
+  line += '\n';
+}
+
 void Recorder::Sample() {
   const std::size_t n = names_.size();
   scratch_.assign(n, NotSampled());
   for (const Group& g : groups_) g.fill(&scratch_[g.first]);
   if (stream_) {
-    std::string line;
-    for (std::size_t c = 0; c < n; ++c) {
-      if (c) line += ',';
-      if (!IsNotSampled(scratch_[c])) AppendDouble(line, scratch_[c]);
-    }
-    line += '\n';
-    stream_->Write(line);
+    line_.clear();
+    FormatRow(scratch_.data(), line_);
+    stream_->Write(line_);
   }
   // The history keeps every stride-th sampled row; when full it drops every second row.
   if (sampled_++ % stride_ != 0) return;
@@ -140,11 +168,7 @@ void Recorder::Sample() {
 void Recorder::SetHistoryLimit(std::size_t max_rows) { limit_ = max_rows < 2 && max_rows > 0 ? 2 : max_rows; }
 
 void Recorder::AppendRow(std::string& line, std::size_t r) const {
-  for (std::size_t c = 0; c < names_.size(); ++c) {
-    if (c) line += ',';
-    const double v = data_[r * names_.size() + c];
-    if (!IsNotSampled(v)) AppendDouble(line, v);  // not sampled -> empty field
-  }
+  AppendCells(&data_[r * names_.size()], 0, names_.size(), line);
   line += '\n';
 }
 

@@ -14,6 +14,8 @@
 
 namespace formsim::sim {
 
+class ThreadPool;
+
 /// The value a channel returns when it has nothing to say in this row (an empty CSV cell). A
 /// NaN with its own payload, so that a NaN that was computed stays visible as `nan`.
 double NotSampled();
@@ -33,8 +35,12 @@ class Recorder {
   /// Declares several columns filled by one call (e.g. x, y, θ of one pose): `fill` writes
   /// names.size() values into `out`.
   void AddGroup(const std::vector<std::string>& names, std::function<void(double* out)> fill);
-  /// Samples every channel into a new row (streamed to disk when StreamTo is on).
+  /// Samples every channel into a new row (streamed to disk when StreamTo is on). Allocates
+  /// nothing once the buffers have grown (the history grows until its limit).
   void Sample();
+  /// Formats wide streamed rows on `pool`'s threads (the bytes do not depend on it); nullptr:
+  /// on the caller's thread. The pool must outlive the recorder or be replaced first.
+  void SetPool(ThreadPool* pool) { pool_ = pool; }
 
   /// Streams every row to `path` as it is sampled (rows already recorded first), through
   /// `path`.tmp: FinishStream() flushes, syncs and renames it into place. So a run of any
@@ -76,6 +82,8 @@ class Recorder {
   class Stream;
   int Declare(const std::string& name);
   void AppendRow(std::string& line, std::size_t row) const;
+  /// Appends a whole row of `values` (one per column) as CSV text with its newline.
+  void FormatRow(const double* values, std::string& line);
   struct Group {
     int first = 0, count = 1;
     std::function<void(double*)> fill;
@@ -89,6 +97,9 @@ class Recorder {
   std::size_t limit_ = 0;   ///< rows kept in memory at most (0: all)
   std::size_t stride_ = 1;  ///< keep every stride-th sampled row
   std::vector<double> scratch_;  ///< the row being sampled
+  std::string line_;             ///< its text when streaming
+  std::vector<std::string> block_text_;  ///< wide rows: text of each block of columns
+  ThreadPool* pool_ = nullptr;
   std::unique_ptr<Stream> stream_;
   std::string stream_path_;
 };

@@ -16,6 +16,10 @@ using cf::LinkState;
 using cf::Twist;
 
 constexpr double kMinL = 1e-3;  // a distance handed to a law is at least this (noisy raw l)
+// Parallel sections hand out at least this much work per task (a link's sensor and UKF is about
+// a microsecond; an agent's sin_ll much less).
+constexpr std::size_t kLinksPerTask = 16;
+constexpr std::size_t kAgentsPerTask = 256;
 
 
 }  // namespace
@@ -40,6 +44,7 @@ void FormationExperiment::BuildWorld() {
     a.drive = drive.get();
     a.robot->SetDrive(std::move(drive));
     a.saturation = events_.DeclareCondition(event::kSaturation, r.body.name);
+    a.trail.SetCapacity(static_cast<std::size_t>(cfg_.trail_length));
   }
   // Links in topological order of their followers, leaders in declaration order.
   for (int j : cfg_.graph.order) {
@@ -160,25 +165,50 @@ void FormationExperiment::InitFilter(Link& link, bool restart) {
   link.used = link.filter->state();
 }
 
-void FormationExperiment::RunFilter(Link& link, double t) {
+void FormationExperiment::RunFilter(Link& link) {
   link.ever_ukf = true;
+  link.filter_ran = false;
   if (!link.filter_ready) {
     InitFilter(link, false);
     return;
   }
+  link.filter_ran = true;
   control::UkfStatus st = link.filter->Predict(agents_[link.leader].cmd, agents_[link.follower].cmd);
   if (st == control::UkfStatus::kOk) st = link.filter->Update(link.measured);
-  // One event per entry into a run of faults; every fault is counted for the summary.
-  events_.Update(link.fault, t, st != control::UkfStatus::kOk, [&] {
-    return "UKF of link " + link.name + " at t = " + Sprintf("%.3f", t) +
-           " s: " + control::UkfStatusName(st) + "; restarted with P0";
-  });
+  link.status = st;
   if (st != control::UkfStatus::kOk) {
     ++link.fault_count;
     InitFilter(link, true);
     return;
   }
   link.used = link.filter->state();
+}
+
+void FormationExperiment::SenseLink(Link& l, double t, bool filter_step) {
+  const Pose2 pi = agents_[l.leader].robot->pose(), pj = agents_[l.follower].robot->pose();
+  const EstimatorMode mode = Mode(l.follower);
+  if (mode == EstimatorMode::kTruth) {
+    // Nobody reads the measurement: skip the noise draws (this link's stream only).
+    l.truth_conv = cf::ComputeLinkState(pi, pj, cfg_.L, cfg_.bearing);
+    l.measured = l.truth_conv;
+  } else {
+    const NoiseDef n = EffectiveNoise(cfg_, cfg_.robots[l.follower].follow);
+    l.measured = l.sensor.Sample(pi, pj, cfg_.L, cfg_.bearing, n.l.sigma(), n.phi.sigma(),
+                                 n.alpha.sigma(), l.truth_conv);
+  }
+  l.truth = cfg_.bearing == cf::BearingConvention::kDas
+                ? l.truth_conv
+                : cf::ComputeLinkState(pi, pj, cfg_.L, cf::BearingConvention::kDas);
+  l.filter_ran = false;
+  if (filter_step) {
+    if (mode == EstimatorMode::kUkf)
+      RunFilter(l);
+    else if (mode == EstimatorMode::kRaw)
+      l.used = l.measured;
+    else
+      l.used = l.truth_conv;
+  }
+  Accumulate(l, t);
 }
 
 void FormationExperiment::Sense(double t) {
@@ -189,42 +219,37 @@ void FormationExperiment::Sense(double t) {
       return a.drive->slipping() ? a.robot->name() + " slips (traction limit)"
                                  : a.robot->name() + " command clamped to the drive limits";
     });
-    if (cfg_.trail_length > 0 && sense_count_ % cfg_.trail_every == 0) {
-      a.trail.push_back(a.robot->pose().p());
-      while (static_cast<int>(a.trail.size()) > cfg_.trail_length) a.trail.pop_front();
-    }
+    if (cfg_.trail_length > 0 && sense_count_ % cfg_.trail_every == 0) a.trail.Push(a.robot->pose().p());
   }
-  for (Link& l : links_) {
-    const Pose2 pi = agents_[l.leader].robot->pose(), pj = agents_[l.follower].robot->pose();
-    const EstimatorMode mode = Mode(l.follower);
-    if (mode == EstimatorMode::kTruth) {
-      // Nobody reads the measurement: skip the noise draws (this link's stream only).
-      l.truth_conv = cf::ComputeLinkState(pi, pj, cfg_.L, cfg_.bearing);
-      l.measured = l.truth_conv;
-    } else {
-      const NoiseDef n = EffectiveNoise(cfg_, cfg_.robots[l.follower].follow);
-      l.measured = l.sensor.Sample(pi, pj, cfg_.L, cfg_.bearing, n.l.sigma(), n.phi.sigma(),
-                                   n.alpha.sigma(), l.truth_conv);
-    }
-    l.truth = cfg_.bearing == cf::BearingConvention::kDas
-                  ? l.truth_conv
-                  : cf::ComputeLinkState(pi, pj, cfg_.L, cf::BearingConvention::kDas);
-    if (filter_step) {
-      if (mode == EstimatorMode::kUkf)
-        RunFilter(l, t);
-      else if (mode == EstimatorMode::kRaw)
-        l.used = l.measured;
-      else
-        l.used = l.truth_conv;
-    }
-    Accumulate(l, t);
+  // Each link's sensor (its own noise stream), filter and statistics touch that link only.
+  pool().ParallelFor(
+      links_.size(),
+      [&](std::size_t b, std::size_t e) {
+        for (std::size_t i = b; i < e; ++i) SenseLink(links_[i], t, filter_step);
+      },
+      kLinksPerTask);
+  // Filter faults, one event per entry into a run of faults, raised in link order so that the
+  // log does not depend on the threads; every fault is counted for the summary.
+  for (Link& link : links_) {
+    if (!link.filter_ran) continue;
+    const control::UkfStatus st = link.status;
+    events_.Update(link.fault, t, st != control::UkfStatus::kOk, [&] {
+      return "UKF of link " + link.name + " at t = " + Sprintf("%.3f", t) +
+             " s: " + control::UkfStatusName(st) + "; restarted with P0";
+    });
   }
   // The l-l determinant sin(γ_kj − γ_ij) from the states the law will use (recorded as sin_ll).
-  for (Agent& a : agents_) {
-    if (a.links.size() != 2) continue;
-    a.sin_ll =
-        std::sin(ForControl(links_[a.links[1]]).gamma() - ForControl(links_[a.links[0]]).gamma());
-  }
+  pool().ParallelFor(
+      agents_.size(),
+      [&](std::size_t b, std::size_t e) {
+        for (std::size_t i = b; i < e; ++i) {
+          Agent& a = agents_[i];
+          if (a.links.size() != 2) continue;
+          a.sin_ll = std::sin(ForControl(links_[a.links[1]]).gamma() -
+                              ForControl(links_[a.links[0]]).gamma());
+        }
+      },
+      kAgentsPerTask);
   ++sense_count_;
 }
 
@@ -243,10 +268,7 @@ void FormationExperiment::Accumulate(Link& l, double t) {
   l.est_l.Add(e(0));
   l.est_phi.Add(e(1));
   l.est_alpha.Add(e(2));
-  if (mode == EstimatorMode::kUkf) {
-    const Eigen::LDLT<Eigen::Matrix3d> ldlt(l.filter->cov());
-    l.nees = e.dot(ldlt.solve(e));
-  }
+  if (mode == EstimatorMode::kUkf) l.nees = l.filter->Mahalanobis2(e);
 }
 
 Pose2 FormationExperiment::EstimatedPose(const Agent& a) const {

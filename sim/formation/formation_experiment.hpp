@@ -29,7 +29,6 @@
 ///   per l-l follower j: j.sin_ll (sin(γ_kj − γ_ij) of the law; 0 on the singular line)
 /// The estimator is a live tunable, so every follower has its estimate channels from the start.
 
-#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
@@ -38,6 +37,7 @@
 #include "control/formation/link_filter.hpp"
 #include "sim/core/error_stats.hpp"
 #include "sim/core/experiment.hpp"
+#include "sim/core/ring_buffer.hpp"
 #include "sim/core/unicycle_drive.hpp"
 #include "sim/formation/formation_config.hpp"
 #include "sim/formation/relative_sensor.hpp"
@@ -85,7 +85,8 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
     RelativeSensor sensor;
     std::unique_ptr<cf::LinkFilter> filter;
     bool filter_ready = false;
-    bool estimated_now = false;  ///< an estimate was produced on this (control) step
+    bool filter_ran = false;  ///< this step ran predict and update (their status below)
+    control::UkfStatus status = control::UkfStatus::kOk;
     EventLog::ConditionId fault = 0;
     int fault_count = 0;
     cf::LinkState truth;       ///< physical (Das) state
@@ -104,7 +105,7 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
     bool saturated = false;
     EventLog::ConditionId saturation = 0, singular = 0;
     double sin_ll = 1.0;
-    std::deque<Vec2> trail;
+    RingBuffer<Vec2> trail;
   };
 
   void BuildWorld();
@@ -114,7 +115,10 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
   /// Starts (or restarts after a fault) a link filter: measured components from the
   /// measurement, the others from the truth (first start) or the last estimate (restart).
   void InitFilter(Link& link, bool restart);
-  void RunFilter(Link& link, double t);
+  void RunFilter(Link& link);
+  /// Everything a step does for one link alone (sensor, filter, statistics): links run in
+  /// parallel; events are raised afterwards in link order.
+  void SenseLink(Link& link, double t, bool filter_step);
   void Accumulate(Link& link, double t);
   double Gain(double k) const;
   double DesiredL(const Link& l) const;

@@ -118,7 +118,9 @@ void FormationExperiment::DrawScene(DrawSink& draw) const {
   for (std::size_t i = 0; i < agents_.size(); ++i) {
     const Agent& a = agents_[i];
     if (a.trail.size() < 2) continue;
-    std::vector<Vec2> pts(a.trail.begin(), a.trail.end());
+    std::vector<Vec2> pts;
+    pts.reserve(a.trail.size() + 1);
+    for (std::size_t k = 0; k < a.trail.size(); ++k) pts.push_back(a.trail[k]);
     pts.push_back(a.robot->pose().p());
     draw.Polyline(pts, PaletteColor(cfg_.robots[i].body.color_index).WithAlpha(0.8f), 2.0f, true);
   }
