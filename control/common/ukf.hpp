@@ -78,12 +78,12 @@ bool CholeskyLower(const Eigen::Matrix<double, K, K>& A, Eigen::Matrix<double, K
     double d = A(j, j);
     for (int k = 0; k < j; ++k) d -= L(j, k) * L(j, k);
     if (!(d > 0.0)) return false;
-    const double ljj = std::sqrt(d);
+    const double ljj = std::sqrt(d), inv = 1.0 / ljj;
     L(j, j) = ljj;
     for (int i = j + 1; i < K; ++i) {
       double v = A(i, j);
       for (int k = 0; k < j; ++k) v -= L(i, k) * L(j, k);
-      L(i, j) = v / ljj;
+      L(i, j) = v * inv;
     }
   }
   return true;
@@ -92,15 +92,17 @@ bool CholeskyLower(const Eigen::Matrix<double, K, K>& A, Eigen::Matrix<double, K
 /// Solves L Lᵀ x = b in place with a lower Cholesky factor.
 template <int K>
 void CholeskySolveInPlace(const Eigen::Matrix<double, K, K>& L, Eigen::Matrix<double, K, 1>& b) {
+  double inv[K];
+  for (int i = 0; i < K; ++i) inv[i] = 1.0 / L(i, i);
   for (int i = 0; i < K; ++i) {
     double v = b(i);
     for (int k = 0; k < i; ++k) v -= L(i, k) * b(k);
-    b(i) = v / L(i, i);
+    b(i) = v * inv[i];
   }
   for (int i = K - 1; i >= 0; --i) {
     double v = b(i);
     for (int k = i + 1; k < K; ++k) v -= L(k, i) * b(k);
-    b(i) = v / L(i, i);
+    b(i) = v * inv[i];
   }
 }
 
@@ -145,6 +147,7 @@ class Ukf {
     x_ = x0;
     P_ = P0;
     WrapState(x_);
+    chol_valid_ = false;
   }
 
   /// Time update (eq. 13-15): propagates the sigma points through `f` (State -> State) and adds
@@ -164,7 +167,7 @@ class Ukf {
   template <class G>
   UkfStatus PredictSigma(G&& g, const Cov& Q) {
     SigmaSet pts;
-    UkfStatus st = SigmaPoints(x_, P_, pts);
+    UkfStatus st = CurrentSigmaPoints(pts);
     if (st != UkfStatus::kOk) return st;
     SigmaSet out;
     g(static_cast<const SigmaSet&>(pts), out);
@@ -179,6 +182,7 @@ class Ukf {
     if (!CholeskyLower<N>(P, L)) return UkfStatus::kNotPositiveDefinite;
     x_ = mean;
     P_ = P;
+    Factored(L);
     return UkfStatus::kOk;
   }
 
@@ -186,7 +190,7 @@ class Ukf {
   template <class H>
   UkfStatus Update(const Meas& z, H&& h, const MeasCov& R) {
     SigmaSet pts;
-    UkfStatus st = SigmaPoints(x_, P_, pts);
+    UkfStatus st = CurrentSigmaPoints(pts);
     if (st != UkfStatus::kOk) return st;
     std::array<Meas, kSigma> ys;
     for (int i = 0; i < kSigma; ++i) {
@@ -224,8 +228,11 @@ class Ukf {
           },
           R);
     // The sigma-point update would fail here when (n+λ)P is not positive definite.
-    Cov L;
-    if (!CholeskyLower<N>(P_, L)) return UkfStatus::kNotPositiveDefinite;
+    if (!chol_valid_) {
+      Cov L;
+      if (!CholeskyLower<N>(P_, L)) return UkfStatus::kNotPositiveDefinite;
+      Factored(L);
+    }
     Meas y_mean;
     MeasCov Pyy = R;
     CrossCov Psy;
@@ -244,8 +251,8 @@ class Ukf {
   /// eᵀ P⁻¹ e for the current P (e.g. the normalised estimation error squared, NEES); NaN when
   /// P is not positive definite.
   double Mahalanobis2(const State& e) const {
-    Cov L;
-    if (!CholeskyLower<N>(P_, L)) return std::nan("");
+    Cov L = chol_;
+    if (!chol_valid_ && !CholeskyLower<N>(P_, L)) return std::nan("");
     State v = e;
     CholeskySolveInPlace<N>(L, v);
     return e.dot(v);
@@ -265,6 +272,24 @@ class Ukf {
   }
 
  private:
+  // The sigma points of (x, P), from the Cholesky factor of P kept by the last step when there
+  // is one ((n+λ)P = (√(n+λ) L)(√(n+λ) L)ᵀ).
+  UkfStatus CurrentSigmaPoints(SigmaSet& pts) const {
+    if (!chol_valid_) return SigmaPoints(x_, P_, pts);
+    const double c = N + lambda_;
+    if (!(c > 0.0)) return UkfStatus::kNotPositiveDefinite;
+    const Cov S = std::sqrt(c) * chol_;
+    pts[0] = x_;
+    for (int i = 0; i < N; ++i) {
+      pts[1 + i] = x_ + S.col(i);
+      pts[1 + N + i] = x_ - S.col(i);
+    }
+    return UkfStatus::kOk;
+  }
+  void Factored(const Cov& L) {
+    chol_ = L;
+    chol_valid_ = true;
+  }
   template <std::size_t K>
   static void SetFlags(std::array<bool, K>& flags, std::initializer_list<int> idx) {
     flags.fill(false);
@@ -309,6 +334,7 @@ class Ukf {
     if (!CholeskyLower<N>(P, L)) return UkfStatus::kNotPositiveDefinite;
     x_ = x;
     P_ = P;
+    Factored(L);
     return UkfStatus::kOk;
   }
   void WrapState(State& x) const {
@@ -356,6 +382,8 @@ class Ukf {
   std::array<bool, M> angle_meas_{};
   State x_ = State::Zero();
   Cov P_ = Cov::Identity();
+  Cov chol_ = Cov::Identity();  ///< lower Cholesky factor of P_ when chol_valid_
+  bool chol_valid_ = false;
   double last_nis_ = 0.0;
 };
 

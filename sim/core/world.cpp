@@ -428,3 +428,14 @@ void World::Draw(DrawSink& draw) const {
 }
 
 }  // namespace formsim::sim
+
+// Box2D's profiling timers, made free. Box2D 2.4 fills b2World::GetProfile() by reading the clock
+// (gettimeofday) about four times per island per step; robots that do not touch are islands of
+// their own, so a thousand-robot step read the clock four thousand times, which was 60% of
+// Box2D's time for such a world. formsim never reads the profile, so these definitions replace
+// the library's: a program's own definitions take precedence over a shared library's for the
+// library's calls too (ELF symbol interposition; Box2D is linked as libbox2d.so). The profile then
+// reads 0; tests/sim/test_world.cpp checks that the replacement is in effect.
+b2Timer::b2Timer() = default;
+void b2Timer::Reset() {}
+float b2Timer::GetMilliseconds() const { return 0.0f; }
