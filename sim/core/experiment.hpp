@@ -165,6 +165,7 @@ class Experiment {
   void CheckRow();
   double time_ = 0.0;
   long steps_ = 0;
+  std::string event_robots_, event_message_;  ///< text of the events raised by Step
   std::string stop_status_;  ///< "numerical_fault" or "interrupted" once stopped
   std::string stop_reason_;
 };

@@ -57,6 +57,8 @@ class Recorder {
   /// reached every second row is dropped and from then on only every 2nd (4th, ...) sampled
   /// row is kept, so memory stays bounded however long the run. 0: keep every row (default).
   void SetHistoryLimit(std::size_t max_rows);
+  /// Makes room for `rows` rows of history, so sampling them allocates nothing.
+  void ReserveRows(std::size_t rows) { data_.reserve(rows * names_.size()); }
   /// Rows sampled since the start (kept in memory or not).
   std::size_t rows_sampled() const { return sampled_; }
   /// 1 while every sampled row is in memory; 2, 4, ... after decimation.

@@ -21,12 +21,17 @@ class RingBuffer {
   bool empty() const { return size_ == 0; }
   /// Appends `v`, dropping the oldest element when full (nothing when the capacity is 0).
   void Push(const T& v) {
-    if (data_.empty()) return;
-    data_[(head_ + size_) % data_.size()] = v;
+    if (!data_.empty()) PushSlot() = v;
+  }
+  /// The slot of a new newest element (the oldest one's when full) to be assigned in place, so
+  /// that its members keep their storage. The capacity must be above 0.
+  T& PushSlot() {
+    T& slot = data_[(head_ + size_) % data_.size()];
     if (size_ < data_.size())
       ++size_;
     else
       head_ = (head_ + 1) % data_.size();
+    return slot;
   }
   /// The i-th element, oldest first.
   const T& operator[](std::size_t i) const { return data_[(head_ + i) % data_.size()]; }

@@ -50,8 +50,8 @@ void ThreadPool::Run(std::size_t n, std::size_t grain, Body body, void* ctx) {
     body_ = body;
     ctx_ = ctx;
     n_ = n;
-    // A few chunks per thread: dynamic enough for a thread that gets descheduled.
-    chunk_ = std::max(grain, n / (4 * static_cast<std::size_t>(threads_)));
+    // Several chunks per thread: a thread the OS deschedules holds up at most a small one.
+    chunk_ = std::max(grain, n / (8 * static_cast<std::size_t>(threads_)));
     next_.store(0);
     error_ = nullptr;
     job_open_ = true;
@@ -66,8 +66,14 @@ void ThreadPool::Run(std::size_t n, std::size_t grain, Body body, void* ctx) {
     std::lock_guard<std::mutex> lock(job_mutex_);
     job_open_ = false;
   }
-  // Every chunk is handed out; wait for the workers still finishing theirs.
-  while (active_.load() != 0) FORMSIM_CPU_RELAX();
+  // Every chunk is handed out; wait for the workers still finishing theirs (yielding after a
+  // while, so that a worker waiting for this core gets it).
+  for (int polls = 0; active_.load() != 0; ++polls) {
+    if (polls < 4096)
+      FORMSIM_CPU_RELAX();
+    else
+      std::this_thread::yield();
+  }
   if (error_) std::rethrow_exception(error_);
 }
 

@@ -137,11 +137,14 @@ void FormationExperiment::Control(double t) {
           cfg_.singular_threshold);
       cmd = c.cmd;
       // One event per entry into the singular band.
-      events_.Update(a.singular, t, c.singular, [&] {
-        return r.body.name + " near the line through " + cfg_.robots[l1.leader].body.name +
-               " and " + cfg_.robots[l2.leader].body.name +
-               " (|sin| = " + Sprintf("%.3f", std::abs(c.sin_angle)) + " < " +
-               Sprintf("%.3g", cfg_.singular_threshold) + "), regularised inverse in use";
+      events_.Update(a.singular, t, c.singular, [&](std::string& m) {
+        m += r.body.name;
+        m += " near the line through ";
+        m += cfg_.robots[l1.leader].body.name;
+        m += " and ";
+        m += cfg_.robots[l2.leader].body.name;
+        AppendSprintf(m, " (|sin| = %.3f < %.3g), regularised inverse in use",
+                      std::abs(c.sin_angle), cfg_.singular_threshold);
       });
     }
     a.drive->SetCommand(cmd.v, cmd.w);
@@ -215,9 +218,9 @@ void FormationExperiment::Sense(double t) {
   const bool filter_step = steps() % cfg_.control_every == 0;
   for (Agent& a : agents_) {
     a.saturated = a.drive->saturated();
-    events_.Update(a.saturation, t, a.saturated, [&] {
-      return a.drive->slipping() ? a.robot->name() + " slips (traction limit)"
-                                 : a.robot->name() + " command clamped to the drive limits";
+    events_.Update(a.saturation, t, a.saturated, [&](std::string& m) {
+      m += a.robot->name();
+      m += a.drive->slipping() ? " slips (traction limit)" : " command clamped to the drive limits";
     });
     if (cfg_.trail_length > 0 && sense_count_ % cfg_.trail_every == 0) a.trail.Push(a.robot->pose().p());
   }
@@ -233,9 +236,10 @@ void FormationExperiment::Sense(double t) {
   for (Link& link : links_) {
     if (!link.filter_ran) continue;
     const control::UkfStatus st = link.status;
-    events_.Update(link.fault, t, st != control::UkfStatus::kOk, [&] {
-      return "UKF of link " + link.name + " at t = " + Sprintf("%.3f", t) +
-             " s: " + control::UkfStatusName(st) + "; restarted with P0";
+    events_.Update(link.fault, t, st != control::UkfStatus::kOk, [&](std::string& m) {
+      m += "UKF of link ";
+      m += link.name;
+      AppendSprintf(m, " at t = %.3f s: %s; restarted with P0", t, control::UkfStatusName(st));
     });
   }
   // The l-l determinant sin(γ_kj − γ_ij) from the states the law will use (recorded as sin_ll).

@@ -176,7 +176,8 @@ void FormationExperiment::DrawScene(DrawSink& draw) const {
   }
   // Flashes for recent saturations, collisions, singularities and filter faults.
   const auto& events = events_.recent();
-  for (auto it = events.rbegin(); it != events.rend(); ++it) {
+  for (std::size_t k = events.size(); k-- > 0;) {
+    const Event* it = &events[k];
     const double age = (now - it->time) / kFlashSeconds;
     if (age > 1.0) break;
     if (age < 0.0) continue;
