@@ -356,8 +356,9 @@ class ClosestRay : public b2RayCastCallback {
 RayHit World::RayCast(Vec2 from, Vec2 to, bool include_robots, const Robot* ignore) const {
   RayHit out;
   // Box2D asserts on a zero-length or non-finite ray: such a ray hits nothing.
+  const Vec2 d = to - from;
   if (!std::isfinite(from.x) || !std::isfinite(from.y) || !std::isfinite(to.x) ||
-      !std::isfinite(to.y) || !((to - from).Norm() >= 1e-6))
+      !std::isfinite(to.y) || !(d.x * d.x + d.y * d.y >= 1e-12))
     return out;
   ClosestRay cb(include_robots, ignore ? ignore->body() : nullptr);
   b2_->RayCast(&cb, ToB2(from), ToB2(to));
