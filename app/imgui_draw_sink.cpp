@@ -173,6 +173,9 @@ void ImDrawSink::Text(Vec2 p, const std::string& text, sim::Color color, float d
   const float size = font_->FontSize;
   const ImVec2 ext = font_->CalcTextSizeA(size, 1e9f, 0.0f, text.c_str());
   const ImVec4 box(pos.x - 2, pos.y - 1, pos.x + ext.x + 2, pos.y + ext.y + 1);
+  // Off screen: neither drawn nor kept for the overlap test (which then stays short).
+  const ImVec2 clip_min = dl_->GetClipRectMin(), clip_max = dl_->GetClipRectMax();
+  if (box.z < clip_min.x || box.x > clip_max.x || box.w < clip_min.y || box.y > clip_max.y) return;
   for (const ImVec4& o : labels_)
     if (box.x < o.z && o.x < box.z && box.y < o.w && o.y < box.w) return;
   labels_.push_back(box);
@@ -180,6 +183,14 @@ void ImDrawSink::Text(Vec2 p, const std::string& text, sim::Color color, float d
   dl_->AddRectFilled(ImVec2(pos.x - 2, pos.y - 1), ImVec2(pos.x + ext.x + 2, pos.y + ext.y + 1),
                      IM_COL32(255, 255, 255, 170), 2.0f);
   dl_->AddText(font_, size, pos, ToImColor(color), text.c_str());
+}
+
+void ImDrawSink::ViewBox(Vec2& lo, Vec2& hi) const {
+  // The part of the view rectangle the draw list can reach, in world coordinates (y up).
+  const ImVec2 a = dl_->GetClipRectMin(), b = dl_->GetClipRectMax();
+  const Vec2 p = view_.ToWorld(a), q = view_.ToWorld(b);
+  lo = {std::min(p.x, q.x), std::min(p.y, q.y)};
+  hi = {std::max(p.x, q.x), std::max(p.y, q.y)};
 }
 
 void ImDrawSink::Flash(Vec2 p, double radius, sim::Color color, float age) {
