@@ -39,8 +39,12 @@ void DrawRobotBody(DrawSink& draw, const Pose2& pose, const std::vector<Vec2>& b
     draw.Polygon(world, color.WithAlpha(0.0f), color.WithAlpha(0.55f));
     return;
   }
+  // A small body without its dark outline, which would hide its colour.
+  if (extent_px < 6.0) {
+    draw.Polygon(world, color.WithAlpha(0.9f), Color{0, 0, 0, 0});
+    return;
+  }
   draw.Polygon(world, color.WithAlpha(0.85f), Color{0.1f, 0.1f, 0.1f, 1.0f});
-  if (extent_px < 6.0) return;
   // Heading wedge: a light triangle pointing forward inside the body.
   const std::vector<Vec2> wedge = {pose.ToWorld({front * 0.9, 0.0}),
                                    pose.ToWorld({front * 0.1, half_width * 0.6}),

@@ -60,7 +60,8 @@ inline double PixelsOf(const DrawSink& draw, double metres) {
 
 /// Draws a robot body (polygon in the body frame, metres) at `pose` with a heading wedge and
 /// its name. `ghost` draws it as a dashed-looking translucent outline (desired slots). Level of
-/// detail: below 12 px across no name, below 6 px no wedge, below 2 px a dot (ghosts: nothing).
+/// detail: below 12 px across no name, below 6 px neither wedge nor outline, below 2 px a dot
+/// (ghosts: nothing).
 void DrawRobotBody(DrawSink& draw, const Pose2& pose, const std::vector<Vec2>& body_polygon,
                    Color color, const std::string& name, bool ghost = false);
 

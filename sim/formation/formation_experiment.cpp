@@ -301,6 +301,25 @@ void FormationExperiment::DeclareChannels() {
     }
     if (r.node.law == FormationLaw::kLL) recorder_.Add(n + ".sin_ll", [a] { return a->sin_ll; });
   }
+  if (links_.size() > kManyLinks) {
+    // Over all links, computed when a row is recorded.
+    recorder_.AddGroup({"links.max_abs_e_l", "links.median_abs_e_l"}, [this](double* o) {
+      std::vector<double>& e = error_scratch_;
+      e.clear();
+      for (const Link& l : links_) e.push_back(std::abs(DesiredL(l) - l.truth.l));
+      const auto mid = e.begin() + static_cast<long>(e.size() / 2);
+      std::nth_element(e.begin(), mid, e.end());
+      o[1] = *mid;
+      o[0] = *std::max_element(mid, e.end());
+    });
+    recorder_.Add("links.max_abs_e_phi", [this] {
+      double worst = 0.0;
+      for (const Link& l : links_)
+        if (cfg_.robots[l.follower].node.law == FormationLaw::kLPhi)
+          worst = std::max(worst, std::abs(control::WrapToPi(cfg_.robots[l.follower].node.phi_des - l.truth.phi)));
+      return worst;
+    });
+  }
   for (const Link& link : links_) {
     const Link* l = &link;
     const std::string& n = l->name;

@@ -27,6 +27,8 @@
 ///                  .l_sd .phi_sd .alpha_sd (square roots of the diagonal of P) and .nees
 ///                  (normalised estimation error squared, 3 dof): while the estimator is ukf
 ///   per l-l follower j: j.sin_ll (sin(γ_kj − γ_ij) of the law; 0 on the singular line)
+///   more links than the figures show (kManyLinks):  links.max_abs_e_l, links.median_abs_e_l
+///                  (over every link), and links.max_abs_e_phi over the l-φ links
 /// The estimator is a live tunable, so every follower has its estimate channels from the start.
 
 #include <memory>
@@ -46,6 +48,9 @@ namespace formsim::sim::formation {
 
 class FormationExperiment : public ExperimentOf<FormationConfig> {
  public:
+  /// Figures show at most this many robots' or links' series; a larger formation also records
+  /// the largest and median errors over all its links (and plots them).
+  static constexpr std::size_t kManyLinks = 12;
   static FormationConfig ReadConfig(YamlReader& root, const ExperimentSetup& setup) {
     return ReadFormationConfig(root, setup.dt);
   }
@@ -129,6 +134,7 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
   std::vector<Agent> agents_;
   std::vector<Link> links_;
   long sense_count_ = 0;
+  std::vector<double> error_scratch_;  ///< the links' errors of a recorded row
 };
 
 }  // namespace formsim::sim::formation

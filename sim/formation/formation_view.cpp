@@ -12,7 +12,7 @@ namespace {
 using cf::FormationLaw;
 
 // Plots stay readable: at most this many series of one kind per figure.
-constexpr std::size_t kMaxSeries = 12;
+constexpr std::size_t kMaxSeries = FormationExperiment::kManyLinks;
 // Seconds an event flash stays visible.
 constexpr double kFlashSeconds = 1.0;
 // The view (Bounds) covers the robots plus this margin, m.
@@ -79,6 +79,18 @@ std::vector<FigureSpec> FormationExperiment::Figures() const {
   }
   if (!phi.series.empty()) figs.push_back(phi);
   figs.push_back(dist);
+  if (links_.size() > kManyLinks) {
+    // Every link at once: the largest and the median distance error, and the l-φ bearing's.
+    FigureSpec all = TimeFigure(
+        "distance_error_all",
+        Sprintf("(c) Distance errors over all %zu links: largest and median |e_l|", links_.size()),
+        "|e| [m], [rad]", {});
+    all.series.push_back(Line("max |e_l|", "links.max_abs_e_l", 0));
+    all.series.push_back(Line("median |e_l|", "links.median_abs_e_l", 2));
+    all.series.push_back(Line("max |e_φ| (l-φ links) [rad]", "links.max_abs_e_phi", 1, true));
+    all.reference_lines = {0.0};
+    figs.push_back(all);
+  }
   figs.push_back(alpha);
 
   FigureSpec v = TimeFigure("follower_v", "(e) Follower speeds v", "v [m/s]", {});
