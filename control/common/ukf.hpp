@@ -177,13 +177,7 @@ class Ukf {
     Cov P = Q;
     for (int i = 0; i < kSigma; ++i) AddOuter(P, wc_[i], StateDiff(out[i], mean));
     Symmetrize(P);
-    if (!mean.allFinite() || !P.allFinite()) return UkfStatus::kNonFinite;
-    Cov L;
-    if (!CholeskyLower<N>(P, L)) return UkfStatus::kNotPositiveDefinite;
-    x_ = mean;
-    P_ = P;
-    Factored(L);
-    return UkfStatus::kOk;
+    return Accept(mean, P);
   }
 
   /// Measurement update (eq. 16-21) with measurement function `h` (State -> Meas) and noise R.
@@ -329,6 +323,11 @@ class Ukf {
     Cov P = P_ - K * Pyy * K.transpose();
     P = 0.5 * (P + P.transpose());
     WrapState(x);
+    return Accept(x, P);
+  }
+  // The new state when it is finite and P positive definite (its factor is kept for the next
+  // sigma points); else a fault and nothing changes.
+  UkfStatus Accept(const State& x, const Cov& P) {
     if (!x.allFinite() || !P.allFinite()) return UkfStatus::kNonFinite;
     Cov L;
     if (!CholeskyLower<N>(P, L)) return UkfStatus::kNotPositiveDefinite;

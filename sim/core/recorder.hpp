@@ -38,8 +38,11 @@ class Recorder {
   /// Samples every channel into a new row (streamed to disk when StreamTo is on). Allocates
   /// nothing once the buffers have grown (the history grows until its limit).
   void Sample();
-  /// Formats wide streamed rows on `pool`'s threads (the bytes do not depend on it); nullptr:
-  /// on the caller's thread. The pool must outlive the recorder or be replaced first.
+  /// With a pool of more than one thread, streamed rows are formatted and written by a
+  /// background thread of the recorder's own (the simulation only copies each row into a
+  /// slot), so the text of tens of thousands of columns fills the time a step leaves a core
+  /// idle; the bytes are the same. nullptr or one thread: on the caller's thread. Takes effect
+  /// at the next StreamTo.
   void SetPool(ThreadPool* pool) { pool_ = pool; }
 
   /// Streams every row to `path` as it is sampled (rows already recorded first), through
@@ -82,10 +85,11 @@ class Recorder {
 
  private:
   class Stream;
+  class Writer;
   int Declare(const std::string& name);
   void AppendRow(std::string& line, std::size_t row) const;
-  /// Appends a whole row of `values` (one per column) as CSV text with its newline.
-  void FormatRow(const double* values, std::string& line);
+  /// Stops the background writer after it wrote every row handed to it.
+  void StopWriter();
   struct Group {
     int first = 0, count = 1;
     std::function<void(double*)> fill;
@@ -99,10 +103,10 @@ class Recorder {
   std::size_t limit_ = 0;   ///< rows kept in memory at most (0: all)
   std::size_t stride_ = 1;  ///< keep every stride-th sampled row
   std::vector<double> scratch_;  ///< the row being sampled
-  std::string line_;             ///< its text when streaming
-  std::vector<std::string> block_text_;  ///< wide rows: text of each block of columns
+  std::string line_;             ///< its text when streaming on the caller's thread
   ThreadPool* pool_ = nullptr;
   std::unique_ptr<Stream> stream_;
+  std::unique_ptr<Writer> writer_;  ///< formats and writes streamed rows in the background
   std::string stream_path_;
 };
 
