@@ -14,8 +14,11 @@ namespace formsim::sim {
 namespace {
 
 // How long an idle worker watches for the next section before it sleeps: longer than the
-// serial part of a large step (Box2D, control), short enough not to burn a shared machine.
-constexpr auto kSpin = std::chrono::microseconds(100);
+// serial part of a large step (Box2D, control: a few hundred microseconds), so the next section
+// finds it awake. After kSpinHard it yields between looks, so that the recorder's writer thread
+// and other programs get the core.
+constexpr auto kSpinHard = std::chrono::microseconds(20);
+constexpr auto kSpin = std::chrono::microseconds(500);
 
 std::atomic<int> g_default_threads{0};  // 0: all cores
 
@@ -95,11 +98,18 @@ void ThreadPool::WorkerLoop() {
   unsigned seen = 0;
   for (;;) {
     // Spin for a while, then sleep until the generation changes.
-    const auto until = std::chrono::steady_clock::now() + kSpin;
+    const auto start = std::chrono::steady_clock::now();
+    bool yielding = false;
     int polls = 0;
     while (generation_.load() == seen && !stop_.load()) {
-      FORMSIM_CPU_RELAX();
-      if ((++polls & 63) == 0 && std::chrono::steady_clock::now() > until) {
+      if (yielding)
+        std::this_thread::yield();
+      else
+        FORMSIM_CPU_RELAX();
+      if ((++polls & 63) != 0) continue;
+      const auto waited = std::chrono::steady_clock::now() - start;
+      yielding = waited > kSpinHard;
+      if (waited > kSpin) {
         std::unique_lock<std::mutex> lock(wake_mutex_);
         sleeping_.fetch_add(1);
         wake_.wait(lock, [&] { return generation_.load() != seen || stop_.load(); });

@@ -17,9 +17,9 @@ using cf::Twist;
 
 constexpr double kMinL = 1e-3;  // a distance handed to a law is at least this (noisy raw l)
 // Parallel sections hand out at least this much work per task (a link's sensor and UKF is about
-// a microsecond; an agent's sin_ll much less).
+// a microsecond; an agent's law or sin_ll a tenth of that).
 constexpr std::size_t kLinksPerTask = 16;
-constexpr std::size_t kAgentsPerTask = 256;
+constexpr std::size_t kAgentsPerTask = 128;
 
 
 }  // namespace
@@ -118,6 +118,24 @@ LinkState FormationExperiment::ForControl(const Link& link) const {
 
 void FormationExperiment::Control(double t) {
   if (steps() % cfg_.control_every != 0) return;
+  // What each follower's law needs except its leaders' commands (the sines, cosines and errors
+  // of its links' states), for every follower at once.
+  pool().ParallelFor(
+      agents_.size(),
+      [&](std::size_t begin, std::size_t end) {
+        for (std::size_t j = begin; j < end; ++j) {
+          const FormationRobotDef& r = cfg_.robots[j];
+          Agent& a = agents_[j];
+          const cf::FormationGains gains{Gain(r.follow.k1), Gain(r.follow.k2)};
+          if (r.node.law == FormationLaw::kLPhi)
+            a.lphi = cf::PrepareLPhi(ForControl(links_[a.links[0]]), r.node.l_des, r.node.phi_des, gains);
+          else if (r.node.law == FormationLaw::kLL)
+            a.ll = cf::PrepareLL(ForControl(links_[a.links[0]]), ForControl(links_[a.links[1]]),
+                                 r.node.l_des, r.node.l2_des, gains, cfg_.singular_threshold);
+        }
+      },
+      kAgentsPerTask);
+  // Then in cascade order: a follower uses its leaders' commands of this step as feed-forward.
   for (int j : cfg_.graph.order) {
     const FormationRobotDef& r = cfg_.robots[j];
     Agent& a = agents_[j];
@@ -125,16 +143,11 @@ void FormationExperiment::Control(double t) {
     if (r.node.law == FormationLaw::kRoot) {
       cmd = cf::ScheduleAt(r.schedule, t);
     } else if (r.node.law == FormationLaw::kLPhi) {
-      const Link& l = links_[a.links[0]];
-      cmd = cf::LPhiControl(ForControl(l), agents_[l.leader].cmd, r.node.l_des, r.node.phi_des,
-                            {Gain(r.follow.k1), Gain(r.follow.k2)}, cfg_.L);
+      cmd = cf::FinishLPhi(a.lphi, agents_[links_[a.links[0]].leader].cmd, cfg_.L);
     } else {
       const Link& l1 = links_[a.links[0]];
       const Link& l2 = links_[a.links[1]];
-      const cf::LLCommand c = cf::LLControl(
-          ForControl(l1), ForControl(l2), agents_[l1.leader].cmd, agents_[l2.leader].cmd,
-          r.node.l_des, r.node.l2_des, {Gain(r.follow.k1), Gain(r.follow.k2)}, cfg_.L,
-          cfg_.singular_threshold);
+      const cf::LLCommand c = cf::FinishLL(a.ll, agents_[l1.leader].cmd, agents_[l2.leader].cmd, cfg_.L);
       cmd = c.cmd;
       // One event per entry into the singular band.
       events_.Update(a.singular, t, c.singular, [&](std::string& m) {

@@ -3,8 +3,9 @@
 /// root leaders on open-loop schedules, followers with the l-φ or l-l law, a relative sensor and
 /// (optionally) a UKF per link, any graph.
 ///
-/// Step order: Control(t) computes commands in topological order (a follower uses its leaders'
-/// commands of the same step as feed-forward) from the link states chosen by each follower's
+/// Step order: Control(t) prepares every follower's law from its links' states (in parallel),
+/// then computes commands in topological order (a follower uses its leaders' commands of the
+/// same step as feed-forward) from the link states chosen by each follower's
 /// estimator mode; the world steps; Sense(t+dt) samples every link sensor and, on filter steps,
 /// runs each link UKF (predict with the commands applied during the last period, update with the
 /// new measurement), so the recorded row at t holds truth, measurement and estimate of the same
@@ -107,6 +108,8 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
     UnicycleDrive* drive = nullptr;
     std::vector<int> links;  ///< indices into links_, in leader order
     cf::Twist cmd;           ///< command of the current period (after the drive's limits)
+    cf::LPhiPrepared lphi;   ///< this period's law before the leaders' commands (l-φ)
+    cf::LLPrepared ll;       ///< (l-l)
     bool saturated = false;
     EventLog::ConditionId saturation = 0, singular = 0;
     double sin_ll = 1.0;
