@@ -20,6 +20,7 @@
 #include "sim/core/scenario.hpp"
 #include "sim/core/scenario_files.hpp"
 #include "sim/core/session.hpp"
+#include "sim/core/thread_pool.hpp"
 
 namespace formsim::app {
 namespace {
@@ -233,6 +234,10 @@ int Main(int argc, char** argv) {
   run_cmd->add_flag("--whole-run", run.exp.whole_run,
                     "Camera keeps everything since the start in view (default: tracks the robots)");
   run_cmd->add_flag("--timing", run.timing, "Print where the export time went (stderr)");
+  int threads = 0;  // 0: all cores
+  const std::string threads_help =
+      "Threads for the work inside a step (default: all cores); results are identical for any N";
+  run_cmd->add_option("--threads", threads, threads_help)->check(CLI::Range(1, 1024));
 
   app.add_subcommand("list", "List the shipped scenarios");
 
@@ -282,6 +287,7 @@ int Main(int argc, char** argv) {
                       std::string("Colours of the panels, world view and plots: ") + ThemeNames() +
                           " (default light)");
   gui_cmd->add_flag("--timing", gui.timing, "Print frame-time statistics on exit (stderr)");
+  gui_cmd->add_option("--threads", threads, threads_help)->check(CLI::Range(1, 1024));
 
   StudyCommands study(app);  // sweep, sweep collect, tune
 
@@ -291,6 +297,7 @@ int Main(int argc, char** argv) {
     return app.exit(e);
   }
   try {
+    if (threads > 0) sim::ThreadPool::SetDefaultThreads(threads);
     if (run_cmd->parsed()) return RunCommand(run);
     if (app.got_subcommand("list")) return ListCommand();
     if (study.parsed()) return study.Run();

@@ -109,6 +109,9 @@ class AppUi {
   void DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool interactive);
   void DrawWorldMouse(const View& view);
   void DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts);
+  /// What the plots window shows, refreshed at most ten times a second (app/ui_plots.cpp).
+  struct PlotsCache;
+  std::shared_ptr<PlotsCache> plots_cache_;
   void UpdateView(ImVec2 min, ImVec2 max);
 
   std::function<void(sim::Experiment&)> run_setup_;

@@ -7,12 +7,17 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <unordered_map>
+#include <unordered_set>
 
 #include "app/ui.hpp"
 #include "sim/core/number_format.hpp"
 
 namespace formsim::app {
 namespace {
+
+// Sub-groups of a header start open when there are at most this many.
+constexpr std::size_t kOpenSubgroups = 8;
 
 std::string Head(const std::string& group) {
   return group.substr(0, group.find('/'));
@@ -101,16 +106,23 @@ std::string ParamRow(const sim::Param& p, const std::string& shown, bool waiting
 void AppUi::DrawParamSection() {
   const auto& params = session_->params().all();
   const auto actions = session_->exp().Actions();
-  // Groups in order of first appearance; within a head group, sub-groups likewise.
+  // Groups in order of first appearance; within a head group, sub-groups likewise. One pass
+  // over the parameters (a thousand robots declare tens of thousands in thousands of groups).
   std::vector<std::string> heads;
-  std::map<std::string, std::vector<std::string>> tails;
+  std::unordered_map<std::string, std::vector<std::string>> tails;
+  std::unordered_set<std::string> seen;
+  std::unordered_map<std::string, std::vector<const sim::Param*>> members;
   auto note_group = [&](const std::string& g) {
+    if (!seen.insert(g).second) return;
     const std::string h = Head(g), t = Tail(g);
-    if (std::find(heads.begin(), heads.end(), h) == heads.end()) heads.push_back(h);
-    auto& v = tails[h];
-    if (std::find(v.begin(), v.end(), t) == v.end()) v.push_back(t);
+    const auto [it, fresh] = tails.try_emplace(h);
+    if (fresh) heads.push_back(h);
+    if (std::find(it->second.begin(), it->second.end(), t) == it->second.end()) it->second.push_back(t);
   };
-  for (const auto& p : params) note_group(p.tune.group);
+  for (const auto& p : params) {
+    note_group(p.tune.group);
+    members[p.tune.group].push_back(&p);
+  }
   for (const auto& a : actions) note_group(a.group);
   std::vector<std::pair<std::string, std::string>> edits;
   std::vector<std::string> run_actions;
@@ -118,22 +130,26 @@ void AppUi::DrawParamSection() {
   for (const std::string& h : heads) {
     const std::string header = (h.empty() ? std::string("Parameters") : h) + "###grp_" + h;
     if (!ImGui::CollapsingHeader(header.c_str(), ImGuiTreeNodeFlags_DefaultOpen)) continue;
-    for (const std::string& t : tails[h]) {
+    // Sub-groups start open unless there are many (one per robot of a swarm).
+    const auto& subgroups = tails[h];
+    const ImGuiTreeNodeFlags node_flags =
+        subgroups.size() <= kOpenSubgroups ? ImGuiTreeNodeFlags_DefaultOpen : 0;
+    for (const std::string& t : subgroups) {
       const std::string group = t.empty() ? h : h + "/" + t;
       bool open = true;
-      if (!t.empty())
-        open = ImGui::TreeNodeEx((t + "##" + group).c_str(), ImGuiTreeNodeFlags_DefaultOpen);
+      if (!t.empty()) open = ImGui::TreeNodeEx((t + "##" + group).c_str(), node_flags);
       if (!open) continue;
-      if (ImGui::BeginTable(("##tbl" + group).c_str(), 2, ImGuiTableFlags_SizingStretchProp)) {
+      const auto in_group = members.find(group);
+      if (in_group != members.end() &&
+          ImGui::BeginTable(("##tbl" + group).c_str(), 2, ImGuiTableFlags_SizingStretchProp)) {
         ImGui::TableSetupColumn("label", ImGuiTableColumnFlags_WidthStretch, 0.45f);
         ImGui::TableSetupColumn("value", ImGuiTableColumnFlags_WidthStretch, 0.55f);
-        for (const auto& p : params) {
-          if (p.tune.group != group) continue;
-          const auto w = waiting.find(p.key);
+        for (const sim::Param* p : in_group->second) {
+          const auto w = waiting.find(p->key);
           const bool is_waiting = w != waiting.end();
           const std::string v =
-              ParamRow(p, is_waiting ? w->second : p.Text(), is_waiting, session_->refusal(p.key));
-          if (!v.empty()) edits.emplace_back(p.key, v);
+              ParamRow(*p, is_waiting ? w->second : p->Text(), is_waiting, session_->refusal(p->key));
+          if (!v.empty()) edits.emplace_back(p->key, v);
         }
         ImGui::EndTable();
       }
