@@ -1,6 +1,7 @@
 /// \file The right-hand window: live plots of the experiment's figures (our plot widget, with a
 /// time cursor), its tables (with firing-strength bars) and the summary with events.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 
 #include "app/figure_data.hpp"
@@ -16,8 +17,16 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                    ImGuiWindowFlags_NoTitleBar);
   const sim::Experiment& exp = session_->exp();
+  // A tab asked for by a script (`tab history`) comes to the front once.
+  auto tab = [&](const char* name) {
+    std::string lower = name;
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const bool select = state_.select_tab == lower;
+    if (select) state_.select_tab.clear();
+    return select ? ImGuiTabItemFlags_SetSelected : ImGuiTabItemFlags_None;
+  };
   if (ImGui::BeginTabBar("tabs")) {
-    if (ImGui::BeginTabItem("Plots")) {
+    if (ImGui::BeginTabItem("Plots", nullptr, tab("Plots"))) {
       // The figure list can change during a run (an estimator switched on adds its figure), so
       // the user's choices are kept by figure id.
       const auto figures = exp.Figures();
@@ -52,9 +61,10 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
         const float w = ImGui::GetContentRegionAvail().x;
         ImGui::Dummy(ImVec2(w, h));
         if (!ImGui::IsItemVisible()) continue;  // scrolled away: skip the work
-        const PlotData data = ResolveFigure(figures[i], exp.recorder());
+        PlotData data = ResolveFigure(figures[i], exp.recorder());
+        DecoratePlot(figures[i], data);  // pinned runs, Monte Carlo bands
         const PlotLayout L = DrawPlot(canvas, p0, ImVec2(p0.x + w, p0.y + h), data, style,
-                                      data.x_is_time ? exp.time() : std::nan(""));
+                                      data.x_is_time ? CursorTime() : std::nan(""));
         // Hovering shows each series' value under the mouse.
         if (ImGui::IsItemHovered() && !data.equal_aspect) {
           const ImVec2 m = ImGui::GetIO().MousePos;
@@ -65,7 +75,7 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
             ImGui::Text("%s = %.4g", data.x_label.c_str(), x);
             for (const auto& s : data.series) {
               const double y = SampleSeries(s, x);
-              if (std::isfinite(y)) {
+              if (std::isfinite(y) && !s.label.empty()) {
                 const sim::Color c = style.theme->Series(s.color, s.style_index, s.dashed).color;
                 ImGui::TextColored(ImVec4(c.r, c.g, c.b, 1), "%s: %.5g", s.label.c_str(), y);
               }
@@ -78,9 +88,11 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
       ImGui::EndTabItem();
     }
     // The results as tables (the same metrics as summary.json), then the experiment's own.
-    std::vector<sim::TableSpec> tables = exp.Results().GuiTables();
+    const sim::Metrics results = exp.Results();
+    std::vector<sim::TableSpec> tables = results.GuiTables();
     for (auto& t : exp.Tables()) tables.push_back(std::move(t));
-    if (!tables.empty() && ImGui::BeginTabItem("Tables")) {
+    if (!tables.empty() && ImGui::BeginTabItem("Tables", nullptr, tab("Tables"))) {
+      DrawCompareTable(results);
       for (std::size_t t = 0; t < tables.size(); ++t) {
         const sim::TableSpec& spec = tables[t];
         ImGui::TextUnformatted(spec.title.c_str());
@@ -114,7 +126,11 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
       }
       ImGui::EndTabItem();
     }
-    if (ImGui::BeginTabItem("Summary")) {
+    if (ImGui::BeginTabItem("History", nullptr, tab("History"))) {
+      DrawHistoryTab();
+      ImGui::EndTabItem();
+    }
+    if (ImGui::BeginTabItem("Summary", nullptr, tab("Summary"))) {
       ImGui::PushFont(fonts.mono);
       ImGui::TextUnformatted(exp.SummaryText().c_str());
       ImGui::PopFont();
