@@ -14,6 +14,7 @@
 #include "app/figures_command.hpp"
 #include "app/gui.hpp"
 #include "app/progress.hpp"
+#include "app/replay_command.hpp"
 #include "app/stop_signal.hpp"
 #include "app/study_cli.hpp"
 #include "sim/core/run_output.hpp"
@@ -280,8 +281,13 @@ int Main(int argc, char** argv) {
   gui_cmd->add_option("--script", gui.script,
                       "Run scripted actions, one per line: FRAME ACTION [ARGS] (edit k=v, reset, "
                       "reset-seed N, reload, load S, open P, save P, play, pause, step, "
-                      "screenshot P, action ID)");
+                      "screenshot P, action ID, undo, redo, revert K, pin, unpin N, unpin-all, "
+                      "restore N, pin-row N, seeds N, cancel-seeds, scrub T, live, branch, "
+                      "save-session P, tab T, wait)");
   gui_cmd->add_option("--out", gui.out_dir, "Write timeseries.csv and summary.json here on exit");
+  gui_cmd->add_option("--session", gui.session_file,
+                      "Record the session (edits with their steps, resets, seeds, loads, pins, "
+                      "branches) into this file on exit; replay it with `formsim replay`");
   std::string gui_theme = "light";
   gui_cmd->add_option("--theme", gui_theme,
                       std::string("Colours of the panels, world view and plots: ") + ThemeNames() +
@@ -290,6 +296,7 @@ int Main(int argc, char** argv) {
   gui_cmd->add_option("--threads", threads, threads_help)->check(CLI::Range(1, 1024));
 
   StudyCommands study(app);  // sweep, sweep collect, tune
+  ReplayCommand replay(app);
 
   try {
     app.parse(argc, argv);
@@ -301,6 +308,7 @@ int Main(int argc, char** argv) {
     if (run_cmd->parsed()) return RunCommand(run);
     if (app.got_subcommand("list")) return ListCommand();
     if (study.parsed()) return study.Run();
+    if (replay.parsed()) return replay.Run();
     if (figs_cmd->parsed()) return FiguresCommand(figs);
     if (gui_cmd->parsed()) {
       ParseSize(gui_size, &gui.width, &gui.height, "--size");

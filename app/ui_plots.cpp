@@ -8,6 +8,7 @@
 /// the tables and the summary text are computed at most four times a second, and only while
 /// their tab is shown.
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 
@@ -95,6 +96,7 @@ struct CachedPlot {
   ImVec2 p0, p1;
   std::size_t rows = 0;
   Clock::time_point at;
+  std::string decoration;  ///< the pins and Monte Carlo bands it was drawn with
   bool valid = false;
 };
 
@@ -108,6 +110,7 @@ struct AppUi::PlotsCache {
   std::vector<sim::FigureSpec> figures;
   Clock::time_point figures_at;
   std::map<std::string, CachedPlot> plots;
+  sim::Metrics results;
   std::vector<sim::TableSpec> tables;
   std::string summary;
   Clock::time_point tables_at, summary_at;
@@ -122,6 +125,14 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                    ImGuiWindowFlags_NoTitleBar);
   const sim::Experiment& exp = session_->exp();
+  // A tab asked for by a script (`tab history`) comes to the front once.
+  auto tab = [&](const char* name) {
+    std::string lower = name;
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const bool select = state_.select_tab == lower;
+    if (select) state_.select_tab.clear();
+    return select ? ImGuiTabItemFlags_SetSelected : ImGuiTabItemFlags_None;
+  };
   if (!plots_cache_) plots_cache_ = std::make_shared<PlotsCache>();
   PlotsCache& cache = *plots_cache_;
   const Clock::time_point now = Clock::now();
@@ -147,7 +158,7 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
     cache.rows = rows;
   }
   if (ImGui::BeginTabBar("tabs")) {
-    if (ImGui::BeginTabItem("Plots")) {
+    if (ImGui::BeginTabItem("Plots", nullptr, tab("Plots"))) {
       const auto& figures = cache.figures;
       // The user's choices are kept by figure id.
       auto is_open = [&](const sim::FigureSpec& f) {
@@ -167,6 +178,10 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
       for (const auto& f : figures) open_count += is_open(f);
       const float avail_h = ImGui::GetContentRegionAvail().y;
       const float h = std::max(220.0f, open_count > 0 ? avail_h / std::min(open_count, 3) - 6 : 0);
+      // What DecoratePlot adds: a drawn plot is kept only while it is unchanged.
+      std::string decoration = std::to_string(mc_.bands.runs) + "/" + std::to_string(mc_.bands_at);
+      for (const auto& pin : pins_)
+        if (pin->ready()) decoration += "|" + std::to_string(pin->id) + ":" + PinLabel(*pin);
       PlotStyle style;
       style.title_font = FontRole::kLabel;
       style.label_font = FontRole::kUi;
@@ -185,9 +200,12 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
         ImDrawList* dl = ImGui::GetWindowDrawList();
         CachedPlot& plot = cache.plots[figures[i].id];
         const bool moved = p0.x != plot.p0.x || p0.y != plot.p0.y || p1.x != plot.p1.x || p1.y != plot.p1.y;
-        if (!plot.valid || moved || plot.rows != cache.rows || plot.at < cache.figures_at) {
+        if (!plot.valid || moved || plot.rows != cache.rows || plot.at < cache.figures_at ||
+            plot.decoration != decoration) {
           // Resolved and drawn (without the cursor, which moves every frame), and kept.
           plot.data = ResolveFigure(figures[i], exp.recorder());
+          DecoratePlot(figures[i], plot.data);  // pinned runs, Monte Carlo bands
+          plot.decoration = decoration;
           const DrawMark mark = Mark(dl);
           plot.layout = DrawPlot(canvas, p0, p1, plot.data, style);
           plot.geometry = Capture(dl, mark);
@@ -198,7 +216,7 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
         const PlotData& data = plot.data;
         const PlotLayout& L = plot.layout;
         // The time cursor, as DrawPlot draws it.
-        const double cursor = data.x_is_time ? exp.time() : std::nan("");
+        const double cursor = data.x_is_time ? CursorTime() : std::nan("");
         if (std::isfinite(cursor) && cursor >= L.x0 && cursor <= L.x1 && L.x1 > L.x0) {
           const float x = static_cast<float>(L.area_min.x + (cursor - L.x0) *
                                                                   (L.area_max.x - L.area_min.x) /
@@ -217,7 +235,7 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
             ImGui::Text("%s = %.4g", data.x_label.c_str(), x);
             for (const auto& s : data.series) {
               const double y = SampleSeries(s, x);
-              if (std::isfinite(y)) {
+              if (std::isfinite(y) && !s.label.empty()) {
                 const sim::Color c = style.theme->Series(s.color, s.style_index, s.dashed).color;
                 ImGui::TextColored(ImVec4(c.r, c.g, c.b, 1), "%s: %.5g", s.label.c_str(), y);
               }
@@ -232,16 +250,18 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
     // The results as tables (the same metrics as summary.json), then the experiment's own;
     // computed once to know whether there are any, then only while the tab is shown.
     auto refresh_tables = [&] {
-      cache.tables = exp.Results().GuiTables();
+      cache.results = exp.Results();
+      cache.tables = cache.results.GuiTables();
       for (auto& t : exp.Tables()) cache.tables.push_back(std::move(t));
       cache.tables_at = now;
       cache.tables_steps = exp.steps();
       cache.tables_valid = true;
     };
     if (!cache.tables_valid) refresh_tables();
-    if (!cache.tables.empty() && ImGui::BeginTabItem("Tables")) {
+    if (!cache.tables.empty() && ImGui::BeginTabItem("Tables", nullptr, tab("Tables"))) {
       if (exp.steps() != cache.tables_steps && (paused || now - cache.tables_at >= kTableRefresh))
         refresh_tables();
+      DrawCompareTable(cache.results);
       const std::vector<sim::TableSpec>& tables = cache.tables;
       for (std::size_t t = 0; t < tables.size(); ++t) {
         const sim::TableSpec& spec = tables[t];
@@ -283,7 +303,11 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
       }
       ImGui::EndTabItem();
     }
-    if (ImGui::BeginTabItem("Summary")) {
+    if (ImGui::BeginTabItem("History", nullptr, tab("History"))) {
+      DrawHistoryTab();
+      ImGui::EndTabItem();
+    }
+    if (ImGui::BeginTabItem("Summary", nullptr, tab("Summary"))) {
       if (cache.summary_steps != exp.steps() &&
           (cache.summary.empty() || paused || now - cache.summary_at >= kTableRefresh)) {
         cache.summary = exp.SummaryText();

@@ -123,6 +123,9 @@ class Experiment {
   virtual std::vector<TableSpec> Tables() const { return {}; }
   /// Draws the whole scene: world (patches, obstacles) then the experiment's own layers.
   void Draw(DrawSink& draw) const;
+  /// Draws the experiment's own layers only (robots, trails, estimates), without the world's
+  /// patches and obstacles: another run drawn over this one (a pinned run in the GUI).
+  void DrawOverlay(DrawSink& draw) const { DrawScene(draw); }
   /// Axis-aligned box that should be visible (for fit-all).
   virtual void Bounds(Vec2& lo, Vec2& hi) const;
   /// Metrics over the run so far: summary.json's `results`, the printed and GUI tables.
