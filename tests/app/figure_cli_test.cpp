@@ -207,7 +207,7 @@ TEST(FigureCli, GuiThemeColoursTheWindow) {
   std::vector<std::uint8_t> light, dark;
   for (const std::string& theme : std::vector<std::string>{"light", "dark"}) {
     const std::string shot = dir + "/" + theme + ".png";
-    ASSERT_EQ(RunShell("xvfb-run -a -s '-screen 0 1280x800x24' " + Binary() +
+    ASSERT_EQ(RunShell(testing::Xvfb(Binary()) +
                            " gui formation_traj2 --size 960x600 --exit-after 5 --theme " + theme +
                            " --screenshot " + shot,
                        dir + "/log.txt"),

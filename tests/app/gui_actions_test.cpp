@@ -22,18 +22,10 @@ using testing::Binary;
 using testing::NonBackgroundFraction;
 using testing::ReadText;
 using testing::RunShell;
+using testing::Xvfb;
+using testing::CountOf;
 using testing::Scenario;
 using testing::TempDir;
-
-std::string Xvfb(const std::string& cmd) {
-  return "xvfb-run -a -s '-screen 0 1280x800x24' " + cmd;
-}
-
-int CountOf(const std::string& text, const std::string& what) {
-  int n = 0;
-  for (auto p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
-  return n;
-}
 
 TEST(GuiActions, EveryButtonOfTheScenarioAndRunPanels) {
   if (FindOnPath("xvfb-run").empty()) GTEST_SKIP() << "xvfb-run not installed";

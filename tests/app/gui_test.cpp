@@ -18,12 +18,9 @@ using testing::Binary;
 using testing::NonBackgroundFraction;
 using testing::ReadText;
 using testing::RunShell;
+using testing::Xvfb;
 using testing::Scenario;
 using testing::TempDir;
-
-std::string Xvfb(const std::string& cmd) {
-  return "xvfb-run -a -s '-screen 0 1280x800x24' " + cmd;
-}
 
 TEST(Gui, RunsUnderXvfbWithParameterChangesAndSavesAScreenshot) {
   if (FindOnPath("xvfb-run").empty()) GTEST_SKIP() << "xvfb-run not installed";

@@ -70,6 +70,18 @@ inline int RunShell(const std::string& cmd, const std::string& log) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+/// `cmd` run under a virtual X server (1280x800), for the GUI tests.
+inline std::string Xvfb(const std::string& cmd) {
+  return "xvfb-run -a -s '-screen 0 1280x800x24' " + cmd;
+}
+
+/// How many times `what` occurs in `text`.
+inline int CountOf(const std::string& text, const std::string& what) {
+  int n = 0;
+  for (auto p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
+  return n;
+}
+
 inline std::string ReadText(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::stringstream ss;
