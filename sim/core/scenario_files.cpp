@@ -1,5 +1,7 @@
 #include "sim/core/scenario_files.hpp"
 
+#include "sim/core/lesson.hpp"
+
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -25,8 +27,10 @@ std::vector<std::string> ShippedScenarios() {
 
 std::string ResolveScenario(const std::string& name) {
   if (fs::is_regular_file(name)) return name;
+  // Shipped scenarios first, then the lessons (each a scenario too).
   for (const std::string& candidate :
-       {ScenarioDir() + "/" + name, ScenarioDir() + "/" + name + ".yaml"})
+       {ScenarioDir() + "/" + name, ScenarioDir() + "/" + name + ".yaml", LessonDir() + "/" + name,
+        LessonDir() + "/" + name + ".yaml"})
     if (fs::is_regular_file(candidate)) return candidate;
   std::string msg = "scenario '" + name + "' not found (not a file, not in " + ScenarioDir() + ")";
   std::string close;

@@ -114,16 +114,17 @@ Pose2 FormationExperiment::DesiredPose(int j) const {
   const Agent& a = agents_[j];
   const Pose2 p1 = agents_[links_[a.links[0]].leader].robot->pose();
   const double L = cfg_.L;
+  const cf::SlotValues& s = slots_[static_cast<std::size_t>(j)];
   Vec2 m;
   if (r.node.law == FormationLaw::kLPhi) {
-    const double b = p1.theta + r.node.phi_des;
-    m = p1.p() + Vec2{std::cos(b), std::sin(b)} * r.node.l_des;
+    const double b = p1.theta + s.phi_des;
+    m = p1.p() + Vec2{std::cos(b), std::sin(b)} * s.l_des;
   } else {
     // The apex on the side the control point is on now (the law keeps it there).
     const Pose2 p2 = agents_[links_[a.links[1]].leader].robot->pose();
     const Vec2 mj = cf::ControlPoint(a.robot->pose(), L);
     const int side = (p2.p() - p1.p()).Cross(mj - p1.p()) >= 0.0 ? 1 : -1;
-    if (!cf::TriangleApex(p1.p(), p2.p(), r.node.l_des, r.node.l2_des, side, m))
+    if (!cf::TriangleApex(p1.p(), p2.p(), s.l_des, s.l2_des, side, m))
       return {std::nan(""), std::nan(""), 0.0};
   }
   // The ghost keeps the follower's current heading, so it coincides with the robot exactly when
