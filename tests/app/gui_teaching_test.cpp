@@ -7,10 +7,13 @@
 #include <filesystem>
 #include <fstream>
 
+#include "app/fonts.hpp"
 #include "app/imgui_layer.hpp"
 #include "app/offscreen_context.hpp"
 #include "app/png_writer.hpp"
+#include "app/video_writer.hpp"
 #include "app/ui.hpp"
+#include "sim/core/lesson.hpp"
 #include "sim/formation/formation_experiment.hpp"
 #include "tests/app/test_util.hpp"
 
@@ -92,7 +95,10 @@ TEST(GuiTeaching, LessonWindowAndScriptedSwitch) {
   EXPECT_NE(summary.find("\"formation_switch\": 1"), std::string::npos) << summary.substr(0, 2000);
   EXPECT_NE(summary.find("(asked for)"), std::string::npos);
   ASSERT_TRUE(std::filesystem::exists(dir + "/lesson.png"));
-  EXPECT_GT(testing::NonBackgroundFraction(dir + "/lesson.png"), 0.05);
+  int w = 0, h = 0;
+  const auto px = ReadPng(dir + "/lesson.png", &w, &h);
+  EXPECT_EQ(w, 1600);
+  EXPECT_GT(testing::NonBackgroundFraction(px), 0.05);
 }
 
 TEST(GuiTeaching, ListAndRunTakeLessons) {
@@ -110,6 +116,28 @@ TEST(GuiTeaching, ListAndRunTakeLessons) {
   const int bad = RunShell(Binary() + " gui --lesson no_such_lesson --exit-after 1", dir + "/bad.txt");
   EXPECT_NE(bad, 0);
   EXPECT_NE(ReadText(dir + "/bad.txt").find("the lessons are"), std::string::npos);
+}
+
+// Every character of a lesson's text is in the font atlas (fonts.cpp's ranges): the Lesson tab
+// shows no '?' boxes for the equations.
+TEST(GuiTeaching, LessonTextUsesOnlyGlyphsOfTheAtlas) {
+  const unsigned short* ranges = FontGlyphRanges();
+  auto in_atlas = [&](unsigned cp) {
+    for (const unsigned short* r = ranges; r[0] != 0; r += 2)
+      if (cp >= r[0] && cp <= r[1]) return true;
+    return cp == '\n';
+  };
+  for (const std::string& file : sim::ShippedLessons()) {
+    const std::string text = ReadText(file);
+    for (std::size_t i = 0; i < text.size();) {
+      const unsigned char c = static_cast<unsigned char>(text[i]);
+      const int n = c < 0x80 ? 1 : c < 0xE0 ? 2 : c < 0xF0 ? 3 : 4;
+      unsigned cp = n == 1 ? c : c & (0xFF >> (n + 1));
+      for (int k = 1; k < n && i + k < text.size(); ++k) cp = cp << 6 | (static_cast<unsigned char>(text[i + k]) & 0x3F);
+      EXPECT_TRUE(in_atlas(cp)) << file << ": U+" << std::hex << cp << " at byte " << std::dec << i;
+      i += static_cast<std::size_t>(n);
+    }
+  }
 }
 
 }  // namespace
