@@ -124,8 +124,7 @@ void FormationExperiment::Control(double t) {
   if (steps() % cfg_.control_every != 0) return;
   if (cfg_.switching.enabled()) UpdateSlots(t);
   const bool avoid = cfg_.avoidance.enabled && !world_.obstacles().empty();
-  // Obstacles are looked for this far from a control point (beyond it they cannot matter).
-  const double reach = 2.0 * (cfg_.avoidance.def.safety_distance + cfg_.avoidance.def.hysteresis);
+  const double reach = AvoidanceReach();
   // What each follower's law needs except its leaders' commands (the sines, cosines and errors
   // of its links' states, the desired rates of a moving slot), for every follower at once; with
   // avoidance also its distance to the nearest obstacle (Box2D queries, read-only).
@@ -340,7 +339,10 @@ void FormationExperiment::DeclareChannels() {
     if (r.node.law == FormationLaw::kLL) recorder_.Add(n + ".sin_ll", [a] { return a->sin_ll; });
     if (cfg_.avoidance.present && r.node.law != FormationLaw::kRoot) {
       recorder_.Add(n + ".avoiding", [a] { return a->avoiding ? 1.0 : 0.0; });
-      recorder_.Add(n + ".obstacle_d", [a] { return a->near.obstacle >= 0 ? a->near.distance : 0.0; });
+      // Beyond reach (nothing within 2 (d_s + h)) the distance reads as the reach.
+      recorder_.Add(n + ".obstacle_d", [this, a] {
+        return a->near.obstacle >= 0 ? a->near.distance : AvoidanceReach();
+      });
     }
   }
   if (cfg_.switching.enabled() || cfg_.avoidance.present)

@@ -33,7 +33,8 @@
 ///   with switching or avoidance: formation.error (the largest |e_l| and |e_φ| over the links of
 ///                  followers that are not avoiding, against the current desired values)
 ///   with avoidance, per follower j: j.avoiding (1 while on the obstacle law), j.obstacle_d
-///                  (distance of its control point to the nearest obstacle within reach)
+///                  (distance of its control point to the nearest obstacle; the reach,
+///                  2 (d_s + hysteresis), when none is within it)
 /// The estimator is a live tunable, so every follower has its estimate channels from the start.
 ///
 /// Formation switching (switching:): a scheduled entry, the action `switch-formation` (next
@@ -166,6 +167,11 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
   /// Avoidance: the command of follower j given its nominal one; raises the switch events.
   cf::Twist Avoid(int j, double t, const cf::Twist& nominal);
   double FormationError() const;
+  /// Obstacles are looked for this far from a control point, 2 (d_s + hysteresis): beyond it
+  /// they cannot matter.
+  double AvoidanceReach() const {
+    return 2.0 * (cfg_.avoidance.def.safety_distance + cfg_.avoidance.def.hysteresis);
+  }
   void TrackSwitches(double t);
   void DeclareChannels();
   EstimatorMode Mode(int robot) const { return cfg_.robots[robot].follow.estimator; }

@@ -117,8 +117,8 @@ std::vector<FigureSpec> FormationExperiment::Figures() const {
   }
   if (cfg_.avoidance.present) {
     FigureSpec od = TimeFigure("obstacle_distance",
-                               Sprintf("Control point to nearest obstacle (0: none within reach); safety distance %g m",
-                                       cfg_.avoidance.def.safety_distance),
+                               Sprintf("Control point to nearest obstacle (capped at %g m); safety distance %g m",
+                                       AvoidanceReach(), cfg_.avoidance.def.safety_distance),
                                "d [m]", {});
     for (std::size_t i = 0; i < n_robots; ++i) {
       if (cfg_.robots[i].node.law == FormationLaw::kRoot) continue;
@@ -244,8 +244,10 @@ void FormationExperiment::DrawScene(DrawSink& draw) const {
         const Vec2 m = cf::ControlPoint(a.robot->pose(), cfg_.L);
         draw.Segment(m, a.near.point, avoid_c, 2.0f);
         draw.Circle(a.near.point, 0.03, avoid_c, Color{0.2f, 0.1f, 0.0f, 1.0f});
-        draw.Text(a.near.point, "virtual leader", avoid_c, 6.0f, 6.0f);
+        // The law's tag before the leader's label (a label overlapping an earlier one is left
+        // out, and the tag matters more).
         draw.Text(a.robot->pose().p(), "l-l: " + leader + " + obstacle", avoid_c, -8.0f, tag_dy);
+        draw.Text(a.near.point, "virtual leader", avoid_c, 6.0f, 6.0f);
       } else {
         draw.Text(a.robot->pose().p(), r.node.law == FormationLaw::kLPhi ? "l-φ" : "l-l",
                   Color{0.3f, 0.3f, 0.3f, 0.9f}, -8.0f, tag_dy);
