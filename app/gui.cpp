@@ -22,7 +22,6 @@
 #include "app/ui.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/run_output.hpp"
-#include "sim/core/lesson.hpp"
 #include "sim/core/scenario_files.hpp"
 
 namespace formsim::app {

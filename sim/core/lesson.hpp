@@ -1,7 +1,8 @@
 #pragma once
 /// \file A lesson: a scenario file with a `lesson:` block beside its scenario keys
 /// (assets/lessons/NAME.yaml). The block is text for the GUI's Lesson panel; every command
-/// that runs scenarios runs a lesson file as the scenario it holds.
+/// that runs scenarios runs a lesson file as the scenario it holds (finding lesson files:
+/// scenario_files.hpp).
 ///
 ///   lesson:
 ///     title: "The l-φ law and its time constant"      (required)
@@ -26,14 +27,5 @@ struct LessonDef {
 /// Reads a `lesson:` block strictly (unknown keys and empty texts are errors). Throws
 /// ScenarioError naming file:line:key.
 LessonDef ReadLesson(YamlReader& block);
-
-/// The folder of the shipped lessons (FORMSIM_SOURCE_DIR/assets/lessons, or
-/// $FORMSIM_ASSETS/lessons when set).
-std::string LessonDir();
-/// Every shipped lesson file, sorted by name.
-std::vector<std::string> ShippedLessons();
-/// Resolves a lesson name ("lphi_time_constant", with or without .yaml) or a path. Throws
-/// std::runtime_error listing the shipped lessons when nothing matches.
-std::string ResolveLesson(const std::string& name_or_path);
 
 }  // namespace formsim::sim

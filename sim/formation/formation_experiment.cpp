@@ -341,7 +341,7 @@ void FormationExperiment::DeclareChannels() {
       recorder_.Add(n + ".avoiding", [a] { return a->avoiding ? 1.0 : 0.0; });
       // Beyond reach (nothing within 2 (d_s + h)) the distance reads as the reach.
       recorder_.Add(n + ".obstacle_d", [this, a] {
-        return a->near.obstacle >= 0 ? a->near.distance : AvoidanceReach();
+        return a->near.obstacle >= 0 ? std::min(a->near.distance, AvoidanceReach()) : AvoidanceReach();
       });
     }
   }

@@ -13,7 +13,7 @@
 #include "app/png_writer.hpp"
 #include "app/video_writer.hpp"
 #include "app/ui.hpp"
-#include "sim/core/lesson.hpp"
+#include "sim/core/scenario_files.hpp"
 #include "sim/formation/formation_experiment.hpp"
 #include "tests/app/test_util.hpp"
 
