@@ -185,6 +185,20 @@ int ListCommand() {
     }
     std::printf("%-34s %-11s %s\n", stem.c_str(), type.c_str(), description.c_str());
   }
+  // Lessons: scenarios with a text (formsim gui --lesson NAME); run and sweep take them by name.
+  const auto lessons = sim::ShippedLessons();
+  if (!lessons.empty()) std::printf("\nlessons (formsim gui --lesson NAME):\n");
+  for (const auto& file : lessons) {
+    const std::string stem = std::filesystem::path(file).stem().string();
+    std::string title;
+    try {
+      YAML::Node root = sim::LoadYamlFile(file);
+      if (root["lesson"] && root["lesson"]["title"]) title = root["lesson"]["title"].as<std::string>();
+    } catch (const std::exception& e) {
+      title = std::string("(unreadable: ") + e.what() + ")";
+    }
+    std::printf("%-34s %s\n", stem.c_str(), title.c_str());
+  }
   return 0;
 }
 
@@ -240,7 +254,7 @@ int Main(int argc, char** argv) {
       "Threads for the work inside a step (default: all cores); results are identical for any N";
   run_cmd->add_option("--threads", threads, threads_help)->check(CLI::Range(1, 1024));
 
-  app.add_subcommand("list", "List the shipped scenarios");
+  app.add_subcommand("list", "List the shipped scenarios and lessons");
 
   FiguresOptions figs;
   CLI::App* figs_cmd = app.add_subcommand(
@@ -264,6 +278,8 @@ int Main(int argc, char** argv) {
   CLI::App* gui_cmd = app.add_subcommand("gui", "Open the interactive window (live tuning)");
   gui_cmd->add_option("scenario", gui.scenario,
                       "Scenario name or YAML path (default: first formation_*)");
+  gui_cmd->add_option("--lesson", gui.lesson,
+                      "Open a lesson (assets/lessons/NAME.yaml, see `formsim list`) on its Lesson tab");
   gui_cmd->add_option("--seed", gui.seed, "Random seed 0 ... 2^64-1 (overrides the scenario's)");
   gui_cmd->add_option("--set", gui.sets, "Override a scenario value: path.to.key=value")
       ->take_all();
@@ -283,7 +299,7 @@ int Main(int argc, char** argv) {
                       "reset-seed N, reload, load S, open P, save P, play, pause, step, "
                       "screenshot P, action ID, undo, redo, revert K, pin, unpin N, unpin-all, "
                       "restore N, pin-row N, seeds N, cancel-seeds, scrub T, live, branch, "
-                      "save-session P, tab T, wait)");
+                      "save-session P, tab T, switch-formation [NAME], wait)");
   gui_cmd->add_option("--out", gui.out_dir, "Write timeseries.csv and summary.json here on exit");
   gui_cmd->add_option("--session", gui.session_file,
                       "Record the session (edits with their steps, resets, seeds, loads, pins, "

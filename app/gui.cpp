@@ -113,8 +113,11 @@ int RunGui(const GuiOptions& opt) {
   // Same frame: --edit first, then the script in file order.
   std::stable_sort(scripted.begin(), scripted.end(),
                    [](const ScriptAction& a, const ScriptAction& b) { return a.frame < b.frame; });
-  const std::string file =
-      opt.scenario.empty() ? DefaultScenario() : sim::ResolveScenario(opt.scenario);
+  if (!opt.lesson.empty() && !opt.scenario.empty())
+    throw std::runtime_error("--lesson " + opt.lesson + ": give a scenario or a lesson, not both");
+  const std::string file = !opt.lesson.empty()    ? sim::ResolveLesson(opt.lesson)
+                           : opt.scenario.empty() ? DefaultScenario()
+                                                  : sim::ResolveScenario(opt.scenario);
   std::vector<sim::Override> overrides = sim::CliOverrides(opt.sets, -1);
   if (!opt.seed.empty()) overrides.push_back({"seed", opt.seed, "--seed", -1});
   auto session = std::make_unique<sim::Session>(file, overrides);
@@ -143,6 +146,7 @@ int RunGui(const GuiOptions& opt) {
     ImGui_ImplGlfw_InitForOpenGL(window, true);
     AppUi ui(std::move(session));
     ui.state().theme = opt.theme;
+    if (ui.session().lesson().present) ui.state().select_tab = "lesson";
     if (!opt.session_file.empty()) ui.SetSessionFile(opt.session_file);
     // Plots keep a bounded history however long the window runs; with --out the rows of the
     // current run stream to disk as they are recorded.

@@ -10,6 +10,7 @@ namespace formsim::app {
 
 struct GuiOptions {
   std::string scenario;  ///< empty: the first shipped formation scenario
+  std::string lesson;    ///< a lesson name or path (instead of scenario); opens on its Lesson tab
   std::string seed;  ///< empty: the scenario's
 
   std::vector<std::string> sets;

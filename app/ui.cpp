@@ -365,12 +365,15 @@ std::string AppUi::RunScriptAction(const std::string& line) {
     return "tab: expects plots, tables, history or summary, got '" + args + "'";
   }
   if (action == "branch") return CmdBranch();
+  // Formation switching: the next shape, or the named one (the experiment's actions).
+  if (action == "switch-formation")
+    return CmdAction(args.empty() ? std::string("switch-formation") : "switch-formation:" + args);
   if (action == "save-session")
     return need("a path").empty() ? CmdSaveSession(args) : need("a path");
   return "unknown action '" + action +
          "' (known: edit, reset, reset-seed, reload, load, open, save, play, pause, step, "
          "screenshot, action, undo, redo, revert, pin, unpin, unpin-all, restore, pin-row, "
-         "seeds, cancel-seeds, scrub, live, branch, save-session, tab, wait)";
+         "seeds, cancel-seeds, scrub, live, branch, save-session, tab, switch-formation, wait)";
 }
 
 void AppUi::Advance(double wall_dt) {
@@ -455,6 +458,10 @@ void AppUi::HandleKeys() {
       case 'f':
         state_.fit_now = true;
         state_.follow = -1;
+        break;
+      case 'n':  // next formation shape (scenarios with switching:)
+        for (const sim::ActionSpec& a : session_->exp().Actions())
+          if (a.id == "switch-formation") CmdAction(a.id);
         break;
       default:
         break;

@@ -185,6 +185,8 @@ class AppUi {
   void DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool interactive);
   void DrawWorldMouse(const View& view);
   void DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts);
+  /// The Lesson tab (ui_lesson.cpp): the lesson's text, wrapped to the panel.
+  void DrawLessonTab(const Fonts& fonts);
   /// What the plots window shows, refreshed at most ten times a second (app/ui_plots.cpp).
   struct PlotsCache;
   std::shared_ptr<PlotsCache> plots_cache_;

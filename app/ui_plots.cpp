@@ -158,6 +158,11 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
     cache.rows = rows;
   }
   if (ImGui::BeginTabBar("tabs")) {
+    // A lesson file's text comes first (formsim gui --lesson NAME opens on it).
+    if (session_->lesson().present && ImGui::BeginTabItem("Lesson", nullptr, tab("Lesson"))) {
+      DrawLessonTab(fonts);
+      ImGui::EndTabItem();
+    }
     if (ImGui::BeginTabItem("Plots", nullptr, tab("Plots"))) {
       const auto& figures = cache.figures;
       // The user's choices are kept by figure id.

@@ -121,4 +121,25 @@ SCRIPT
 else
   echo "screenshots: xvfb-run not installed, GUI screenshot skipped" >&2
 fi
+# Formation switching and obstacle avoidance (issue 13): the column in the gap (t = 10 s), the
+# whole switching run, the field of posts with R4 avoiding post_1 (t = 4.3 s) and the whole field
+# run; the formation error of each against the 1e-2 tolerance and the followers' obstacle
+# distances against the safety distance.
+run formation_switching --set duration=10 --out "$TMP/sw_mid" --snapshot "$OUT/switching_gap.png"
+run formation_switching --out "$TMP/sw" --plots "$TMP/sw/plots" --whole-run \
+  --snapshot "$OUT/switching_whole_run.png"
+cp "$TMP/sw/plots/formation_error.png" "$OUT/switching_formation_error.png"
+run formation_obstacle_field --set duration=4.3 --out "$TMP/of_mid" \
+  --snapshot "$OUT/obstacle_field_avoiding.png"
+run formation_obstacle_field --out "$TMP/of" --plots "$TMP/of/plots" --whole-run \
+  --snapshot "$OUT/obstacle_field_whole_run.png"
+cp "$TMP/of/plots/formation_error.png" "$OUT/obstacle_field_formation_error.png"
+cp "$TMP/of/plots/obstacle_distance.png" "$OUT/obstacle_field_distance.png"
+# A lesson in the window: formsim gui --lesson, run to t = 16.3 s (R2 avoiding the post).
+if command -v xvfb-run >/dev/null; then
+  printf '200 screenshot screenshots/lesson_switching.png\n' >"$TMP/lesson.txt"
+  xvfb-run -a -s "-screen 0 1600x900x24" "$BIN" gui --lesson switching_around_obstacles \
+    --set duration=16.3 --size 1600x900 --speed max --exit-after 202 --script "$TMP/lesson.txt" \
+    >/dev/null
+fi
 ls -1 "$OUT"/*.png "$OUT"/*.svg

@@ -112,6 +112,13 @@ ParsedScenario ParseScenario(const ScenarioSource& source, const std::vector<Ove
       r.Fail("type", "unknown experiment type '" + out.setup.type + "' (known: " + known + ")");
     }
     out.config = out.kind->read(r, out.setup);
+    // A lesson file is a scenario with its lesson text beside it.
+    if (r.Has("lesson")) {
+      YamlReader l = r.Map("lesson");
+      out.lesson = ReadLesson(l);
+    } else {
+      r.Raw("lesson");
+    }
     r.Finish();
   } catch (const ScenarioError& e) {
     // A check across keys (a formation triangle, a graph) can fail at a file position because of

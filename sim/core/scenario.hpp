@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sim/core/experiment.hpp"
+#include "sim/core/lesson.hpp"
 #include "sim/core/param_table.hpp"
 #include "sim/core/provenance.hpp"
 #include "sim/core/yaml_reader.hpp"
@@ -40,6 +41,7 @@ struct ParsedScenario {
   ParamTable params;              ///< every tunable with its current value
   std::vector<PathField> paths;   ///< file-path keys (rewritten by Save into another folder)
   const ExperimentKind* kind = nullptr;
+  LessonDef lesson;               ///< the `lesson:` block of a lesson file (present = false else)
 };
 
 /// Reads `source` with `overrides` applied in order. Throws ScenarioError.

@@ -69,6 +69,8 @@ class Session {
   const ScenarioSource& source() const { return source_; }
   /// Every tunable with the value the running experiment uses.
   const ParamTable& params() const { return applied_.params; }
+  /// The `lesson:` block of the scenario (present = false for a plain scenario).
+  const LessonDef& lesson() const { return applied_.lesson; }
   std::uint64_t seed() const { return exp_->setup().seed; }
   /// The command-line overrides the scenario was loaded with.
   const std::vector<Override>& cli_overrides() const { return cli_; }

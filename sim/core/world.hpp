@@ -168,6 +168,8 @@ class World {
   const std::vector<std::unique_ptr<Robot>>& robots() const { return robots_; }
   Robot* FindRobot(const std::string& name);
   const std::vector<ObstacleDef>& obstacles() const { return obstacle_defs_; }
+  /// The Box2D body of each obstacle, in the order of obstacles() (distance queries).
+  const std::vector<b2Body*>& obstacle_bodies() const { return obstacle_bodies_; }
   const std::vector<PatchDef>& patches() const { return patches_; }
   /// Moves a static obstacle (GUI drag while paused). Returns false if no such obstacle.
   bool MoveObstacle(const std::string& name, Vec2 p);

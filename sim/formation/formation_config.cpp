@@ -150,7 +150,166 @@ void ReadFollow(YamlReader& f, FormationRobotDef& r) {
   f.Finish();
 }
 
+// A shape's slots: `slots: {ROBOT: {l_des, phi_des | l2_des}}`, over the follow: values.
+ShapeDef ReadShape(YamlReader& s, const FormationConfig& cfg, const std::map<std::string, int>& names) {
+  ShapeDef shape;
+  shape.name = s.RequiredString("name");
+  if (shape.name == "initial")
+    s.Fail("name", "'initial' is reserved for the formation of the robots' follow: blocks");
+  if (shape.name.find_first_of(".,: ") != std::string::npos)
+    s.Fail("name", "a shape name must not contain '.', ',', ':' or spaces (names address keys and actions)");
+  shape.slots = cfg.ShapeSlots(-1);
+  const std::string group = "Switching/" + shape.name;
+  if (!s.Has("slots")) s.Fail("slots", "required: the slots of the followers that move, by robot name");
+  YamlReader sl = s.Map("slots");
+  std::vector<std::string> keys;
+  for (auto it = sl.node().begin(); it != sl.node().end(); ++it) keys.push_back(it->first.Scalar());
+  for (const std::string& name : keys) {
+    const auto at = names.find(name);
+    if (at == names.end()) sl.Fail(name, "no robot '" + name + "' in this scenario");
+    const FormationRobotDef& r = cfg.robots[static_cast<std::size_t>(at->second)];
+    if (r.node.law == FormationLaw::kRoot) sl.Fail(name, "'" + name + "' is a root leader: it has no slot");
+    YamlReader m = sl.Map(name);
+    cf::SlotValues& v = shape.slots[static_cast<std::size_t>(at->second)];
+    const bool lphi = r.node.law == FormationLaw::kLPhi;
+    const std::string g = group + "/" + name;
+    v.l_des = m.Real("l_des", v.l_des, Tune(lphi ? "l desired" : "l1 desired", "m").Above(0).Slider(0.1, 2.0).Group(g));
+    if (lphi)
+      v.phi_des = m.Real("phi_des", v.phi_des,
+                         Tune("φ desired", "rad").In(-2 * control::kPi, 2 * control::kPi)
+                             .Slider(-control::kPi, 2 * control::kPi).Group(g));
+    else
+      v.l2_des = m.Real("l2_des", v.l2_des, Tune("l2 desired", "m").Above(0).Slider(0.1, 2.0).Group(g));
+    m.Finish();
+  }
+  sl.Finish();
+  s.Finish();
+  return shape;
+}
+
+// `switching:` (after the robots and the graph). Every transition the schedule makes, and every
+// other one the GUI or a script could ask for, keeps the l-l triangles valid all the way.
+void ReadSwitching(YamlReader& root, FormationConfig& cfg, const std::map<std::string, int>& names) {
+  if (!root.Has("switching")) {
+    root.Raw("switching");
+    return;
+  }
+  YamlReader sw = root.Map("switching");
+  SwitchingDef& d = cfg.switching;
+  d.transition = sw.Real("transition", d.transition,
+                         Tune("transition time", "s").Above(0).AtMost(1e4).Slider(0.1, 5.0).Group("Switching"));
+  if (!sw.Has("shapes")) sw.Fail("shapes", "required: at least one named shape");
+  std::vector<YamlReader> shapes = sw.MapList("shapes");
+  if (shapes.empty()) sw.Fail("shapes", "needs at least one shape");
+  for (YamlReader& s : shapes) {
+    ShapeDef shape = ReadShape(s, cfg, names);
+    if (d.Find(shape.name) != -2) s.Fail("name", "duplicate shape name '" + shape.name + "'");
+    d.shapes.push_back(std::move(shape));
+  }
+  std::vector<YamlReader> entries = sw.MapList("schedule");
+  double last_at = -1.0;
+  int first_root = 0;
+  while (cfg.robots[static_cast<std::size_t>(first_root)].node.law != FormationLaw::kRoot) ++first_root;
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    YamlReader& e = entries[k];
+    SwitchDef s;
+    const std::string g = "Switching/schedule " + std::to_string(k);
+    const bool has_at = e.Has("at"), has_wp = e.Has("waypoint");
+    if (has_at == has_wp) e.Fail(has_at ? "waypoint" : "at", "give either at: (a time) or waypoint: [x, y]");
+    if (has_at) {
+      s.trigger = SwitchDef::Trigger::kTime;
+      s.at = e.Real("at", 0.0, Tune("switch time", "s").AtLeast(0).AtMost(1e7).Slider(0.0, 60.0).Group(g).OnReset());
+      if (s.at <= last_at) e.Fail("at", "switch times must increase along the schedule");
+      last_at = s.at;
+      e.Raw("waypoint"), e.Raw("radius"), e.Raw("robot");
+    } else {
+      s.trigger = SwitchDef::Trigger::kWaypoint;
+      const std::vector<double> wp = e.Doubles("waypoint", {}, 2);
+      s.waypoint = {wp[0], wp[1]};
+      if (!(std::abs(s.waypoint.x) <= world_limits::kExtent && std::abs(s.waypoint.y) <= world_limits::kExtent))
+        e.Fail("waypoint", "must lie inside the world (|x|, |y| <= 1e4 m)");
+      s.radius = e.Real("radius", s.radius, Tune("waypoint radius", "m").Above(0).AtMost(1e3).Slider(0.05, 2.0).Group(g).OnReset());
+      const std::string who = e.String("robot", cfg.robots[static_cast<std::size_t>(first_root)].body.name);
+      const auto it = names.find(who);
+      if (it == names.end()) e.Fail("robot", "no robot '" + who + "' in this scenario");
+      s.robot = it->second;
+      e.Raw("at");
+    }
+    const std::string to = e.RequiredString("to");
+    s.shape = d.Find(to);
+    if (s.shape == -2) {
+      std::string known = "initial";
+      for (const ShapeDef& sh : d.shapes) known += ", " + sh.name;
+      e.Fail("to", "no shape '" + to + "' (shapes: " + known + ")");
+    }
+    s.transition = e.Real("transition", d.transition,
+                          Tune("transition time", "s").Above(0).AtMost(1e4).Slider(0.1, 5.0).Group(g));
+    e.Finish();
+    d.schedule.push_back(s);
+  }
+  sw.Finish();
+
+  // The triangle condition along every transition: the schedule's first (reported at the
+  // entry), then every other pair of shapes (the GUI and scripts may switch between any two).
+  std::vector<cf::FormationNodeDef> nodes;
+  for (const auto& r : cfg.robots) nodes.push_back(r.node);
+  const int n_shapes = static_cast<int>(d.shapes.size());
+  std::vector<std::vector<bool>> checked(n_shapes + 1, std::vector<bool>(n_shapes + 1, false));
+  auto check = [&](int a, int b) {
+    checked[a + 1][b + 1] = checked[b + 1][a + 1] = true;
+    return cf::CheckTransition(nodes, cfg.ShapeSlots(a), cfg.ShapeSlots(b), cfg.singular_threshold);
+  };
+  auto shape_name = [&](int s) { return s < 0 ? std::string("initial") : d.shapes[s].name; };
+  int from = -1;
+  for (std::size_t k = 0; k < d.schedule.size(); ++k) {
+    const int to = d.schedule[k].shape;
+    const std::string err = from == to || checked[from + 1][to + 1] ? "" : check(from, to);
+    if (!err.empty())
+      entries[k].Fail("to", "the transition '" + shape_name(from) + "' -> '" + shape_name(to) +
+                                "' breaks the l-l triangle condition: " + err);
+    from = to;
+  }
+  for (int a = -1; a < n_shapes; ++a)
+    for (int b = a + 1; b < n_shapes; ++b) {
+      if (checked[a + 1][b + 1]) continue;
+      const std::string err = check(a, b);
+      if (!err.empty())
+        shapes[b].Fail("name", "switching between '" + shape_name(a) + "' and '" + shape_name(b) +
+                                   "' (the GUI and scripts may ask for it) breaks the l-l triangle "
+                                   "condition: " + err);
+    }
+}
+
+AvoidanceConfig ReadAvoidance(YamlReader& root) {
+  AvoidanceConfig a;
+  if (!root.Has("avoidance")) {
+    root.Raw("avoidance");
+    return a;
+  }
+  YamlReader m = root.Map("avoidance");
+  a.present = true;
+  const std::string g = "Avoidance";
+  a.enabled = m.Flag("enabled", true, Tune("obstacle avoidance").Group(g));
+  a.def.safety_distance = m.Real("safety_distance", a.def.safety_distance,
+                                 Tune("safety distance", "m").Above(0).AtMost(100).Slider(0.05, 1.0).Group(g));
+  a.def.hysteresis = m.Real("hysteresis", a.def.hysteresis,
+                            Tune("hysteresis", "m").AtLeast(0).AtMost(100).Slider(0.0, 0.5).Group(g));
+  a.def.min_dwell = m.Real("min_dwell", a.def.min_dwell,
+                           Tune("min time avoiding", "s").AtLeast(0).AtMost(1e3).Slider(0.0, 2.0).Group(g));
+  a.k_obstacle = m.Real("k_obstacle", a.k_obstacle, Tune("k obstacle").Above(0).Slider(1e-3, 1.0, kLog).Group(g));
+  m.Finish();
+  return a;
+}
+
 }  // namespace
+
+std::vector<cf::SlotValues> FormationConfig::ShapeSlots(int shape) const {
+  if (shape >= 0) return switching.shapes[static_cast<std::size_t>(shape)].slots;
+  std::vector<cf::SlotValues> s;
+  s.reserve(robots.size());
+  for (const auto& r : robots) s.push_back(cf::SlotOf(r.node));
+  return s;
+}
 
 const std::vector<std::string>& EstimatorModeNames() {
   static const std::vector<std::string> names = {"truth", "raw", "ukf"};
@@ -253,6 +412,8 @@ FormationConfig ReadFormationConfig(YamlReader& root, double dt) {
                   items[e.robot()].KeyPath("follow"));
     at.Fail(e.key(), e.what());
   }
+  ReadSwitching(root, cfg, names);
+  cfg.avoidance = ReadAvoidance(root);
   return cfg;
 }
 

@@ -21,6 +21,17 @@
 ///         k_l: 0.15   k_phi: 0.08 (l_phi)   k_l2: 0.08 (l_l)
 ///         estimator: truth|raw|ukf   measure: [phi, alpha] | [l, phi, alpha] | [alpha]
 ///         noise: {...}   (per-follower override of the global noise block, key by key)
+///   switching:                                              # formation switching (optional)
+///     transition: 1.0                   # default transition time, s
+///     shapes:                           # named shapes; "initial" is the follow: values
+///       - name: column
+///         slots: {R2: {l_des, phi_des}, R5: {l_des, l2_des}, ...}  # unlisted followers keep
+///                                                                  # their follow: values
+///     schedule:                         # fired in list order, each armed once the one
+///       - {at: 4.0, to: column, transition: 1.5}                   # before it has fired
+///       - {waypoint: [x, y], radius: 0.3, robot: R1, to: initial}
+///   avoidance: {enabled: false, safety_distance: 0.3, hysteresis: 0.1, min_dwell: 0.2,
+///               k_obstacle: 0.15}       # Das et al. 2002: obstacles as virtual leaders
 
 #include <algorithm>
 #include <cmath>
@@ -28,6 +39,8 @@
 #include <vector>
 
 #include "control/formation/formation_graph.hpp"
+#include "control/formation/formation_switch.hpp"
+#include "control/formation/obstacle_avoidance.hpp"
 #include "control/formation/leader_schedule.hpp"
 #include "control/formation/link_filter.hpp"
 #include "sim/core/unicycle_drive.hpp"
@@ -81,6 +94,47 @@ struct FormationRobotDef {
   FollowerDef follow;              ///< followers
 };
 
+/// A named formation shape: one slot per robot (roots' unused), unlisted followers at their
+/// follow: values.
+struct ShapeDef {
+  std::string name;
+  std::vector<cf::SlotValues> slots;
+};
+
+/// One entry of the switching schedule.
+struct SwitchDef {
+  enum class Trigger { kTime, kWaypoint } trigger = Trigger::kTime;
+  double at = 0.0;        ///< kTime: s
+  Vec2 waypoint;          ///< kWaypoint: when `robot` comes within `radius` of it
+  double radius = 0.3;    ///< m
+  int robot = 0;          ///< index of the robot that triggers a waypoint switch
+  int shape = -1;         ///< target: index into shapes, −1 for the initial shape
+  double transition = 1.0;  ///< s
+};
+
+/// Formation switching: shapes, the default transition time and the schedule.
+struct SwitchingDef {
+  double transition = 1.0;
+  std::vector<ShapeDef> shapes;
+  std::vector<SwitchDef> schedule;
+  bool enabled() const { return !shapes.empty(); }
+  /// −1 for "initial", the shape's index, or −2 when no such shape.
+  int Find(const std::string& name) const {
+    if (name == "initial") return -1;
+    for (std::size_t k = 0; k < shapes.size(); ++k)
+      if (shapes[k].name == name) return static_cast<int>(k);
+    return -2;
+  }
+};
+
+/// Obstacle avoidance settings (off unless enabled).
+struct AvoidanceConfig {
+  bool present = false;  ///< the scenario has an avoidance: block (its channels exist)
+  bool enabled = false;
+  cf::AvoidanceDef def;
+  double k_obstacle = 0.15;  ///< printed gain on the obstacle distance (read like the others)
+};
+
 /// The whole formation scenario (beyond the loader's root keys).
 struct FormationConfig {
   double L = 0.15;
@@ -99,6 +153,10 @@ struct FormationConfig {
   std::vector<PatchDef> patches;
   std::vector<FormationRobotDef> robots;
   cf::FormationGraph graph;
+  SwitchingDef switching;
+  AvoidanceConfig avoidance;
+  /// The slots of a shape (−1: initial, the follow: values).
+  std::vector<cf::SlotValues> ShapeSlots(int shape) const;
 };
 
 /// Reads the formation keys from the scenario root (strict) and declares the tunables.

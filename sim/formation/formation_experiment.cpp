@@ -21,11 +21,12 @@ constexpr double kMinL = 1e-3;  // a distance handed to a law is at least this (
 constexpr std::size_t kLinksPerTask = 16;
 constexpr std::size_t kAgentsPerTask = 128;
 
-
 }  // namespace
 
 FormationExperiment::FormationExperiment(const ExperimentSetup& setup, const FormationConfig& config)
     : ExperimentOf(setup, config) {
+  slots_ = cfg_.ShapeSlots(-1);
+  slot_rates_.assign(slots_.size(), cf::SlotRates{});
   BuildWorld();
   DeclareChannels();
   Start();
@@ -96,6 +97,9 @@ void FormationExperiment::ApplyTunables(const FormationConfig& next) {
       for (int li : agents_[i].links) links_[li].filter_ready = false;
   }
   for (Link& l : links_) l.filter->Retune(FilterDef(l.follower));
+  // Without switching the slots are the follow: values, which are live tunables.
+  if (!cfg_.switching.enabled())
+    for (std::size_t j = 0; j < slots_.size(); ++j) slots_[j] = cf::SlotOf(cfg_.robots[j].node);
 }
 
 double FormationExperiment::Gain(double k) const {
@@ -103,7 +107,7 @@ double FormationExperiment::Gain(double k) const {
 }
 
 double FormationExperiment::DesiredL(const Link& l) const {
-  const cf::FormationNodeDef& n = cfg_.robots[l.follower].node;
+  const cf::SlotValues& n = slots_[static_cast<std::size_t>(l.follower)];
   return l.first ? n.l_des : n.l2_des;
 }
 
@@ -118,8 +122,12 @@ LinkState FormationExperiment::ForControl(const Link& link) const {
 
 void FormationExperiment::Control(double t) {
   if (steps() % cfg_.control_every != 0) return;
+  if (cfg_.switching.enabled()) UpdateSlots(t);
+  const bool avoid = cfg_.avoidance.enabled && !world_.obstacles().empty();
+  const double reach = AvoidanceReach();
   // What each follower's law needs except its leaders' commands (the sines, cosines and errors
-  // of its links' states), for every follower at once.
+  // of its links' states, the desired rates of a moving slot), for every follower at once; with
+  // avoidance also its distance to the nearest obstacle (Box2D queries, read-only).
   pool().ParallelFor(
       agents_.size(),
       [&](std::size_t begin, std::size_t end) {
@@ -127,11 +135,25 @@ void FormationExperiment::Control(double t) {
           const FormationRobotDef& r = cfg_.robots[j];
           Agent& a = agents_[j];
           const cf::FormationGains gains{Gain(r.follow.k1), Gain(r.follow.k2)};
-          if (r.node.law == FormationLaw::kLPhi)
-            a.lphi = cf::PrepareLPhi(ForControl(links_[a.links[0]]), r.node.l_des, r.node.phi_des, gains);
-          else if (r.node.law == FormationLaw::kLL)
+          const cf::SlotValues& s = slots_[j];
+          const cf::SlotRates& rate = slot_rates_[j];
+          if (r.node.law == FormationLaw::kLPhi) {
+            a.lphi = cf::PrepareLPhi(ForControl(links_[a.links[0]]), s.l_des, s.phi_des, gains);
+            if (in_transition_) a.lphi.e1 += rate.l_des, a.lphi.e2 += rate.phi_des;
+          } else if (r.node.law == FormationLaw::kLL) {
             a.ll = cf::PrepareLL(ForControl(links_[a.links[0]]), ForControl(links_[a.links[1]]),
-                                 r.node.l_des, r.node.l2_des, gains, cfg_.singular_threshold);
+                                 s.l_des, s.l2_des, gains, cfg_.singular_threshold);
+            if (in_transition_) a.ll.e1 += rate.l_des, a.ll.e2 += rate.l2_des;
+          }
+          if (avoid && r.node.law != FormationLaw::kRoot) {
+            a.near = NearestObstacle(world_, cf::ControlPoint(a.robot->pose(), cfg_.L), reach);
+            if (a.near.obstacle >= 0) {
+              const Pose2 g = DesiredPose(static_cast<int>(j));
+              a.slot_d = std::isfinite(g.x)
+                             ? DistanceToObstacle(world_, a.near.obstacle, cf::ControlPoint(g, cfg_.L))
+                             : 0.0;
+            }
+          }
         }
       },
       kAgentsPerTask);
@@ -160,6 +182,7 @@ void FormationExperiment::Control(double t) {
                       std::abs(c.sin_angle), cfg_.singular_threshold);
       });
     }
+    if (cfg_.avoidance.present && r.node.law != FormationLaw::kRoot) cmd = Avoid(j, t, cmd);
     a.drive->SetCommand(cmd.v, cmd.w);
     a.cmd = {a.drive->v_command(), a.drive->omega_command()};
   }
@@ -267,6 +290,7 @@ void FormationExperiment::Sense(double t) {
         }
       },
       kAgentsPerTask);
+  if (cfg_.switching.enabled() || cfg_.avoidance.present) TrackSwitches(t);
   ++sense_count_;
 }
 
@@ -275,7 +299,7 @@ void FormationExperiment::Accumulate(Link& l, double t) {
   const bool settled = t >= cfg_.settle_time - 1e-9;
   l.e_l.Add(DesiredL(l) - l.truth.l, settled);
   if (r.node.law == FormationLaw::kLPhi)
-    l.e_phi.Add(control::WrapToPi(r.node.phi_des - l.truth.phi), settled);
+    l.e_phi.Add(control::WrapToPi(slots_[static_cast<std::size_t>(l.follower)].phi_des - l.truth.phi), settled);
   l.e_alpha.Add(l.truth.alpha, settled);
   const EstimatorMode mode = r.follow.estimator;
   if (mode == EstimatorMode::kTruth || steps() % cfg_.control_every != 0) return;
@@ -313,7 +337,16 @@ void FormationExperiment::DeclareChannels() {
       });
     }
     if (r.node.law == FormationLaw::kLL) recorder_.Add(n + ".sin_ll", [a] { return a->sin_ll; });
+    if (cfg_.avoidance.present && r.node.law != FormationLaw::kRoot) {
+      recorder_.Add(n + ".avoiding", [a] { return a->avoiding ? 1.0 : 0.0; });
+      // Beyond reach (nothing within 2 (d_s + h)) the distance reads as the reach.
+      recorder_.Add(n + ".obstacle_d", [this, a] {
+        return a->near.obstacle >= 0 ? std::min(a->near.distance, AvoidanceReach()) : AvoidanceReach();
+      });
+    }
   }
+  if (cfg_.switching.enabled() || cfg_.avoidance.present)
+    recorder_.Add("formation.error", [this] { return formation_error_; });
   if (links_.size() > kManyLinks) {
     // Over all links, computed when a row is recorded.
     recorder_.AddGroup({"links.max_abs_e_l", "links.median_abs_e_l"}, [this](double* o) {
@@ -329,7 +362,7 @@ void FormationExperiment::DeclareChannels() {
       double worst = 0.0;
       for (const Link& l : links_)
         if (cfg_.robots[l.follower].node.law == FormationLaw::kLPhi)
-          worst = std::max(worst, std::abs(control::WrapToPi(cfg_.robots[l.follower].node.phi_des - l.truth.phi)));
+          worst = std::max(worst, std::abs(control::WrapToPi(slots_[static_cast<std::size_t>(l.follower)].phi_des - l.truth.phi)));
       return worst;
     });
   }
@@ -341,11 +374,11 @@ void FormationExperiment::DeclareChannels() {
       o[0] = l->truth.l, o[1] = l->truth.phi, o[2] = l->truth.alpha;
     });
     recorder_.Add(n + ".l_des", [this, l] { return DesiredL(*l); });
-    if (lphi) recorder_.Add(n + ".phi_des", [this, l] { return cfg_.robots[l->follower].node.phi_des; });
+    if (lphi) recorder_.Add(n + ".phi_des", [this, l] { return slots_[static_cast<std::size_t>(l->follower)].phi_des; });
     recorder_.Add(n + ".e_l", [this, l] { return DesiredL(*l) - l->truth.l; });
     if (lphi)
       recorder_.Add(n + ".e_phi", [this, l] {
-        return control::WrapToPi(cfg_.robots[l->follower].node.phi_des - l->truth.phi);
+        return control::WrapToPi(slots_[static_cast<std::size_t>(l->follower)].phi_des - l->truth.phi);
       });
     recorder_.Add(n + ".e_alpha", [l] { return l->truth.alpha; });
     recorder_.AddGroup({n + ".l_est", n + ".phi_est", n + ".alpha_est", n + ".l_est_err",

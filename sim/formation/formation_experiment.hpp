@@ -30,7 +30,18 @@
 ///   per l-l follower j: j.sin_ll (sin(γ_kj − γ_ij) of the law; 0 on the singular line)
 ///   more links than the figures show (kManyLinks):  links.max_abs_e_l, links.median_abs_e_l
 ///                  (over every link), and links.max_abs_e_phi over the l-φ links
+///   with switching or avoidance: formation.error (the largest |e_l| and |e_φ| over the links of
+///                  followers that are not avoiding, against the current desired values)
+///   with avoidance, per follower j: j.avoiding (1 while on the obstacle law), j.obstacle_d
+///                  (distance of its control point to the nearest obstacle; the reach,
+///                  2 (d_s + hysteresis), when none is within it)
 /// The estimator is a live tunable, so every follower has its estimate channels from the start.
+///
+/// Formation switching (switching:): a scheduled entry, the action `switch-formation` (next
+/// shape) or `switch-formation:NAME` starts a transition of every slot (formation_switch.hpp);
+/// the laws get the desired rates as feed-forward. Obstacle avoidance (avoidance:): each
+/// follower's control point is checked against the obstacles' Box2D shapes every control
+/// period; within the safety distance it follows obstacle_avoidance.hpp's law.
 
 #include <memory>
 #include <string>
@@ -43,6 +54,7 @@
 #include "sim/core/ring_buffer.hpp"
 #include "sim/core/unicycle_drive.hpp"
 #include "sim/formation/formation_config.hpp"
+#include "sim/formation/obstacle_distance.hpp"
 #include "sim/formation/relative_sensor.hpp"
 
 namespace formsim::sim::formation {
@@ -74,6 +86,31 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
     int filter_faults = 0;
   };
   std::vector<LinkView> Links() const;
+
+  std::vector<ActionSpec> Actions() const override;
+  std::string RunAction(const std::string& id) override;
+
+  /// Errors below this count as recovered after a switch (the 1e-2).
+  static constexpr double kRecoveredError = 1e-2;
+  /// A formation switch, or a follower leaving the obstacle law, and how the formation
+  /// recovered from it: the error stayed below kRecoveredError from `time + recover` until the
+  /// next switch (`end`).
+  struct SwitchRecord {
+    double time = 0.0;
+    std::string kind;  ///< "formation" or "avoidance_end"
+    std::string what;  ///< the target shape, or the follower
+    double last_above = -1.0;  ///< last time the error was >= kRecoveredError
+    double end = -1.0;         ///< when the next switch began (−1 while open)
+    double Recover(double step) const { return last_above < time ? 0.0 : last_above - time + step; }
+  };
+  const std::vector<SwitchRecord>& switch_records() const { return switches_; }
+  /// The shape in force (−1: initial) and whether a transition is running.
+  int shape() const { return shape_; }
+  bool in_transition() const { return in_transition_; }
+  /// The current desired values of robot j.
+  const cf::SlotValues& slot(int j) const { return slots_[static_cast<std::size_t>(j)]; }
+  bool avoiding(int j) const { return agents_[static_cast<std::size_t>(j)].avoiding; }
+  long collisions_after_transient() const { return collisions_after_; }
 
  protected:
   void Control(double t) override;
@@ -114,9 +151,28 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
     EventLog::ConditionId saturation = 0, singular = 0;
     double sin_ll = 1.0;
     RingBuffer<Vec2> trail;
+    // Obstacle avoidance (avoidance: enabled).
+    bool avoiding = false;
+    double avoid_since = 0.0;  ///< time of the last switch of mode
+    ObstacleDistance near;     ///< nearest obstacle to the control point this period
+    double slot_d = 0.0;       ///< distance of the desired slot's control point to it
   };
 
   void BuildWorld();
+  /// Fires due scheduled switches and sets every slot (and its rate) for time t.
+  void UpdateSlots(double t);
+  /// Starts a transition to `shape` now; "" or why not.
+  std::string StartSwitch(int shape, double t, double duration, const std::string& why);
+  void OpenRecord(double t, const std::string& kind, const std::string& what);
+  /// Avoidance: the command of follower j given its nominal one; raises the switch events.
+  cf::Twist Avoid(int j, double t, const cf::Twist& nominal);
+  double FormationError() const;
+  /// Obstacles are looked for this far from a control point, 2 (d_s + hysteresis): beyond it
+  /// they cannot matter.
+  double AvoidanceReach() const {
+    return 2.0 * (cfg_.avoidance.def.safety_distance + cfg_.avoidance.def.hysteresis);
+  }
+  void TrackSwitches(double t);
   void DeclareChannels();
   EstimatorMode Mode(int robot) const { return cfg_.robots[robot].follow.estimator; }
   cf::LinkFilterDef FilterDef(int follower) const;
@@ -138,6 +194,18 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
   std::vector<Link> links_;
   long sense_count_ = 0;
   std::vector<double> error_scratch_;  ///< the links' errors of a recorded row
+  // Formation switching.
+  std::vector<cf::SlotValues> slots_;  ///< desired values of each robot now
+  std::vector<cf::SlotRates> slot_rates_;
+  cf::SlotTransition transition_;
+  bool in_transition_ = false;
+  int shape_ = -1, target_ = -1;  ///< shape in force, shape of the running transition
+  std::size_t next_switch_ = 0;   ///< schedule entry armed next
+  // Switch records and the metrics of switching and avoidance.
+  std::vector<SwitchRecord> switches_;
+  long collisions_after_ = 0;
+  long avoid_entries_ = 0;
+  double formation_error_ = 0.0, max_error_settled_ = 0.0;
 };
 
 }  // namespace formsim::sim::formation

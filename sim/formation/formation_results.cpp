@@ -1,5 +1,6 @@
 // Metrics of the formation experiment (summary.json, the printed and GUI tables) and the
 // read-only link views.
+#include <algorithm>
 #include <cstdio>
 
 #include "sim/formation/formation_experiment.hpp"
@@ -86,6 +87,37 @@ Metrics FormationExperiment::Results() const {
     table.rows.emplace_back(l.name, "links." + l.name);
   }
   m.AddTable(std::move(table));
+  if (cfg_.switching.enabled() || cfg_.avoidance.present) {
+    // Switching and avoidance: collisions after the initial transient (settle_time), the largest
+    // formation error after it, and per switch how long the error took to stay below 1e-2.
+    m.Set("switches.collisions_after_transient", static_cast<double>(collisions_after_));
+    m.Set("switches.max_formation_error_after_settle", max_error_settled_);
+    m.Set("switches.tolerance", kRecoveredError);
+    m.Set("switches.avoidance_entries", static_cast<double>(avoid_entries_));
+    double worst = 0.0;
+    int not_recovered = 0;
+    for (std::size_t k = 0; k < switches_.size(); ++k) {
+      const SwitchRecord& r = switches_[k];
+      const std::string p = "switches.list." + std::to_string(k) + ".";
+      const double end = r.end >= 0.0 ? r.end : time();
+      const double rec = r.Recover(dt());
+      // Recovered: the error stayed below the tolerance for the rest of the switch's window.
+      const bool ok = r.last_above < end - 0.5 * dt() || r.last_above < r.time;
+      m.Set(p + "time", r.time);
+      m.SetText(p + "kind", r.kind);
+      m.SetText(p + "what", r.what);
+      m.Set(p + "recover_s", rec);
+      m.Set(p + "recovered", ok ? 1.0 : 0.0);
+      worst = std::max(worst, rec);
+      if (!ok) ++not_recovered;
+    }
+    m.Set("switches.count", static_cast<double>(switches_.size()));
+    m.Set("switches.max_recover_s", worst);
+    m.Set("switches.not_recovered", static_cast<double>(not_recovered));
+    for (const char* p : {"switches.collisions_after_transient", "switches.max_formation_error_after_settle",
+                          "switches.max_recover_s", "switches.not_recovered"})
+      m.SetBetter(p, Better::kLower);
+  }
   // Comparing runs (the GUI's pins, history, Monte Carlo): errors and event counts are better low.
   for (const char* p :
        {"links.*.max_abs_error*", "links.*.rmse_after_settle.*", "links.*.estimation_rmse.*",

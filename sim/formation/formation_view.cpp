@@ -105,6 +105,29 @@ std::vector<FigureSpec> FormationExperiment::Figures() const {
   }
   figs.push_back(v);
   figs.push_back(w);
+  if (cfg_.switching.enabled() || cfg_.avoidance.present) {
+    // Switching and avoidance: the formation error against the 1e-2 tolerance, and each
+    // follower's distance to the nearest obstacle against the safety distance.
+    FigureSpec fe = TimeFigure("formation_error",
+                               "Formation error: largest |e_l| [m], |e_φ| [rad] (followers not avoiding)",
+                               "error", {});
+    fe.series.push_back(Line("formation error", "formation.error", 0));
+    fe.reference_lines = {0.0, kRecoveredError};
+    figs.push_back(fe);
+  }
+  if (cfg_.avoidance.present) {
+    FigureSpec od = TimeFigure("obstacle_distance",
+                               Sprintf("Control point to nearest obstacle (capped at %g m); safety distance %g m",
+                                       AvoidanceReach(), cfg_.avoidance.def.safety_distance),
+                               "d [m]", {});
+    for (std::size_t i = 0; i < n_robots; ++i) {
+      if (cfg_.robots[i].node.law == FormationLaw::kRoot) continue;
+      const std::string& n = agents_[i].robot->name();
+      od.series.push_back(Line("d " + n, n + ".obstacle_d", cfg_.robots[i].body.color_index));
+    }
+    od.reference_lines = {cfg_.avoidance.def.safety_distance};
+    figs.push_back(od);
+  }
   if (!est.series.empty()) figs.push_back(est);
   return figs;
 }
@@ -114,16 +137,17 @@ Pose2 FormationExperiment::DesiredPose(int j) const {
   const Agent& a = agents_[j];
   const Pose2 p1 = agents_[links_[a.links[0]].leader].robot->pose();
   const double L = cfg_.L;
+  const cf::SlotValues& s = slots_[static_cast<std::size_t>(j)];
   Vec2 m;
   if (r.node.law == FormationLaw::kLPhi) {
-    const double b = p1.theta + r.node.phi_des;
-    m = p1.p() + Vec2{std::cos(b), std::sin(b)} * r.node.l_des;
+    const double b = p1.theta + s.phi_des;
+    m = p1.p() + Vec2{std::cos(b), std::sin(b)} * s.l_des;
   } else {
     // The apex on the side the control point is on now (the law keeps it there).
     const Pose2 p2 = agents_[links_[a.links[1]].leader].robot->pose();
     const Vec2 mj = cf::ControlPoint(a.robot->pose(), L);
     const int side = (p2.p() - p1.p()).Cross(mj - p1.p()) >= 0.0 ? 1 : -1;
-    if (!cf::TriangleApex(p1.p(), p2.p(), r.node.l_des, r.node.l2_des, side, m))
+    if (!cf::TriangleApex(p1.p(), p2.p(), s.l_des, s.l2_des, side, m))
       return {std::nan(""), std::nan(""), 0.0};
   }
   // The ghost keeps the follower's current heading, so it coincides with the robot exactly when
@@ -202,6 +226,31 @@ void FormationExperiment::DrawScene(DrawSink& draw) const {
         if (cfg_.robots[l.follower].node.law == FormationLaw::kLPhi)
           label += Sprintf(", %.1f°", control::WrapTo2Pi(l.truth.phi) * 180 / control::kPi);
         draw.Text(mid, label, Color{0.25f, 0.25f, 0.25f, 0.9f}, 4.0f, 4.0f);
+      }
+    }
+  }
+  // Avoidance and switching: each follower's active law under its name and, while it avoids,
+  // its virtual leader (the obstacle's nearest point) joined to its control point.
+  if ((cfg_.avoidance.present || cfg_.switching.enabled()) && body_px >= 8.0) {
+    const Color avoid_c{0.9f, 0.45f, 0.0f, 1.0f};
+    // The law's tag sits just below the body (the name is above it).
+    const float tag_dy = static_cast<float>(0.5 * body_px + 4.0);
+    for (std::size_t j = 0; j < agents_.size(); ++j) {
+      const Agent& a = agents_[j];
+      const FormationRobotDef& r = cfg_.robots[j];
+      if (a.links.empty() || !in_view(a.robot->pose().p())) continue;
+      const std::string& leader = agents_[links_[a.links[0]].leader].robot->name();
+      if (a.avoiding) {
+        const Vec2 m = cf::ControlPoint(a.robot->pose(), cfg_.L);
+        draw.Segment(m, a.near.point, avoid_c, 2.0f);
+        draw.Circle(a.near.point, 0.03, avoid_c, Color{0.2f, 0.1f, 0.0f, 1.0f});
+        // The law's tag before the leader's label (a label overlapping an earlier one is left
+        // out, and the tag matters more).
+        draw.Text(a.robot->pose().p(), "l-l: " + leader + " + obstacle", avoid_c, -8.0f, tag_dy);
+        draw.Text(a.near.point, "virtual leader", avoid_c, 6.0f, 6.0f);
+      } else {
+        draw.Text(a.robot->pose().p(), r.node.law == FormationLaw::kLPhi ? "l-φ" : "l-l",
+                  Color{0.3f, 0.3f, 0.3f, 0.9f}, -8.0f, tag_dy);
       }
     }
   }
