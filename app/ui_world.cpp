@@ -51,8 +51,11 @@ void AppUi::DrawWorldMouse(const View& view) {
     state_.auto_fit = false;
     state_.follow = -1;
   }
-  // Picking: the nearest robot (or obstacle centre) within a few pixels of its outline.
-  if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+  // The formation editor takes left clicks while it is on.
+  if (EditorMouse(view)) {
+    state_.drag_name.clear();
+  } else if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+    // Picking: the nearest robot (or obstacle centre) within a few pixels of its outline.
     state_.drag_name.clear();
     const Vec2 m = view.ToWorld(io.MousePos);
     double best = 1e300;
@@ -112,6 +115,8 @@ void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool in
   WorldViewOptions opt;
   opt.grid = state_.grid;
   opt.coordinates = state_.coordinates;
+  opt.scene_overlays = &state_.overlays;
+  opt.legend = state_.legend;
   for (const auto& p : pins_)
     if (p->ready())
       opt.overlays.push_back({p->exp.get(), PinLabel(*p), GetTheme(state_.theme).text});
@@ -123,6 +128,16 @@ void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool in
   }
   ImGuiCanvas canvas(ImGui::GetWindowDrawList(), fonts);
   DrawWorldView(canvas, state_.view, shown, GetTheme(state_.theme), opt);
+  // The editor's picks: a ring around each robot picked so far (and the slot being dragged).
+  for (const auto& r : shown.world().robots()) {
+    const bool picked = std::find(state_.edit_picks.begin(), state_.edit_picks.end(), r->name()) !=
+                            state_.edit_picks.end() ||
+                        r->name() == state_.slot_drag;
+    if (!picked) continue;
+    const ImVec2 c = state_.view.ToScreen(r->pose().p());
+    const float rad = static_cast<float>(std::max(r->def().half_length, r->def().radius) * state_.view.scale) + 8;
+    ImGui::GetWindowDrawList()->AddCircle(c, rad, ToImColor({0.15f, 0.45f, 0.9f, 1}), 32, 3.0f);
+  }
   // Drags move the live run's bodies: not while the timeline shows another time.
   if (interactive && &shown == &session_->exp()) DrawWorldMouse(state_.view);
   DrawTimeline(ImVec2(min.x, max.y), ImVec2(max.x, max.y + strip));
