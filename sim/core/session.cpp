@@ -469,7 +469,7 @@ std::string Session::AdoptStructure(const std::string& text, const std::string& 
     applied_ = std::move(parsed);
     exp_ = std::move(exp);
   } catch (const std::exception& e) {
-    return std::string("refused, the run goes on unchanged: ") + e.what();
+    return std::string("not applied (the run goes on unchanged): the edited formation: ") + e.what();
   }
   base_.clear();
   reset_edits_.clear();

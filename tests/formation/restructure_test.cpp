@@ -154,9 +154,12 @@ TEST(Restructure, SaveWritesAScenarioThatReproducesTheRun) {
   ASSERT_EQ(s.Restructure("shape diamond 0.5"), "");
   ASSERT_EQ(s.Edit("robots.R3.follow.k_l", "0.1"), "");
   StepTo(s, 30);
-  ASSERT_EQ(s.Restructure("add l_l R2,R3 " + std::to_string(s.exp().world().robots()[0]->pose().x - 1.2) +
-                          " " + std::to_string(s.exp().world().robots()[0]->pose().y)), "")
-      << s.rejected().back();
+  // The diamond's fourth slot, 2 rows (2 · 0.5 · √3/2 m) behind R1: l-l to R2 and R3.
+  const Pose2 r1 = s.exp().world().robots()[0]->pose();
+  const double back = 0.5 * std::sqrt(3.0);
+  ASSERT_EQ(s.Restructure("add l_l R2,R3 " + std::to_string(r1.x - back * std::cos(r1.theta)) + " " +
+                          std::to_string(r1.y - back * std::sin(r1.theta))),
+            "");
   StepTo(s, 120);
   const std::string path = TempPath("saved_formation.yaml");
   ASSERT_EQ(s.Save(path, true), Session::SaveResult::kSaved);
@@ -192,20 +195,27 @@ TEST(Restructure, DraggingASlotMovesTheFollowerThere) {
   Session s(Scenario("formation_traj1_per_sample"), {}, -1);
   StepTo(s, 100);
   const Pose2 r1 = s.exp().world().robots()[0]->pose();
-  // R2's slot moved to 0.5 m straight to the left of R1.
-  const Vec2 target = r1.p() + Vec2{-std::sin(r1.theta), std::cos(r1.theta)} * 0.5;
+  // R2's slot moved from 0.3 m to 0.4 m behind-right of R1 (R3's l-l triangle with R1 and R2
+  // still closes: their separation stays under 0.6 m).
+  const double b = r1.theta + 5 * M_PI / 4;
+  const Vec2 target = r1.p() + Vec2{std::cos(b), std::sin(b)} * 0.4;
   const auto edits = s.exp().SlotEdits("R2", target);
   ASSERT_EQ(edits.size(), 2u);
   EXPECT_EQ(edits[0].first, "robots.R2.follow.l_des");
   EXPECT_EQ(edits[1].first, "robots.R2.follow.phi_des");
   for (const auto& [k, v] : edits) ASSERT_EQ(s.Edit(k, v, "slot drag", true), "");
-  EXPECT_NEAR(std::stod(s.EffectiveValue("robots.R2.follow.l_des")), 0.5, 1e-12);
-  EXPECT_NEAR(std::stod(s.EffectiveValue("robots.R2.follow.phi_des")), M_PI / 2, 1e-9);
+  EXPECT_NEAR(std::stod(s.EffectiveValue("robots.R2.follow.l_des")), 0.4, 1e-12);
+  EXPECT_NEAR(std::stod(s.EffectiveValue("robots.R2.follow.phi_des")), 5 * M_PI / 4, 1e-9);
+  // The bearing stayed 5π/4: the drag is one undo step (of l_des).
+  EXPECT_EQ(s.Undo(), "");
+  EXPECT_EQ(s.EffectiveValue("robots.R2.follow.l_des"), "0.3");
+  EXPECT_FALSE(s.can_undo());
+  ASSERT_EQ(s.Redo(), "");
   StepTo(s, 400);
   for (const auto& l : Formation(s).Links())
     if (l.name == "R1-R2") {
-      EXPECT_NEAR(l.truth.l, 0.5, 1e-2);
-      EXPECT_NEAR(l.truth.phi, M_PI / 2, 2e-2);
+      EXPECT_NEAR(l.truth.l, 0.4, 1e-2);
+      EXPECT_NEAR(control::WrapTo2Pi(l.truth.phi), 5 * M_PI / 4, 2e-2);
     }
   EXPECT_THROW(s.exp().SlotEdits("R1", target), std::runtime_error);  // the root has no slot
 }
@@ -216,8 +226,8 @@ TEST(Restructure, TheTextKeepsItsHeaderAndLoadsAlone) {
   for (const auto& r : s.exp().world().robots()) st.poses[r->name()] = r->pose();
   const std::string text = RestructureFormationText(s.source().text(), "remove R7", st);
   EXPECT_EQ(text.rfind("# A 7-robot cascade", 0), 0u);
-  EXPECT_EQ(text.find("R7"), std::string::npos);
-  EXPECT_NO_THROW(LoadExperimentFromText(text, "edited"));
+  EXPECT_EQ(text.find("name: R7"), std::string::npos);
+  EXPECT_EQ(LoadExperimentFromText(text, "edited")->world().robots().size(), 6u);
 }
 
 }  // namespace
