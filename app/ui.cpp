@@ -60,6 +60,7 @@ void AppUi::SetRunSetup(std::function<void(sim::Experiment&)> setup) {
 void AppUi::SetStatus(const std::string& message, bool error) {
   state_.status = message;
   state_.status_is_error = error;
+  state_.status_time = ImGui::GetCurrentContext() != nullptr ? ImGui::GetTime() : 0.0;
 }
 
 // Per-scenario fields of the interface, after a load or reload.

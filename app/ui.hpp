@@ -44,6 +44,7 @@ struct UiState {
   std::string screenshot_path;  ///< where the requested screenshot goes ("" = numbered name)
   std::string status;           ///< last message for the status line
   bool status_is_error = false;
+  double status_time = 0;  ///< ImGui's clock when the status was set
   char save_path[512] = "";
   char open_path[512] = "";
   char seed_text[32] = "";

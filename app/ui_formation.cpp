@@ -55,8 +55,9 @@ std::string AppUi::CmdFormation(const std::string& command) {
   CmdLive();
   auto row = PendingRow("restructured");
   const std::string err = session_->Restructure(command, "GUI edit");
+  state_.edit_picks.clear();  // a refused change starts its picks again
   if (!err.empty()) {
-    SetStatus("formation " + command + ": " + err, true);
+    SetStatus("formation " + command + " refused: " + err, true);
     return err;
   }
   if (row) history_.Add(std::move(*row));
@@ -277,6 +278,12 @@ void AppUi::DrawFormationSection() {
     ImGui::TextColored(ImVec4(0.15f, 0.45f, 0.9f, 1), "%s%s%s", ModeHint(state_.edit_mode),
                        state_.edit_picks.empty() ? "" : "; picked: ",
                        Joined(state_.edit_picks).c_str());
+    ImGui::PopTextWrapPos();
+  }
+  // A refused change says why right here (the status line may be scrolled out of view).
+  if (state_.status_is_error && !state_.status.empty()) {
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextColored(ImVec4(0.8f, 0.1f, 0.1f, 1), "%s", state_.status.c_str());
     ImGui::PopTextWrapPos();
   }
   // Named shapes: the whole graph and every slot in one click.

@@ -93,11 +93,8 @@ RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks&
       if (p.tune.log_scale && lo > 0) flags |= ImGuiSliderFlags_Logarithmic;
       const double k = as_deg ? kDegPerRad : 1.0;
       double shown_v = v * k, shown_lo = lo * k, shown_hi = hi * k;
-      // A thin handle: the value's digits stay readable wherever it sits.
-      ImGui::PushStyleVar(ImGuiStyleVar_GrabMinSize, 4.0f);
       const bool changed = ImGui::SliderScalar("##v", ImGuiDataType_Double, &shown_v, &shown_lo,
                                                &shown_hi, as_deg ? "%.2f°" : "%.4g", flags);
-      ImGui::PopStyleVar();
       if (changed && std::isfinite(shown_v))
         out = sim::FormatDouble(std::clamp(shown_v / k, lo, hi));
       break;
@@ -108,10 +105,7 @@ RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks&
                                                                           : static_cast<int>(p.value);
       int lo = std::min(static_cast<int>(std::max(p.slider_min(), -1e9)), v);
       int hi = std::max(static_cast<int>(std::min(p.slider_max(), 1e9)), v);
-      ImGui::PushStyleVar(ImGuiStyleVar_GrabMinSize, 4.0f);
-      const bool changed = ImGui::SliderInt("##v", &v, lo, hi, "%d", ImGuiSliderFlags_AlwaysClamp);
-      ImGui::PopStyleVar();
-      if (changed)
+      if (ImGui::SliderInt("##v", &v, lo, hi, "%d", ImGuiSliderFlags_AlwaysClamp))
         out = std::to_string(std::clamp(v, lo, hi));
       break;
     }

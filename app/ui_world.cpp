@@ -76,13 +76,13 @@ void AppUi::DrawWorldMouse(const View& view) {
       }
     }
     if (!state_.drag_name.empty() && state_.playing)
-      state_.status = "pause (space) to drag " + state_.drag_name;
+      SetStatus("pause (space) to drag " + state_.drag_name);
   }
   if (!state_.drag_name.empty() && ImGui::IsMouseDown(ImGuiMouseButton_Left) && !state_.playing &&
       ImGui::IsMouseDragging(ImGuiMouseButton_Left, 2.0f)) {
     const Vec2 p = view.ToWorld(io.MousePos);
     session_->Move(state_.drag_name, p.x, p.y);
-    state_.status = "moved " + state_.drag_name;
+    SetStatus("moved " + state_.drag_name);
   }
   if (ImGui::IsMouseReleased(ImGuiMouseButton_Left)) state_.drag_name.clear();
   if (hovered) {
@@ -137,6 +137,19 @@ void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool in
     const ImVec2 c = state_.view.ToScreen(r->pose().p());
     const float rad = static_cast<float>(std::max(r->def().half_length, r->def().radius) * state_.view.scale) + 8;
     ImGui::GetWindowDrawList()->AddCircle(c, rad, ToImColor({0.15f, 0.45f, 0.9f, 1}), 32, 3.0f);
+  }
+  // A refused change is said over the world view too (presentation mode has no panels).
+  constexpr double kRefusalSeconds = 10.0;
+  if (state_.status_is_error && !state_.status.empty() &&
+      ImGui::GetTime() - state_.status_time < kRefusalSeconds) {
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const float wrap = std::max(100.0f, max.x - min.x - 40);
+    const ImVec2 ext = ImGui::CalcTextSize(state_.status.c_str(), nullptr, false, wrap);
+    const ImVec2 at(min.x + 12, min.y + 60);
+    dl->AddRectFilled(ImVec2(at.x - 6, at.y - 4), ImVec2(at.x + ext.x + 6, at.y + ext.y + 4),
+                      ToImColor({1.0f, 0.93f, 0.93f, 0.95f}), 4.0f);
+    dl->AddText(nullptr, 0.0f, at, ToImColor({0.75f, 0.05f, 0.05f, 1}), state_.status.c_str(),
+                nullptr, wrap);
   }
   // Drags move the live run's bodies: not while the timeline shows another time.
   if (interactive && &shown == &session_->exp()) DrawWorldMouse(state_.view);

@@ -121,4 +121,6 @@ SCRIPT
 else
   echo "screenshots: xvfb-run not installed, GUI screenshot skipped" >&2
 fi
+# Teaching: the formation editor, overlays, presentation mode (README "Teaching").
+bash scripts/screenshots_teaching.sh "$BIN"
 ls -1 "$OUT"/*.png "$OUT"/*.svg

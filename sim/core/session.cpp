@@ -16,7 +16,7 @@ Session::Session(const std::string& file, std::vector<Override> cli_overrides)
     : Session(ScenarioSource::FromFile(file), std::move(cli_overrides)) {}
 
 Session::Session(ScenarioSource source, std::vector<Override> cli_overrides)
-    : source_(std::move(source)), cli_(std::move(cli_overrides)), base_(cli_) {
+    : source_(std::move(source)), disk_file_(source_.file()), cli_(std::move(cli_overrides)), base_(cli_) {
   applied_ = ParseScenario(source_, base_);
   loaded_ = applied_.params;
   exp_ = BuildExperiment(applied_);
@@ -342,7 +342,7 @@ void Session::StartRun() {
 
 std::string Session::Reload() {
   try {
-    return Reloaded(ScenarioSource::FromFile(source_.file()));
+    return Reloaded(ScenarioSource::FromFile(disk_file_));
   } catch (const std::exception& e) {
     return std::string("reload failed, the run goes on unchanged: ") + e.what();
   }
@@ -362,6 +362,7 @@ std::string Session::Reloaded(ScenarioSource source) {
       run_setup_(*exp);
     }
     source_ = std::move(source);
+    disk_file_ = source_.file();
     applied_ = std::move(parsed);
     exp_ = std::move(exp);
   } catch (const std::exception& e) {
@@ -425,7 +426,7 @@ std::string Session::Branch(long step) {
 }
 
 std::string Session::BakedText() const {
-  return TunedScenarioText(source_, EffectiveOverrides(), source_.file());
+  return TunedScenarioText(source_, EffectiveOverrides(), disk_file_);
 }
 
 std::string Session::Restructure(const std::string& command, const std::string& origin) {
@@ -456,7 +457,10 @@ std::string Session::AdoptStructure(const std::string& text, const std::string& 
                                     const std::string& origin) {
   const long from = exp_->steps();
   // Every edit is in the text: the new run starts from it alone (the seed included).
-  ScenarioSource source = ScenarioSource::FromText(text, source_.file(), source_.dir());
+  // Messages about the new text name it after the file (its lines are the edited text's).
+  const fs::path disk(disk_file_);
+  const std::string name = (disk.parent_path() / (disk.stem().string() + ".edited.yaml")).string();
+  ScenarioSource source = ScenarioSource::FromText(text, name, source_.dir());
   try {
     ParsedScenario parsed = ParseScenario(source, {});
     std::unique_ptr<Experiment> exp = BuildExperiment(parsed);

@@ -67,7 +67,9 @@ class Session {
 
   Experiment& exp() { return *exp_; }
   const Experiment& exp() const { return *exp_; }
-  const std::string& file() const { return source_.file(); }
+  /// The scenario file on disk (also after structural changes, whose text is named
+  /// `<stem>.edited.yaml` in messages).
+  const std::string& file() const { return disk_file_; }
   const ScenarioSource& source() const { return source_; }
   /// Every tunable with the value the running experiment uses.
   const ParamTable& params() const { return applied_.params; }
@@ -189,6 +191,7 @@ class Session {
   };
 
   ScenarioSource source_;
+  std::string disk_file_;             ///< what Reload reads
   std::vector<Override> cli_;         ///< --set / --seed as given
   std::vector<Override> base_;        ///< in force from the start of the current run
   std::vector<Override> run_edits_;   ///< applied during the current run (with their step)

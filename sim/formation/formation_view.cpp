@@ -394,7 +394,7 @@ void FormationExperiment::DrawLawOverlays(DrawSink& draw, double body_px,
       draw.Legend(LegendMark::kLine, col, "l-l triangle, singular line (red: |sin| -> 0)");
     }
     // The command split: the control point's velocity from the leaders' motion alone
-    // (feed-forward, errors zero) and what the error terms add (feedback), 0.3 s long.
+    // (feed-forward, errors zero) and what the error terms add (feedback), as far as M goes in 0.1 s.
     if (draw.Shows("velocity")) {
       Twist ff;
       if (r.node.law == FormationLaw::kLPhi) {
@@ -410,13 +410,13 @@ void FormationExperiment::DrawLawOverlays(DrawSink& draw, double body_px,
         return Vec2{t.v * std::cos(pj.theta) - L * t.w * std::sin(pj.theta),
                     t.v * std::sin(pj.theta) + L * t.w * std::cos(pj.theta)};
       };
-      constexpr double kSeconds = 0.3;
+      constexpr double kSeconds = 0.1;
       const Vec2 vff = mdot(ff) * kSeconds, vfb = (mdot(a.cmd) - mdot(ff)) * kSeconds;
       const Color cf_ink{0.1f, 0.45f, 0.85f, 1}, cb_ink{0.85f, 0.1f, 0.45f, 1};
       Arrow(draw, m, m + vff, cf_ink, 2.0f, 0.03);
       Arrow(draw, m + vff, m + vff + vfb, cb_ink, 2.0f, 0.03);
-      draw.Legend(LegendMark::kArrow, cf_ink, "velocity of M: feed-forward (0.3 s)");
-      draw.Legend(LegendMark::kArrow, cb_ink, "velocity of M: feedback (0.3 s)");
+      draw.Legend(LegendMark::kArrow, cf_ink, "velocity of M: feed-forward (x 0.1 s)");
+      draw.Legend(LegendMark::kArrow, cb_ink, "velocity of M: feedback (x 0.1 s)");
     }
   }
 }

@@ -41,7 +41,7 @@ TEST(GuiTeach, EveryEditorActionAndRefusalKeepsTheGuiAlive) {
          << "11 editor attach l_phi\n12 click 0 0\n13 click -0.6 0.25\n"  // refused: a cycle
          << "14 editor law\n15 click -0.75 -0.45\n"                     // R5 becomes l-φ to R2
          << "16 editor slots\n17 click -0.6 0.25\n18 click -0.7 0.35\n"  // R4's slot moved
-         << "19 formation add l_l R1,R2 0.066 0.156\n"                  // refused: flat triangle
+         << "19 formation add l_l R1,R2 -0.234 -0.1785\n"  // refused: M between R1 and R2, l1 + l2 < their separation
          << "20 formation shape grid 0.5\n"
          << "21 formation shape hexagon\n"                              // refused
          << "22 undo\n23 redo\n"
