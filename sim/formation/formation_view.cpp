@@ -388,7 +388,7 @@ void FormationExperiment::DrawLawOverlays(DrawSink& draw, double body_px,
       const double n = d.Norm();
       if (n > 1e-6) {
         const Vec2 u = d * (1.0 / n);
-        draw.Segment(p1 - u * 0.6, p2 + u * 0.6, col.WithAlpha(0.9f), 2.5f);
+        draw.Segment(p1 - u * 0.3, p2 + u * 0.3, col.WithAlpha(0.9f), 2.5f);
       }
       draw.Text(m, Sprintf("|sin| %.2f", s), col, 8.0f, -22.0f);
       draw.Legend(LegendMark::kLine, col, "l-l triangle, singular line (red: |sin| -> 0)");
