@@ -37,6 +37,8 @@ class CanvasDrawSink : public sim::DrawSink {
   void Legend(sim::LegendMark mark, sim::Color color, const std::string& label) override;
   /// The overlays to draw (nullptr: the defaults); the set must outlive the sink.
   void SetOverlays(const std::set<std::string>* overlays) { overlays_ = overlays; }
+  bool AnglesInDegrees() const override { return degrees_; }
+  void SetAnglesInDegrees(bool degrees) { degrees_ = degrees; }
   /// One entry per label the scene named, in the order first named.
   struct LegendEntry {
     sim::LegendMark mark;
@@ -53,6 +55,7 @@ class CanvasDrawSink : public sim::DrawSink {
   /// views of many robots stay readable instead of turning into a smudge of text).
   std::vector<ImVec4> labels_;
   const std::set<std::string>* overlays_ = nullptr;
+  bool degrees_ = true;
   std::vector<LegendEntry> legend_;
   Canvas& cv_;
   const View& view_;

@@ -117,6 +117,7 @@ void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool in
   opt.coordinates = state_.coordinates;
   opt.scene_overlays = &state_.overlays;
   opt.legend = state_.legend;
+  opt.degrees = state_.settings.degrees;
   for (const auto& p : pins_)
     if (p->ready())
       opt.overlays.push_back({p->exp.get(), PinLabel(*p), GetTheme(state_.theme).text});

@@ -89,6 +89,12 @@ static void DrawLegend(Canvas& cv, const View& view, const Theme& th,
     const float x0 = lo.x + 7, x1 = x0 + sample, cx = 0.5f * (x0 + x1);
     const float lw = 2.0f * th.line_scale;
     switch (e.mark) {
+      case sim::LegendMark::kBody: {
+        cv.FillRect(ImVec2(cx - 9, cy - 6), ImVec2(cx + 9, cy + 6), c, 1.0f);
+        const ImVec2 wedge[3] = {ImVec2(cx + 6, cy), ImVec2(cx - 3, cy - 4), ImVec2(cx - 3, cy + 4)};
+        cv.FillPolygon(wedge, 3, sim::Color{1, 1, 1, 0.9f});
+        break;
+      }
       case sim::LegendMark::kLine:
       case sim::LegendMark::kTrail:
         cv.Line(ImVec2(x0, cy), ImVec2(x1, cy), {c, lw});
@@ -190,6 +196,7 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
 
   CanvasDrawSink sink(cv, view, th, FontRole::kSmall);
   sink.SetOverlays(opt.scene_overlays);
+  sink.SetAnglesInDegrees(opt.degrees);
   exp.Draw(sink);
   for (const WorldOverlay& o : opt.overlays) {
     FadedDrawSink faded(sink, 0.4f);

@@ -30,6 +30,7 @@ struct WorldViewOptions {
   /// Overlays of the scene to draw (sim::Overlays() names); nullptr: the defaults.
   const std::set<std::string>* scene_overlays = nullptr;
   bool legend = false;  ///< a legend of every kind of mark drawn, bottom left
+  bool degrees = true;  ///< angles in the scene's labels in degrees (else radians)
 };
 
 /// The overlays on by default (sim::Overlays()).

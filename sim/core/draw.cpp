@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace formsim::sim {
 
@@ -54,6 +55,15 @@ void DrawRobotBody(DrawSink& draw, const Pose2& pose, const std::vector<Vec2>& b
   // is large enough for a name to sit beside its neighbours'.
   if (!name.empty() && extent_px >= 12.0)
     draw.Text({pose.x, pose.y + extent}, name, Color{0.1f, 0.1f, 0.1f, 1.0f}, -6.0f, -16.0f);
+}
+
+std::string AngleLabel(const DrawSink& draw, double rad) {
+  char buf[32];
+  if (draw.AnglesInDegrees())
+    std::snprintf(buf, sizeof buf, "%.1f°", rad * 180.0 / 3.14159265358979323846);
+  else
+    std::snprintf(buf, sizeof buf, "%.3f rad", rad);
+  return buf;
 }
 
 const std::vector<OverlayInfo>& Overlays() {

@@ -20,7 +20,7 @@ struct Color {
 Color PaletteColor(int index);
 
 /// Kinds of mark a legend shows (the scene names each kind it drew, see DrawSink::Legend).
-enum class LegendMark { kLine, kDashedLine, kGhost, kDot, kCross, kEllipse, kRing, kArrow, kArc, kTrail };
+enum class LegendMark { kBody, kLine, kDashedLine, kGhost, kDot, kCross, kEllipse, kRing, kArrow, kArc, kTrail };
 
 /// An optional layer of a scene ("what the law sees"): its name (scenario `view: {overlays}`,
 /// `--overlay`, the View panel), a label for the panel, and whether views show it by default.
@@ -60,6 +60,8 @@ class DrawSink {
   /// Names a kind of mark the scene drew, for the view's legend (called once per kind per
   /// frame; repeated calls with the same label are ignored). Default: no legend.
   virtual void Legend(LegendMark /*mark*/, Color /*color*/, const std::string& /*label*/) {}
+  /// Whether angles in labels are wanted in degrees (else radians); the window's setting.
+  virtual bool AnglesInDegrees() const { return true; }
   /// Pixels per metre of the view, for level of detail: a scene of a thousand robots skips what
   /// would be smaller than a pixel or two and labels that could not be read. 0 when the sink
   /// has no such scale (draw everything).
@@ -71,6 +73,9 @@ class DrawSink {
     hi = {1e300, 1e300};
   }
 };
+
+/// An angle as a label in the unit `draw` wants: "225.0°" or "3.927 rad".
+std::string AngleLabel(const DrawSink& draw, double rad);
 
 /// Level of detail for a scene drawn into `draw`: how many pixels `metres` spans (a large
 /// number when the sink has no scale, so that everything is drawn).

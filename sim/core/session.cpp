@@ -163,18 +163,23 @@ std::string Session::Edit(const std::string& key, const std::string& value,
   return "";
 }
 
+std::string Session::RestructureTo(const std::string& text, const std::string& origin) {
+  std::string placed;
+  try {
+    placed = exp_->RestructuredText(text, "");  // the robots stay where they are now
+  } catch (const std::exception& e) {
+    return origin + " refused: " + e.what();
+  }
+  if (std::string err = AdoptStructure(placed, "", origin); !err.empty())
+    return origin + " refused: " + err;
+  return "";
+}
+
 std::string Session::Undo() {
   if (undo_.empty()) return "nothing to undo";
   const UndoStep u = undo_.back();
   if (u.structure) {
-    std::string text;
-    try {
-      text = exp_->RestructuredText(u.before, "");
-    } catch (const std::exception& e) {
-      return std::string("undo refused: ") + e.what();
-    }
-    if (std::string err = AdoptStructure(text, "", "undo"); !err.empty())
-      return "undo refused: " + err;
+    if (std::string err = RestructureTo(u.before, "undo"); !err.empty()) return err;
     undo_.pop_back();
     redo_.push_back(u);
     return "";
@@ -189,14 +194,7 @@ std::string Session::Redo() {
   if (redo_.empty()) return "nothing to redo";
   const UndoStep u = redo_.back();
   if (u.structure) {
-    std::string text;
-    try {
-      text = exp_->RestructuredText(u.after, "");
-    } catch (const std::exception& e) {
-      return std::string("redo refused: ") + e.what();
-    }
-    if (std::string err = AdoptStructure(text, "", "redo"); !err.empty())
-      return "redo refused: " + err;
+    if (std::string err = RestructureTo(u.after, "redo"); !err.empty()) return err;
     redo_.pop_back();
     undo_.push_back(u);
     return "";

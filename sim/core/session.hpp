@@ -180,6 +180,8 @@ class Session {
   /// Reads `text` as the new scenario and starts a run from it. Returns "" or why not.
   std::string AdoptStructure(const std::string& text, const std::string& command,
                              const std::string& origin);
+  /// Undo / redo of a structural change: the scenario `text` with the robots where they are.
+  std::string RestructureTo(const std::string& text, const std::string& origin);
   /// The scenario's text with every effective edit written into it.
   std::string BakedText() const;
 

@@ -193,6 +193,8 @@ void FormationExperiment::DrawScene(DrawSink& draw) const {
     if (!in_view(a.robot->pose().p())) continue;
     DrawRobotBody(draw, a.robot->pose(), a.robot->outline(),
                   PaletteColor(cfg_.robots[i].body.color_index), a.robot->name());
+    draw.Legend(LegendMark::kBody, PaletteColor(cfg_.robots[i].body.color_index),
+                "robot (white wedge: heading)");
   }
   const bool show_m = draw.Shows("control_points");
   if (body_px >= 6.0 && (show_m || show_links)) {
@@ -214,7 +216,7 @@ void FormationExperiment::DrawScene(DrawSink& draw) const {
         const Vec2 mid = (agents_[l.leader].robot->pose().p() + m) * 0.5;
         std::string label = Sprintf("%.3f m", l.truth.l);
         if (cfg_.robots[l.follower].node.law == FormationLaw::kLPhi)
-          label += Sprintf(", %.1f°", control::WrapTo2Pi(l.truth.phi) * 180 / control::kPi);
+          label += ", " + AngleLabel(draw, control::WrapTo2Pi(l.truth.phi));
         draw.Text(mid, label, Color{0.25f, 0.25f, 0.25f, 0.9f}, 4.0f, 4.0f);
       }
     }
@@ -305,7 +307,6 @@ Color SingularInk(double abs_sin, double threshold) {
                  : Color{0.9f, static_cast<float>(0.1 + t), 0.1f, 1};
 }
 
-double Deg(double rad) { return rad * 180.0 / control::kPi; }
 
 }  // namespace
 
@@ -348,7 +349,7 @@ void FormationExperiment::DrawLawOverlays(DrawSink& draw, double body_px,
         if (r.node.law == FormationLaw::kLPhi) {
           draw.Polyline(Arc(pi.p(), rad, pi.theta, pi.theta + l.truth.phi), ink, 1.5f, false);
           draw.Text(pi.p() + Vec2{std::cos(pi.theta + 0.5 * l.truth.phi), std::sin(pi.theta + 0.5 * l.truth.phi)} * rad,
-                    Sprintf("φ %.1f°", Deg(control::WrapTo2Pi(l.truth.phi))), ink, 4.0f, -6.0f);
+                    "φ " + AngleLabel(draw, control::WrapTo2Pi(l.truth.phi)), ink, 4.0f, -6.0f);
         }
         // l as an arc of radius l about the leader through M.
         const double b = std::atan2(m.y - pi.y, m.x - pi.x);

@@ -19,6 +19,7 @@ namespace formsim::app {
 namespace {
 
 using testing::Binary;
+using testing::CountOf;
 using testing::NonBackgroundFraction;
 using testing::ReadText;
 using testing::RunShell;
@@ -27,12 +28,6 @@ using testing::TempDir;
 
 std::string Xvfb(const std::string& cmd) {
   return "xvfb-run -a -s '-screen 0 1280x800x24' " + cmd;
-}
-
-int CountOf(const std::string& text, const std::string& what) {
-  int n = 0;
-  for (auto p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
-  return n;
 }
 
 TEST(GuiActions, EveryButtonOfTheScenarioAndRunPanels) {

@@ -18,16 +18,11 @@ namespace formsim::app {
 namespace {
 
 using testing::Binary;
+using testing::CountOf;
 using testing::NonBackgroundFraction;
 using testing::ReadText;
 using testing::RunShell;
 using testing::TempDir;
-
-int CountOf(const std::string& text, const std::string& what) {
-  int n = 0;
-  for (auto p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
-  return n;
-}
 
 TEST(GuiTeach, EveryEditorActionAndRefusalKeepsTheGuiAlive) {
   if (FindOnPath("xvfb-run").empty()) GTEST_SKIP() << "xvfb-run not installed";
@@ -71,7 +66,10 @@ TEST(GuiTeach, EveryEditorActionAndRefusalKeepsTheGuiAlive) {
   // The saved formation: five robots, the grid's graph, and it loads alone.
   sim::Session saved(dir + "/edited.yaml", {}, -1);
   EXPECT_EQ(saved.exp().world().robots().size(), 5u);
-  EXPECT_EQ(saved.exp().LeadersOf("R4").size() + saved.exp().LeadersOf("R5").size() > 0, true);
+  EXPECT_TRUE(saved.exp().LeadersOf("R1").empty());
+  for (const char* f : {"R2", "R3", "R5"}) EXPECT_FALSE(saved.exp().LeadersOf(f).empty()) << f;
+  // R4 sits behind R1, between R2 and R3 of the front row: l-l to them.
+  EXPECT_EQ(saved.exp().LeadersOf("R4"), (std::vector<std::string>{"R2", "R3"}));
   // The settings file keeps the last UI scale and the angle unit.
   const std::string settings = ReadText(dir + "/config/formsim/settings.yaml");
   EXPECT_NE(settings.find("ui_scale: 1"), std::string::npos) << settings;

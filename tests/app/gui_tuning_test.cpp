@@ -17,18 +17,13 @@ namespace formsim::app {
 namespace {
 
 using testing::Binary;
+using testing::CountOf;
 using testing::ReadText;
 using testing::RunShell;
 using testing::TempDir;
 
 std::string Xvfb(const std::string& cmd) {
   return "xvfb-run -a -s '-screen 0 1280x800x24' " + cmd;
-}
-
-int CountOf(const std::string& text, const std::string& what) {
-  int n = 0;
-  for (auto p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
-  return n;
 }
 
 // Runs the GUI on `scenario` with `script`; returns the log (the exit code must be 0).
