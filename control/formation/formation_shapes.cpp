@@ -127,10 +127,15 @@ FormationShape GraphForSlots(const std::vector<Vec2>& slots, const std::vector<s
     for (int k = 1; k < i; ++k)
       if ((m - slots[k]).Norm() < (m - slots[nearest]).Norm() - 1e-12) nearest = k;
     const double reach = 2.1 * (m - slots[nearest]).Norm();
+    // Candidate leaders within reach only: the pairs stay few however large the shape.
+    std::vector<int> near;
+    for (int k = 0; k < i; ++k)
+      if ((m - slots[k]).Norm() <= reach) near.push_back(k);
     int best_a = -1, best_b = -1;
     double best_score = -1.0;
-    for (int a = 0; a < i; ++a)
-      for (int b = a + 1; b < i; ++b) {
+    for (std::size_t ia = 0; ia < near.size(); ++ia)
+      for (std::size_t ib = ia + 1; ib < near.size(); ++ib) {
+        const int a = near[ia], b = near[ib];
         const double l1 = (m - slots[a]).Norm(), l2 = (m - slots[b]).Norm();
         const double sep = (slots[b] - slots[a]).Norm();
         if (l1 > reach || l2 > reach || !(sep > 0.0)) continue;
