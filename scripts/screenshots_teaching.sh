@@ -66,6 +66,20 @@ cat >"$TMP/shape.txt" <<'SCRIPT'
 SCRIPT
 xvfb-run -a -s "-screen 0 1600x900x24" "$BIN" gui formation_cascade7 --size 1600x900 \
   --speed 1 --exit-after 75 --script "$TMP/shape.txt" --screenshot "$OUT/teach_shape.png" >/dev/null
+# A slot dragged (here by the script's clicks): paused at t = 0 of the printed-gain run, R2's
+# desired distance to R1 moved from 0.3 m to 0.4 m (same bearing); playing, R2 falls back to it
+# with the law's time constant (1/k_l = 6.7 s) and R3 keeps its triangle with R1 and R2; the
+# error vectors and the measured l and φ drawn.
+cat >"$TMP/slot.txt" <<'SCRIPT'
+2 overlay errors,measured
+3 editor slots
+4 click -0.2 -0.223
+5 click -0.126 -0.38
+6 play
+90 screenshot screenshots/teach_slot.png
+SCRIPT
+xvfb-run -a -s "-screen 0 1600x900x24" "$BIN" gui formation_traj1 --paused --size 1600x900 \
+  --speed 1 --exit-after 92 --script "$TMP/slot.txt" >/dev/null
 # Presentation mode at 1920x1080: panels hidden, UI scale 2, the high-contrast theme, graph and
 # triangles, the legend.
 cat >"$TMP/present.txt" <<'SCRIPT'
