@@ -7,6 +7,12 @@
 
 namespace formsim::app {
 
+void CanvasDrawSink::Legend(sim::LegendMark mark, sim::Color color, const std::string& label) {
+  for (const LegendEntry& e : legend_)
+    if (e.label == label) return;
+  legend_.push_back({mark, color, label});
+}
+
 void CanvasDrawSink::Polygon(const std::vector<Vec2>& pts, sim::Color fill, sim::Color outline) {
   if (pts.size() < 2) return;
   std::vector<ImVec2> s;

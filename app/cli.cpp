@@ -246,6 +246,13 @@ int Main(int argc, char** argv) {
   run_cmd->add_option("--gif-width", run.exp.gif_width,
                       "Width of the GIF in pixels (default 640; height keeps --size's aspect)");
   run_cmd->add_flag("--ui", run.exp.ui, "Draw the GUI panels into frames and snapshot");
+  std::string run_overlay;
+  const std::string overlay_help =
+      "Overlays of the world view, comma-separated: slots, control_points, links, measured, "
+      "errors, triangles, velocity, covariance, graph (all, none, default, -NAME removes; "
+      "default: slots,control_points,links,covariance)";
+  run_cmd->add_option("--overlay", run_overlay, overlay_help);
+  run_cmd->add_flag("--legend", run.exp.legend, "Draw a legend of every mark in the world view");
   run_cmd->add_flag("--whole-run", run.exp.whole_run,
                     "Camera keeps everything since the start in view (default: tracks the robots)");
   run_cmd->add_flag("--timing", run.timing, "Print where the export time went (stderr)");
@@ -299,7 +306,9 @@ int Main(int argc, char** argv) {
                       "reset-seed N, reload, load S, open P, save P, play, pause, step, "
                       "screenshot P, action ID, undo, redo, revert K, pin, unpin N, unpin-all, "
                       "restore N, pin-row N, seeds N, cancel-seeds, scrub T, live, branch, "
-                      "save-session P, tab T, switch-formation [NAME], wait)");
+                      "save-session P, tab T, switch-formation [NAME], wait, formation add|remove|attach|shape ..., slot NAME X Y, "
+                      "editor MODE, click X Y, overlay LIST, legend on|off, help on|off, "
+                      "present on|off, ui-scale S, angle-unit deg|rad)");
   gui_cmd->add_option("--out", gui.out_dir, "Write timeseries.csv and summary.json here on exit");
   gui_cmd->add_option("--session", gui.session_file,
                       "Record the session (edits with their steps, resets, seeds, loads, pins, "
@@ -308,6 +317,8 @@ int Main(int argc, char** argv) {
   gui_cmd->add_option("--theme", gui_theme,
                       std::string("Colours of the panels, world view and plots: ") + ThemeNames() +
                           " (default light)");
+  std::string gui_overlay;
+  gui_cmd->add_option("--overlay", gui_overlay, overlay_help);
   gui_cmd->add_flag("--timing", gui.timing, "Print frame-time statistics on exit (stderr)");
   gui_cmd->add_option("--threads", threads, threads_help)->check(CLI::Range(1, 1024));
 
@@ -321,7 +332,15 @@ int Main(int argc, char** argv) {
   }
   try {
     if (threads > 0) sim::ThreadPool::SetDefaultThreads(threads);
-    if (run_cmd->parsed()) return RunCommand(run);
+    auto overlays = [](const std::string& text, std::set<std::string>* out) {
+      *out = DefaultSceneOverlays();
+      if (const std::string err = ParseSceneOverlays(text, out); !err.empty())
+        throw std::runtime_error("--overlay '" + text + "': " + err);
+    };
+    if (run_cmd->parsed()) {
+      if (!run_overlay.empty()) overlays(run_overlay, &run.exp.overlays);
+      return RunCommand(run);
+    }
     if (app.got_subcommand("list")) return ListCommand();
     if (study.parsed()) return study.Run();
     if (replay.parsed()) return replay.Run();
@@ -336,6 +355,10 @@ int Main(int argc, char** argv) {
         gui.speed = std::strtod(gui_speed.c_str(), &end);
         if (end == gui_speed.c_str() || *end != 0 || !(gui.speed > 0 && gui.speed <= 10))
           throw std::runtime_error("--speed '" + gui_speed + "': expected 0.1 ... 10 or max");
+      }
+      if (!gui_overlay.empty()) {
+        overlays(gui_overlay, &gui.overlays);
+        gui.overlays_given = true;
       }
       return RunGui(gui);
     }

@@ -157,6 +157,7 @@ ExportStats RunWithExport(sim::Session& session, const ExportOptions& opt,
   const double t_start = Now();
   const Theme& theme = GetTheme(opt.theme);
   OffscreenRenderer renderer(opt.width, opt.height, theme);
+  renderer.SetSceneOverlays(&opt.overlays, opt.legend);
   PngPool pool;
   st.png_threads = pool.threads();
   std::unique_ptr<VideoWriter> video;
@@ -183,6 +184,8 @@ ExportStats RunWithExport(sim::Session& session, const ExportOptions& opt,
     ui->state().playing = false;
     ui->state().whole_run = opt.whole_run;
     ui->state().theme = opt.theme;
+    ui->state().overlays = opt.overlays;
+    ui->state().legend = opt.legend;
     renderer.RenderUi(*ui);  // warm-up: ImGui lays windows out on their first frame
   }
   sim::Experiment& exp = session.exp();
@@ -356,7 +359,7 @@ ExportStats RunWithExport(sim::Session& session, const ExportOptions& opt,
         FigureSize size;
         size.width = {static_cast<double>(opt.width), "px"};
         size.height = {static_cast<double>(opt.height), "px"};
-        WriteVectorFigure(RecordWorld(exp, view, theme, caption), FormatOfFile(snap, "--snapshot"),
+        WriteVectorFigure(RecordWorld(exp, view, theme, caption, &opt.overlays, opt.legend), FormatOfFile(snap, "--snapshot"),
                           size, caption, snap);
         ++st.snapshots;
       }

@@ -5,12 +5,14 @@
 /// No display needed.
 
 #include <functional>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "app/figure_export.hpp"
 #include "app/figure_size.hpp"
 #include "app/theme.hpp"
+#include "app/world_view.hpp"
 #include "sim/core/session.hpp"
 
 namespace formsim::app {
@@ -31,6 +33,10 @@ struct ExportOptions {
   int gif_width = 640;
   bool ui = false;         ///< draw the GUI panels around the world view
   bool whole_run = false;  ///< camera shows everything since the start (default: tracks robots)
+  /// Overlays of the scene in frames, video, GIF and snapshot (--overlay); --legend adds the
+  /// legend of the marks drawn.
+  std::set<std::string> overlays = DefaultSceneOverlays();
+  bool legend = false;
   bool any() const {
     return !frames_dir.empty() || !snapshots.empty() || !plots_dir.empty() || !video.empty() ||
            !gif.empty();

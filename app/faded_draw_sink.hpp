@@ -32,6 +32,8 @@ class FadedDrawSink : public sim::DrawSink {
   void Cross(Vec2 p, double size, sim::Color color) override { in_.Cross(p, size, Fade(color)); }
   void Text(Vec2, const std::string&, sim::Color, float, float) override {}
   void Flash(Vec2, double, sim::Color, float) override {}
+  bool Shows(const std::string& name) const override { return in_.Shows(name); }
+  bool AnglesInDegrees() const override { return in_.AnglesInDegrees(); }
 
  private:
   sim::Color Fade(sim::Color c) const { return c.WithAlpha(c.a * a_); }

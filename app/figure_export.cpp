@@ -86,10 +86,13 @@ VectorFigure RecordPlot(const PlotData& data, int width, int height, const Theme
 }
 
 VectorFigure RecordWorld(const sim::Experiment& exp, const View& view, const Theme& theme,
-                         const std::string& caption) {
+                         const std::string& caption, const std::set<std::string>* overlays,
+                         bool legend) {
   VectorCanvas canvas(view.width(), view.height());
   WorldViewOptions opt;
   opt.caption = caption;
+  opt.scene_overlays = overlays;
+  opt.legend = legend;
   DrawWorldView(canvas, view, exp, theme, opt);
   return canvas.Take();
 }

@@ -2,6 +2,7 @@
 /// \file Figures and world views as files: the formats (png, svg, pdf), and the recording of a
 /// plot or a world view onto a VectorCanvas with exactly the drawing code of the PNG.
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -31,7 +32,7 @@ void CheckFolderName(const std::string& dir, const std::string& flag, const std:
 VectorFigure RecordPlot(const PlotData& data, int width, int height, const Theme& theme);
 /// The world view of `exp` through `view` (whose rectangle is the whole figure).
 VectorFigure RecordWorld(const sim::Experiment& exp, const View& view, const Theme& theme,
-                         const std::string& caption);
+                         const std::string& caption, const std::set<std::string>* overlays = nullptr, bool legend = false);
 /// Writes a recorded figure as SVG or PDF (atomically). Throws std::runtime_error.
 void WriteVectorFigure(const VectorFigure& fig, FigureFormat format, const FigureSize& size,
                        const std::string& title, const std::string& path);

@@ -162,6 +162,13 @@ int RunGui(const GuiOptions& opt) {
                                                                }) -
                                               speeds.begin());
     ui.state().playing = !opt.paused;
+    {
+      std::string warning;
+      ui.state().settings = LoadUiSettings(&warning);
+      if (!warning.empty()) std::fprintf(stderr, "formsim: %s\n", warning.c_str());
+    }
+    if (opt.overlays_given) ui.state().overlays = opt.overlays;
+    bool f1_down = false;
 
     using Clock = std::chrono::steady_clock;
     auto last = Clock::now();
@@ -194,6 +201,21 @@ int RunGui(const GuiOptions& opt) {
       }
 
       ImGui_ImplGlfw_NewFrame();
+      {
+        // UI scale: the interface is laid out on a display `scale` times smaller and drawn
+        // `scale` times larger (fonts rasterised at that size), as PNGs at a --dpi are.
+        ImGuiIO& io = ImGui::GetIO();
+        const float scale = std::clamp(ui.state().settings.ui_scale, kMinUiScale, kMaxUiScale);
+        const float device = scale * io.DisplayFramebufferScale.x;
+        if (layer.fonts().scale != device) layer.SetFontScale(device);
+        io.DisplaySize = ImVec2(io.DisplaySize.x / scale, io.DisplaySize.y / scale);
+        io.DisplayFramebufferScale = ImVec2(device, device);
+        if (io.MousePos.x > -1e30f) io.MousePos = ImVec2(io.MousePos.x / scale, io.MousePos.y / scale);
+        // F1 (ImGui 1.86 names no function keys): the help overlay.
+        const bool f1 = glfwGetKey(window, GLFW_KEY_F1) == GLFW_PRESS;
+        if (f1 && !f1_down) ui.CmdHelp(!ui.state().help);
+        f1_down = f1;
+      }
       layer.NewFrame();
       const auto t_ui = Clock::now();
       try {

@@ -1,6 +1,7 @@
 #pragma once
 /// \file `formsim gui`: the interactive window (GLFW, OpenGL 3.3 core) around AppUi.
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,9 @@ struct GuiOptions {
   std::string session_file;
   bool timing = false;  ///< print frame-time statistics on exit
   ThemeId theme = ThemeId::kLight;
+  /// --overlay: the scene's overlays in the window (else the defaults).
+  std::set<std::string> overlays;
+  bool overlays_given = false;
 };
 
 /// One scripted GUI action: at frame `frame`, `action` ("edit k=v", "reset", "reset-seed 7",

@@ -21,6 +21,7 @@ ImGuiLayer::ImGuiLayer(const Theme& theme) {
   style.WindowRounding = 0.0f;
   style.FrameRounding = 3.0f;
   style.GrabRounding = 3.0f;
+  style.GrabMinSize = 6.0f;  // thin handles of continuous sliders: they hide no digit
   style.WindowBorderSize = 1.0f;
   style.ItemSpacing = ImVec2(8, 5);
   ApplyImGuiTheme(theme);

@@ -70,6 +70,8 @@ const std::vector<std::uint8_t>& OffscreenRenderer::RenderWorldAs(const sim::Exp
   Begin();
   WorldViewOptions opt;
   opt.caption = caption;
+  opt.scene_overlays = overlays_;
+  opt.legend = legend_;
   ImGuiCanvas canvas(ImGui::GetBackgroundDrawList(), layer_.fonts());
   DrawWorldView(canvas, view, exp, theme_, opt);
   return End(theme_.background);

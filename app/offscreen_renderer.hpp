@@ -5,6 +5,8 @@
 
 #include <cstdint>
 #include <string>
+#include <set>
+#include <string>
 #include <vector>
 
 #include "app/imgui_layer.hpp"
@@ -54,6 +56,12 @@ class OffscreenRenderer {
   /// The last rendered image (RGBA, device pixels).
   const std::vector<std::uint8_t>& pixels() const { return ctx_.pixels(); }
   const Theme& theme() const { return theme_; }
+  /// Overlays of the scene (nullptr: the defaults; the set must outlive the renderer) and the
+  /// legend, for RenderWorld / RenderWorldAs.
+  void SetSceneOverlays(const std::set<std::string>* overlays, bool legend) {
+    overlays_ = overlays;
+    legend_ = legend;
+  }
   const RenderTimes& times() const { return times_; }
   /// Axes and legend of the last RenderFigure (for tests), logical pixels.
   const PlotLayout& last_plot_layout() const { return last_layout_; }
@@ -63,6 +71,8 @@ class OffscreenRenderer {
   const std::vector<std::uint8_t>& End(sim::Color clear);
   OffscreenContext ctx_;
   const Theme& theme_;
+  const std::set<std::string>* overlays_ = nullptr;
+  bool legend_ = false;
   ImGuiLayer layer_;
   int logical_w_, logical_h_;
   RenderTimes times_;

@@ -244,6 +244,9 @@ void ApplyImGuiTheme(const Theme& theme) {
       style.Colors[ImGuiCol_SliderGrab] = ImVec4(1, 0.85f, 0.1f, 1);
       break;
   }
+  // Slider handles stay translucent: the value's digits, drawn over the handle, keep their
+  // contrast wherever it sits (sliders of few steps have wide handles).
+  for (ImGuiCol k : {ImGuiCol_SliderGrab, ImGuiCol_SliderGrabActive}) style.Colors[k].w = 0.35f;
 }
 
 }  // namespace formsim::app

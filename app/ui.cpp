@@ -60,6 +60,7 @@ void AppUi::SetRunSetup(std::function<void(sim::Experiment&)> setup) {
 void AppUi::SetStatus(const std::string& message, bool error) {
   state_.status = message;
   state_.status_is_error = error;
+  state_.status_time = ImGui::GetCurrentContext() != nullptr ? ImGui::GetTime() : 0.0;
 }
 
 // Per-scenario fields of the interface, after a load or reload.
@@ -370,10 +371,14 @@ std::string AppUi::RunScriptAction(const std::string& line) {
     return CmdAction(args.empty() ? std::string("switch-formation") : "switch-formation:" + args);
   if (action == "save-session")
     return need("a path").empty() ? CmdSaveSession(args) : need("a path");
+  bool known = false;
+  std::string teach = RunTeachAction(action, args, &known);
+  if (known) return teach;
   return "unknown action '" + action +
          "' (known: edit, reset, reset-seed, reload, load, open, save, play, pause, step, "
          "screenshot, action, undo, redo, revert, pin, unpin, unpin-all, restore, pin-row, "
-         "seeds, cancel-seeds, scrub, live, branch, save-session, tab, switch-formation, wait)";
+         "seeds, cancel-seeds, scrub, live, branch, save-session, tab, switch-formation, wait, formation, slot, "
+         "editor, click, overlay, legend, help, present, ui-scale, angle-unit)";
 }
 
 void AppUi::Advance(double wall_dt) {
@@ -440,6 +445,15 @@ void AppUi::HandleKeys() {
       CmdRedo();
     return;  // Ctrl+letter is never a plain shortcut
   }
+  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false)) {
+    // Esc closes what is open, one thing at a time.
+    if (state_.help)
+      state_.help = false;
+    else if (state_.edit_mode != UiState::EditMode::kOff)
+      CmdEditor("off");
+    else if (state_.present)
+      CmdPresent(false);
+  }
   // ImGui 1.86 maps only a few named keys, so shortcuts read the typed characters.
   for (int i = 0; i < io.InputQueueCharacters.Size; ++i) {
     switch (io.InputQueueCharacters[i]) {
@@ -463,6 +477,15 @@ void AppUi::HandleKeys() {
         for (const sim::ActionSpec& a : session_->exp().Actions())
           if (a.id == "switch-formation") CmdAction(a.id);
         break;
+      case 'p':
+        CmdPresent(!state_.present);
+        break;
+      case 'l':
+        state_.legend = !state_.legend;
+        break;
+      case '?':
+        state_.help = !state_.help;
+        break;
       default:
         break;
     }
@@ -471,6 +494,15 @@ void AppUi::HandleKeys() {
 
 void AppUi::Draw(ImVec2 display, const Fonts& fonts, bool interactive) {
   UpdateBackground();
+  if (state_.present) {
+    // Presentation: the world view fills the window; a small bar keeps the essentials.
+    DrawWorldWindow(ImVec2(0, 0), display, fonts, interactive);
+    DrawPresentationBar(ImVec2(0, 0), display);
+    if (state_.help) DrawHelpOverlay(ImVec2(0, 0), display);
+    if (!ImGui::IsAnyItemActive()) state_.gesture_key.clear();
+    if (interactive) HandleKeys();
+    return;
+  }
   const float left_w = std::clamp(display.x * 0.24f, 290.0f, 400.0f);
   const float right_w = std::clamp(display.x * 0.34f, 340.0f, 640.0f);
   const float mid_w = std::max(200.0f, display.x - left_w - right_w);
@@ -484,6 +516,7 @@ void AppUi::Draw(ImVec2 display, const Fonts& fonts, bool interactive) {
 
   DrawWorldWindow(ImVec2(left_w, 0), ImVec2(mid_w, display.y), fonts, interactive);
   DrawPlotsWindow(ImVec2(left_w + mid_w, 0), ImVec2(display.x - left_w - mid_w, display.y), fonts);
+  if (state_.help) DrawHelpOverlay(ImVec2(left_w, 0), ImVec2(left_w + mid_w, display.y));
   // A slider no longer held ends its drag: its next edit is a new undo step.
   if (!ImGui::IsAnyItemActive()) state_.gesture_key.clear();
   if (interactive) HandleKeys();
@@ -495,6 +528,10 @@ void AppUi::DrawControlPanel(const Fonts& fonts, bool interactive) {
   if (ImGui::CollapsingHeader("Scenario", ImGuiTreeNodeFlags_DefaultOpen)) DrawScenarioSection();
   if (ImGui::CollapsingHeader("Run", ImGuiTreeNodeFlags_DefaultOpen)) DrawRunSection();
   if (ImGui::CollapsingHeader("Compare", ImGuiTreeNodeFlags_DefaultOpen)) DrawTuningSection();
+  if (session_->exp().Restructurable()) {
+    if (state_.edit_mode != UiState::EditMode::kOff) ImGui::SetNextItemOpen(true);
+    if (ImGui::CollapsingHeader("Formation")) DrawFormationSection();
+  }
   DrawParamSection();
   if (ImGui::CollapsingHeader("View")) DrawViewSection();
   DrawMessagesSection();
@@ -640,6 +677,8 @@ void AppUi::DrawViewSection() {
   }
   if (ImGui::Button("Screenshot (s)")) state_.screenshot_requested = true;
   ImGui::TextDisabled("wheel: zoom, right-drag: pan,\nleft-drag a robot or obstacle while paused");
+  ImGui::Separator();
+  DrawOverlayToggles();
 }
 
 void AppUi::DrawMessagesSection() {

@@ -9,13 +9,16 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "app/fonts.hpp"
 #include "app/theme.hpp"
 #include "app/tuning_state.hpp"
+#include "app/ui_settings.hpp"
 #include "app/view.hpp"
+#include "app/world_view.hpp"
 #include "sim/core/session.hpp"
 #include "sim/core/session_record.hpp"
 
@@ -41,6 +44,7 @@ struct UiState {
   std::string screenshot_path;  ///< where the requested screenshot goes ("" = numbered name)
   std::string status;           ///< last message for the status line
   bool status_is_error = false;
+  double status_time = 0;  ///< ImGui's clock when the status was set
   char save_path[512] = "";
   char open_path[512] = "";
   char seed_text[32] = "";
@@ -52,6 +56,21 @@ struct UiState {
   std::string drag_name;  ///< robot or obstacle being dragged
   double sim_ms = 0, frame_ms = 0;
   int steps_last_frame = 0;
+
+  // Teaching (app/ui_formation.cpp, app/ui_teach.cpp).
+  std::set<std::string> overlays = DefaultSceneOverlays();  ///< of the scene (View panel)
+  bool legend = true;    ///< a legend of every mark drawn in the world view
+  bool help = false;     ///< the help overlay (F1)
+  bool present = false;  ///< presentation mode: the world view fills the window
+  UiSettings settings;   ///< UI scale and angle unit, kept between runs
+  /// What a left click in the world view does (the formation editor).
+  enum class EditMode { kOff, kAdd, kRemove, kAttach, kSwitchLaw, kSlots };
+  EditMode edit_mode = EditMode::kOff;
+  int edit_law = 0;                     ///< 0 l_phi, 1 l_l (add and attach)
+  std::vector<std::string> edit_picks;  ///< robots picked so far (follower and/or leaders)
+  int shape_index = 2;                  ///< into control::formation::ShapeNames()
+  float shape_spacing = 0.5f;           ///< m
+  std::string slot_drag;                ///< follower whose slot is being dragged
   double step_budget = 0;  ///< simulated seconds owed to real time
 };
 
@@ -125,6 +144,29 @@ class AppUi {
   /// Restarts the run from the time shown by the timeline (exact), pinning the original first
   /// when state().branch_pins_original.
   std::string CmdBranch();
+  // ---- Teaching: the formation editor, overlays, legend, help, presentation.
+  /// A structural change of the formation (Session::Restructure): "add LAW LEADERS X Y
+  /// [NAME]", "remove NAME", "attach NAME LAW LEADERS", "shape KIND [SPACING]".
+  std::string CmdFormation(const std::string& command);
+  /// Puts `robot`'s desired slot (its control point) at world point (x, y): live edits of its
+  /// l_des and φ_des, or of its two distances. `continues_drag`: one undo step per drag.
+  std::string CmdSlot(const std::string& robot, double x, double y, bool continues_drag = false);
+  /// The editor's mode: "off", "add l_phi|l_l", "remove", "attach l_phi|l_l", "law", "slots".
+  std::string CmdEditor(const std::string& mode);
+  /// A left click in the world view at world point `p` as the editor's mode takes it (the
+  /// mouse and the script action `click X Y`).
+  std::string EditorClick(Vec2 p);
+  /// Overlays of the scene: "NAME,..." as --overlay (all, none, default, -NAME), applied to the
+  /// ones shown now.
+  std::string CmdOverlay(const std::string& list);
+  std::string CmdLegend(bool on);
+  std::string CmdHelp(bool on);
+  /// Presentation mode: panels hidden, the world view fills the window.
+  std::string CmdPresent(bool on);
+  /// UI scale (fonts and line widths) 1 ... 3, kept between runs.
+  std::string CmdUiScale(double scale);
+  /// Angles shown in degrees or radians ("deg" / "rad"), kept between runs.
+  std::string CmdAngleUnit(const std::string& unit);
   /// Writes the session record (everything done so far, with steps) to `path`.
   std::string CmdSaveSession(const std::string& path);
   /// Runs one script action "ACTION [ARGS]" (see `formsim gui --script`). Returns "" or the
@@ -180,6 +222,18 @@ class AppUi {
   void DrawScenarioSection();
   void DrawRunSection();
   void DrawViewSection();
+  void DrawOverlayToggles();
+  void DrawFormationSection();
+  /// The help overlay (keys and mouse) over the world view.
+  void DrawHelpOverlay(ImVec2 min, ImVec2 max);
+  /// Presentation mode's small bar of buttons, top right of the world view.
+  void DrawPresentationBar(ImVec2 min, ImVec2 max);
+  /// The editor's mouse in the world view; true when it took the click.
+  bool EditorMouse(const View& view);
+  /// The robot nearest world point `p` within a few pixels of its body ("" none).
+  std::string RobotAt(Vec2 p, const View& view) const;
+  std::string RunTeachAction(const std::string& action, const std::string& args, bool* known);
+  void SaveSettings();
   void DrawParamSection();
   void DrawMessagesSection();
   void DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool interactive);

@@ -47,13 +47,19 @@ struct RowInput {
 
 // One row: label (with unit), widget, and the fixed-width marks column. `shown` is the value to
 // show (the one waiting for a reset, if any).
-RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks& marks) {
+// Angles in the unit of the window's setting: a tunable in rad (or rad/s) is shown and dragged
+// in degrees when `degrees`; the value stored and edited stays in radians.
+bool IsAngle(const sim::Param& p) { return p.tune.unit == "rad" || p.tune.unit == "rad/s"; }
+constexpr double kDegPerRad = 180.0 / 3.14159265358979323846;
+
+RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks& marks, bool degrees) {
+  const bool as_deg = degrees && IsAngle(p) && p.kind == sim::Param::Kind::kDouble;
   RowInput in;
   ImGui::TableNextRow();
   ImGui::TableSetColumnIndex(0);
   ImGui::AlignTextToFramePadding();
   std::string label = p.tune.label.empty() ? p.key : p.tune.label;
-  if (!p.tune.unit.empty()) label += " [" + p.tune.unit + "]";
+  if (!p.tune.unit.empty()) label += " [" + (as_deg ? (p.tune.unit == "rad" ? std::string("°") : std::string("°/s")) : p.tune.unit) + "]";
   const bool colour = !marks.refusal.empty() || marks.edited;
   if (colour)
     ImGui::PushStyleColor(ImGuiCol_Text, !marks.refusal.empty() ? ImVec4(0.75f, 0.1f, 0.1f, 1)
@@ -85,9 +91,12 @@ RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks&
       double lo = std::min(p.slider_min(), v), hi = std::max(p.slider_max(), v);
       ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp;
       if (p.tune.log_scale && lo > 0) flags |= ImGuiSliderFlags_Logarithmic;
-      if (ImGui::SliderScalar("##v", ImGuiDataType_Double, &v, &lo, &hi, "%.4g", flags) &&
-          std::isfinite(v))
-        out = sim::FormatDouble(std::clamp(v, lo, hi));
+      const double k = as_deg ? kDegPerRad : 1.0;
+      double shown_v = v * k, shown_lo = lo * k, shown_hi = hi * k;
+      const bool changed = ImGui::SliderScalar("##v", ImGuiDataType_Double, &shown_v, &shown_lo,
+                                               &shown_hi, as_deg ? "%.2f°" : "%.4g", flags);
+      if (changed && std::isfinite(shown_v))
+        out = sim::FormatDouble(std::clamp(shown_v / k, lo, hi));
       break;
     }
     case sim::Param::Kind::kInt: {
@@ -193,7 +202,8 @@ void AppUi::DrawParamSection() {
           marks.edited = session_->IsEdited(p.key);
           marks.loaded = session_->LoadedValue(p.key);
           marks.refusal = session_->refusal(p.key);
-          const RowInput in = ParamRow(p, marks.waiting ? w->second : p.Text(), marks);
+          const RowInput in =
+              ParamRow(p, marks.waiting ? w->second : p.Text(), marks, state_.settings.degrees);
           if (!in.value.empty()) edits.push_back({p.key, in.value, in.held});
           if (in.revert) reverts.push_back(p.key);
         }

@@ -51,8 +51,11 @@ void AppUi::DrawWorldMouse(const View& view) {
     state_.auto_fit = false;
     state_.follow = -1;
   }
-  // Picking: the nearest robot (or obstacle centre) within a few pixels of its outline.
-  if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+  // The formation editor takes left clicks while it is on.
+  if (EditorMouse(view)) {
+    state_.drag_name.clear();
+  } else if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+    // Picking: the nearest robot (or obstacle centre) within a few pixels of its outline.
     state_.drag_name.clear();
     const Vec2 m = view.ToWorld(io.MousePos);
     double best = 1e300;
@@ -73,13 +76,13 @@ void AppUi::DrawWorldMouse(const View& view) {
       }
     }
     if (!state_.drag_name.empty() && state_.playing)
-      state_.status = "pause (space) to drag " + state_.drag_name;
+      SetStatus("pause (space) to drag " + state_.drag_name);
   }
   if (!state_.drag_name.empty() && ImGui::IsMouseDown(ImGuiMouseButton_Left) && !state_.playing &&
       ImGui::IsMouseDragging(ImGuiMouseButton_Left, 2.0f)) {
     const Vec2 p = view.ToWorld(io.MousePos);
     session_->Move(state_.drag_name, p.x, p.y);
-    state_.status = "moved " + state_.drag_name;
+    SetStatus("moved " + state_.drag_name);
   }
   if (ImGui::IsMouseReleased(ImGuiMouseButton_Left)) state_.drag_name.clear();
   if (hovered) {
@@ -112,6 +115,9 @@ void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool in
   WorldViewOptions opt;
   opt.grid = state_.grid;
   opt.coordinates = state_.coordinates;
+  opt.scene_overlays = &state_.overlays;
+  opt.legend = state_.legend;
+  opt.degrees = state_.settings.degrees;
   for (const auto& p : pins_)
     if (p->ready())
       opt.overlays.push_back({p->exp.get(), PinLabel(*p), GetTheme(state_.theme).text});
@@ -123,6 +129,29 @@ void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool in
   }
   ImGuiCanvas canvas(ImGui::GetWindowDrawList(), fonts);
   DrawWorldView(canvas, state_.view, shown, GetTheme(state_.theme), opt);
+  // The editor's picks: a ring around each robot picked so far (and the slot being dragged).
+  for (const auto& r : shown.world().robots()) {
+    const bool picked = std::find(state_.edit_picks.begin(), state_.edit_picks.end(), r->name()) !=
+                            state_.edit_picks.end() ||
+                        r->name() == state_.slot_drag;
+    if (!picked) continue;
+    const ImVec2 c = state_.view.ToScreen(r->pose().p());
+    const float rad = static_cast<float>(std::max(r->def().half_length, r->def().radius) * state_.view.scale) + 8;
+    ImGui::GetWindowDrawList()->AddCircle(c, rad, ToImColor({0.15f, 0.45f, 0.9f, 1}), 32, 3.0f);
+  }
+  // A refused change is said over the world view too (presentation mode has no panels).
+  constexpr double kRefusalSeconds = 10.0;
+  if (state_.status_is_error && !state_.status.empty() &&
+      ImGui::GetTime() - state_.status_time < kRefusalSeconds) {
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const float wrap = std::max(100.0f, max.x - min.x - 40);
+    const ImVec2 ext = ImGui::CalcTextSize(state_.status.c_str(), nullptr, false, wrap);
+    const ImVec2 at(min.x + 12, min.y + 60);
+    dl->AddRectFilled(ImVec2(at.x - 6, at.y - 4), ImVec2(at.x + ext.x + 6, at.y + ext.y + 4),
+                      ToImColor({1.0f, 0.93f, 0.93f, 0.95f}), 4.0f);
+    dl->AddText(nullptr, 0.0f, at, ToImColor({0.75f, 0.05f, 0.05f, 1}), state_.status.c_str(),
+                nullptr, wrap);
+  }
   // Drags move the live run's bodies: not while the timeline shows another time.
   if (interactive && &shown == &session_->exp()) DrawWorldMouse(state_.view);
   DrawTimeline(ImVec2(min.x, max.y), ImVec2(max.x, max.y + strip));

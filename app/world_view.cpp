@@ -26,6 +26,120 @@ std::string MetreText(double v, double step) {
 
 }  // namespace
 
+std::set<std::string> DefaultSceneOverlays() {
+  std::set<std::string> out;
+  for (const sim::OverlayInfo& o : sim::Overlays())
+    if (o.on_by_default) out.insert(o.name);
+  return out;
+}
+
+std::string ParseSceneOverlays(const std::string& text, std::set<std::string>* out) {
+  std::set<std::string> next = *out;
+  std::string item;
+  for (std::size_t i = 0; i <= text.size(); ++i) {
+    if (i < text.size() && text[i] != ',') {
+      if (text[i] != ' ') item += text[i];
+      continue;
+    }
+    if (item.empty()) continue;
+    const bool remove = item[0] == '-';
+    const std::string name = remove ? item.substr(1) : item;
+    item.clear();
+    if (name == "all") {
+      for (const sim::OverlayInfo& o : sim::Overlays()) next.insert(o.name);
+    } else if (name == "none") {
+      next.clear();
+    } else if (name == "default") {
+      next = DefaultSceneOverlays();
+    } else {
+      bool known = false;
+      for (const sim::OverlayInfo& o : sim::Overlays()) known = known || o.name == name;
+      if (!known) {
+        std::string names;
+        for (const sim::OverlayInfo& o : sim::Overlays()) names += (names.empty() ? "" : ", ") + o.name;
+        return "unknown overlay '" + name + "' (known: " + names + ", all, none, default, -NAME)";
+      }
+      if (remove)
+        next.erase(name);
+      else
+        next.insert(name);
+    }
+  }
+  *out = std::move(next);
+  return "";
+}
+
+// The legend of the marks the scene drew: a sample of each and its label, bottom left.
+static void DrawLegend(Canvas& cv, const View& view, const Theme& th,
+                const std::vector<CanvasDrawSink::LegendEntry>& entries) {
+  if (entries.empty()) return;
+  const FontRole f = FontRole::kSmall;
+  const float row = cv.FontSize(f) + 6, sample = 26;
+  float w = 0;
+  for (const auto& e : entries) w = std::max(w, cv.TextSize(f, e.label).x);
+  const float h = row * static_cast<float>(entries.size()) + 8;
+  const ImVec2 lo(view.min.x + 10, std::max(view.min.y + 60, view.max.y - 56 - h));
+  const ImVec2 hi(lo.x + w + sample + 24, lo.y + h);
+  cv.FillRect(lo, hi, th.backdrop.WithAlpha(0.9f), 3.0f);
+  cv.StrokeRect(lo, hi, th.legend_border, 1.0f, 3.0f);
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    const auto& e = entries[i];
+    const sim::Color c = th.Ink(e.color);
+    const float y = lo.y + 4 + row * static_cast<float>(i), cy = y + row / 2;
+    const float x0 = lo.x + 7, x1 = x0 + sample, cx = 0.5f * (x0 + x1);
+    const float lw = 2.0f * th.line_scale;
+    switch (e.mark) {
+      case sim::LegendMark::kBody: {
+        cv.FillRect(ImVec2(cx - 9, cy - 6), ImVec2(cx + 9, cy + 6), c, 1.0f);
+        const ImVec2 wedge[3] = {ImVec2(cx + 6, cy), ImVec2(cx - 3, cy - 4), ImVec2(cx - 3, cy + 4)};
+        cv.FillPolygon(wedge, 3, sim::Color{1, 1, 1, 0.9f});
+        break;
+      }
+      case sim::LegendMark::kLine:
+      case sim::LegendMark::kTrail:
+        cv.Line(ImVec2(x0, cy), ImVec2(x1, cy), {c, lw});
+        break;
+      case sim::LegendMark::kDashedLine:
+        cv.Line(ImVec2(x0, cy), ImVec2(x1, cy), {c, lw, LineDash::Dashes(5, 3)});
+        break;
+      case sim::LegendMark::kGhost:
+        cv.StrokeRect(ImVec2(cx - 8, cy - 5), ImVec2(cx + 8, cy + 5), c.WithAlpha(0.6f), 1.5f, 2.0f);
+        break;
+      case sim::LegendMark::kDot:
+        cv.FillCircle(ImVec2(cx, cy), 4.0f, c);
+        cv.StrokeCircle(ImVec2(cx, cy), 4.0f, th.text, 1.0f);
+        break;
+      case sim::LegendMark::kCross:
+        cv.Line(ImVec2(cx - 5, cy - 5), ImVec2(cx + 5, cy + 5), {c, lw});
+        cv.Line(ImVec2(cx - 5, cy + 5), ImVec2(cx + 5, cy - 5), {c, lw});
+        break;
+      case sim::LegendMark::kEllipse: {
+        std::vector<ImVec2> pts;
+        for (int k = 0; k < 24; ++k)
+          pts.push_back(ImVec2(cx + 11 * std::cos(k * 0.2618f), cy + 5 * std::sin(k * 0.2618f)));
+        cv.Polyline(pts.data(), static_cast<int>(pts.size()), {c, 1.5f}, true);
+        break;
+      }
+      case sim::LegendMark::kRing:
+        cv.StrokeCircle(ImVec2(cx, cy), 6.0f, c, lw);
+        break;
+      case sim::LegendMark::kArrow:
+        cv.Line(ImVec2(x0, cy), ImVec2(x1, cy), {c, lw});
+        cv.Line(ImVec2(x1, cy), ImVec2(x1 - 6, cy - 4), {c, lw});
+        cv.Line(ImVec2(x1, cy), ImVec2(x1 - 6, cy + 4), {c, lw});
+        break;
+      case sim::LegendMark::kArc: {
+        std::vector<ImVec2> pts;
+        for (int k = 0; k <= 8; ++k)
+          pts.push_back(ImVec2(x0 + 2 + 22 * std::cos(-k * 0.12f), cy + 6 + 22 * std::sin(-k * 0.12f) * 0.6f));
+        cv.Polyline(pts.data(), static_cast<int>(pts.size()), {c, 1.5f});
+        break;
+      }
+    }
+    cv.Text(ImVec2(lo.x + 14 + sample, y + 2), f, th.text, e.label);
+  }
+}
+
 double GridStep(double ppm, double min_px) {
   double step = 1e-3;
   static const double kMult[] = {1, 2, 5};
@@ -81,6 +195,8 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
   }
 
   CanvasDrawSink sink(cv, view, th, FontRole::kSmall);
+  sink.SetOverlays(opt.scene_overlays);
+  sink.SetAnglesInDegrees(opt.degrees);
   exp.Draw(sink);
   for (const WorldOverlay& o : opt.overlays) {
     FadedDrawSink faded(sink, 0.4f);
@@ -135,6 +251,7 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
       Label(cv, th, FontRole::kSmall, ImVec2(view.min.x + 12, view.min.y + 36), th.axis,
             opt.caption);
   }
+  if (opt.legend) DrawLegend(cv, view, th, sink.legend());
   // Legend of the overlays, top right: a dashed sample in the entry's colour and its label.
   if (!opt.overlays.empty()) {
     const float row = cv.FontSize(FontRole::kSmall) + 6, sample = 26;

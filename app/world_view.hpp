@@ -2,6 +2,9 @@
 /// \file The world view: background, metre grid with coordinates, scale bar, simulated time, then
 /// everything the experiment draws through sim::DrawSink, onto any Canvas in any theme.
 
+#include <set>
+#include <string>
+
 #include "app/canvas.hpp"
 #include "app/theme.hpp"
 #include "app/view.hpp"
@@ -24,7 +27,18 @@ struct WorldViewOptions {
   std::string caption;      ///< drawn under the time (scenario name)
   std::vector<WorldOverlay> overlays;  ///< drawn faded after the experiment, listed top right
   std::string time_note;               ///< after the time label, e.g. "(timeline; live at 7.00 s)"
+  /// Overlays of the scene to draw (sim::Overlays() names); nullptr: the defaults.
+  const std::set<std::string>* scene_overlays = nullptr;
+  bool legend = false;  ///< a legend of every kind of mark drawn, bottom left
+  bool degrees = true;  ///< angles in the scene's labels in degrees (else radians)
 };
+
+/// The overlays on by default (sim::Overlays()).
+std::set<std::string> DefaultSceneOverlays();
+/// Applies "name,name,..." to `out` in order: a name adds an overlay, "-name" removes it, "all",
+/// "none" and "default" set them all. Returns "" or why not (an unknown name, with the known
+/// ones); `out` is then unchanged.
+std::string ParseSceneOverlays(const std::string& text, std::set<std::string>* out);
 
 /// Draws the experiment into `view`'s rectangle of `canvas` (clipped to it).
 void DrawWorldView(Canvas& canvas, const View& view, const sim::Experiment& exp, const Theme& theme,

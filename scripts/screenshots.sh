@@ -142,4 +142,6 @@ if command -v xvfb-run >/dev/null; then
     --set duration=16.3 --size 1600x900 --speed max --exit-after 202 --script "$TMP/lesson.txt" \
     >/dev/null
 fi
+# Teaching: the formation editor, overlays, presentation mode (README "Teaching").
+bash scripts/screenshots_teaching.sh "$BIN"
 ls -1 "$OUT"/*.png "$OUT"/*.svg

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace formsim::sim {
 
@@ -54,6 +55,36 @@ void DrawRobotBody(DrawSink& draw, const Pose2& pose, const std::vector<Vec2>& b
   // is large enough for a name to sit beside its neighbours'.
   if (!name.empty() && extent_px >= 12.0)
     draw.Text({pose.x, pose.y + extent}, name, Color{0.1f, 0.1f, 0.1f, 1.0f}, -6.0f, -16.0f);
+}
+
+std::string AngleLabel(const DrawSink& draw, double rad) {
+  char buf[32];
+  if (draw.AnglesInDegrees())
+    std::snprintf(buf, sizeof buf, "%.1f°", rad * 180.0 / 3.14159265358979323846);
+  else
+    std::snprintf(buf, sizeof buf, "%.3f rad", rad);
+  return buf;
+}
+
+const std::vector<OverlayInfo>& Overlays() {
+  static const std::vector<OverlayInfo> k = {
+      {"slots", "desired slots (ghosts)", true},
+      {"control_points", "control points M", true},
+      {"links", "links with l (and φ)", true},
+      {"measured", "measured l, φ and estimates (arcs)", false},
+      {"errors", "error vectors M -> slot", false},
+      {"triangles", "l-l triangles and singular lines", false},
+      {"velocity", "command: feed-forward + feedback", false},
+      {"covariance", "estimates and UKF ellipses", true},
+      {"graph", "formation graph (arrows, law)", false},
+  };
+  return k;
+}
+
+bool OverlayOnByDefault(const std::string& name) {
+  for (const OverlayInfo& o : Overlays())
+    if (o.name == name) return o.on_by_default;
+  return false;
 }
 
 }  // namespace formsim::sim

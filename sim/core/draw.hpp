@@ -19,6 +19,21 @@ struct Color {
 /// A qualitative palette (Okabe-Ito, colour-blind safe) used for robots and series.
 Color PaletteColor(int index);
 
+/// Kinds of mark a legend shows (the scene names each kind it drew, see DrawSink::Legend).
+enum class LegendMark { kBody, kLine, kDashedLine, kGhost, kDot, kCross, kEllipse, kRing, kArrow, kArc, kTrail };
+
+/// An optional layer of a scene ("what the law sees"): its name (scenario `view: {overlays}`,
+/// `--overlay`, the View panel), a label for the panel, and whether views show it by default.
+struct OverlayInfo {
+  std::string name, label;
+  bool on_by_default = false;
+};
+/// Every overlay a scene may draw: slots, control_points, links, measured, errors, triangles,
+/// velocity, covariance, graph.
+const std::vector<OverlayInfo>& Overlays();
+/// Whether overlay `name` is on by default (false for unknown names).
+bool OverlayOnByDefault(const std::string& name);
+
 /// The draw interface. Every method has a world-space meaning; the implementation maps it to
 /// pixels with the current view (pan, zoom).
 class DrawSink {
@@ -39,6 +54,14 @@ class DrawSink {
   virtual void Text(Vec2 p, const std::string& text, Color color, float dx_px = 0, float dy_px = 0) = 0;
   /// A ring that grows and fades, to flash an event (saturation, collision). `age` in [0,1].
   virtual void Flash(Vec2 p, double radius, Color color, float age) = 0;
+  /// Whether the view wants overlay `name` (see Overlays()); by default the overlays that are
+  /// on by default.
+  virtual bool Shows(const std::string& name) const { return OverlayOnByDefault(name); }
+  /// Names a kind of mark the scene drew, for the view's legend (called once per kind per
+  /// frame; repeated calls with the same label are ignored). Default: no legend.
+  virtual void Legend(LegendMark /*mark*/, Color /*color*/, const std::string& /*label*/) {}
+  /// Whether angles in labels are wanted in degrees (else radians); the window's setting.
+  virtual bool AnglesInDegrees() const { return true; }
   /// Pixels per metre of the view, for level of detail: a scene of a thousand robots skips what
   /// would be smaller than a pixel or two and labels that could not be read. 0 when the sink
   /// has no such scale (draw everything).
@@ -50,6 +73,9 @@ class DrawSink {
     hi = {1e300, 1e300};
   }
 };
+
+/// An angle as a label in the unit `draw` wants: "225.0°" or "3.927 rad".
+std::string AngleLabel(const DrawSink& draw, double rad);
 
 /// Level of detail for a scene drawn into `draw`: how many pixels `metres` spans (a large
 /// number when the sink has no scale, so that everything is drawn).

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <iterator>
 
 #include "sim/core/run_output.hpp"
 #include "sim/core/scenario_files.hpp"
@@ -15,7 +16,7 @@ Session::Session(const std::string& file, std::vector<Override> cli_overrides)
     : Session(ScenarioSource::FromFile(file), std::move(cli_overrides)) {}
 
 Session::Session(ScenarioSource source, std::vector<Override> cli_overrides)
-    : source_(std::move(source)), cli_(std::move(cli_overrides)), base_(cli_) {
+    : source_(std::move(source)), disk_file_(source_.file()), cli_(std::move(cli_overrides)), base_(cli_) {
   applied_ = ParseScenario(source_, base_);
   loaded_ = applied_.params;
   exp_ = BuildExperiment(applied_);
@@ -135,9 +136,18 @@ std::string Session::Edit(const std::string& key, const std::string& value,
   refusals_.erase(key);
   // Undo steps: undo and redo move between the two stacks themselves.
   if (origin != "undo" && origin != "redo") {
-    if (continues_gesture && !undo_.empty() && undo_.back().key == key) {
-      undo_.back().after = canonical;
-      if (undo_.back().after == undo_.back().before) undo_.pop_back();  // dragged back
+    // A gesture may edit a few keys together (a slot dragged edits l_des and φ_des): it
+    // continues the latest undo step of the same key among the last few.
+    auto same = undo_.end();
+    if (continues_gesture)
+      for (auto it = undo_.rbegin(); it != undo_.rend() && it - undo_.rbegin() < 4; ++it)
+        if (!it->structure && it->key == key) {
+          same = std::prev(it.base());
+          break;
+        }
+    if (same != undo_.end()) {
+      same->after = canonical;
+      if (same->after == same->before) undo_.erase(same);  // dragged back
     } else if (before != canonical) {
       undo_.push_back({key, before, canonical});
       if (undo_.size() > 500) undo_.erase(undo_.begin());
@@ -153,9 +163,27 @@ std::string Session::Edit(const std::string& key, const std::string& value,
   return "";
 }
 
+std::string Session::RestructureTo(const std::string& text, const std::string& origin) {
+  std::string placed;
+  try {
+    placed = exp_->RestructuredText(text, "");  // the robots stay where they are now
+  } catch (const std::exception& e) {
+    return origin + " refused: " + e.what();
+  }
+  if (std::string err = AdoptStructure(placed, "", origin); !err.empty())
+    return origin + " refused: " + err;
+  return "";
+}
+
 std::string Session::Undo() {
   if (undo_.empty()) return "nothing to undo";
   const UndoStep u = undo_.back();
+  if (u.structure) {
+    if (std::string err = RestructureTo(u.before, "undo"); !err.empty()) return err;
+    undo_.pop_back();
+    redo_.push_back(u);
+    return "";
+  }
   if (std::string err = Edit(u.key, u.before, "undo"); !err.empty()) return "undo refused: " + err;
   undo_.pop_back();
   redo_.push_back(u);
@@ -165,6 +193,12 @@ std::string Session::Undo() {
 std::string Session::Redo() {
   if (redo_.empty()) return "nothing to redo";
   const UndoStep u = redo_.back();
+  if (u.structure) {
+    if (std::string err = RestructureTo(u.after, "redo"); !err.empty()) return err;
+    redo_.pop_back();
+    undo_.push_back(u);
+    return "";
+  }
   if (std::string err = Edit(u.key, u.after, "redo"); !err.empty()) return "redo refused: " + err;
   redo_.pop_back();
   undo_.push_back(u);
@@ -173,11 +207,13 @@ std::string Session::Redo() {
 
 std::string Session::UndoText() const {
   if (undo_.empty()) return "";
+  if (undo_.back().structure) return "formation: " + undo_.back().key;
   return undo_.back().key + " " + undo_.back().after + " -> " + undo_.back().before;
 }
 
 std::string Session::RedoText() const {
   if (redo_.empty()) return "";
+  if (redo_.back().structure) return "formation: " + redo_.back().key;
   return redo_.back().key + " " + redo_.back().before + " -> " + redo_.back().after;
 }
 
@@ -304,7 +340,7 @@ void Session::StartRun() {
 
 std::string Session::Reload() {
   try {
-    return Reloaded(ScenarioSource::FromFile(source_.file()));
+    return Reloaded(ScenarioSource::FromFile(disk_file_));
   } catch (const std::exception& e) {
     return std::string("reload failed, the run goes on unchanged: ") + e.what();
   }
@@ -324,6 +360,7 @@ std::string Session::Reloaded(ScenarioSource source) {
       run_setup_(*exp);
     }
     source_ = std::move(source);
+    disk_file_ = source_.file();
     applied_ = std::move(parsed);
     exp_ = std::move(exp);
   } catch (const std::exception& e) {
@@ -383,6 +420,69 @@ std::string Session::Branch(long step) {
   observer_ = std::move(observer);
   undo_ = undo;
   redo_ = redo;
+  return "";
+}
+
+std::string Session::BakedText() const {
+  return TunedScenarioText(source_, EffectiveOverrides(), disk_file_);
+}
+
+std::string Session::Restructure(const std::string& command, const std::string& origin) {
+  std::string before, after;
+  try {
+    before = BakedText();
+    after = exp_->RestructuredText(before, command);
+  } catch (const std::exception& e) {
+    Reject("formation", e.what());
+    return e.what();
+  }
+  if (std::string err = AdoptStructure(after, command, origin); !err.empty()) {
+    Reject("formation", err);
+    return err;
+  }
+  undo_.push_back({command, before, after, true});
+  if (undo_.size() > 500) undo_.erase(undo_.begin());
+  redo_.clear();
+  return "";
+}
+
+std::string Session::RestructureFrom(ScenarioSource source, const std::string& command,
+                                     const std::string& origin) {
+  return AdoptStructure(source.text(), command, origin);
+}
+
+std::string Session::AdoptStructure(const std::string& text, const std::string& command,
+                                    const std::string& origin) {
+  const long from = exp_->steps();
+  // Every edit is in the text: the new run starts from it alone (the seed included).
+  // Messages about the new text name it after the file (its lines are the edited text's).
+  const fs::path disk(disk_file_);
+  const std::string name = (disk.parent_path() / (disk.stem().string() + ".edited.yaml")).string();
+  ScenarioSource source = ScenarioSource::FromText(text, name, source_.dir());
+  try {
+    ParsedScenario parsed = ParseScenario(source, {});
+    std::unique_ptr<Experiment> exp = BuildExperiment(parsed);
+    exp->SetThreads(exp_->threads());
+    if (run_setup_) {
+      exp_->mutable_recorder().AbandonStream();
+      run_setup_(*exp);
+    }
+    source_ = std::move(source);
+    applied_ = std::move(parsed);
+    exp_ = std::move(exp);
+  } catch (const std::exception& e) {
+    return std::string("not applied (the run goes on unchanged): the edited formation: ") + e.what();
+  }
+  base_.clear();
+  reset_edits_.clear();
+  StartRun();
+  ++restructures_;
+  SessionEvent e;
+  e.kind = SessionEvent::Kind::kRestructure;
+  e.key = command;
+  e.origin = origin;
+  e.source = std::make_shared<ScenarioSource>(source_);
+  Notify(e, from);
   return "";
 }
 

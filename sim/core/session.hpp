@@ -30,6 +30,8 @@ struct SessionEvent {
     kReset,   ///< a reset, with `seed` when one was given
     kReload,  ///< the file re-read: `source` = its text then
     kBranch,  ///< the run restarted from its own step `at`
+    kRestructure,  ///< the scenario's structure changed: `source` = the new text, key = the
+                   ///< command ("" for undo / redo), origin
     kNote,    ///< for the record only (pin, unpin, seeds, restore): key = what, value = detail
     kEnd,     ///< the last step of the record
   };
@@ -65,7 +67,9 @@ class Session {
 
   Experiment& exp() { return *exp_; }
   const Experiment& exp() const { return *exp_; }
-  const std::string& file() const { return source_.file(); }
+  /// The scenario file on disk (also after structural changes, whose text is named
+  /// `<stem>.edited.yaml` in messages).
+  const std::string& file() const { return disk_file_; }
   const ScenarioSource& source() const { return source_; }
   /// Every tunable with the value the running experiment uses.
   const ParamTable& params() const { return applied_.params; }
@@ -114,6 +118,19 @@ class Session {
   /// Rebuilds from the file and every accepted edit (with `seed` when given). Returns "" or
   /// the reason it failed, in which case the running experiment stays.
   std::string Reset(std::optional<std::uint64_t> seed = std::nullopt);
+  /// Changes the scenario's structure (a formation's robots, leaders, laws, shape) by a command
+  /// the experiment understands (Experiment::RestructuredText, e.g. "add l_phi R1 0.5 -0.3"):
+  /// the scenario with every edit so far written into its text is rewritten by the command, then
+  /// read by the one loader (every check of a load applies: a refused change leaves everything as
+  /// it was) and a new run starts from it, the robots where they are now. The new text is the
+  /// session's scenario from then on: resets, branches, Save and the session record use it, and
+  /// Undo / Redo take structural changes back like edits. Returns "" or why it was refused.
+  std::string Restructure(const std::string& command, const std::string& origin = "GUI edit");
+  /// Adopts `source` as the restructured scenario (a replayed session record).
+  std::string RestructureFrom(ScenarioSource source, const std::string& command,
+                              const std::string& origin);
+  /// Number of structural changes applied since the file was loaded (undo included).
+  int restructures() const { return restructures_; }
   /// Re-reads the file from disk with the command-line overrides only (GUI edits are dropped).
   /// Returns "" or the reason; on failure everything stays as it was.
   std::string Reload();
@@ -162,11 +179,23 @@ class Session {
   void StartRun();
   std::string Reloaded(ScenarioSource source);
 
+  /// Reads `text` as the new scenario and starts a run from it. Returns "" or why not.
+  std::string AdoptStructure(const std::string& text, const std::string& command,
+                             const std::string& origin);
+  /// Undo / redo of a structural change: the scenario `text` with the robots where they are.
+  std::string RestructureTo(const std::string& text, const std::string& origin);
+  /// The scenario's text with every effective edit written into it.
+  std::string BakedText() const;
+
+  /// An edit (key, values) or a structural change (`structure`: before / after are the
+  /// scenario texts, key the command).
   struct UndoStep {
     std::string key, before, after;
+    bool structure = false;
   };
 
   ScenarioSource source_;
+  std::string disk_file_;             ///< what Reload reads
   std::vector<Override> cli_;         ///< --set / --seed as given
   std::vector<Override> base_;        ///< in force from the start of the current run
   std::vector<Override> run_edits_;   ///< applied during the current run (with their step)
@@ -190,6 +219,7 @@ class Session {
   std::vector<std::string> rejected_;
   std::map<std::string, std::string> refusals_;
   int accepted_ = 0;
+  int restructures_ = 0;
 };
 
 }  // namespace formsim::sim

@@ -19,7 +19,8 @@ const std::vector<std::pair<Kind, std::string>>& KindNames() {
   static const std::vector<std::pair<Kind, std::string>> k = {
       {Kind::kLoad, "load"},     {Kind::kEdit, "edit"},     {Kind::kApply, "apply"},
       {Kind::kAction, "action"}, {Kind::kMove, "move"},     {Kind::kReset, "reset"},
-      {Kind::kReload, "reload"}, {Kind::kBranch, "branch"}, {Kind::kEnd, "end"}};
+      {Kind::kReload, "reload"}, {Kind::kBranch, "branch"}, {Kind::kEnd, "end"},
+      {Kind::kRestructure, "restructure"}};
   return k;
 }
 
@@ -57,6 +58,11 @@ std::string Emit(const std::vector<SessionEvent>& events, long end_step, bool qu
         break;
       case Kind::kReload:
         y << YAML::Key << "scenario" << YAML::Value << e.source->sha256();
+        break;
+      case Kind::kRestructure:
+        y << YAML::Key << "scenario" << YAML::Value << e.source->sha256() << YAML::Key
+          << "command" << YAML::Value << e.key << YAML::Key << "origin" << YAML::Value
+          << e.origin;
         break;
       case Kind::kEdit:
         y << YAML::Key << "key" << YAML::Value << e.key << YAML::Key << "value" << YAML::Value
@@ -153,6 +159,11 @@ SessionRecord SessionRecord::Parse(const std::string& text, const std::string& f
       case Kind::kReload:
         e.source = source(n);
         break;
+      case Kind::kRestructure:
+        e.source = source(n);
+        e.key = r.Text(n, "command", false);
+        e.origin = r.Text(n, "origin");
+        break;
       case Kind::kEdit:
         e.key = r.Text(n, "key");
         e.value = r.Text(n, "value");
@@ -246,6 +257,9 @@ void SessionReplay::Do(const SessionEvent& e, std::size_t index) {
       break;
     case Kind::kReload:
       check(session_->ReloadFrom(*e.source));
+      break;
+    case Kind::kRestructure:
+      check(session_->RestructureFrom(*e.source, e.key, e.origin));
       break;
     case Kind::kBranch:
       check(session_->Branch(e.at));

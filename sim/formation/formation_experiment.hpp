@@ -43,6 +43,7 @@
 /// follower's control point is checked against the obstacles' Box2D shapes every control
 /// period; within the safety distance it follows obstacle_avoidance.hpp's law.
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -72,6 +73,14 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
   std::vector<FigureSpec> Figures() const override;
   void Bounds(Vec2& lo, Vec2& hi) const override;
   Metrics Results() const override;
+  /// Formation commands (add, remove, attach, shape): see sim/formation/formation_edit.hpp.
+  std::string RestructuredText(const std::string& text, const std::string& command) const override;
+  bool Restructurable() const override { return true; }
+  std::vector<std::string> LeadersOf(const std::string& robot) const override;
+  /// l-φ: l_des and φ_des of a control point at `p` seen from the leader now; l-l: the two
+  /// distances to the leaders now.
+  std::vector<std::pair<std::string, std::string>> SlotEdits(const std::string& robot,
+                                                             Vec2 p) const override;
 
   /// Read-only views for tests and benchmarks.
   struct LinkView {
@@ -188,6 +197,9 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
   double DesiredL(const Link& l) const;
   Pose2 EstimatedPose(const Agent& a) const;
   Pose2 DesiredPose(int robot) const;
+  /// The optional layers of "what the law sees" (measured arcs, error vectors, l-l triangles,
+  /// feed-forward / feedback velocity, formation graph), each when the sink Shows() it.
+  void DrawLawOverlays(DrawSink& draw, double body_px, const std::function<bool(Vec2)>& in_view) const;
   cf::LinkState ForControl(const Link& link) const;
 
   std::vector<Agent> agents_;

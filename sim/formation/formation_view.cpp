@@ -10,6 +10,7 @@ namespace formsim::sim::formation {
 namespace {
 
 using cf::FormationLaw;
+using cf::Twist;
 
 // Plots stay readable: at most this many series of one kind per figure.
 constexpr std::size_t kMaxSeries = FormationExperiment::kManyLinks;
@@ -187,20 +188,27 @@ void FormationExperiment::DrawScene(DrawSink& draw) const {
     for (std::size_t k = 0; k < a.trail.size(); ++k) pts.push_back(a.trail[k]);
     pts.push_back(a.robot->pose().p());
     draw.Polyline(pts, PaletteColor(cfg_.robots[i].body.color_index).WithAlpha(0.8f), 2.0f, !many);
+    draw.Legend(LegendMark::kTrail, PaletteColor(cfg_.robots[i].body.color_index), "trail (path so far)");
   }
   // Desired slots (ghosts, once they can be told from the robots) and leader → control point
   // links, once the robots are bodies.
-  if (body_px >= 4.0) {
+  const bool show_slots = draw.Shows("slots"), show_links = draw.Shows("links");
+  const Color link_ink{0.35f, 0.35f, 0.35f, 0.7f};
+  if (body_px >= 4.0 && (show_slots || show_links)) {
     for (std::size_t j = 0; j < agents_.size(); ++j) {
       const Agent& a = agents_[j];
       if (a.links.empty() || !in_view(a.robot->pose().p())) continue;
       const Color c = PaletteColor(cfg_.robots[j].body.color_index);
-      const Pose2 g = body_px >= 8.0 ? DesiredPose(static_cast<int>(j)) : Pose2{std::nan(""), 0, 0};
-      if (std::isfinite(g.x)) DrawRobotBody(draw, g, a.robot->outline(), c, "", true);
+      const Pose2 g = show_slots && body_px >= 8.0 ? DesiredPose(static_cast<int>(j))
+                                                   : Pose2{std::nan(""), 0, 0};
+      if (std::isfinite(g.x)) {
+        DrawRobotBody(draw, g, a.robot->outline(), c, "", true);
+        draw.Legend(LegendMark::kGhost, c, "desired slot (ghost)");
+      }
+      if (!show_links) continue;
       const Vec2 m = cf::ControlPoint(a.robot->pose(), cfg_.L);
-      for (int li : a.links)
-        draw.Segment(agents_[links_[li].leader].robot->pose().p(), m,
-                     Color{0.35f, 0.35f, 0.35f, 0.7f}, 1.0f);
+      for (int li : a.links) draw.Segment(agents_[links_[li].leader].robot->pose().p(), m, link_ink, 1.0f);
+      draw.Legend(LegendMark::kLine, link_ink, "link: leader -> control point M");
     }
   }
   // Robots, then their control points and the link labels (l, and φ for l-φ links) on top.
@@ -209,14 +217,22 @@ void FormationExperiment::DrawScene(DrawSink& draw) const {
     if (!in_view(a.robot->pose().p())) continue;
     DrawRobotBody(draw, a.robot->pose(), a.robot->outline(),
                   PaletteColor(cfg_.robots[i].body.color_index), a.robot->name());
+    draw.Legend(LegendMark::kBody, PaletteColor(cfg_.robots[i].body.color_index),
+                "robot (white wedge: heading)");
   }
-  if (body_px >= 6.0) {
+  const bool show_m = draw.Shows("control_points");
+  if (body_px >= 6.0 && (show_m || show_links)) {
     for (std::size_t j = 0; j < agents_.size(); ++j) {
       const Agent& a = agents_[j];
       if (a.links.empty() || !in_view(a.robot->pose().p())) continue;
       const Vec2 m = cf::ControlPoint(a.robot->pose(), cfg_.L);
-      draw.Circle(m, 0.012, PaletteColor(cfg_.robots[j].body.color_index),
-                  Color{0.1f, 0.1f, 0.1f, 1.0f});
+      if (show_m) {
+        draw.Circle(m, 0.012, PaletteColor(cfg_.robots[j].body.color_index),
+                    Color{0.1f, 0.1f, 0.1f, 1.0f});
+        draw.Legend(LegendMark::kDot, PaletteColor(cfg_.robots[j].body.color_index),
+                    "control point M (L ahead of the axle)");
+      }
+      if (!show_links) continue;
       for (int li : a.links) {
         const Link& l = links_[li];
         // A label needs about 90 px of link to sit on without covering its neighbours.
@@ -224,7 +240,7 @@ void FormationExperiment::DrawScene(DrawSink& draw) const {
         const Vec2 mid = (agents_[l.leader].robot->pose().p() + m) * 0.5;
         std::string label = Sprintf("%.3f m", l.truth.l);
         if (cfg_.robots[l.follower].node.law == FormationLaw::kLPhi)
-          label += Sprintf(", %.1f°", control::WrapTo2Pi(l.truth.phi) * 180 / control::kPi);
+          label += ", " + AngleLabel(draw, control::WrapTo2Pi(l.truth.phi));
         draw.Text(mid, label, Color{0.25f, 0.25f, 0.25f, 0.9f}, 4.0f, 4.0f);
       }
     }
@@ -258,14 +274,17 @@ void FormationExperiment::DrawScene(DrawSink& draw) const {
   // to the follower's position through the Jacobian J of p_j(l, φ, α) at the leader's true
   // pose: Σ = J P Jᵀ (first-order propagation; the leader's own uncertainty is not included).
   // Crosses and ellipses smaller than a few pixels are left out.
-  for (std::size_t j = 0; j < agents_.size() && body_px >= 4.0; ++j) {
+  for (std::size_t j = 0; j < agents_.size() && body_px >= 4.0 && draw.Shows("covariance"); ++j) {
     const Agent& a = agents_[j];
     if (a.links.empty() || Mode(static_cast<int>(j)) == EstimatorMode::kTruth) continue;
     if (!in_view(a.robot->pose().p())) continue;
     const Link& l = links_[a.links[0]];
     const Color c = PaletteColor(cfg_.robots[j].body.color_index);
     const Pose2 e = EstimatedPose(a);
-    if (PixelsOf(draw, 0.03) >= 4.0) draw.Cross(e.p(), 0.03, c);
+    if (PixelsOf(draw, 0.03) >= 4.0) {
+      draw.Cross(e.p(), 0.03, c);
+      draw.Legend(LegendMark::kCross, c, "estimated position (from the link estimate)");
+    }
     if (Mode(static_cast<int>(j)) == EstimatorMode::kUkf && l.filter_ready) {
       const Eigen::Matrix<double, 2, 3> J =
           cf::FollowerPositionJacobian(agents_[l.leader].robot->pose(), l.used, cfg_.L);
@@ -274,7 +293,10 @@ void FormationExperiment::DrawScene(DrawSink& draw) const {
       const double tr = 0.5 * (S(0, 0) + S(1, 1)), det = S.determinant();
       const double major = 4.0 * std::sqrt(std::max(0.0, tr + std::sqrt(std::max(0.0, tr * tr - det))));
       if (!many || PixelsOf(draw, major) >= 3.0)
+      {
         draw.CovarianceEllipse(e.p(), S(0, 0), S(0, 1), S(1, 1), 2.0, c);
+        draw.Legend(LegendMark::kEllipse, c, "UKF 2σ position ellipse");
+      }
     }
   }
   // Flashes for recent saturations, collisions, singularities and filter faults.
@@ -295,7 +317,157 @@ void FormationExperiment::DrawScene(DrawSink& draw) const {
         double extent = 0.0;
         for (const Vec2& v : a.robot->outline()) extent = std::max(extent, v.Norm());
         draw.Flash(a.robot->pose().p(), extent + 0.02, c, static_cast<float>(age));
+        draw.Legend(LegendMark::kRing, c, "event: " + it->kind);
       }
+  }
+  DrawLawOverlays(draw, body_px, in_view);
+}
+
+namespace {
+
+// An arc of radius r about c from angle a0 to a1 (rad, counter-clockwise by the shorter way).
+std::vector<Vec2> Arc(Vec2 c, double r, double a0, double a1) {
+  const double sweep = control::WrapToPi(a1 - a0);
+  const int n = std::max(4, static_cast<int>(std::abs(sweep) / 0.08));
+  std::vector<Vec2> pts;
+  for (int k = 0; k <= n; ++k) {
+    const double a = a0 + sweep * k / n;
+    pts.push_back(c + Vec2{std::cos(a), std::sin(a)} * r);
+  }
+  return pts;
+}
+
+// An arrow from a to b with a head of `head` metres.
+void Arrow(DrawSink& draw, Vec2 a, Vec2 b, Color c, float px, double head) {
+  const Vec2 d = b - a;
+  const double n = d.Norm();
+  if (!(n > 1e-9)) return;
+  draw.Segment(a, b, c, px);
+  const Vec2 u = d * (1.0 / n), v{-u.y, u.x};
+  const double h = std::min(head, 0.5 * n);
+  draw.Segment(b, b - u * h + v * (0.5 * h), c, px);
+  draw.Segment(b, b - u * h - v * (0.5 * h), c, px);
+}
+
+// Green when the l-l determinant is comfortable, through orange to red at the singular line.
+Color SingularInk(double abs_sin, double threshold) {
+  const double t = std::clamp((abs_sin - threshold) / std::max(0.5 - threshold, 1e-6), 0.0, 1.0);
+  return t > 0.5 ? Color{static_cast<float>(0.9 * (1 - t) * 2), 0.6f, 0.2f, 1}
+                 : Color{0.9f, static_cast<float>(0.1 + t), 0.1f, 1};
+}
+
+
+}  // namespace
+
+void FormationExperiment::DrawLawOverlays(DrawSink& draw, double body_px,
+                                          const std::function<bool(Vec2)>& in_view) const {
+  if (body_px < 6.0) return;
+  const double L = cfg_.L;
+  const Color ink{0.2f, 0.2f, 0.2f, 0.95f};
+  // Formation graph: an arrow from each leader to each follower, with the law on the edge.
+  if (draw.Shows("graph")) {
+    const Color g{0.35f, 0.2f, 0.6f, 0.9f};
+    for (const Link& l : links_) {
+      const Vec2 a = agents_[l.leader].robot->pose().p(), b = agents_[l.follower].robot->pose().p();
+      if (!in_view(a) && !in_view(b)) continue;
+      const Vec2 d = b - a;
+      const double n = d.Norm();
+      if (!(n > 0.1)) continue;
+      const Vec2 u = d * (1.0 / n);
+      Arrow(draw, a + u * 0.1, b - u * 0.1, g, 2.0f, 0.06);
+      const bool lphi = cfg_.robots[l.follower].node.law == FormationLaw::kLPhi;
+      draw.Text((a + b) * 0.5, lphi ? "l-φ" : "l-l", g, -14.0f, -16.0f);
+    }
+    if (!links_.empty()) draw.Legend(LegendMark::kArrow, g, "graph: leader -> follower (law)");
+  }
+  for (std::size_t j = 0; j < agents_.size(); ++j) {
+    const Agent& a = agents_[j];
+    if (a.links.empty() || !in_view(a.robot->pose().p())) continue;
+    const FormationRobotDef& r = cfg_.robots[j];
+    const Pose2 pj = a.robot->pose();
+    const Vec2 m = cf::ControlPoint(pj, L);
+    const Color c = PaletteColor(r.body.color_index);
+    // Measured l and φ as the law sees them: an arc from the leader's heading to the bearing
+    // of M (l-φ), labelled; the estimate's arc dashed-looking (faint) when an estimator runs.
+    if (draw.Shows("measured")) {
+      for (int li : a.links) {
+        const Link& l = links_[li];
+        const Pose2 pi = agents_[l.leader].robot->pose();
+        const double rad = std::min(0.35 * l.truth.l, 0.25);
+        draw.Segment(pi.p(), pi.p() + Vec2{std::cos(pi.theta), std::sin(pi.theta)} * (rad * 1.3), ink, 1.0f);
+        if (r.node.law == FormationLaw::kLPhi) {
+          draw.Polyline(Arc(pi.p(), rad, pi.theta, pi.theta + l.truth.phi), ink, 1.5f, false);
+          draw.Text(pi.p() + Vec2{std::cos(pi.theta + 0.5 * l.truth.phi), std::sin(pi.theta + 0.5 * l.truth.phi)} * rad,
+                    "φ " + AngleLabel(draw, control::WrapTo2Pi(l.truth.phi)), ink, 4.0f, -6.0f);
+        }
+        // l as an arc of radius l about the leader through M.
+        const double b = std::atan2(m.y - pi.y, m.x - pi.x);
+        draw.Polyline(Arc(pi.p(), l.truth.l, b - 0.12, b + 0.12), ink, 1.5f, false);
+        draw.Text(m, Sprintf("l %.3f m", l.truth.l), ink, 8.0f, 6.0f);
+        if (Mode(static_cast<int>(j)) != EstimatorMode::kTruth) {
+          const Color e = c.WithAlpha(0.6f);
+          const double phi_est = cfg_.bearing == cf::BearingConvention::kDas ? l.used.phi : l.truth.phi;
+          if (r.node.law == FormationLaw::kLPhi)
+            draw.Polyline(Arc(pi.p(), rad * 0.8, pi.theta, pi.theta + phi_est), e, 1.5f, false);
+          draw.Polyline(Arc(pi.p(), l.used.l, b - 0.08, b + 0.08), e, 3.0f, false);
+          draw.Text(m, Sprintf("l est %.3f m", l.used.l), e, 8.0f, 22.0f);
+          draw.Legend(LegendMark::kArc, e, "estimated l (and φ) used by the law");
+        }
+      }
+      draw.Legend(LegendMark::kArc, ink, "measured φ (from leader heading) and l");
+    }
+    const Pose2 g = DesiredPose(static_cast<int>(j));
+    // Error vector: from M to where M should be.
+    if (draw.Shows("errors") && std::isfinite(g.x)) {
+      const Vec2 md = cf::ControlPoint(g, L);
+      const Color e{0.85f, 0.3f, 0.0f, 1.0f};
+      Arrow(draw, m, md, e, 2.0f, 0.03);
+      const double err = (md - m).Norm();
+      if (err > 1e-4) draw.Text(md, err >= 0.01 ? Sprintf("%.1f cm", err * 100) : Sprintf("%.1f mm", err * 1000), e, 6.0f, -8.0f);
+      draw.Legend(LegendMark::kArrow, e, "error vector M -> desired M");
+    }
+    // l-l: the triangle of the two leaders and M, and the singular line through the leaders in a
+    // colour from green (|sin| comfortable) to red (at the threshold and below).
+    if (draw.Shows("triangles") && r.node.law == FormationLaw::kLL) {
+      const Vec2 p1 = agents_[links_[a.links[0]].leader].robot->pose().p();
+      const Vec2 p2 = agents_[links_[a.links[1]].leader].robot->pose().p();
+      const double s = std::abs(a.sin_ll);
+      const Color col = SingularInk(s, cfg_.singular_threshold);
+      draw.Polygon({p1, p2, m}, col.WithAlpha(0.08f), col.WithAlpha(0.8f));
+      const Vec2 d = p2 - p1;
+      const double n = d.Norm();
+      if (n > 1e-6) {
+        const Vec2 u = d * (1.0 / n);
+        draw.Segment(p1 - u * 0.3, p2 + u * 0.3, col.WithAlpha(0.9f), 2.5f);
+      }
+      draw.Text(m, Sprintf("|sin| %.2f", s), col, 8.0f, -22.0f);
+      draw.Legend(LegendMark::kLine, col, "l-l triangle, singular line (red: |sin| -> 0)");
+    }
+    // The command split: the control point's velocity from the leaders' motion alone
+    // (feed-forward, errors zero) and what the error terms add (feedback), as far as M goes in 0.1 s.
+    if (draw.Shows("velocity")) {
+      Twist ff;
+      if (r.node.law == FormationLaw::kLPhi) {
+        cf::LPhiPrepared p = a.lphi;
+        p.e1 = p.e2 = 0;
+        ff = cf::FinishLPhi(p, agents_[links_[a.links[0]].leader].cmd, L);
+      } else {
+        cf::LLPrepared p = a.ll;
+        p.e1 = p.e2 = 0;
+        ff = cf::FinishLL(p, agents_[links_[a.links[0]].leader].cmd, agents_[links_[a.links[1]].leader].cmd, L).cmd;
+      }
+      auto mdot = [&](const Twist& t) {
+        return Vec2{t.v * std::cos(pj.theta) - L * t.w * std::sin(pj.theta),
+                    t.v * std::sin(pj.theta) + L * t.w * std::cos(pj.theta)};
+      };
+      constexpr double kSeconds = 0.1;
+      const Vec2 vff = mdot(ff) * kSeconds, vfb = (mdot(a.cmd) - mdot(ff)) * kSeconds;
+      const Color cf_ink{0.1f, 0.45f, 0.85f, 1}, cb_ink{0.85f, 0.1f, 0.45f, 1};
+      Arrow(draw, m, m + vff, cf_ink, 2.0f, 0.03);
+      Arrow(draw, m + vff, m + vff + vfb, cb_ink, 2.0f, 0.03);
+      draw.Legend(LegendMark::kArrow, cf_ink, "velocity of M: feed-forward (x 0.1 s)");
+      draw.Legend(LegendMark::kArrow, cb_ink, "velocity of M: feedback (x 0.1 s)");
+    }
   }
 }
 

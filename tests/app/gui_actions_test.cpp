@@ -19,11 +19,11 @@ namespace formsim::app {
 namespace {
 
 using testing::Binary;
+using testing::CountOf;
 using testing::NonBackgroundFraction;
 using testing::ReadText;
 using testing::RunShell;
 using testing::Xvfb;
-using testing::CountOf;
 using testing::Scenario;
 using testing::TempDir;
 

@@ -21,18 +21,13 @@ namespace formsim::app {
 namespace {
 
 using testing::Binary;
+using testing::CountOf;
 using testing::ReadText;
 using testing::RunShell;
 using testing::Scenario;
 using testing::TempDir;
 
 constexpr int kW = 1280, kH = 800;
-
-int CountOf(const std::string& text, const std::string& what) {
-  int n = 0;
-  for (auto p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
-  return n;
-}
 
 // In-process, an OSMesa context and synthetic keys: n switches to the next shape; n again
 // during the transition is refused (the run goes on); after it, n goes back to initial.

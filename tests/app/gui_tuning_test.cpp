@@ -17,10 +17,10 @@ namespace formsim::app {
 namespace {
 
 using testing::Binary;
+using testing::CountOf;
 using testing::ReadText;
 using testing::RunShell;
 using testing::Xvfb;
-using testing::CountOf;
 using testing::TempDir;
 
 // Runs the GUI on `scenario` with `script`; returns the log (the exit code must be 0).

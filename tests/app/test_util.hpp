@@ -64,6 +64,13 @@ inline std::string Binary() {
   return std::string(FORMSIM_BINARY_DIR) + "/formsim";
 }
 
+/// How many times `what` occurs in `text` (refusals in a GUI log).
+inline int CountOf(const std::string& text, const std::string& what) {
+  int n = 0;
+  for (auto p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
+  return n;
+}
+
 /// Runs a shell command, returns its exit code (output goes to `log`).
 inline int RunShell(const std::string& cmd, const std::string& log) {
   const int status = std::system((cmd + " >" + log + " 2>&1").c_str());
@@ -73,13 +80,6 @@ inline int RunShell(const std::string& cmd, const std::string& log) {
 /// `cmd` run under a virtual X server (1280x800), for the GUI tests.
 inline std::string Xvfb(const std::string& cmd) {
   return "xvfb-run -a -s '-screen 0 1280x800x24' " + cmd;
-}
-
-/// How many times `what` occurs in `text`.
-inline int CountOf(const std::string& text, const std::string& what) {
-  int n = 0;
-  for (auto p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
-  return n;
 }
 
 inline std::string ReadText(const std::string& path) {
