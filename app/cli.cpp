@@ -14,6 +14,7 @@
 #include "app/figures_command.hpp"
 #include "app/gui.hpp"
 #include "app/progress.hpp"
+#include "app/reproduce_cli.hpp"
 #include "app/stop_signal.hpp"
 #include "app/study_cli.hpp"
 #include "sim/core/run_output.hpp"
@@ -284,6 +285,7 @@ int Main(int argc, char** argv) {
   gui_cmd->add_flag("--timing", gui.timing, "Print frame-time statistics on exit (stderr)");
 
   StudyCommands study(app);  // sweep, sweep collect, tune
+  ReproduceCommand reproduce(app);
 
   try {
     app.parse(argc, argv);
@@ -294,6 +296,7 @@ int Main(int argc, char** argv) {
     if (run_cmd->parsed()) return RunCommand(run);
     if (app.got_subcommand("list")) return ListCommand();
     if (study.parsed()) return study.Run();
+    if (reproduce.parsed()) return reproduce.Run();
     if (figs_cmd->parsed()) return FiguresCommand(figs);
     if (gui_cmd->parsed()) {
       ParseSize(gui_size, &gui.width, &gui.height, "--size");

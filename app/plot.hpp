@@ -26,6 +26,10 @@ struct PlotSeries {
   /// A shaded band under the line from band_lo to band_hi at each x (e.g. mean ± 1σ over the
   /// seeds of a sweep); empty: none.
   std::vector<double> band_lo, band_hi;
+  /// Bars (y[i] at category x[i], from zero) with error bars from err_lo to err_hi (empty or
+  /// NaN: none). The bar series of a plot stand side by side within each category.
+  bool bars = false;
+  std::vector<double> err_lo, err_hi;
 };
 
 /// A heatmap (a metric over two swept keys): cell (column c, row r) is drawn centred on x = c,

@@ -21,7 +21,9 @@ void AppendNumberOrEmpty(std::string& out, double v) {
   if (!std::isnan(v)) AppendDouble(out, v);
 }
 
-MetricStats Stats(const std::vector<double>& v) {
+}  // namespace
+
+MetricStats StatsOf(const std::vector<double>& v) {
   MetricStats s;
   s.n = v.size();
   if (v.empty()) {
@@ -45,6 +47,8 @@ MetricStats Stats(const std::vector<double>& v) {
   }
   return s;
 }
+
+namespace {
 
 std::string Short(double v) {
   return std::isnan(v) ? "-" : Sprintf("%.4g", v);
@@ -138,7 +142,7 @@ SweepTables BuildSweepTables(const SweepDefinition& def, std::vector<SweepRecord
     agg += "," + std::to_string(t.runs[e]) + "," + std::to_string(t.failed[e]);
     t.stats.emplace_back();
     for (std::size_t c = 0; c < t.metrics.size(); ++c) {
-      const MetricStats s = Stats(values[e][c]);
+      const MetricStats s = StatsOf(values[e][c]);
       t.stats.back().push_back(s);
       agg += "," + std::to_string(s.n);
       for (double v : {s.mean, s.std, s.min, s.max}) {

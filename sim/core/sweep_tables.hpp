@@ -22,6 +22,9 @@ struct MetricStats {
   double mean = 0, std = 0, min = 0, max = 0;  ///< std: sample (n - 1); NaN when n < 2
 };
 
+/// Statistics of `values` (all of them: filter non-finite ones first).
+MetricStats StatsOf(const std::vector<double>& values);
+
 struct SweepTables {
   std::vector<std::string> metrics;             ///< the metric columns, in order
   std::vector<std::size_t> points;              ///< the points that have at least one record
