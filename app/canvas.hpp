@@ -59,6 +59,8 @@ class Canvas {
   /// Restricts drawing to [min, max] (intersected with the current clip) until PopClip.
   virtual void PushClip(ImVec2 min, ImVec2 max) = 0;
   virtual void PopClip() = 0;
+  /// The rectangle drawing can currently reach (the innermost clip), logical pixels.
+  virtual void Clip(ImVec2& min, ImVec2& max) const = 0;
 
   /// The line height of a font (its size in logical pixels).
   virtual float FontSize(FontRole font) const { return FontSpecOf(font).pixels; }

@@ -94,12 +94,25 @@ void CanvasDrawSink::Text(Vec2 p, const std::string& text, sim::Color color, flo
   const ImVec2 pos(std::round(s.x + dx_px), std::round(s.y + dy_px));
   const ImVec2 ext = cv_.TextSize(font_, text);
   const ImVec4 box(pos.x - 2, pos.y - 1, pos.x + ext.x + 2, pos.y + ext.y + 1);
+  // Off screen: neither drawn nor kept for the overlap test (which then stays short).
+  ImVec2 clip_min, clip_max;
+  cv_.Clip(clip_min, clip_max);
+  if (box.z < clip_min.x || box.x > clip_max.x || box.w < clip_min.y || box.y > clip_max.y) return;
   for (const ImVec4& o : labels_)
     if (box.x < o.z && o.x < box.z && box.y < o.w && o.y < box.w) return;
   labels_.push_back(box);
   // A translucent backdrop keeps labels readable over grid lines and trails.
   cv_.FillRect(ImVec2(box.x, box.y), ImVec2(box.z, box.w), theme_.backdrop.WithAlpha(0.67f), 2.0f);
   cv_.Text(pos, font_, theme_.Ink(color), text);
+}
+
+void CanvasDrawSink::ViewBox(Vec2& lo, Vec2& hi) const {
+  // The part of the view rectangle the canvas can reach, in world coordinates (y up).
+  ImVec2 a, b;
+  cv_.Clip(a, b);
+  const Vec2 p = view_.ToWorld(a), q = view_.ToWorld(b);
+  lo = {std::min(p.x, q.x), std::min(p.y, q.y)};
+  hi = {std::max(p.x, q.x), std::max(p.y, q.y)};
 }
 
 void CanvasDrawSink::Flash(Vec2 p, double radius, sim::Color color, float age) {

@@ -29,6 +29,8 @@ class CanvasDrawSink : public sim::DrawSink {
   void Cross(Vec2 p, double size, sim::Color color) override;
   void Text(Vec2 p, const std::string& text, sim::Color color, float dx_px, float dy_px) override;
   void Flash(Vec2 p, double radius, sim::Color color, float age) override;
+  double PixelsPerMetre() const override { return view_.scale; }
+  void ViewBox(Vec2& lo, Vec2& hi) const override;
 
  private:
   float Width(float px) const { return px * theme_.line_scale; }

@@ -15,12 +15,14 @@
 #include "app/gui.hpp"
 #include "app/progress.hpp"
 #include "app/reproduce_cli.hpp"
+#include "app/replay_command.hpp"
 #include "app/stop_signal.hpp"
 #include "app/study_cli.hpp"
 #include "sim/core/run_output.hpp"
 #include "sim/core/scenario.hpp"
 #include "sim/core/scenario_files.hpp"
 #include "sim/core/session.hpp"
+#include "sim/core/thread_pool.hpp"
 
 namespace formsim::app {
 namespace {
@@ -234,6 +236,10 @@ int Main(int argc, char** argv) {
   run_cmd->add_flag("--whole-run", run.exp.whole_run,
                     "Camera keeps everything since the start in view (default: tracks the robots)");
   run_cmd->add_flag("--timing", run.timing, "Print where the export time went (stderr)");
+  int threads = 0;  // 0: all cores
+  const std::string threads_help =
+      "Threads for the work inside a step (default: all cores); results are identical for any N";
+  run_cmd->add_option("--threads", threads, threads_help)->check(CLI::Range(1, 1024));
 
   app.add_subcommand("list", "List the shipped scenarios");
 
@@ -276,16 +282,23 @@ int Main(int argc, char** argv) {
   gui_cmd->add_option("--script", gui.script,
                       "Run scripted actions, one per line: FRAME ACTION [ARGS] (edit k=v, reset, "
                       "reset-seed N, reload, load S, open P, save P, play, pause, step, "
-                      "screenshot P, action ID)");
+                      "screenshot P, action ID, undo, redo, revert K, pin, unpin N, unpin-all, "
+                      "restore N, pin-row N, seeds N, cancel-seeds, scrub T, live, branch, "
+                      "save-session P, tab T, wait)");
   gui_cmd->add_option("--out", gui.out_dir, "Write timeseries.csv and summary.json here on exit");
+  gui_cmd->add_option("--session", gui.session_file,
+                      "Record the session (edits with their steps, resets, seeds, loads, pins, "
+                      "branches) into this file on exit; replay it with `formsim replay`");
   std::string gui_theme = "light";
   gui_cmd->add_option("--theme", gui_theme,
                       std::string("Colours of the panels, world view and plots: ") + ThemeNames() +
                           " (default light)");
   gui_cmd->add_flag("--timing", gui.timing, "Print frame-time statistics on exit (stderr)");
+  gui_cmd->add_option("--threads", threads, threads_help)->check(CLI::Range(1, 1024));
 
   StudyCommands study(app);  // sweep, sweep collect, tune
   ReproduceCommand reproduce(app);
+  ReplayCommand replay(app);
 
   try {
     app.parse(argc, argv);
@@ -293,10 +306,12 @@ int Main(int argc, char** argv) {
     return app.exit(e);
   }
   try {
+    if (threads > 0) sim::ThreadPool::SetDefaultThreads(threads);
     if (run_cmd->parsed()) return RunCommand(run);
     if (app.got_subcommand("list")) return ListCommand();
     if (study.parsed()) return study.Run();
     if (reproduce.parsed()) return reproduce.Run();
+    if (replay.parsed()) return replay.Run();
     if (figs_cmd->parsed()) return FiguresCommand(figs);
     if (gui_cmd->parsed()) {
       ParseSize(gui_size, &gui.width, &gui.height, "--size");

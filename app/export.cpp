@@ -150,7 +150,8 @@ std::string ExportStats::Report() const {
 
 ExportStats RunWithExport(sim::Session& session, const ExportOptions& opt,
                           const std::function<void(const ExportProgress&)>& progress,
-                          const std::function<void()>& results_ready) {
+                          const std::function<void()>& results_ready,
+                          const std::function<bool()>& advance) {
   PrepareExport(opt);
   ExportStats st;
   const double t_start = Now();
@@ -275,9 +276,15 @@ ExportStats RunWithExport(sim::Session& session, const ExportOptions& opt,
   };
 
   emit_due_frames();
-  while (!exp.finished()) {
-    const double t0 = Now();
+  auto step = [&] {
+    if (advance) return advance();
+    if (exp.finished()) return false;
     session.Step();
+    return true;
+  };
+  while (true) {
+    const double t0 = Now();
+    if (!step()) break;
     st.sim += Now() - t0;
     emit_due_frames();
     // A whole-run snapshot without frames still needs the extent of the whole run.

@@ -80,9 +80,13 @@ void GifFrameSize(const ExportOptions& opt, int* width, int* height);
 /// video and GIF as it goes; then calls `results_ready()` (the caller writes the CSV and
 /// summary), then renders the snapshot and figures. An export that fails never stops the
 /// simulation or loses its results: it is dropped, its partial file removed, and the failure
-/// reported in ExportStats::error. `progress` is called now and then.
+/// reported in ExportStats::error. `progress` is called now and then. `advance`, when given,
+/// makes one step of the run (applying first whatever is due at that step, as a replay does)
+/// and returns false once the run is over; by default the session steps until its experiment
+/// has finished.
 ExportStats RunWithExport(sim::Session& session, const ExportOptions& opt,
                           const std::function<void(const ExportProgress&)>& progress = {},
-                          const std::function<void()>& results_ready = {});
+                          const std::function<void()>& results_ready = {},
+                          const std::function<bool()>& advance = {});
 
 }  // namespace formsim::app

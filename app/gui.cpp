@@ -119,6 +119,10 @@ int RunGui(const GuiOptions& opt) {
   if (!opt.seed.empty()) overrides.push_back({"seed", opt.seed, "--seed", -1});
   auto session = std::make_unique<sim::Session>(file, overrides);
   if (!opt.out_dir.empty()) sim::PrepareOutputDir(opt.out_dir);
+  if (!opt.session_file.empty()) {
+    const std::filesystem::path parent = std::filesystem::path(opt.session_file).parent_path();
+    if (!parent.empty()) sim::PrepareOutputDir(parent.string());  // fail now, not on exit
+  }
 
   GlfwSession glfw;
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
@@ -139,6 +143,7 @@ int RunGui(const GuiOptions& opt) {
     ImGui_ImplGlfw_InitForOpenGL(window, true);
     AppUi ui(std::move(session));
     ui.state().theme = opt.theme;
+    if (!opt.session_file.empty()) ui.SetSessionFile(opt.session_file);
     // Plots keep a bounded history however long the window runs; with --out the rows of the
     // current run stream to disk as they are recorded.
     ui.SetRunSetup([&opt](sim::Experiment& e) {
@@ -158,17 +163,26 @@ int RunGui(const GuiOptions& opt) {
     auto last = Clock::now();
     int shot_counter = 0;
     std::size_t next_action = 0;
+    // Script time: frames counted for the script and --exit-after; it stands still while a
+    // `wait` holds the script for the background work (pins, Monte Carlo, timeline).
+    long clock = 0;
+    bool holding = false;
     std::string title_shown = title;
     std::vector<double> frame_ms, sim_ms, ui_ms, gl_ms;  // for --timing
-    for (long frame = 0; !glfwWindowShouldClose(window); ++frame) {
+    for (; !glfwWindowShouldClose(window); clock += holding ? 0 : 1) {
       glfwPollEvents();
       const auto now = Clock::now();
       const double wall_dt = std::min(0.1, std::chrono::duration<double>(now - last).count());
       last = now;
       // Scripted actions run through the same commands as the buttons and keys; a refused
       // one is reported and the GUI goes on.
-      while (next_action < scripted.size() && scripted[next_action].frame <= frame) {
+      if (holding && !ui.Busy()) holding = false;
+      while (!holding && next_action < scripted.size() && scripted[next_action].frame <= clock) {
         const ScriptAction& a = scripted[next_action++];
+        if (a.action == "wait") {
+          holding = ui.Busy();
+          continue;
+        }
         const std::string err = ui.RunScriptAction(a.action);
         if (!err.empty())
           std::fprintf(stderr, "formsim: %s (frame %ld): '%s' refused: %s\n", a.where.c_str(),
@@ -201,7 +215,7 @@ int RunGui(const GuiOptions& opt) {
         gl_ms.push_back(1e3 * std::chrono::duration<double>(Clock::now() - t_gl).count());
       }
 
-      const bool last_frame = opt.exit_after >= 0 && frame + 1 >= opt.exit_after;
+      const bool last_frame = opt.exit_after >= 0 && clock + 1 >= opt.exit_after && !holding;
       const bool finished_exit = opt.exit_when_finished && ui.session().exp().finished();
       if (ui.state().screenshot_requested ||
           ((last_frame || finished_exit) && !opt.screenshot.empty())) {
@@ -234,7 +248,17 @@ int RunGui(const GuiOptions& opt) {
       if (opt.timing) frame_ms.push_back(ui.state().frame_ms);
       if (last_frame || finished_exit) break;
     }
-    if (!opt.out_dir.empty()) sim::WriteRunOutputs(ui.session().exp(), opt.out_dir);
+    if (!opt.out_dir.empty()) {
+      sim::WriteRunOutputs(ui.session().exp(), opt.out_dir);
+      ui.WriteMonteCarlo(opt.out_dir);
+    }
+    if (!opt.session_file.empty()) {
+      const std::string err = ui.CmdSaveSession(opt.session_file);
+      if (!err.empty()) {
+        std::fprintf(stderr, "formsim: %s\n", err.c_str());
+        exit_code = 2;
+      }
+    }
     if (opt.timing && frame_ms.size() > 10) {
       // Skip the first frames (font atlas upload, first layout).
       auto mean = [](const std::vector<double>& v) {

@@ -25,13 +25,18 @@ struct GuiOptions {
   /// A script file: one action per line, "FRAME ACTION [ARGS]" (see ScriptAction).
   std::string script;
   std::string out_dir;  ///< write timeseries.csv and summary.json here on exit
+  /// Record the session (every edit with its step, resets, seeds, loads, pins, branches) into
+  /// this file on exit; also the default of the "Save session" button.
+  std::string session_file;
   bool timing = false;  ///< print frame-time statistics on exit
   ThemeId theme = ThemeId::kLight;
 };
 
 /// One scripted GUI action: at frame `frame`, `action` ("edit k=v", "reset", "reset-seed 7",
 /// "reload", "load NAME", "open PATH", "save PATH", "play", "pause", "step",
-/// "screenshot PATH", "action ID"), run through the same commands as the mouse and keyboard.
+/// "screenshot PATH", "action ID", "pin", "seeds 20", "scrub 3.5", "branch", ... see
+/// AppUi::RunScriptAction), run through the same commands as the mouse and keyboard. `wait`
+/// holds the script (and the frame count of --exit-after) until the background work is done.
 struct ScriptAction {
   long frame = 0;
   std::string action;

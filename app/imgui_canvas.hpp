@@ -33,6 +33,10 @@ class ImGuiCanvas : public Canvas {
   float FontSize(FontRole font) const override;
   void PushClip(ImVec2 min, ImVec2 max) override;
   void PopClip() override;
+  void Clip(ImVec2& min, ImVec2& max) const override {
+    min = dl_->GetClipRectMin();
+    max = dl_->GetClipRectMax();
+  }
 
  private:
   void DashedPolyline(const ImVec2* pts, int n, ImU32 col, float width, const LineDash& dash);

@@ -176,6 +176,19 @@ double At(const std::vector<double>& v, std::size_t i) {
 
 }  // namespace
 
+LineDash DashStyle(int k) {
+  switch ((k - 1) % 4) {
+    case 0:
+      return LineDash::Dashes(8, 5);
+    case 1:
+      return LineDash::Dashes(2, 3);
+    case 2:
+      return LineDash::DashDot(9, 3, 2);
+    default:
+      return LineDash::Dashes(14, 5);
+  }
+}
+
 sim::Color Viridis(double f) {
   // Nine samples of matplotlib's viridis, linearly interpolated.
   static const float kStops[9][3] = {
@@ -262,8 +275,15 @@ PlotLayout DrawPlot(Canvas& cv, ImVec2 min, ImVec2 max, const PlotData& data, co
       if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
       rx.Add(s.x[i]);
       ry.Add(s.y[i]);
-      if (i < s.band_lo.size() && i < s.band_hi.size()) ry.Add(s.band_lo[i]), ry.Add(s.band_hi[i]);
       if (s.bars) ry.Add(0.0), ry.Add(At(s.err_lo, i)), ry.Add(At(s.err_hi, i));
+    }
+    const std::size_t nb = std::min({s.x.size(), s.band_lo.size(), s.band_hi.size()});
+    for (std::size_t i = 0; i < nb; ++i) {
+      if (!std::isfinite(s.x[i]) || !std::isfinite(s.band_lo[i]) || !std::isfinite(s.band_hi[i]))
+        continue;
+      rx.Add(s.x[i]);
+      ry.Add(s.band_lo[i]);
+      ry.Add(s.band_hi[i]);
     }
   }
   // Bar series: their number (they share each category) and whether all stand on zero.
@@ -547,7 +567,7 @@ PlotLayout DrawPlot(Canvas& cv, ImVec2 min, ImVec2 max, const PlotData& data, co
   }
   for (const auto& s : data.series)
     if (!s.band_lo.empty())
-      DrawBand(cv, s, th.Series(s.color, s.style_index, false).color.WithAlpha(0.22f),
+      DrawBand(cv, s, th.Series(s.color, s.style_index, false).color.WithAlpha(s.band_alpha),
                [&](double x, double y) { return ImVec2(X(x), Y(y)); });
   for (double r : data.reference_lines)
     cv.Line(ImVec2(a.x, Y(r)), ImVec2(b.x, Y(r)), {th.reference, 1.2f, LineDash::Dashes(6, 4)});
@@ -576,7 +596,8 @@ PlotLayout DrawPlot(Canvas& cv, ImVec2 min, ImVec2 max, const PlotData& data, co
   }
   for (const auto& s : data.series) {
     if (s.bars) continue;
-    const SeriesLook look = th.Series(s.color, s.style_index, s.dashed);
+    SeriesLook look = th.Series(s.color, s.style_index, s.dashed);
+    if (s.dash_style > 0) look.dash = DashStyle(s.dash_style);
     const Stroke stroke{look.color, line_w, look.dash};
     for (const auto& run : ScreenRuns(s, x0, x1, y0, y1, a, b)) {
       if (s.markers_only) {
@@ -640,7 +661,8 @@ PlotLayout DrawPlot(Canvas& cv, ImVec2 min, ImVec2 max, const PlotData& data, co
     cv.StrokeRect(lo, hi, th.legend_border, 1.0f, 3.0f);
     for (std::size_t k = 0; k < legend_items.size(); ++k) {
       const auto& s = data.series[legend_items[k]];
-      const SeriesLook look = th.Series(s.color, s.style_index, s.dashed);
+      SeriesLook look = th.Series(s.color, s.style_index, s.dashed);
+      if (s.dash_style > 0) look.dash = DashStyle(s.dash_style);
       const float x = lo.x + col_w * static_cast<float>(k % leg_cols);
       const float y = lo.y + 4 + row_h * static_cast<float>(k / leg_cols);
       const float cy = y + row_h / 2;

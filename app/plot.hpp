@@ -22,10 +22,14 @@ struct PlotSeries {
   sim::Color color;
   int style_index = 0;  ///< palette index: the print theme's dash pattern and grey
   bool dashed = false;
+  /// A dash pattern of its own, overriding the theme's: 1 dashes, 2 dots, 3 dash-dot, 4 long
+  /// dashes (told-apart overlays such as pinned runs); 0: the theme decides.
+  int dash_style = 0;
   bool markers_only = false;
   /// A shaded band under the line from band_lo to band_hi at each x (e.g. mean ± 1σ over the
-  /// seeds of a sweep); empty: none.
+  /// seeds of a sweep); empty: none. With `y` empty the band is drawn alone.
   std::vector<double> band_lo, band_hi;
+  float band_alpha = 0.22f;  ///< opacity of the band's shade
   /// Bars (y[i] at category x[i], from zero) with error bars from err_lo to err_hi (empty or
   /// NaN: none). The bar series of a plot stand side by side within each category.
   bool bars = false;
@@ -87,6 +91,9 @@ std::string FormatTick(double value, double step, int exponent);
 PlotLayout DrawPlot(Canvas& canvas, ImVec2 min, ImVec2 max, const PlotData& data,
                     const PlotStyle& style,
                     double cursor_x = std::numeric_limits<double>::quiet_NaN());
+
+/// The dash pattern of PlotSeries::dash_style `k` (k > 0).
+LineDash DashStyle(int k);
 
 /// The viridis colour map at f in [0, 1] (clamped).
 sim::Color Viridis(double f);

@@ -37,11 +37,19 @@ AppUi::AppUi(std::unique_ptr<sim::Session> session) : owned_(std::move(session))
   session_ = owned_.get();
   shipped_ = sim::ShippedScenarios();
   SyncScenarioFields();
+  StartRecording(session_->cli_overrides(), 0);
+  LoadHistoryFor(session_->file());
 }
 
 AppUi::AppUi(sim::Session& borrowed) : session_(&borrowed) {
   shipped_ = sim::ShippedScenarios();
   SyncScenarioFields();
+  StartRecording(session_->cli_overrides(), 0);
+  LoadHistoryFor(session_->file());
+}
+
+AppUi::~AppUi() {
+  session_->SetObserver(nullptr);
 }
 
 void AppUi::SetRunSetup(std::function<void(sim::Experiment&)> setup) {
@@ -64,6 +72,9 @@ void AppUi::SyncScenarioFields() {
   CopyString(state_.save_path, sizeof(state_.save_path),
              fs::path(current).stem().string() + "_tuned.yaml");
   CopyString(state_.seed_text, sizeof(state_.seed_text), std::to_string(session_->seed()));
+  if (session_file_.empty())
+    CopyString(state_.session_path, sizeof(state_.session_path),
+               fs::path(current).stem().string() + "_session.yaml");
   state_.plot_closed.clear();
   state_.follow = -1;
   state_.auto_fit = true;
@@ -73,19 +84,29 @@ void AppUi::SyncScenarioFields() {
 }
 
 void AppUi::Adopt(std::unique_ptr<sim::Session> session, const std::string& message) {
+  // The old scenario's last run goes into its history, kept for when it is opened again.
+  if (auto row = PendingRow("closed")) history_.Add(std::move(*row));
+  histories_[session_->file()] = std::move(history_);
+  history_ = sim::RunHistory();
+  DropScenarioState();
+  const long step = session_->exp().steps();
   if (run_setup_) {
     session_->exp().mutable_recorder().AbandonStream();
     session->SetRunSetup(run_setup_);
   }
+  session_->SetObserver(nullptr);
   owned_ = std::move(session);
   session_ = owned_.get();
   SyncScenarioFields();
+  StartRecording({}, step);
+  LoadHistoryFor(session_->file());
   SetStatus(message);
 }
 
 // ---- commands ----
 
 std::string AppUi::CmdPlay() {
+  CmdLive();  // playing resumes from the live end
   state_.playing = true;
   return "";
 }
@@ -96,6 +117,7 @@ std::string AppUi::CmdPause() {
 }
 
 std::string AppUi::CmdStep() {
+  CmdLive();
   state_.playing = false;
   if (session_->exp().finished()) {
     SetStatus("the run has reached its duration: reset (r) to run again", true);
@@ -107,15 +129,18 @@ std::string AppUi::CmdStep() {
     SetStatus(std::string("step failed: ") + e.what(), true);
     return state_.status;
   }
+  if (session_->exp().finished()) NoteRunInHistory(session_->exp().status());
   return "";
 }
 
 std::string AppUi::CmdReset() {
+  auto row = PendingRow("reset");
   const std::string err = session_->Reset();
   if (!err.empty()) {
     SetStatus(err, true);
     return err;
   }
+  if (row) history_.Add(std::move(*row));
   state_.step_budget = 0;
   CopyString(state_.seed_text, sizeof(state_.seed_text), std::to_string(session_->seed()));
   SetStatus("reset");
@@ -133,11 +158,13 @@ std::string AppUi::CmdResetSeed(const std::string& seed_text) {
     SetStatus(why, true);
     return why;
   }
+  auto row = PendingRow("reset");
   const std::string err = session_->Reset(seed);
   if (!err.empty()) {
     SetStatus(err, true);
     return err;
   }
+  if (row) history_.Add(std::move(*row));
   state_.step_budget = 0;
   CopyString(state_.seed_text, sizeof(state_.seed_text), std::to_string(seed));
   SetStatus("reset with seed " + std::to_string(seed));
@@ -145,11 +172,13 @@ std::string AppUi::CmdResetSeed(const std::string& seed_text) {
 }
 
 std::string AppUi::CmdReload() {
+  auto row = PendingRow("reloaded");
   const std::string err = session_->Reload();
   if (!err.empty()) {
     SetStatus(err, true);
     return err;
   }
+  if (row) history_.Add(std::move(*row));
   SyncScenarioFields();
   SetStatus("reloaded " + session_->file());
   return "";
@@ -190,7 +219,18 @@ std::string AppUi::CmdSave(const std::string& path, bool overwrite) {
       SetStatus(path + " exists: confirm to overwrite");
       return "";
     }
-    SetStatus("saved " + path + (note.empty() ? "" : " (" + note + ")"));
+    std::string also;
+    if (!history_.empty()) {
+      // The history goes beside the scenario and comes back when it is opened.
+      const std::string hist = sim::RunHistory::PathFor(path);
+      try {
+        history_.Save(hist);
+        also = ", history in " + hist;
+      } catch (const std::exception& e) {
+        also = "; the history was not saved: " + std::string(e.what());
+      }
+    }
+    SetStatus("saved " + path + (note.empty() ? "" : " (" + note + ")") + also);
   } catch (const std::exception& e) {
     SetStatus(std::string("save failed: ") + e.what(), true);
     return state_.status;
@@ -198,8 +238,8 @@ std::string AppUi::CmdSave(const std::string& path, bool overwrite) {
   return "";
 }
 
-std::string AppUi::CmdEdit(const std::string& key, const std::string& value) {
-  const std::string err = session_->Edit(key, value);
+std::string AppUi::CmdEdit(const std::string& key, const std::string& value, bool continues_drag) {
+  const std::string err = session_->Edit(key, value, "GUI edit", continues_drag);
   if (!err.empty()) SetStatus("edit " + key + "=" + value + " refused: " + err, true);
   return err;
 }
@@ -215,6 +255,35 @@ std::string AppUi::CmdScreenshot(const std::string& path) {
   state_.screenshot_requested = true;
   state_.screenshot_path = path;
   return "";
+}
+
+std::string AppUi::CmdUndo() {
+  const std::string text = session_->UndoText();
+  const std::string err = session_->Undo();
+  SetStatus(err.empty() ? "undo " + text : err, !err.empty() && session_->can_undo());
+  return err;
+}
+
+std::string AppUi::CmdRedo() {
+  const std::string text = session_->RedoText();
+  const std::string err = session_->Redo();
+  SetStatus(err.empty() ? "redo " + text : err, !err.empty() && session_->can_redo());
+  return err;
+}
+
+std::string AppUi::CmdRevert(const std::string& key) {
+  const std::string loaded = session_->LoadedValue(key);
+  if (loaded.empty()) {
+    const std::string why = "revert: no tunable '" + key + "'";
+    SetStatus(why, true);
+    return why;
+  }
+  const std::string err = session_->Edit(key, loaded, "revert");
+  if (!err.empty())
+    SetStatus("revert " + key + " refused: " + err, true);
+  else
+    SetStatus("reverted " + key + " to " + loaded);
+  return err;
 }
 
 std::string AppUi::RunScriptAction(const std::string& line) {
@@ -247,9 +316,61 @@ std::string AppUi::RunScriptAction(const std::string& line) {
     if (eq == std::string::npos || eq == 0) return "edit: expects KEY=VALUE, got '" + args + "'";
     return CmdEdit(args.substr(0, eq), args.substr(eq + 1));
   }
+  // Whole numbers (pin and history row numbers, seed counts) and times.
+  auto whole = [&](long long lo, long long hi, int* out) -> std::string {
+    long long v = 0;
+    if (!sim::ParseInteger(args, lo, hi, &v))
+      return action + ": expects a whole number in " + std::to_string(lo) + " ... " +
+             std::to_string(hi) + ", got '" + args + "'";
+    *out = static_cast<int>(v);
+    return "";
+  };
+  int n = 0;
+  if (action == "wait") return "";  // held by the window until Busy() is false
+  if (action == "undo") return CmdUndo();
+  if (action == "redo") return CmdRedo();
+  if (action == "revert") return need("a key").empty() ? CmdRevert(args) : need("a key");
+  if (action == "pin") return CmdPin();
+  if (action == "unpin-all") return CmdUnpinAll();
+  if (action == "unpin") {
+    const std::string err = whole(1, 1000000, &n);
+    return err.empty() ? CmdUnpin(n) : err;
+  }
+  if (action == "restore") {
+    const std::string err = whole(1, 1000000000, &n);
+    return err.empty() ? CmdRestore(n) : err;
+  }
+  if (action == "pin-row") {
+    const std::string err = whole(1, 1000000000, &n);
+    return err.empty() ? CmdPinRow(n) : err;
+  }
+  if (action == "seeds") {
+    const std::string err = whole(1, 100000, &n);
+    return err.empty() ? CmdSeeds(n) : err;
+  }
+  if (action == "cancel-seeds") return CmdCancelSeeds();
+  if (action == "scrub") {
+    double t = 0;
+    if (!sim::ParseFiniteDouble(args, &t)) return "scrub: expects a time in s, got '" + args + "'";
+    return CmdScrub(t);
+  }
+  if (action == "live") return CmdLive();
+  if (action == "tab") {
+    static const char* kTabs[] = {"plots", "tables", "history", "summary"};
+    for (const char* t : kTabs)
+      if (args == t) {
+        state_.select_tab = args;
+        return "";
+      }
+    return "tab: expects plots, tables, history or summary, got '" + args + "'";
+  }
+  if (action == "branch") return CmdBranch();
+  if (action == "save-session")
+    return need("a path").empty() ? CmdSaveSession(args) : need("a path");
   return "unknown action '" + action +
          "' (known: edit, reset, reset-seed, reload, load, open, save, play, pause, step, "
-         "screenshot, action)";
+         "screenshot, action, undo, redo, revert, pin, unpin, unpin-all, restore, pin-row, "
+         "seeds, cancel-seeds, scrub, live, branch, save-session, tab, wait)";
 }
 
 void AppUi::Advance(double wall_dt) {
@@ -263,6 +384,7 @@ void AppUi::Advance(double wall_dt) {
   } catch (const std::exception& e) {
     SetStatus(std::string("could not apply the edits: ") + e.what(), true);
   }
+  if (state_.playing && timeline_.active) state_.playing = false;  // the timeline pauses
   if (state_.playing && !exp.finished()) {
     try {
       const double speed = SpeedChoices()[state_.speed_index];
@@ -291,6 +413,7 @@ void AppUi::Advance(double wall_dt) {
         char buf[64];
         std::snprintf(buf, sizeof buf, "finished at t = %.2f s", session_->exp().time());
         SetStatus(buf);
+        NoteRunInHistory(session_->exp().status());
       }
     } catch (const std::exception& e) {
       // Nothing a step throws may end the program: stop and say what happened.
@@ -304,7 +427,16 @@ void AppUi::Advance(double wall_dt) {
 
 void AppUi::HandleKeys() {
   ImGuiIO& io = ImGui::GetIO();
-  if (io.WantTextInput) return;
+  // Called after this frame's widgets: typing into a field (or a field that a click activated
+  // in this very frame, which io.WantTextInput does not know yet) never reaches a shortcut.
+  if (io.WantTextInput || io.WantCaptureKeyboard || ImGui::IsAnyItemActive()) return;
+  if (io.KeyCtrl) {
+    if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Z), false))
+      io.KeyShift ? CmdRedo() : CmdUndo();
+    else if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Y), false))
+      CmdRedo();
+    return;  // Ctrl+letter is never a plain shortcut
+  }
   // ImGui 1.86 maps only a few named keys, so shortcuts read the typed characters.
   for (int i = 0; i < io.InputQueueCharacters.Size; ++i) {
     switch (io.InputQueueCharacters[i]) {
@@ -331,7 +463,7 @@ void AppUi::HandleKeys() {
 }
 
 void AppUi::Draw(ImVec2 display, const Fonts& fonts, bool interactive) {
-  if (interactive) HandleKeys();
+  UpdateBackground();
   const float left_w = std::clamp(display.x * 0.24f, 290.0f, 400.0f);
   const float right_w = std::clamp(display.x * 0.34f, 340.0f, 640.0f);
   const float mid_w = std::max(200.0f, display.x - left_w - right_w);
@@ -345,6 +477,9 @@ void AppUi::Draw(ImVec2 display, const Fonts& fonts, bool interactive) {
 
   DrawWorldWindow(ImVec2(left_w, 0), ImVec2(mid_w, display.y), fonts, interactive);
   DrawPlotsWindow(ImVec2(left_w + mid_w, 0), ImVec2(display.x - left_w - mid_w, display.y), fonts);
+  // A slider no longer held ends its drag: its next edit is a new undo step.
+  if (!ImGui::IsAnyItemActive()) state_.gesture_key.clear();
+  if (interactive) HandleKeys();
 }
 
 void AppUi::DrawControlPanel(const Fonts& fonts, bool interactive) {
@@ -352,6 +487,7 @@ void AppUi::DrawControlPanel(const Fonts& fonts, bool interactive) {
   (void)interactive;
   if (ImGui::CollapsingHeader("Scenario", ImGuiTreeNodeFlags_DefaultOpen)) DrawScenarioSection();
   if (ImGui::CollapsingHeader("Run", ImGuiTreeNodeFlags_DefaultOpen)) DrawRunSection();
+  if (ImGui::CollapsingHeader("Compare", ImGuiTreeNodeFlags_DefaultOpen)) DrawTuningSection();
   DrawParamSection();
   if (ImGui::CollapsingHeader("View")) DrawViewSection();
   DrawMessagesSection();

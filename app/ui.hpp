@@ -14,8 +14,10 @@
 
 #include "app/fonts.hpp"
 #include "app/theme.hpp"
+#include "app/tuning_state.hpp"
 #include "app/view.hpp"
 #include "sim/core/session.hpp"
+#include "sim/core/session_record.hpp"
 
 namespace formsim::app {
 
@@ -42,6 +44,11 @@ struct UiState {
   char save_path[512] = "";
   char open_path[512] = "";
   char seed_text[32] = "";
+  char session_path[512] = "";
+  int mc_seeds = 20;                 ///< "Run N seeds"
+  bool branch_pins_original = true;  ///< "branch from here" pins the run it leaves first
+  std::string gesture_key;  ///< the slider held since its last edit (its edits make one undo step)
+  std::string select_tab;   ///< a tab of the right-hand window to bring to front once
   std::string drag_name;  ///< robot or obstacle being dragged
   double sim_ms = 0, frame_ms = 0;
   int steps_last_frame = 0;
@@ -54,6 +61,10 @@ class AppUi {
   /// Borrows a session owned by the caller (headless --ui frames); loading another scenario
   /// then makes the interface own the new one.
   explicit AppUi(sim::Session& borrowed);
+  /// Stops recording the session (a borrowed one outlives the interface).
+  ~AppUi();
+  AppUi(const AppUi&) = delete;
+  AppUi& operator=(const AppUi&) = delete;
 
   sim::Session& session() { return *session_; }
   /// Applied to every experiment of every session the interface runs (the current one, resets,
@@ -86,16 +97,81 @@ class AppUi {
   std::string CmdOpen(const std::string& path);
   /// Saves the tuned scenario; without `overwrite` an existing file asks for confirmation.
   std::string CmdSave(const std::string& path, bool overwrite);
-  std::string CmdEdit(const std::string& key, const std::string& value);
+  /// `continues_drag`: the same slider is still held since its last edit (one undo step).
+  std::string CmdEdit(const std::string& key, const std::string& value,
+                      bool continues_drag = false);
   std::string CmdAction(const std::string& id);
   /// Asks for a screenshot of the next frame (the window writes it).
   std::string CmdScreenshot(const std::string& path);
+  /// Undo / redo the last edit (Ctrl+Z / Ctrl+Y), through the normal edit path.
+  std::string CmdUndo();
+  std::string CmdRedo();
+  /// Edits `key` back to its value in the file (with the command line's --set).
+  std::string CmdRevert(const std::string& key);
+  /// Pins the current run as it stands: a reference drawn faded (world) and dashed (plots).
+  std::string CmdPin();
+  std::string CmdUnpin(int id);
+  std::string CmdUnpinAll();
+  /// Edits the settings of history row `number` back in (seed into the seed field).
+  std::string CmdRestore(int number);
+  /// Pins history row `number` (replayed exactly from its log).
+  std::string CmdPinRow(int number);
+  /// Runs the current settings over seeds 1..n in the background (as `formsim sweep`).
+  std::string CmdSeeds(int n);
+  std::string CmdCancelSeeds();
+  /// Shows the world at simulated time `t` of the live run (the timeline); CmdLive goes back.
+  std::string CmdScrub(double t, bool finish_now = true);
+  std::string CmdLive();
+  /// Restarts the run from the time shown by the timeline (exact), pinning the original first
+  /// when state().branch_pins_original.
+  std::string CmdBranch();
+  /// Writes the session record (everything done so far, with steps) to `path`.
+  std::string CmdSaveSession(const std::string& path);
   /// Runs one script action "ACTION [ARGS]" (see `formsim gui --script`). Returns "" or the
   /// reason it was refused.
   std::string RunScriptAction(const std::string& line);
+  /// True while work goes on in the background (pins replaying, a Monte Carlo, the timeline
+  /// catching up): the script action `wait` holds the script until it is done.
+  bool Busy() const;
+
+  /// The record of the session so far (written by CmdSaveSession and `--session`).
+  const sim::SessionRecord& record() const { return record_; }
+  /// With `formsim gui --session FILE`: where "Save session" writes by default.
+  void SetSessionFile(const std::string& path);
+  /// Writes the tables of the finished Monte Carlo (runs.csv, aggregate.csv, as `formsim sweep`
+  /// writes them) into `dir`/montecarlo. Returns false when there is none.
+  bool WriteMonteCarlo(const std::string& dir);
+  /// Adds the current run to the history when it has run and has no row yet.
+  void NoteRunInHistory(const std::string& status);
+  const sim::RunHistory& history() const { return history_; }
+  const std::vector<std::unique_ptr<PinnedRun>>& pins() const { return pins_; }
 
  private:
   void HandleKeys();
+  /// Per frame: collects finished pin replays, Monte Carlo results, the timeline's progress.
+  void UpdateBackground();
+  void StartRecording(const std::vector<sim::Override>& cli, long step);
+  /// Before the current run is replaced (reset, reload, branch, load): its history row.
+  std::optional<sim::HistoryRow> PendingRow(const std::string& status) const;
+  void LoadHistoryFor(const std::string& file);
+  void DropScenarioState();  ///< pins, Monte Carlo, timeline: on loading another scenario
+  std::string PinReplay(std::shared_ptr<const sim::ScenarioSource> source, sim::RunLog log,
+                        long steps, const std::string& origin);
+  RunValues CurrentValues() const;
+  /// "pin 1: k_l 0.15 -> 0.4" (what differs from the current run).
+  std::string PinLabel(const PinnedRun& pin) const;
+  const sim::ParamTable& TextParams(const sim::ScenarioSource& source);
+  /// Adds the pinned runs and the Monte Carlo bands to a live plot of figure `fig`.
+  void DecoratePlot(const sim::FigureSpec& fig, PlotData& data);
+  /// The time the plots' cursor marks: the timeline's when it is on, else the live time.
+  double CursorTime() const;
+  /// The experiment the world view shows: the timeline's replay, or the live run.
+  const sim::Experiment& ShownExperiment() const;
+  void DrawTimeline(ImVec2 min, ImVec2 max);
+  void DrawTuningSection();
+  void DrawHistoryTab();
+  void DrawCompareTable(const sim::Metrics& now);
+  void AdvanceTimeline(double budget_s);
   void SetStatus(const std::string& message, bool error = false);
   /// Replaces the session after a successful load (keeps view options, resets per-run state).
   void Adopt(std::unique_ptr<sim::Session> session, const std::string& message);
@@ -109,6 +185,9 @@ class AppUi {
   void DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool interactive);
   void DrawWorldMouse(const View& view);
   void DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts);
+  /// What the plots window shows, refreshed at most ten times a second (app/ui_plots.cpp).
+  struct PlotsCache;
+  std::shared_ptr<PlotsCache> plots_cache_;
   void UpdateView(ImVec2 min, ImVec2 max);
 
   std::function<void(sim::Experiment&)> run_setup_;
@@ -119,6 +198,19 @@ class AppUi {
   int shipped_index_ = 0;
   bool confirm_overwrite_ = false;
   AutoFit auto_fit_;
+
+  // Tuning: pins, history, timeline, Monte Carlo, the session record.
+  sim::SessionRecord record_;
+  std::string session_file_;
+  std::vector<std::unique_ptr<PinnedRun>> pins_;
+  int next_pin_ = 1;
+  sim::RunHistory history_;
+  std::map<std::string, sim::RunHistory> histories_;    ///< of scenarios opened before, by file
+  long history_run_ = -1;                               ///< run id that has its history row
+  std::map<std::string, sim::ParamTable> text_params_;  ///< by SHA-256 of a scenario text
+  std::vector<int> history_order_;  ///< rows in the order shown (sorted by a column)
+  Timeline timeline_;
+  MonteCarloState mc_;
 };
 
 }  // namespace formsim::app

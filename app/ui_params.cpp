@@ -2,17 +2,25 @@
 /// where the scenario reader reads it), grouped by its group path ("Gains/R2" -> header
 /// "Gains", node "R2"), plus the experiment's action buttons. Widgets never write the
 /// experiment: they ask the session for an edit, which checks it against the whole scenario and
-/// applies it between steps; a refused edit is marked at its widget with the reason.
+/// applies it between steps; a refused edit is marked at its widget with the reason. A value
+/// that differs from the file is marked (its label in blue, a ↺ button that reverts it), one
+/// waiting for a reset shows ↻; both live in a column of fixed width and every row has the
+/// height of a widget, so nothing in the panel moves when an edit is made.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <unordered_map>
+#include <unordered_set>
 
 #include "app/ui.hpp"
 #include "sim/core/number_format.hpp"
 
 namespace formsim::app {
 namespace {
+
+// Sub-groups of a header start open when there are at most this many.
+constexpr std::size_t kOpenSubgroups = 8;
 
 std::string Head(const std::string& group) {
   return group.substr(0, group.find('/'));
@@ -22,32 +30,52 @@ std::string Tail(const std::string& group) {
   return slash == std::string::npos ? "" : group.substr(slash + 1);
 }
 
-// One row: label (with unit) on the left, widget on the right. `shown` is the value to show (the
-// one waiting for a reset, if any). Returns the new value as text when the user changed it.
-std::string ParamRow(const sim::Param& p, const std::string& shown, bool waiting,
-                     const std::string& refusal) {
+// What one row shows besides the value.
+struct RowMarks {
+  bool waiting = false;  ///< edited, waiting for a reset
+  bool edited = false;   ///< differs from the file (with the command line's --set)
+  std::string loaded;    ///< the file's value
+  std::string refusal;   ///< why the last edit was refused
+};
+
+// What the user did in a row.
+struct RowInput {
+  std::string value;  ///< the new value as text when changed
+  bool held = false;  ///< the widget is held (a slider being dragged)
+  bool revert = false;
+};
+
+// One row: label (with unit), widget, and the fixed-width marks column. `shown` is the value to
+// show (the one waiting for a reset, if any).
+RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks& marks) {
+  RowInput in;
   ImGui::TableNextRow();
   ImGui::TableSetColumnIndex(0);
   ImGui::AlignTextToFramePadding();
   std::string label = p.tune.label.empty() ? p.key : p.tune.label;
   if (!p.tune.unit.empty()) label += " [" + p.tune.unit + "]";
-  if (!refusal.empty()) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.75f, 0.1f, 0.1f, 1));
+  const bool colour = !marks.refusal.empty() || marks.edited;
+  if (colour)
+    ImGui::PushStyleColor(ImGuiCol_Text, !marks.refusal.empty() ? ImVec4(0.75f, 0.1f, 0.1f, 1)
+                                                                : ImVec4(0.15f, 0.45f, 0.9f, 1));
   ImGui::TextUnformatted(label.c_str());
-  if (!refusal.empty()) ImGui::PopStyleColor();
+  if (colour) ImGui::PopStyleColor();
   if (ImGui::IsItemHovered()) {
     std::string tip = p.key;
     if (!p.tune.help.empty()) tip += "\n" + p.tune.help;
     if (p.kind == sim::Param::Kind::kDouble || p.kind == sim::Param::Kind::kInt)
       tip += "\nvalid: " + p.tune.ValidityText();
     tip += p.tune.live ? "\napplies on the next step" : "\napplies on reset";
-    if (!refusal.empty()) tip += "\n\nlast edit refused: " + refusal;
+    if (marks.edited) tip += "\nedited: the file has " + marks.loaded + " (↺ reverts)";
+    if (!marks.refusal.empty()) tip += "\n\nlast edit refused: " + marks.refusal;
     ImGui::SetTooltip("%s", tip.c_str());
   }
   ImGui::TableSetColumnIndex(1);
-  ImGui::SetNextItemWidth(waiting ? -22.0f : -1.0f);
+  ImGui::SetNextItemWidth(-1.0f);
   ImGui::PushID(p.key.c_str());
-  if (!refusal.empty()) ImGui::PushStyleColor(ImGuiCol_FrameBg, ImVec4(0.95f, 0.75f, 0.75f, 1));
+  const std::string& refusal = marks.refusal;
   std::string out;
+  if (!refusal.empty()) ImGui::PushStyleColor(ImGuiCol_FrameBg, ImVec4(0.95f, 0.75f, 0.75f, 1));
   switch (p.kind) {
     case sim::Param::Kind::kDouble: {
       double v = 0;
@@ -86,14 +114,25 @@ std::string ParamRow(const sim::Param& p, const std::string& shown, bool waiting
       break;
     }
   }
+  in.held = ImGui::IsItemActive();
   if (!refusal.empty()) ImGui::PopStyleColor();
-  if (waiting) {
-    ImGui::SameLine();
+  // Marks: always the same width, whatever they show.
+  ImGui::TableSetColumnIndex(2);
+  if (marks.edited) {
+    if (ImGui::SmallButton("↺")) in.revert = true;
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("revert to the file's value %s", marks.loaded.c_str());
+  } else {
+    ImGui::Dummy(ImVec2(ImGui::GetFontSize() + 4, 1));
+  }
+  if (marks.waiting) {
+    ImGui::SameLine(0, 2);
     ImGui::TextColored(ImVec4(0.8f, 0.45f, 0.0f, 1.0f), "↻");
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("changed: applies on reset (r)");
   }
   ImGui::PopID();
-  return out;
+  in.value = out;
+  return in;
 }
 
 }  // namespace
@@ -101,39 +140,62 @@ std::string ParamRow(const sim::Param& p, const std::string& shown, bool waiting
 void AppUi::DrawParamSection() {
   const auto& params = session_->params().all();
   const auto actions = session_->exp().Actions();
-  // Groups in order of first appearance; within a head group, sub-groups likewise.
+  // Groups in order of first appearance; within a head group, sub-groups likewise. One pass
+  // over the parameters (a thousand robots declare tens of thousands in thousands of groups).
   std::vector<std::string> heads;
-  std::map<std::string, std::vector<std::string>> tails;
+  std::unordered_map<std::string, std::vector<std::string>> tails;
+  std::unordered_set<std::string> seen;
+  std::unordered_map<std::string, std::vector<const sim::Param*>> members;
   auto note_group = [&](const std::string& g) {
+    if (!seen.insert(g).second) return;
     const std::string h = Head(g), t = Tail(g);
-    if (std::find(heads.begin(), heads.end(), h) == heads.end()) heads.push_back(h);
-    auto& v = tails[h];
-    if (std::find(v.begin(), v.end(), t) == v.end()) v.push_back(t);
+    const auto [it, fresh] = tails.try_emplace(h);
+    if (fresh) heads.push_back(h);
+    if (std::find(it->second.begin(), it->second.end(), t) == it->second.end()) it->second.push_back(t);
   };
-  for (const auto& p : params) note_group(p.tune.group);
+  for (const auto& p : params) {
+    note_group(p.tune.group);
+    members[p.tune.group].push_back(&p);
+  }
   for (const auto& a : actions) note_group(a.group);
-  std::vector<std::pair<std::string, std::string>> edits;
+  struct Asked {
+    std::string key, value;
+    bool held;
+  };
+  std::vector<Asked> edits;
+  std::vector<std::string> reverts;
   std::vector<std::string> run_actions;
   const auto waiting = session_->waiting_for_reset();
   for (const std::string& h : heads) {
     const std::string header = (h.empty() ? std::string("Parameters") : h) + "###grp_" + h;
     if (!ImGui::CollapsingHeader(header.c_str(), ImGuiTreeNodeFlags_DefaultOpen)) continue;
-    for (const std::string& t : tails[h]) {
+    // Sub-groups start open unless there are many (one per robot of a swarm).
+    const auto& subgroups = tails[h];
+    const ImGuiTreeNodeFlags node_flags =
+        subgroups.size() <= kOpenSubgroups ? ImGuiTreeNodeFlags_DefaultOpen : 0;
+    for (const std::string& t : subgroups) {
       const std::string group = t.empty() ? h : h + "/" + t;
       bool open = true;
-      if (!t.empty())
-        open = ImGui::TreeNodeEx((t + "##" + group).c_str(), ImGuiTreeNodeFlags_DefaultOpen);
+      if (!t.empty()) open = ImGui::TreeNodeEx((t + "##" + group).c_str(), node_flags);
       if (!open) continue;
-      if (ImGui::BeginTable(("##tbl" + group).c_str(), 2, ImGuiTableFlags_SizingStretchProp)) {
+      const auto in_group = members.find(group);
+      if (in_group != members.end() &&
+          ImGui::BeginTable(("##tbl" + group).c_str(), 3, ImGuiTableFlags_SizingStretchProp)) {
         ImGui::TableSetupColumn("label", ImGuiTableColumnFlags_WidthStretch, 0.45f);
         ImGui::TableSetupColumn("value", ImGuiTableColumnFlags_WidthStretch, 0.55f);
-        for (const auto& p : params) {
-          if (p.tune.group != group) continue;
+        ImGui::TableSetupColumn("marks", ImGuiTableColumnFlags_WidthFixed,
+                                2 * ImGui::GetFontSize() + 12);
+        for (const sim::Param* pp : in_group->second) {
+          const sim::Param& p = *pp;
           const auto w = waiting.find(p.key);
-          const bool is_waiting = w != waiting.end();
-          const std::string v =
-              ParamRow(p, is_waiting ? w->second : p.Text(), is_waiting, session_->refusal(p.key));
-          if (!v.empty()) edits.emplace_back(p.key, v);
+          RowMarks marks;
+          marks.waiting = w != waiting.end();
+          marks.edited = session_->IsEdited(p.key);
+          marks.loaded = session_->LoadedValue(p.key);
+          marks.refusal = session_->refusal(p.key);
+          const RowInput in = ParamRow(p, marks.waiting ? w->second : p.Text(), marks);
+          if (!in.value.empty()) edits.push_back({p.key, in.value, in.held});
+          if (in.revert) reverts.push_back(p.key);
         }
         ImGui::EndTable();
       }
@@ -145,8 +207,13 @@ void AppUi::DrawParamSection() {
       if (!t.empty()) ImGui::TreePop();
     }
   }
-  // Asked for after the loop: an edit never changes the table while we iterate over it.
-  for (const auto& [key, value] : edits) CmdEdit(key, value);
+  // Asked for after the loop: an edit never changes the table while we iterate over it. The edits
+  // of a slider held since its last edit continue that edit (one undo step).
+  for (const Asked& e : edits) {
+    CmdEdit(e.key, e.value, e.held && state_.gesture_key == e.key);
+    if (e.held) state_.gesture_key = e.key;
+  }
+  for (const auto& key : reverts) CmdRevert(key);
   for (const auto& id : run_actions) CmdAction(id);
 }
 

@@ -2,6 +2,7 @@
 /// the mouse: wheel zoom, right/middle-drag pan, left-drag of robots and obstacles while paused.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "app/imgui_canvas.hpp"
 #include "app/ui.hpp"
@@ -12,7 +13,7 @@ namespace formsim::app {
 void AppUi::UpdateView(ImVec2 min, ImVec2 max) {
   View& v = state_.view;
   v.min = min, v.max = max;
-  const sim::Experiment& exp = session_->exp();
+  const sim::Experiment& exp = ShownExperiment();  // the timeline's time, or the live end
   Vec2 lo, hi;
   exp.Bounds(lo, hi);
   auto_fit_.set_mode(state_.whole_run ? AutoFit::Mode::kGrow : AutoFit::Mode::kTrack);
@@ -101,7 +102,9 @@ void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool in
                    ImGuiWindowFlags_NoBackground);  // the world view paints it
   const ImVec2 min = ImGui::GetCursorScreenPos();
   const ImVec2 avail = ImGui::GetContentRegionAvail();
-  const ImVec2 max(min.x + std::max(avail.x, 10.0f), min.y + std::max(avail.y, 10.0f));
+  // The timeline takes a strip at the bottom.
+  const float strip = ImGui::GetFrameHeight() + 8;
+  const ImVec2 max(min.x + std::max(avail.x, 10.0f), min.y + std::max(avail.y - strip, 10.0f));
   UpdateView(min, max);
   ImGui::InvisibleButton("world", ImVec2(max.x - min.x, max.y - min.y),
                          ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
@@ -109,9 +112,20 @@ void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool in
   WorldViewOptions opt;
   opt.grid = state_.grid;
   opt.coordinates = state_.coordinates;
+  for (const auto& p : pins_)
+    if (p->ready())
+      opt.overlays.push_back({p->exp.get(), PinLabel(*p), GetTheme(state_.theme).text});
+  const sim::Experiment& shown = ShownExperiment();
+  if (&shown != &session_->exp()) {
+    char note[64];
+    std::snprintf(note, sizeof note, "(timeline; live end %.2f s)", session_->exp().time());
+    opt.time_note = note;
+  }
   ImGuiCanvas canvas(ImGui::GetWindowDrawList(), fonts);
-  DrawWorldView(canvas, state_.view, session_->exp(), GetTheme(state_.theme), opt);
-  if (interactive) DrawWorldMouse(state_.view);
+  DrawWorldView(canvas, state_.view, shown, GetTheme(state_.theme), opt);
+  // Drags move the live run's bodies: not while the timeline shows another time.
+  if (interactive && &shown == &session_->exp()) DrawWorldMouse(state_.view);
+  DrawTimeline(ImVec2(min.x, max.y), ImVec2(max.x, max.y + strip));
   ImGui::End();
   ImGui::PopStyleVar();
 }

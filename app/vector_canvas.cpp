@@ -1,5 +1,6 @@
 #include "app/vector_canvas.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "app/vector_fonts.hpp"
@@ -10,6 +11,7 @@ VectorCanvas::VectorCanvas(float width, float height) {
   VectorFonts::Get();  // fail now, before anything is drawn, when the fonts are missing
   fig_.width = width;
   fig_.height = height;
+  clips_.emplace_back(0.0f, 0.0f, width, height);
 }
 
 VectorOp& VectorCanvas::Add(VectorOp::Kind kind, sim::Color color) {
@@ -95,12 +97,19 @@ ImVec2 VectorCanvas::TextSize(FontRole font, const std::string& text) const {
 void VectorCanvas::PushClip(ImVec2 min, ImVec2 max) {
   VectorOp& op = Add(VectorOp::Kind::kPushClip, {});
   op.pts = {min, max};
-  ++clip_depth_;
+  const ImVec4& c = clips_.back();
+  clips_.emplace_back(std::max(c.x, min.x), std::max(c.y, min.y), std::min(c.z, max.x),
+                      std::min(c.w, max.y));
+}
+
+void VectorCanvas::Clip(ImVec2& min, ImVec2& max) const {
+  min = ImVec2(clips_.back().x, clips_.back().y);
+  max = ImVec2(clips_.back().z, clips_.back().w);
 }
 
 void VectorCanvas::PopClip() {
-  if (clip_depth_ == 0) throw std::logic_error("VectorCanvas::PopClip without PushClip");
-  --clip_depth_;
+  if (clips_.size() <= 1) throw std::logic_error("VectorCanvas::PopClip without PushClip");
+  clips_.pop_back();
   Add(VectorOp::Kind::kPopClip, {});
 }
 

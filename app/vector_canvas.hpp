@@ -57,6 +57,7 @@ class VectorCanvas : public Canvas {
   ImVec2 TextSize(FontRole font, const std::string& text) const override;
   void PushClip(ImVec2 min, ImVec2 max) override;
   void PopClip() override;
+  void Clip(ImVec2& min, ImVec2& max) const override;
 
   const VectorFigure& figure() const { return fig_; }
   VectorFigure Take() { return std::move(fig_); }
@@ -64,7 +65,8 @@ class VectorCanvas : public Canvas {
  private:
   VectorOp& Add(VectorOp::Kind kind, sim::Color color);
   VectorFigure fig_;
-  int clip_depth_ = 0;
+  /// The figure's rectangle, then each pushed clip intersected with the one before.
+  std::vector<ImVec4> clips_;
 };
 
 }  // namespace formsim::app

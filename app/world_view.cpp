@@ -1,9 +1,11 @@
 #include "app/world_view.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include "app/canvas_draw_sink.hpp"
+#include "app/faded_draw_sink.hpp"
 #include "app/plot.hpp"
 
 namespace formsim::app {
@@ -80,6 +82,10 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
 
   CanvasDrawSink sink(cv, view, th, FontRole::kSmall);
   exp.Draw(sink);
+  for (const WorldOverlay& o : opt.overlays) {
+    FadedDrawSink faded(sink, 0.4f);
+    o.exp->DrawOverlay(faded);
+  }
 
   // Coordinates of the major grid lines along the bottom and left edges, in metres.
   if (opt.grid && opt.coordinates) {
@@ -123,10 +129,29 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
   if (opt.time_label) {
     char buf[64];
     std::snprintf(buf, sizeof(buf), "t = %.2f s", exp.time());
-    Label(cv, th, FontRole::kTitle, ImVec2(view.min.x + 12, view.min.y + 10), th.text, buf);
+    Label(cv, th, FontRole::kTitle, ImVec2(view.min.x + 12, view.min.y + 10), th.text,
+          buf + (opt.time_note.empty() ? std::string() : "  " + opt.time_note));
     if (!opt.caption.empty())
       Label(cv, th, FontRole::kSmall, ImVec2(view.min.x + 12, view.min.y + 36), th.axis,
             opt.caption);
+  }
+  // Legend of the overlays, top right: a dashed sample in the entry's colour and its label.
+  if (!opt.overlays.empty()) {
+    const float row = cv.FontSize(FontRole::kSmall) + 6, sample = 26;
+    float w = 0;
+    for (const WorldOverlay& o : opt.overlays)
+      w = std::max(w, cv.TextSize(FontRole::kSmall, o.label).x);
+    const ImVec2 hi(view.max.x - 10, view.min.y + 10 + row * opt.overlays.size() + 8);
+    const ImVec2 lo(std::max(view.min.x + 10, hi.x - w - sample - 22), view.min.y + 10);
+    cv.FillRect(lo, hi, th.backdrop.WithAlpha(0.88f), 3.0f);
+    cv.StrokeRect(lo, hi, th.legend_border, 1.0f, 3.0f);
+    for (std::size_t i = 0; i < opt.overlays.size(); ++i) {
+      const float y = lo.y + 4 + row * static_cast<float>(i);
+      const sim::Color c = th.Ink(opt.overlays[i].color);
+      cv.Line(ImVec2(lo.x + 7, y + row / 2), ImVec2(lo.x + 7 + sample, y + row / 2),
+              {c.WithAlpha(0.7f), 2.0f, LineDash::Dashes(5, 3)});
+      cv.Text(ImVec2(lo.x + 14 + sample, y + 2), FontRole::kSmall, th.text, opt.overlays[i].label);
+    }
   }
   cv.PopClip();
 }

@@ -9,12 +9,21 @@
 
 namespace formsim::app {
 
+/// Another run drawn faded over the one in view (a pinned run), with a legend entry.
+struct WorldOverlay {
+  const sim::Experiment* exp = nullptr;
+  std::string label;  ///< "pin 1: k_l 0.15 -> 0.4"
+  sim::Color color;   ///< of its legend entry
+};
+
 struct WorldViewOptions {
   bool grid = true;
   bool scale_bar = true;
   bool time_label = true;
   bool coordinates = true;  ///< grid values along the left and bottom edges
   std::string caption;      ///< drawn under the time (scenario name)
+  std::vector<WorldOverlay> overlays;  ///< drawn faded after the experiment, listed top right
+  std::string time_note;               ///< after the time label, e.g. "(timeline; live at 7.00 s)"
 };
 
 /// Draws the experiment into `view`'s rectangle of `canvas` (clipped to it).

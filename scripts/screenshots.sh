@@ -72,6 +72,52 @@ if command -v xvfb-run >/dev/null; then
   xvfb-run -a -s "-screen 0 1600x900x24" "$BIN" gui formation_cascade7 --size 1600x900 \
     --speed 2 --exit-after 150 --edit 60:robots.R2.follow.k_l=0.4 \
     --screenshot "$OUT/gui_cascade7.png" >/dev/null
+  # Tuning in the window, driven by scripts (frames of the script; `wait` holds it while pins
+  # replay and the Monte Carlo runs). A pinned run: the shipped gains (k_l 0.15) kept, then both
+  # followers' k_l at 0.5 and the run again: dashed in the plots, faded in the world view.
+  cat >"$TMP/pinned.txt" <<'SCRIPT'
+30 pin
+31 wait
+32 edit robots.R2.follow.k_l=0.5
+33 edit robots.R3.follow.k_l=0.5
+34 reset
+35 play
+80 screenshot screenshots/tuning_pinned.png
+SCRIPT
+  xvfb-run -a -s "-screen 0 1600x900x24" "$BIN" gui formation_traj2 --size 1600x900 --speed max \
+    --exit-after 82 --script "$TMP/pinned.txt" >/dev/null
+  # The history of six runs of the UKF cascade (gains and a seed changed between them), one of
+  # them pinned from its row.
+  cat >"$TMP/history.txt" <<'SCRIPT'
+30 edit robots.R2.follow.k_l=0.3
+31 reset
+32 play
+60 edit robots.R2.follow.k_l=0.6
+61 reset
+62 play
+90 reset-seed 2
+91 play
+120 edit robots.R2.follow.k_phi=0.2
+121 reset
+122 play
+150 edit robots.R2.follow.k_l=0.15
+151 reset
+152 play
+180 pin-row 2
+181 wait
+182 tab history
+190 screenshot screenshots/tuning_history.png
+SCRIPT
+  xvfb-run -a -s "-screen 0 1920x1080x24" "$BIN" gui formation_traj2_ukf --size 1920x1000 \
+    --speed max --exit-after 192 --script "$TMP/history.txt" >/dev/null
+  # Monte Carlo in the window: the AGV over 20 seeds, bands on every time plot.
+  cat >"$TMP/montecarlo.txt" <<'SCRIPT'
+2 seeds 20
+3 wait
+30 screenshot screenshots/tuning_montecarlo.png
+SCRIPT
+  xvfb-run -a -s "-screen 0 1600x900x24" "$BIN" gui agv_fused --size 1600x900 --speed max \
+    --exit-after 32 --script "$TMP/montecarlo.txt" >/dev/null
 else
   echo "screenshots: xvfb-run not installed, GUI screenshot skipped" >&2
 fi

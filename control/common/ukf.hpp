@@ -12,13 +12,21 @@
 /// prediction the points are redrawn from the predicted mean and covariance (eq. 16).
 ///
 /// Angles: components flagged as angles are averaged as circular means (atan2 of the weighted
-/// sines and cosines), and their deviations and residuals are wrapped to (−π, π].
+/// sines and cosines), and their deviations and residuals are wrapped to (−π, π]. The circular
+/// mean is taken around the first point, atan2(Σ w sin(aᵢ − a₀), Σ w cos(aᵢ − a₀)) + a₀, which is
+/// the same angle and lets the small deviations use SinCosSmall instead of libm.
+///
+/// Selection measurements (y = D s, D picks components of s, as the link filter's [φ, α]): the
+/// unscented transform of a selection is exact, so UpdateSelection computes the update in
+/// closed form, K = P Dᵀ (D P Dᵀ + R)⁻¹, which equals the sigma-point update up to rounding
+/// whenever the sigma points' angle spreads stay well inside ±π (checked: (n+λ)Pₖₖ < 9 for
+/// every angle state and Pₖₖ < 1 for every measured angle, so no deviation is wrapped and no
+/// circular mean flips); otherwise it runs the sigma-point update.
 ///
 /// Faults: if a covariance is not symmetric positive definite (its Cholesky factorisation fails)
 /// or anything becomes non-finite, the step is abandoned, x and P keep their previous values and
 /// a fault status is returned; the caller decides (e.g. reset P and report an event).
 
-#include <Eigen/Cholesky>
 #include <Eigen/Dense>
 #include <array>
 #include <cmath>
@@ -60,6 +68,44 @@ inline UkfScaling DefaultUkfScaling(int n) {
   return UkfScaling{1.0, 2.0, 3.0 - n};
 }
 
+/// Lower Cholesky factor L of a small symmetric matrix A (A = L Lᵀ), plain loops that the
+/// compiler unrolls for fixed sizes. Returns false when A is not positive definite (a pivot
+/// ≤ 0 or NaN), like Eigen::LLT's info().
+template <int K>
+bool CholeskyLower(const Eigen::Matrix<double, K, K>& A, Eigen::Matrix<double, K, K>& L) {
+  L.setZero();
+  for (int j = 0; j < K; ++j) {
+    double d = A(j, j);
+    for (int k = 0; k < j; ++k) d -= L(j, k) * L(j, k);
+    if (!(d > 0.0)) return false;
+    const double ljj = std::sqrt(d), inv = 1.0 / ljj;
+    L(j, j) = ljj;
+    for (int i = j + 1; i < K; ++i) {
+      double v = A(i, j);
+      for (int k = 0; k < j; ++k) v -= L(i, k) * L(j, k);
+      L(i, j) = v * inv;
+    }
+  }
+  return true;
+}
+
+/// Solves L Lᵀ x = b in place with a lower Cholesky factor.
+template <int K>
+void CholeskySolveInPlace(const Eigen::Matrix<double, K, K>& L, Eigen::Matrix<double, K, 1>& b) {
+  double inv[K];
+  for (int i = 0; i < K; ++i) inv[i] = 1.0 / L(i, i);
+  for (int i = 0; i < K; ++i) {
+    double v = b(i);
+    for (int k = 0; k < i; ++k) v -= L(i, k) * b(k);
+    b(i) = v * inv[i];
+  }
+  for (int i = K - 1; i >= 0; --i) {
+    double v = b(i);
+    for (int k = i + 1; k < K; ++k) v -= L(k, i) * b(k);
+    b(i) = v * inv[i];
+  }
+}
+
 template <int N, int M>
 class Ukf {
  public:
@@ -70,6 +116,9 @@ class Ukf {
   using Cov = Eigen::Matrix<double, N, N>;
   using MeasCov = Eigen::Matrix<double, M, M>;
   using CrossCov = Eigen::Matrix<double, N, M>;
+  /// The 2n+1 sigma points: [0] the mean, [1 + i] mean + column i, [1 + n + i] mean − column i
+  /// of the Cholesky factor of (n+λ)P.
+  using SigmaSet = std::array<State, kSigma>;
 
   Ukf() { SetScaling(DefaultUkfScaling(N)); }
 
@@ -98,38 +147,44 @@ class Ukf {
     x_ = x0;
     P_ = P0;
     WrapState(x_);
+    chol_valid_ = false;
   }
 
   /// Time update (eq. 13-15): propagates the sigma points through `f` (State -> State) and adds
   /// the process noise covariance Q.
   template <class F>
   UkfStatus Predict(F&& f, const Cov& Q) {
-    std::array<State, kSigma> pts;
-    UkfStatus st = SigmaPoints(x_, P_, pts);
+    return PredictSigma(
+        [&](const SigmaSet& in, SigmaSet& out) {
+          for (int i = 0; i < kSigma; ++i) out[i] = f(in[i]);
+        },
+        Q);
+  }
+
+  /// The same time update with a model that maps all sigma points at once,
+  /// g(const SigmaSet& points, SigmaSet& out), so that it can share work between them (their
+  /// layout is SigmaSet's: a mean and ± columns).
+  template <class G>
+  UkfStatus PredictSigma(G&& g, const Cov& Q) {
+    SigmaSet pts;
+    UkfStatus st = CurrentSigmaPoints(pts);
     if (st != UkfStatus::kOk) return st;
-    for (auto& p : pts) {
-      p = f(static_cast<const State&>(p));
+    SigmaSet out;
+    g(static_cast<const SigmaSet&>(pts), out);
+    for (const State& p : out)
       if (!p.allFinite()) return UkfStatus::kNonFinite;
-    }
-    const State mean = MeanState(pts);
+    const State mean = MeanState(out);
     Cov P = Q;
-    for (int i = 0; i < kSigma; ++i) {
-      const State d = StateDiff(pts[i], mean);
-      P.noalias() += wc_[i] * d * d.transpose();
-    }
-    P = 0.5 * (P + P.transpose());
-    if (!mean.allFinite() || !P.allFinite()) return UkfStatus::kNonFinite;
-    if (Eigen::LLT<Cov>(P).info() != Eigen::Success) return UkfStatus::kNotPositiveDefinite;
-    x_ = mean;
-    P_ = P;
-    return UkfStatus::kOk;
+    for (int i = 0; i < kSigma; ++i) AddOuter(P, wc_[i], StateDiff(out[i], mean));
+    Symmetrize(P);
+    return Accept(mean, P);
   }
 
   /// Measurement update (eq. 16-21) with measurement function `h` (State -> Meas) and noise R.
   template <class H>
   UkfStatus Update(const Meas& z, H&& h, const MeasCov& R) {
-    std::array<State, kSigma> pts;
-    UkfStatus st = SigmaPoints(x_, P_, pts);
+    SigmaSet pts;
+    UkfStatus st = CurrentSigmaPoints(pts);
     if (st != UkfStatus::kOk) return st;
     std::array<Meas, kSigma> ys;
     for (int i = 0; i < kSigma; ++i) {
@@ -145,36 +200,63 @@ class Ukf {
       Pyy.noalias() += wc_[i] * dy * dy.transpose();
       Psy.noalias() += wc_[i] * ds * dy.transpose();
     }
-    Pyy = 0.5 * (Pyy + Pyy.transpose());
-    const Eigen::LLT<MeasCov> llt(Pyy);
-    if (!Pyy.allFinite()) return UkfStatus::kNonFinite;
-    if (llt.info() != Eigen::Success) return UkfStatus::kNotPositiveDefinite;
-    // K = Psy Pyy^-1, computed as (Pyy^-1 Psy')' with the Cholesky factor.
-    const CrossCov K = llt.solve(Psy.transpose()).transpose();
-    const Meas innovation = MeasDiff(z, y_mean);
-    last_nis_ = innovation.dot(llt.solve(innovation));
-    State x = x_ + K * innovation;
-    Cov P = P_ - K * Pyy * K.transpose();
-    P = 0.5 * (P + P.transpose());
-    WrapState(x);
-    if (!x.allFinite() || !P.allFinite()) return UkfStatus::kNonFinite;
-    if (Eigen::LLT<Cov>(P).info() != Eigen::Success) return UkfStatus::kNotPositiveDefinite;
-    x_ = x;
-    P_ = P;
-    return UkfStatus::kOk;
+    return Correct(z, y_mean, Pyy, Psy);
+  }
+
+  /// Measurement update for y = D s where D selects the components `idx` of s (y(k) = s(idx[k])).
+  /// Closed form when it is exact (see the file comment), else the sigma-point update.
+  UkfStatus UpdateSelection(const Meas& z, const std::array<int, M>& idx, const MeasCov& R) {
+    if (!x_.allFinite() || !P_.allFinite()) return UkfStatus::kNonFinite;
+    const double c = N + lambda_;
+    bool exact = c > 0.0;
+    for (int k = 0; k < N && exact; ++k) exact = !angle_state_[k] || c * P_(k, k) < 9.0;
+    for (int k = 0; k < M && exact; ++k)
+      exact = angle_meas_[k] == angle_state_[idx[k]] && (!angle_meas_[k] || P_(idx[k], idx[k]) < 1.0);
+    if (!exact)
+      return Update(
+          z,
+          [&](const State& s) {
+            Meas y;
+            for (int k = 0; k < M; ++k) y(k) = s(idx[k]);
+            return y;
+          },
+          R);
+    // The sigma-point update would fail here when (n+λ)P is not positive definite.
+    if (!chol_valid_) {
+      Cov L;
+      if (!CholeskyLower<N>(P_, L)) return UkfStatus::kNotPositiveDefinite;
+      Factored(L);
+    }
+    Meas y_mean;
+    MeasCov Pyy = R;
+    CrossCov Psy;
+    for (int a = 0; a < M; ++a) {
+      y_mean(a) = x_(idx[a]);
+      for (int b = 0; b < M; ++b) Pyy(a, b) += P_(idx[a], idx[b]);
+      for (int r = 0; r < N; ++r) Psy(r, a) = P_(r, idx[a]);
+    }
+    return Correct(z, y_mean, Pyy, Psy);
   }
 
   const State& x() const { return x_; }
   const Cov& P() const { return P_; }
   /// Normalised innovation squared of the last successful update.
   double last_nis() const { return last_nis_; }
+  /// eᵀ P⁻¹ e for the current P (e.g. the normalised estimation error squared, NEES); NaN when
+  /// P is not positive definite.
+  double Mahalanobis2(const State& e) const {
+    Cov L = chol_;
+    if (!chol_valid_ && !CholeskyLower<N>(P_, L)) return std::nan("");
+    State v = e;
+    CholeskySolveInPlace<N>(L, v);
+    return e.dot(v);
+  }
 
   /// Sigma points of (mean, P) (eq. 12). Fails when P is not positive definite.
-  UkfStatus SigmaPoints(const State& mean, const Cov& P, std::array<State, kSigma>& pts) const {
+  UkfStatus SigmaPoints(const State& mean, const Cov& P, SigmaSet& pts) const {
     if (!mean.allFinite() || !P.allFinite()) return UkfStatus::kNonFinite;
-    const Eigen::LLT<Cov> llt((N + lambda_) * P);
-    if (llt.info() != Eigen::Success) return UkfStatus::kNotPositiveDefinite;
-    const Cov S = llt.matrixL();
+    Cov S;
+    if (!CholeskyLower<N>(Cov((N + lambda_) * P), S)) return UkfStatus::kNotPositiveDefinite;
     pts[0] = mean;
     for (int i = 0; i < N; ++i) {
       pts[1 + i] = mean + S.col(i);
@@ -184,10 +266,75 @@ class Ukf {
   }
 
  private:
+  // The sigma points of (x, P), from the Cholesky factor of P kept by the last step when there
+  // is one ((n+λ)P = (√(n+λ) L)(√(n+λ) L)ᵀ).
+  UkfStatus CurrentSigmaPoints(SigmaSet& pts) const {
+    if (!chol_valid_) return SigmaPoints(x_, P_, pts);
+    const double c = N + lambda_;
+    if (!(c > 0.0)) return UkfStatus::kNotPositiveDefinite;
+    const Cov S = std::sqrt(c) * chol_;
+    pts[0] = x_;
+    for (int i = 0; i < N; ++i) {
+      pts[1 + i] = x_ + S.col(i);
+      pts[1 + N + i] = x_ - S.col(i);
+    }
+    return UkfStatus::kOk;
+  }
+  void Factored(const Cov& L) {
+    chol_ = L;
+    chol_valid_ = true;
+  }
   template <std::size_t K>
   static void SetFlags(std::array<bool, K>& flags, std::initializer_list<int> idx) {
     flags.fill(false);
     for (int i : idx) flags[i] = true;
+  }
+  // P += w d dᵀ (lower triangle; Symmetrize mirrors it).
+  static void AddOuter(Cov& P, double w, const State& d) {
+    for (int c = 0; c < N; ++c) {
+      const double wd = w * d(c);
+      for (int r = c; r < N; ++r) P(r, c) += wd * d(r);
+    }
+  }
+  template <int K>
+  static void Symmetrize(Eigen::Matrix<double, K, K>& A) {
+    for (int c = 0; c < K; ++c)
+      for (int r = c + 1; r < K; ++r) A(c, r) = A(r, c);
+  }
+  // The update from the predicted measurement, its covariance and the cross covariance
+  // (eq. 19-21): K = Psy Pyy⁻¹, x += K (z − ŷ), P −= K Pyy Kᵀ.
+  UkfStatus Correct(const Meas& z, const Meas& y_mean, MeasCov Pyy, const CrossCov& Psy) {
+    Pyy = 0.5 * (Pyy + Pyy.transpose());
+    if (!Pyy.allFinite()) return UkfStatus::kNonFinite;
+    MeasCov Ly;
+    if (!CholeskyLower<M>(Pyy, Ly)) return UkfStatus::kNotPositiveDefinite;
+    // K = Psy Pyy⁻¹, row by row: Pyy kᵀ = (row of Psy)ᵀ.
+    CrossCov K;
+    for (int r = 0; r < N; ++r) {
+      Meas row = Psy.row(r).transpose();
+      CholeskySolveInPlace<M>(Ly, row);
+      K.row(r) = row.transpose();
+    }
+    const Meas innovation = MeasDiff(z, y_mean);
+    Meas w = innovation;
+    CholeskySolveInPlace<M>(Ly, w);
+    last_nis_ = innovation.dot(w);
+    State x = x_ + K * innovation;
+    Cov P = P_ - K * Pyy * K.transpose();
+    P = 0.5 * (P + P.transpose());
+    WrapState(x);
+    return Accept(x, P);
+  }
+  // The new state when it is finite and P positive definite (its factor is kept for the next
+  // sigma points); else a fault and nothing changes.
+  UkfStatus Accept(const State& x, const Cov& P) {
+    if (!x.allFinite() || !P.allFinite()) return UkfStatus::kNonFinite;
+    Cov L;
+    if (!CholeskyLower<N>(P, L)) return UkfStatus::kNotPositiveDefinite;
+    x_ = x;
+    P_ = P;
+    Factored(L);
+    return UkfStatus::kOk;
   }
   void WrapState(State& x) const {
     for (int i = 0; i < N; ++i)
@@ -205,23 +352,26 @@ class Ukf {
       if (angle_meas_[i]) d(i) = WrapToPi(d(i));
     return d;
   }
-  // Weighted mean; angle components as the circular mean atan2(Σ w sin, Σ w cos).
+  // Weighted mean; angle components as the circular mean atan2(Σ w sin, Σ w cos), taken
+  // around the first point so that the deviations are small.
   template <class Vec, std::size_t K, std::size_t D>
   Vec Mean(const std::array<Vec, K>& pts, const std::array<bool, D>& angle) const {
     Vec mean = Vec::Zero();
     for (std::size_t i = 0; i < K; ++i) mean += wm_[i] * pts[i];
     for (std::size_t c = 0; c < D; ++c) {
       if (!angle[c]) continue;
+      const double ref = pts[0](c);
       double s = 0.0, co = 0.0;
       for (std::size_t i = 0; i < K; ++i) {
-        s += wm_[i] * std::sin(pts[i](c));
-        co += wm_[i] * std::cos(pts[i](c));
+        const SinCos e = SinCosSmall(WrapToPi(pts[i](c) - ref));
+        s += wm_[i] * e.s;
+        co += wm_[i] * e.c;
       }
-      mean(c) = std::atan2(s, co);
+      mean(c) = WrapToPi(ref + std::atan2(s, co));
     }
     return mean;
   }
-  State MeanState(const std::array<State, kSigma>& pts) const { return Mean(pts, angle_state_); }
+  State MeanState(const SigmaSet& pts) const { return Mean(pts, angle_state_); }
   Meas MeanMeas(const std::array<Meas, kSigma>& ys) const { return Mean(ys, angle_meas_); }
 
   UkfScaling scaling_;
@@ -231,6 +381,8 @@ class Ukf {
   std::array<bool, M> angle_meas_{};
   State x_ = State::Zero();
   Cov P_ = Cov::Identity();
+  Cov chol_ = Cov::Identity();  ///< lower Cholesky factor of P_ when chol_valid_
+  bool chol_valid_ = false;
   double last_nis_ = 0.0;
 };
 

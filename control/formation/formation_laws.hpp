@@ -34,17 +34,33 @@ inline double EffectiveGain(double k, GainReading reading, double Tc) {
   return reading == GainReading::kPerSample ? k / Tc : k;
 }
 
+/// The part of the l-φ law that does not depend on the leader's command: its sines, cosines and
+/// error terms. A cascade prepares every follower's at once (in parallel) and finishes them in
+/// cascade order, each with its leader's command of the same step.
+struct LPhiPrepared {
+  double cg = 1, sg = 0;      ///< cos γ, sin γ
+  double cp = 1, sp = 0;      ///< cos φ, sin φ
+  double e1 = 0, e2 = 0;      ///< −k1 (l − l_des), −k2 wrap(φ − φ_des)
+  double l = 1;
+};
+inline LPhiPrepared PrepareLPhi(const LinkState& s, double l_des, double phi_des,
+                                const FormationGains& gains) {
+  const SinCos g = SinCosOf(s.gamma()), p = SinCosOf(s.phi);
+  return {g.c, g.s, p.c, p.s, -gains.k1 * (s.l - l_des), -gains.k2 * WrapToPi(s.phi - phi_des), s.l};
+}
+/// The command from a prepared law and the leader's twist (feed-forward).
+inline Twist FinishLPhi(const LPhiPrepared& p, const Twist& leader, double L) {
+  // Desired output rates: −K e minus the drift f.
+  const double c1 = p.e1 + leader.v * p.cp;
+  const double c2 = p.e2 - leader.v * p.sp / p.l + leader.w;
+  return {p.cg * c1 - p.l * p.sg * c2, (p.sg * c1 + p.l * p.cg * c2) / L};
+}
+
 /// l-φ law. `s` is the (measured or estimated) link state, `leader` the leader's twist
 /// (feed-forward), `l_des`/`phi_des` the target, `gains` the continuous gains.
 inline Twist LPhiControl(const LinkState& s, const Twist& leader, double l_des, double phi_des,
                          const FormationGains& gains, double L) {
-  const double g = s.gamma();
-  const double cg = std::cos(g), sg = std::sin(g);
-  // Desired output rates: −K e minus the drift f.
-  const double c1 = -gains.k1 * (s.l - l_des) + leader.v * std::cos(s.phi);
-  const double c2 =
-      -gains.k2 * WrapToPi(s.phi - phi_des) - leader.v * std::sin(s.phi) / s.l + leader.w;
-  return {cg * c1 - s.l * sg * c2, (sg * c1 + s.l * cg * c2) / L};
+  return FinishLPhi(PrepareLPhi(s, l_des, phi_des, gains), leader, L);
 }
 
 /// Result of the l-l law.
@@ -54,38 +70,65 @@ struct LLCommand {
   bool singular = false;   ///< |sin_angle| < threshold: the regularised inverse was used
 };
 
+/// The part of the l-l law that does not depend on the leaders' commands (see LPhiPrepared).
+struct LLPrepared {
+  double e1 = 0, e2 = 0;    ///< −k1 (l_ij − l1_des), −k2 (l_kj − l2_des)
+  double cp1 = 1, cp2 = 1;  ///< cos φ_ij, cos φ_kj
+  double a = 1, b = 0, c = 0, d = 1;  ///< cos γ_ij, sin γ_ij, cos γ_kj, sin γ_kj
+  double p = 1, q = 0, det = 1;       ///< the regularised inverse's terms (singular only)
+  double sin_angle = 1;
+  bool singular = false;
+};
+inline LLPrepared PrepareLL(const LinkState& s1, const LinkState& s2, double l1_des, double l2_des,
+                            const FormationGains& gains, double singular_threshold) {
+  LLPrepared r;
+  r.e1 = -gains.k1 * (s1.l - l1_des);
+  r.e2 = -gains.k2 * (s2.l - l2_des);
+  r.cp1 = std::cos(s1.phi);
+  r.cp2 = std::cos(s2.phi);
+  // Unit-free matrix B = A diag(1, 1/L) acting on u' = [v, Lω]; det B = sin(g2 − g1).
+  const SinCos g1 = SinCosOf(s1.gamma()), g2 = SinCosOf(s2.gamma());
+  r.a = g1.c, r.b = g1.s, r.c = g2.c, r.d = g2.s;
+  r.sin_angle = r.a * r.d - r.b * r.c;
+  r.singular = std::abs(r.sin_angle) < singular_threshold;
+  if (r.singular) {
+    // Damped least squares u' = Bᵀ (B Bᵀ + μ² I)⁻¹ c with μ = thr (1 − (sin/thr)²).
+    const double ratio = r.sin_angle / singular_threshold;
+    const double mu = singular_threshold * (1.0 - ratio * ratio);
+    const double mu2 = mu * mu;
+    // B Bᵀ + μ² I = [[1 + μ², ac + bd], [ac + bd, 1 + μ²]] (rows of B are unit vectors).
+    r.p = 1.0 + mu2, r.q = r.a * r.c + r.b * r.d;
+    r.det = r.p * r.p - r.q * r.q;  // = sin² + μ²(2 + μ²) > 0 whenever μ > 0 or sin ≠ 0
+  }
+  return r;
+}
+/// The command from a prepared law and the leaders' twists.
+inline LLCommand FinishLL(const LLPrepared& r, const Twist& leader1, const Twist& leader2, double L) {
+  // Desired output rates plus the drift: A [v; ω] = c.
+  const double c1 = r.e1 + leader1.v * r.cp1;
+  const double c2 = r.e2 + leader2.v * r.cp2;
+  LLCommand out;
+  out.sin_angle = r.sin_angle;
+  out.singular = r.singular;
+  double u1, u2;
+  if (!r.singular) {
+    const double det = r.sin_angle;
+    u1 = (r.d * c1 - r.b * c2) / det;
+    u2 = (-r.c * c1 + r.a * c2) / det;
+  } else {
+    const double w1 = (r.p * c1 - r.q * c2) / r.det, w2 = (-r.q * c1 + r.p * c2) / r.det;
+    u1 = r.a * w1 + r.c * w2;
+    u2 = r.b * w1 + r.d * w2;
+  }
+  out.cmd = {u1, u2 / L};
+  return out;
+}
+
 /// l-l law. `s1` is the link to the first leader (i), `s2` to the second (k).
 inline LLCommand LLControl(const LinkState& s1, const LinkState& s2, const Twist& leader1,
                            const Twist& leader2, double l1_des, double l2_des,
                            const FormationGains& gains, double L, double singular_threshold) {
-  const double g1 = s1.gamma(), g2 = s2.gamma();
-  // Desired output rates plus the drift: A [v; ω] = c.
-  const double c1 = -gains.k1 * (s1.l - l1_des) + leader1.v * std::cos(s1.phi);
-  const double c2 = -gains.k2 * (s2.l - l2_des) + leader2.v * std::cos(s2.phi);
-  // Unit-free matrix B = A diag(1, 1/L) acting on u' = [v, Lω]; det B = sin(g2 − g1).
-  const double a = std::cos(g1), b = std::sin(g1), c = std::cos(g2), d = std::sin(g2);
-  LLCommand out;
-  out.sin_angle = a * d - b * c;
-  out.singular = std::abs(out.sin_angle) < singular_threshold;
-  double u1, u2;
-  if (!out.singular) {
-    const double det = out.sin_angle;
-    u1 = (d * c1 - b * c2) / det;
-    u2 = (-c * c1 + a * c2) / det;
-  } else {
-    // Damped least squares u' = Bᵀ (B Bᵀ + μ² I)⁻¹ c with μ = thr (1 − (sin/thr)²).
-    const double r = out.sin_angle / singular_threshold;
-    const double mu = singular_threshold * (1.0 - r * r);
-    const double mu2 = mu * mu;
-    // B Bᵀ + μ² I = [[1 + μ², ac + bd], [ac + bd, 1 + μ²]] (rows of B are unit vectors).
-    const double p = 1.0 + mu2, q = a * c + b * d;
-    const double det = p * p - q * q;  // = sin² + μ²(2 + μ²) > 0 whenever μ > 0 or sin ≠ 0
-    const double w1 = (p * c1 - q * c2) / det, w2 = (-q * c1 + p * c2) / det;
-    u1 = a * w1 + c * w2;
-    u2 = b * w1 + d * w2;
-  }
-  out.cmd = {u1, u2 / L};
-  return out;
+  return FinishLL(PrepareLL(s1, s2, l1_des, l2_des, gains, singular_threshold), leader1, leader2, L);
 }
 
 }  // namespace formsim::control::formation

@@ -1,6 +1,9 @@
 #pragma once
 /// \file Open-loop (v, ω) schedules of a formation's root leader (paper 000, section 3.1).
-///  - kSegments: piecewise-constant segments, each valid until its end time (the last holds).
+///  - kSegments: piecewise-constant segments, each valid until its end time (the last holds);
+///    with ramp > 0 each change of (v, ω) is linear over the first `ramp` seconds of the new
+///    segment (so a large formation can follow: no step in the turn rate of the root means no
+///    step in the speeds its far robots need).
 ///  - kLineCurve (trajectory 1): v, ω = 0 on [0, 2) and (6, 8], −ω_a on [2, 6], +ω_a on (8, 17],
 ///    ω_a = π/5 in the paper; after 17 s ω stays +ω_a.
 ///  - kFigureEight (trajectory 2): ω = −ω_a on [0, 5.5], +ω_a on (5.5, 11], ω_a = π/3; after 11 s
@@ -33,6 +36,7 @@ struct LeaderScheduleDef {
   double r0 = 2.0;         ///< spiral: initial radius, m
   double r_rate = 0.2;     ///< spiral: dR/dt, m/s
   std::vector<ScheduleSegment> segments;
+  double ramp = 0.0;  ///< segments: duration of each change, s (at most any segment's length)
 };
 
 /// The command of a leader at time t.
@@ -41,9 +45,15 @@ inline Twist ScheduleAt(const LeaderScheduleDef& d, double t) {
   switch (d.kind) {
     case Kind::kSegments: {
       if (d.segments.empty()) return {};
-      for (const auto& s : d.segments)
-        if (t <= s.until) return {s.v, s.w};
-      return {d.segments.back().v, d.segments.back().w};
+      std::size_t k = 0;
+      while (k + 1 < d.segments.size() && t > d.segments[k].until) ++k;
+      const ScheduleSegment& s = d.segments[k];
+      if (k == 0 || d.ramp <= 0.0) return {s.v, s.w};
+      // Within the ramp into segment k: linear from the previous segment's values.
+      const ScheduleSegment& p = d.segments[k - 1];
+      const double f = (t - p.until) / d.ramp;
+      if (f >= 1.0) return {s.v, s.w};
+      return {p.v + f * (s.v - p.v), p.w + f * (s.w - p.w)};
     }
     case Kind::kLineCurve: {
       double w = 0.0;

@@ -21,12 +21,26 @@ class LinkUkf final : public LinkFilter {
 
   UkfStatus Predict(const Twist& leader, const Twist& follower) override {
     const double Tc = def_.Tc, L = def_.L;
-    // Γ(s, U) = s + Tc F(s) U.
-    auto gamma = [&](const Eigen::Vector3d& s) -> Eigen::Vector3d {
-      const LinkRates r = LinkDerivative(LinkState::FromVec(s), leader, follower, L);
-      return s + Tc * Eigen::Vector3d(r.l_dot, r.phi_dot, r.alpha_dot);
+    // Γ(s, U) = s + Tc F(s) U on all sigma points at once. They are s̄ ± columns, so the sines
+    // and cosines of φ and γ = φ + α come from those of the mean (one sincos each) and of the
+    // small column offsets (SinCosSmall) by angle addition.
+    auto gamma = [&](const typename Filter::SigmaSet& pts, typename Filter::SigmaSet& out) {
+      const Eigen::Vector3d& m = pts[0];
+      const SinCos phi0 = SinCosOf(m(1)), gamma0 = SinCosOf(m(1) + m(2));
+      auto propagate = [&](const Eigen::Vector3d& s, const SinCos& phi, const SinCos& g) {
+        const LinkRates r = LinkDerivative(s(0), phi, g, leader, follower, L);
+        return Eigen::Vector3d(s(0) + Tc * r.l_dot, s(1) + Tc * r.phi_dot, s(2) + Tc * r.alpha_dot);
+      };
+      out[0] = propagate(m, phi0, gamma0);
+      for (int j = 0; j < 3; ++j) {
+        const Eigen::Vector3d& plus = pts[1 + j];
+        const SinCos dphi = SinCosSmall(plus(1) - m(1));
+        const SinCos dgamma = SinCosSmall((plus(1) + plus(2)) - (m(1) + m(2)));
+        out[1 + j] = propagate(plus, AddAngles(phi0, dphi), AddAngles(gamma0, dgamma));
+        out[4 + j] = propagate(pts[4 + j], SubAngles(phi0, dphi), SubAngles(gamma0, dgamma));
+      }
     };
-    return ukf_.Predict(gamma, Eigen::Matrix3d(def_.q.asDiagonal()));
+    return ukf_.PredictSigma(gamma, Eigen::Matrix3d(def_.q.asDiagonal()));
   }
 
   UkfStatus Update(const LinkState& measured) override {
@@ -38,17 +52,13 @@ class LinkUkf final : public LinkFilter {
       R(k, k) = def_.r(idx_[k]);
     }
     // y = D s: D selects the measured components.
-    auto h = [&](const Eigen::Vector3d& s) {
-      typename Filter::Meas y;
-      for (int k = 0; k < M; ++k) y(k) = s(idx_[k]);
-      return y;
-    };
-    return ukf_.Update(z, h, R);
+    return ukf_.UpdateSelection(z, idx_, R);
   }
 
   LinkState state() const override { return LinkState::FromVec(ukf_.x()); }
   Eigen::Matrix3d cov() const override { return ukf_.P(); }
   double nis() const override { return ukf_.last_nis(); }
+  double Mahalanobis2(const Eigen::Vector3d& e) const override { return ukf_.Mahalanobis2(e); }
 
  private:
   Filter ukf_;

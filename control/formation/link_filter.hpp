@@ -62,6 +62,9 @@ class LinkFilter {
   virtual LinkState state() const = 0;
   virtual Eigen::Matrix3d cov() const = 0;
   virtual double nis() const = 0;
+  /// eᵀ P⁻¹ e for an error e of the state (the NEES when e is estimate − truth); NaN when P is
+  /// not positive definite.
+  virtual double Mahalanobis2(const Eigen::Vector3d& e) const = 0;
   /// Live tuning: takes Q, R, L and Tc from `d` (the measurement set, P0 and the sigma-point
   /// scaling are fixed at construction).
   void Retune(const LinkFilterDef& d) {

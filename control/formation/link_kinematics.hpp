@@ -70,16 +70,21 @@ inline LinkState ComputeLinkState(const Pose2& leader, const Pose2& follower, do
   return s;
 }
 
+/// Output kinematics (Das convention) from the sines and cosines of φ and γ = φ + α, which a
+/// caller evaluating many nearby states (sigma points) can share.
+inline LinkRates LinkDerivative(double l, const SinCos& phi, const SinCos& gamma,
+                                const Twist& leader, const Twist& follower, double L) {
+  LinkRates r;
+  r.l_dot = follower.v * gamma.c + L * follower.w * gamma.s - leader.v * phi.c;
+  r.phi_dot = (-follower.v * gamma.s + L * follower.w * gamma.c + leader.v * phi.s) / l - leader.w;
+  r.alpha_dot = leader.w - follower.w;
+  return r;
+}
+
 /// Output kinematics (Das convention): [l̇, φ̇, α̇] given the leader's and follower's twists.
 inline LinkRates LinkDerivative(const LinkState& s, const Twist& leader, const Twist& follower,
                                 double L) {
-  const double g = s.gamma();
-  const double cg = std::cos(g), sg = std::sin(g), cp = std::cos(s.phi), sp = std::sin(s.phi);
-  LinkRates r;
-  r.l_dot = follower.v * cg + L * follower.w * sg - leader.v * cp;
-  r.phi_dot = (-follower.v * sg + L * follower.w * cg + leader.v * sp) / s.l - leader.w;
-  r.alpha_dot = leader.w - follower.w;
-  return r;
+  return LinkDerivative(s.l, SinCosOf(s.phi), SinCosOf(s.gamma()), leader, follower, L);
 }
 
 /// The follower's control-point position and pose implied by a link state and the leader's pose

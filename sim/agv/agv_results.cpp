@@ -102,6 +102,17 @@ Metrics AgvExperiment::Results() const {
                         "rejected_outliers", "accepted_outliers", "reinitialisations", "faults"})
     beacon.columns.push_back({k, k, "%.0f"});
   m.AddTable(std::move(beacon));
+  // Comparing runs (the GUI's pins, history, Monte Carlo): errors and faults are better low.
+  for (const char* p : {"cross_track.*", "final_distance_to_goal_m", "tracking_time_s",
+                        "localisation.*", "beacon.faults", "beacon.accepted_outliers",
+                        "beacon.rejected_good", "beacon.reinitialisations"})
+    m.SetBetter(p, Better::kLower);
+  for (const char* p : {"tracking_finished", "loop_completed"}) m.SetBetter(p, Better::kHigher);
+  using C = Metrics::Combine;
+  m.AddHeadline({"cross-track RMS [m]", "cross_track.rms_m", C::kValue, "%.4f"});
+  m.AddHeadline({"cross-track max [m]", "cross_track.max_m", C::kValue, "%.4f"});
+  m.AddHeadline({"fused RMS [m]", "localisation.fused.position_rms_m", C::kValue, "%.4f"});
+  m.AddHeadline({"to goal [m]", "final_distance_to_goal_m", C::kValue, "%.4f"});
   return m;
 }
 

@@ -18,6 +18,15 @@ Color PaletteColor(int index) {
 
 void DrawRobotBody(DrawSink& draw, const Pose2& pose, const std::vector<Vec2>& body_polygon,
                    Color color, const std::string& name, bool ghost) {
+  double extent = 0.0;
+  for (const Vec2& b : body_polygon) extent = std::max(extent, b.Norm());
+  const double extent_px = PixelsOf(draw, 2.0 * extent);
+  if (extent_px < 2.0) {
+    // A dot of at least a pixel and a half, so that a formation seen from afar stays visible.
+    const double metres_per_px = 2.0 * extent / extent_px;
+    if (!ghost) draw.Circle(pose.p(), std::max(extent, 0.75 * metres_per_px), color, Color{0, 0, 0, 0});
+    return;
+  }
   std::vector<Vec2> world;
   world.reserve(body_polygon.size());
   double front = 0.0, half_width = 0.0;
@@ -30,16 +39,20 @@ void DrawRobotBody(DrawSink& draw, const Pose2& pose, const std::vector<Vec2>& b
     draw.Polygon(world, color.WithAlpha(0.0f), color.WithAlpha(0.55f));
     return;
   }
+  // A small body without its dark outline, which would hide its colour.
+  if (extent_px < 6.0) {
+    draw.Polygon(world, color.WithAlpha(0.9f), Color{0, 0, 0, 0});
+    return;
+  }
   draw.Polygon(world, color.WithAlpha(0.85f), Color{0.1f, 0.1f, 0.1f, 1.0f});
   // Heading wedge: a light triangle pointing forward inside the body.
   const std::vector<Vec2> wedge = {pose.ToWorld({front * 0.9, 0.0}),
                                    pose.ToWorld({front * 0.1, half_width * 0.6}),
                                    pose.ToWorld({front * 0.1, -half_width * 0.6})};
   draw.Polygon(wedge, Color{1, 1, 1, 0.9f}, Color{1, 1, 1, 0.0f});
-  // The name sits just above the body's circumscribed circle, whatever the zoom.
-  double extent = 0.0;
-  for (const Vec2& b : body_polygon) extent = std::max(extent, b.Norm());
-  if (!name.empty())
+  // The name sits just above the body's circumscribed circle, whatever the zoom, once the body
+  // is large enough for a name to sit beside its neighbours'.
+  if (!name.empty() && extent_px >= 12.0)
     draw.Text({pose.x, pose.y + extent}, name, Color{0.1f, 0.1f, 0.1f, 1.0f}, -6.0f, -16.0f);
 }
 

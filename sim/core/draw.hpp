@@ -39,10 +39,29 @@ class DrawSink {
   virtual void Text(Vec2 p, const std::string& text, Color color, float dx_px = 0, float dy_px = 0) = 0;
   /// A ring that grows and fades, to flash an event (saturation, collision). `age` in [0,1].
   virtual void Flash(Vec2 p, double radius, Color color, float age) = 0;
+  /// Pixels per metre of the view, for level of detail: a scene of a thousand robots skips what
+  /// would be smaller than a pixel or two and labels that could not be read. 0 when the sink
+  /// has no such scale (draw everything).
+  virtual double PixelsPerMetre() const { return 0.0; }
+  /// The world box the view shows, so that a large scene can skip what is off screen; by
+  /// default everything.
+  virtual void ViewBox(Vec2& lo, Vec2& hi) const {
+    lo = {-1e300, -1e300};
+    hi = {1e300, 1e300};
+  }
 };
 
+/// Level of detail for a scene drawn into `draw`: how many pixels `metres` spans (a large
+/// number when the sink has no scale, so that everything is drawn).
+inline double PixelsOf(const DrawSink& draw, double metres) {
+  const double ppm = draw.PixelsPerMetre();
+  return ppm > 0.0 ? metres * ppm : 1e9;
+}
+
 /// Draws a robot body (polygon in the body frame, metres) at `pose` with a heading wedge and
-/// its name. `ghost` draws it as a dashed-looking translucent outline (desired slots).
+/// its name. `ghost` draws it as a dashed-looking translucent outline (desired slots). Level of
+/// detail: below 12 px across no name, below 6 px neither wedge nor outline, below 2 px a dot
+/// (ghosts: nothing).
 void DrawRobotBody(DrawSink& draw, const Pose2& pose, const std::vector<Vec2>& body_polygon,
                    Color color, const std::string& name, bool ghost = false);
 

@@ -4,13 +4,21 @@
 /// filter). Conditions that last (a saturated drive) raise one event on entry, not one per
 /// step. Counts are exact and indexed by kind, robot and subject, so summaries are linear in
 /// the number of links plus events.
+///
+/// Raising an event allocates nothing once the log has seen its kind, robots and subject and its
+/// storage for that kind is full: counts are looked up without temporaries, the recent events
+/// are a ring whose strings keep their capacity, and a condition's message can be written into
+/// the log's own buffer (a message function taking std::string&).
 
 #include <cstddef>
-#include <deque>
 #include <map>
 #include <string>
+#include <string_view>
+#include <type_traits>
 #include <utility>
 #include <vector>
+
+#include "sim/core/ring_buffer.hpp"
 
 namespace formsim::sim {
 
@@ -40,12 +48,16 @@ class EventLog {
   /// The most recent events kept for display (flashes), whatever their kind.
   static constexpr std::size_t kRecent = 64;
 
+  EventLog() : recent_(kRecent) {}
+
   /// Records an event at time `t`. `robots` is a comma-separated list of robot names.
   void Add(double t, const std::string& kind, const std::string& robots, const std::string& message,
            const std::string& subject = "");
   /// A lasting condition (a drive saturating, a follower near its singular line), declared
   /// once; Update() then raises one event on each entry into it and costs nothing per step
-  /// otherwise (no allocation: `message` is only called when an event is raised).
+  /// otherwise (no allocation: `message` is only called when an event is raised). `message`
+  /// either returns the text or, taking a std::string&, appends it to an empty buffer of the
+  /// log's (which allocates nothing once the buffer has grown).
   using ConditionId = int;
   ConditionId DeclareCondition(const std::string& kind, const std::string& robots,
                                const std::string& subject = "");
@@ -54,7 +66,15 @@ class EventLog {
     Cond& c = conditions_[static_cast<std::size_t>(id)];
     const bool raise = active && !c.active;
     c.active = active;
-    if (raise) Add(t, c.kind, c.robots, message(), c.subject);
+    if (raise) {
+      if constexpr (std::is_invocable_v<MessageFn&, std::string&>) {
+        message_.clear();
+        message(message_);
+        Add(t, c.kind, c.robots, message_, c.subject);
+      } else {
+        Add(t, c.kind, c.robots, message(), c.subject);
+      }
+    }
     return raise;
   }
   bool IsActive(ConditionId id) const { return conditions_[static_cast<std::size_t>(id)].active; }
@@ -62,7 +82,7 @@ class EventLog {
   /// Stored events in time order (at most kMaxStoredPerKind of each kind).
   const std::vector<Event>& list() const { return events_; }
   /// The last kRecent events, stored or not, oldest first.
-  const std::deque<Event>& recent() const { return recent_; }
+  const RingBuffer<Event>& recent() const { return recent_; }
   /// Number of events so far, stored or not.
   long total() const { return total_; }
   bool empty() const { return total_ == 0; }
@@ -76,11 +96,19 @@ class EventLog {
   const std::map<std::string, long>& counts() const { return by_kind_; }
 
  private:
+  // Counts per kind, then per robot or subject (looked up by string_view: no temporaries).
+  using Counts = std::map<std::string, long, std::less<>>;
+  static void Increment(std::map<std::string, Counts, std::less<>>& table, const std::string& kind,
+                        std::string_view key);
+  static long Lookup(const std::map<std::string, Counts, std::less<>>& table,
+                     const std::string& kind, std::string_view key);
+
   std::vector<Event> events_;
-  std::deque<Event> recent_;
+  RingBuffer<Event> recent_;
   long total_ = 0;
   std::map<std::string, long> by_kind_;
-  std::map<std::pair<std::string, std::string>, long> by_robot_, by_subject_;
+  std::map<std::string, Counts, std::less<>> by_robot_, by_subject_;
+  std::string message_;  ///< the buffer condition messages are written into
   struct Cond {
     std::string kind, robots, subject;
     bool active = false;

@@ -6,8 +6,16 @@
 
 namespace formsim::sim {
 
-Experiment::Experiment(const ExperimentSetup& setup) : setup_(setup), rng_(setup.seed) {
+Experiment::Experiment(const ExperimentSetup& setup)
+    : setup_(setup), pool_(std::make_unique<ThreadPool>(ThreadPool::DefaultThreads())), rng_(setup.seed) {
   recorder_.Add("t", [this] { return time_; });
+  recorder_.SetPool(pool_.get());
+}
+
+void Experiment::SetThreads(int threads) {
+  if (threads == pool_->threads()) return;
+  pool_ = std::make_unique<ThreadPool>(threads);
+  recorder_.SetPool(pool_.get());
 }
 Experiment::~Experiment() = default;
 
@@ -23,8 +31,12 @@ void Experiment::Step() {
   ++steps_;
   // Integer step count times dt, so time does not drift by accumulated rounding.
   time_ = static_cast<double>(steps_) * setup_.dt;
-  for (const auto& c : world_.new_collisions())
-    events_.Add(time_, event::kCollision, c.a + "," + c.b, c.a + " hit " + c.b);
+  for (const auto& c : world_.new_collisions()) {
+    // Into reused buffers: raising an event allocates nothing once they have grown.
+    event_robots_.assign(c.a).append(",").append(c.b);
+    event_message_.assign(c.a).append(" hit ").append(c.b);
+    events_.Add(time_, event::kCollision, event_robots_, event_message_);
+  }
   // A non-finite state goes no further (sensors would hand it to Box2D's ray casts): the row
   // of the fault is recorded and the run stops.
   if (!CheckRobots()) {

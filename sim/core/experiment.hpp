@@ -31,6 +31,7 @@
 #include "sim/core/provenance.hpp"
 #include "sim/core/recorder.hpp"
 #include "sim/core/rng.hpp"
+#include "sim/core/thread_pool.hpp"
 #include "sim/core/world.hpp"
 #include "sim/core/yaml_reader.hpp"
 
@@ -100,6 +101,10 @@ class Experiment {
   /// Stops the run now (Ctrl-C, SIGTERM): the results so far stay valid and are marked so.
   void Interrupt(const std::string& why);
   const ExperimentSetup& setup() const { return setup_; }
+  /// Threads for the independent work inside a step (default ThreadPool::DefaultThreads(), the
+  /// CLI's --threads). The results are the same bytes for any number; call between two steps.
+  void SetThreads(int threads);
+  int threads() const { return pool_->threads(); }
 
   World& world() { return world_; }
   const World& world() const { return world_; }
@@ -118,6 +123,9 @@ class Experiment {
   virtual std::vector<TableSpec> Tables() const { return {}; }
   /// Draws the whole scene: world (patches, obstacles) then the experiment's own layers.
   void Draw(DrawSink& draw) const;
+  /// Draws the experiment's own layers only (robots, trails, estimates), without the world's
+  /// patches and obstacles: another run drawn over this one (a pinned run in the GUI).
+  void DrawOverlay(DrawSink& draw) const { DrawScene(draw); }
   /// Axis-aligned box that should be visible (for fit-all).
   virtual void Bounds(Vec2& lo, Vec2& hi) const;
   /// Metrics over the run so far: summary.json's `results`, the printed and GUI tables.
@@ -138,6 +146,8 @@ class Experiment {
   /// A non-finite or diverged value that the experiment found itself (an estimate, a command):
   /// raises a numerical_fault event for `robots` and stops the run after this step.
   void NumericalFault(const std::string& robots, const std::string& message);
+  /// The pool for a step's independent work (see thread_pool.hpp for the contract).
+  ThreadPool& pool() const { return *pool_; }
   /// Records an event now.
   void AddEvent(const std::string& kind, const std::string& robots, const std::string& message,
                 const std::string& subject = "") {
@@ -145,6 +155,7 @@ class Experiment {
   }
 
   ExperimentSetup setup_;
+  std::unique_ptr<ThreadPool> pool_;  ///< before everything its tasks touch
   World world_;
   Recorder recorder_;  ///< "t" is declared first by the base
   Rng rng_;
@@ -157,6 +168,7 @@ class Experiment {
   void CheckRow();
   double time_ = 0.0;
   long steps_ = 0;
+  std::string event_robots_, event_message_;  ///< text of the events raised by Step
   std::string stop_status_;  ///< "numerical_fault" or "interrupted" once stopped
   std::string stop_reason_;
 };

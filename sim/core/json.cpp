@@ -7,10 +7,12 @@
 
 namespace formsim::sim {
 
+// Keys are searched from the last one: trees are built in order (a summary's thousands of links
+// each fill their own object), so the key wanted is almost always the last one.
 Json& Json::operator[](const std::string& key) {
   if (type_ == Type::kNull) type_ = Type::kObject;
-  for (auto& kv : object_)
-    if (kv.first == key) return kv.second;
+  for (auto it = object_.rbegin(); it != object_.rend(); ++it)
+    if (it->first == key) return it->second;
   object_.emplace_back(key, Json());
   return object_.back().second;
 }
@@ -21,8 +23,8 @@ void Json::Push(Json v) {
 }
 
 const Json* Json::Get(const std::string& key) const {
-  for (const auto& kv : object_)
-    if (kv.first == key) return &kv.second;
+  for (auto it = object_.rbegin(); it != object_.rend(); ++it)
+    if (it->first == key) return &it->second;
   return nullptr;
 }
 

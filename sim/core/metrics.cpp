@@ -1,11 +1,73 @@
 #include "sim/core/metrics.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "sim/core/number_format.hpp"
 
 namespace formsim::sim {
+
+bool PathMatches(const std::string& pattern, const std::string& path) {
+  // Glob with '*' only: iterative, backtracking to the last star.
+  std::size_t p = 0, s = 0, star = std::string::npos, mark = 0;
+  while (s < path.size()) {
+    if (p < pattern.size() && pattern[p] == '*') {
+      star = p++;
+      mark = s;
+    } else if (p < pattern.size() && pattern[p] == path[s]) {
+      ++p, ++s;
+    } else if (star != std::string::npos) {
+      p = star + 1;
+      s = ++mark;
+    } else {
+      return false;
+    }
+  }
+  while (p < pattern.size() && pattern[p] == '*') ++p;
+  return p == pattern.size();
+}
+
+Better Metrics::BetterOf(const std::string& path) const {
+  for (auto it = better_.rbegin(); it != better_.rend(); ++it)
+    if (PathMatches(it->first, path)) return it->second;
+  return Better::kNone;
+}
+
+std::vector<Metrics::HeadlineValue> Metrics::Headlines() const {
+  std::vector<HeadlineValue> out;
+  if (headlines_.empty()) {
+    for (const Entry& e : entries_) {
+      if (e.is_text || e.is_flag) continue;
+      out.push_back({e.path, "", e.value, BetterOf(e.path)});
+      if (out.size() == 3) break;
+    }
+    return out;
+  }
+  for (const Headline& h : headlines_) {
+    HeadlineValue v{h.label, h.format, std::numeric_limits<double>::quiet_NaN(), Better::kNone};
+    bool first = true;
+    for (const Entry& e : entries_) {
+      if (e.is_text || !PathMatches(h.pattern, e.path)) continue;
+      if (first) v.better = BetterOf(e.path);
+      switch (h.combine) {
+        case Combine::kValue:
+          if (first) v.value = e.value;
+          break;
+        case Combine::kMax:
+          v.value = first || std::isnan(v.value) || e.value > v.value ? e.value : v.value;
+          break;
+        case Combine::kSum:
+          v.value = first ? e.value : v.value + e.value;
+          break;
+      }
+      first = false;
+    }
+    out.push_back(v);
+  }
+  return out;
+}
 
 Metrics::Entry* Metrics::Slot(const std::string& path) {
   const auto [it, added] = index_.emplace(path, entries_.size());

@@ -14,6 +14,14 @@
 
 namespace formsim::sim {
 
+/// Which way a metric is better, for comparing runs (the GUI's pinned runs, history, Monte
+/// Carlo): errors, RMS values and counts of collisions or faults are better lower.
+enum class Better { kNone, kLower, kHigher };
+
+/// True when `path` matches `pattern`, where '*' stands for any run of characters (dots too):
+/// "links.*.rmse_after_settle.*" matches "links.R1-R2.rmse_after_settle.l".
+bool PathMatches(const std::string& pattern, const std::string& path);
+
 class Metrics {
  public:
   /// A number at a dotted path (set again: replaced in place).
@@ -38,6 +46,34 @@ class Metrics {
     std::vector<Column> columns;
   };
   void AddTable(Table table) { tables_.push_back(std::move(table)); }
+  const std::vector<Table>& tables() const { return tables_; }
+
+  /// Declares which way values at the paths matching `pattern` are better (later declarations
+  /// win). Undeclared paths are kNone: shown, never ranked.
+  void SetBetter(const std::string& pattern, Better better) {
+    better_.emplace_back(pattern, better);
+  }
+  /// Which way the value at `path` is better.
+  Better BetterOf(const std::string& path) const;
+
+  /// A headline metric: the few numbers a run is judged by at a glance (a row of the GUI's run
+  /// history). `pattern` names one path, or several with '*'; `combine` folds the matches.
+  enum class Combine { kValue, kMax, kSum };
+  struct Headline {
+    std::string label;    ///< column title, e.g. "max|e_l| worst link [m]"
+    std::string pattern;  ///< e.g. "links.*.max_abs_error_after_settle.l"
+    Combine combine = Combine::kValue;
+    std::string format;  ///< printf format ("%.3e"); empty: shortest round-trip
+  };
+  void AddHeadline(Headline h) { headlines_.push_back(std::move(h)); }
+  /// The headline values (NaN when nothing matches), with their direction (the direction of the
+  /// first matching path). Without declared headlines: the first three numbers of the tree.
+  struct HeadlineValue {
+    std::string label, format;
+    double value = 0;
+    Better better = Better::kNone;
+  };
+  std::vector<HeadlineValue> Headlines() const;
 
   /// `results` of summary.json: nested objects in the order the values were set.
   Json ToJson() const;
@@ -66,6 +102,8 @@ class Metrics {
   std::unordered_map<std::string, std::size_t> index_;  ///< path -> entry, linear summaries
   std::vector<std::string> notes_;
   std::vector<Table> tables_;
+  std::vector<std::pair<std::string, Better>> better_;
+  std::vector<Headline> headlines_;
 };
 
 }  // namespace formsim::sim

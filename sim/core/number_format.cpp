@@ -43,6 +43,25 @@ std::string Sprintf(const char* fmt, ...) {
   return out;
 }
 
+void AppendSprintf(std::string& out, const char* fmt, ...) {
+  char buf[256];
+  std::va_list args;
+  va_start(args, fmt);
+  const int n = std::vsnprintf(buf, sizeof buf, fmt, args);
+  va_end(args);
+  if (n < 0) return;
+  if (n < static_cast<int>(sizeof buf)) {
+    out.append(buf, static_cast<std::size_t>(n));
+    return;
+  }
+  const std::size_t at = out.size();
+  out.resize(at + static_cast<std::size_t>(n) + 1);
+  va_start(args, fmt);
+  std::vsnprintf(&out[at], static_cast<std::size_t>(n) + 1, fmt, args);
+  va_end(args);
+  out.resize(at + static_cast<std::size_t>(n));
+}
+
 bool ParseFiniteDouble(const std::string& text, double* out) {
   if (text.empty()) return false;
   const char* first = text.data();

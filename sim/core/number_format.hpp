@@ -16,6 +16,8 @@ void AppendDouble(std::string& out, double v);
 
 /// printf-style text for labels and notes ("%.1f m"); never for data (use FormatDouble).
 std::string Sprintf(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+/// The same text appended to `out` (no temporary: allocates only when `out` must grow).
+void AppendSprintf(std::string& out, const char* fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /// Parses the whole of `text` as a finite double. Returns false on anything else (empty, junk
 /// after the number, out of range, nan, inf).

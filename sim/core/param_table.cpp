@@ -120,18 +120,17 @@ std::string Param::Parse(const std::string& text, std::string* canonical) const 
 }
 
 void ParamTable::Add(Param p) {
-  for (auto& q : params_)
-    if (q.key == p.key) {
-      q = std::move(p);  // read twice (e.g. a noise block resolved again): keep the latest
-      return;
-    }
+  const auto [it, inserted] = index_.emplace(p.key, params_.size());
+  if (!inserted) {
+    params_[it->second] = std::move(p);  // read twice (e.g. a noise block resolved again): keep the latest
+    return;
+  }
   params_.push_back(std::move(p));
 }
 
 const Param* ParamTable::Find(const std::string& key) const {
-  for (const auto& p : params_)
-    if (p.key == key) return &p;
-  return nullptr;
+  const auto it = index_.find(key);
+  return it == index_.end() ? nullptr : &params_[it->second];
 }
 
 }  // namespace formsim::sim

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace formsim::sim {
@@ -87,6 +88,7 @@ class ParamTable {
 
  private:
   std::vector<Param> params_;
+  std::unordered_map<std::string, std::size_t> index_;  ///< key -> params_, so loading is linear
 };
 
 }  // namespace formsim::sim

@@ -1,20 +1,35 @@
 #include "sim/core/recorder.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <condition_variable>
 #include <cstdint>
 #include <cerrno>
 #include <cstring>
 #include <cstdio>
+#include <mutex>
 #include <stdexcept>
+#include <thread>
 
 #include <unistd.h>
 
 #include "sim/core/number_format.hpp"
+#include "sim/core/thread_pool.hpp"
 
 namespace formsim::sim {
 
 namespace {
 constexpr std::uint64_t kNotSampledBits = 0x7ff80000'5e1f0001ULL;  // quiet NaN, own payload
+// Rows the background writer holds at most (the simulation waits when they are all taken).
+constexpr std::size_t kWriterSlots = 8;
+
+// Cells [begin, end) of a row, each preceded by a comma except column 0; not sampled: empty.
+void AppendCells(const double* v, std::size_t begin, std::size_t end, std::string& out) {
+  for (std::size_t c = begin; c < end; ++c) {
+    if (c) out += ',';
+    if (!IsNotSampled(v[c])) AppendDouble(out, v[c]);
+  }
+}
 }  // namespace
 
 double NotSampled() {
@@ -79,8 +94,72 @@ class Recorder::Stream {
   std::string error_;
 };
 
+// The background writer: rows copied into a fixed ring of slots by Sample(), formatted and
+// written in order by one thread. Allocates nothing per row once the slots and its line have
+// grown.
+class Recorder::Writer {
+ public:
+  Writer(Stream& stream, std::size_t columns) : stream_(stream), columns_(columns) {
+    for (auto& slot : slots_) slot.resize(columns);
+    thread_ = std::thread([this] { Loop(); });
+  }
+  ~Writer() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    changed_.notify_all();
+    thread_.join();
+  }
+  // Copies a row into the next free slot (waiting for one when the writer is behind).
+  void Push(const double* row) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    changed_.wait(lock, [&] { return count_ < kWriterSlots; });
+    std::copy(row, row + columns_, slots_[(head_ + count_) % kWriterSlots].begin());
+    ++count_;
+    lock.unlock();
+    changed_.notify_all();
+  }
+  // Returns once every row pushed so far is written.
+  void Drain() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    changed_.wait(lock, [&] { return count_ == 0 && !busy_; });
+  }
+
+ private:
+  void Loop() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+      changed_.wait(lock, [&] { return count_ > 0 || stop_; });
+      if (count_ == 0) return;  // stopping, nothing left
+      const std::vector<double>& row = slots_[head_];
+      busy_ = true;
+      lock.unlock();
+      line_.clear();
+      AppendCells(row.data(), 0, columns_, line_);
+      line_ += '\n';
+      stream_.Write(line_);
+      lock.lock();
+      busy_ = false;
+      head_ = (head_ + 1) % kWriterSlots;
+      --count_;
+      changed_.notify_all();
+    }
+  }
+
+  Stream& stream_;
+  std::size_t columns_;
+  std::vector<double> slots_[kWriterSlots];
+  std::size_t head_ = 0, count_ = 0;
+  bool busy_ = false, stop_ = false;
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::string line_;
+  std::thread thread_;
+};
+
 Recorder::Recorder() = default;
-Recorder::~Recorder() = default;
+Recorder::~Recorder() { StopWriter(); }
 
 int Recorder::Declare(const std::string& name) {
   if (rows_ > 0) throw std::logic_error("Recorder: column '" + name + "' declared after rows");
@@ -113,14 +192,13 @@ void Recorder::Sample() {
   const std::size_t n = names_.size();
   scratch_.assign(n, NotSampled());
   for (const Group& g : groups_) g.fill(&scratch_[g.first]);
-  if (stream_) {
-    std::string line;
-    for (std::size_t c = 0; c < n; ++c) {
-      if (c) line += ',';
-      if (!IsNotSampled(scratch_[c])) AppendDouble(line, scratch_[c]);
-    }
-    line += '\n';
-    stream_->Write(line);
+  if (writer_) {
+    writer_->Push(scratch_.data());
+  } else if (stream_) {
+    line_.clear();
+    AppendCells(scratch_.data(), 0, n, line_);
+    line_ += '\n';
+    stream_->Write(line_);
   }
   // The history keeps every stride-th sampled row; when full it drops every second row.
   if (sampled_++ % stride_ != 0) return;
@@ -140,16 +218,13 @@ void Recorder::Sample() {
 void Recorder::SetHistoryLimit(std::size_t max_rows) { limit_ = max_rows < 2 && max_rows > 0 ? 2 : max_rows; }
 
 void Recorder::AppendRow(std::string& line, std::size_t r) const {
-  for (std::size_t c = 0; c < names_.size(); ++c) {
-    if (c) line += ',';
-    const double v = data_[r * names_.size() + c];
-    if (!IsNotSampled(v)) AppendDouble(line, v);  // not sampled -> empty field
-  }
+  AppendCells(&data_[r * names_.size()], 0, names_.size(), line);
   line += '\n';
 }
 
 void Recorder::StreamTo(const std::string& path) {
   if (stride_ != 1) throw std::logic_error("Recorder::StreamTo after the history was decimated");
+  StopWriter();
   stream_.reset();
   stream_ = std::make_unique<Stream>(path);
   stream_path_ = path;
@@ -163,15 +238,26 @@ void Recorder::StreamTo(const std::string& path) {
     stream_.reset();
     throw std::runtime_error("cannot write '" + path + "': " + why);
   }
+  if (pool_ != nullptr && pool_->threads() > 1) writer_ = std::make_unique<Writer>(*stream_, names_.size());
+}
+
+void Recorder::StopWriter() {
+  if (!writer_) return;
+  writer_->Drain();
+  writer_.reset();
 }
 
 void Recorder::FinishStream() {
+  StopWriter();
   if (!stream_) return;
   std::unique_ptr<Stream> s = std::move(stream_);
   s->Finish();
 }
 
-void Recorder::AbandonStream() { stream_.reset(); }
+void Recorder::AbandonStream() {
+  StopWriter();
+  stream_.reset();
+}
 
 std::vector<double> Recorder::Series(int column) const {
   std::vector<double> out(rows_);

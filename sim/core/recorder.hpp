@@ -14,6 +14,8 @@
 
 namespace formsim::sim {
 
+class ThreadPool;
+
 /// The value a channel returns when it has nothing to say in this row (an empty CSV cell). A
 /// NaN with its own payload, so that a NaN that was computed stays visible as `nan`.
 double NotSampled();
@@ -33,8 +35,15 @@ class Recorder {
   /// Declares several columns filled by one call (e.g. x, y, θ of one pose): `fill` writes
   /// names.size() values into `out`.
   void AddGroup(const std::vector<std::string>& names, std::function<void(double* out)> fill);
-  /// Samples every channel into a new row (streamed to disk when StreamTo is on).
+  /// Samples every channel into a new row (streamed to disk when StreamTo is on). Allocates
+  /// nothing once the buffers have grown (the history grows until its limit).
   void Sample();
+  /// With a pool of more than one thread, streamed rows are formatted and written by a
+  /// background thread of the recorder's own (the simulation only copies each row into a
+  /// slot), so the text of tens of thousands of columns fills the time a step leaves a core
+  /// idle; the bytes are the same. nullptr or one thread: on the caller's thread. Takes effect
+  /// at the next StreamTo.
+  void SetPool(ThreadPool* pool) { pool_ = pool; }
 
   /// Streams every row to `path` as it is sampled (rows already recorded first), through
   /// `path`.tmp: FinishStream() flushes, syncs and renames it into place. So a run of any
@@ -53,6 +62,8 @@ class Recorder {
   void SetHistoryLimit(std::size_t max_rows);
   /// The row sampled last, whether the history kept it or not (for checks on every row).
   const std::vector<double>& last_sample() const { return scratch_; }
+  /// Makes room for `rows` rows of history, so sampling them allocates nothing.
+  void ReserveRows(std::size_t rows) { data_.reserve(rows * names_.size()); }
   /// Rows sampled since the start (kept in memory or not).
   std::size_t rows_sampled() const { return sampled_; }
   /// 1 while every sampled row is in memory; 2, 4, ... after decimation.
@@ -76,8 +87,11 @@ class Recorder {
 
  private:
   class Stream;
+  class Writer;
   int Declare(const std::string& name);
   void AppendRow(std::string& line, std::size_t row) const;
+  /// Stops the background writer after it wrote every row handed to it.
+  void StopWriter();
   struct Group {
     int first = 0, count = 1;
     std::function<void(double*)> fill;
@@ -91,7 +105,10 @@ class Recorder {
   std::size_t limit_ = 0;   ///< rows kept in memory at most (0: all)
   std::size_t stride_ = 1;  ///< keep every stride-th sampled row
   std::vector<double> scratch_;  ///< the row being sampled
+  std::string line_;             ///< its text when streaming on the caller's thread
+  ThreadPool* pool_ = nullptr;
   std::unique_ptr<Stream> stream_;
+  std::unique_ptr<Writer> writer_;  ///< formats and writes streamed rows in the background
   std::string stream_path_;
 };
 

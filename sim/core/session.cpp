@@ -12,8 +12,12 @@ namespace fs = std::filesystem;
 namespace formsim::sim {
 
 Session::Session(const std::string& file, std::vector<Override> cli_overrides)
-    : source_(ScenarioSource::FromFile(file)), cli_(std::move(cli_overrides)), base_(cli_) {
+    : Session(ScenarioSource::FromFile(file), std::move(cli_overrides)) {}
+
+Session::Session(ScenarioSource source, std::vector<Override> cli_overrides)
+    : source_(std::move(source)), cli_(std::move(cli_overrides)), base_(cli_) {
   applied_ = ParseScenario(source_, base_);
+  loaded_ = applied_.params;
   exp_ = BuildExperiment(applied_);
 }
 
@@ -33,6 +37,12 @@ void Session::Reject(const std::string& key, const std::string& why) {
   refusals_[key] = why;
 }
 
+void Session::Notify(SessionEvent e, long step) const {
+  if (!observer_) return;
+  e.step = step >= 0 ? step : exp_->steps();
+  observer_(e);
+}
+
 std::string Session::refusal(const std::string& key) const {
   const auto it = refusals_.find(key);
   return it == refusals_.end() ? "" : it->second;
@@ -50,6 +60,26 @@ std::vector<Override> Session::EffectiveOverrides() const {
   return LastValuePerKey(All(true));
 }
 
+std::string Session::EffectiveValue(const std::string& key) const {
+  // The order of All(true): the edits waiting for a reset come last.
+  for (auto it = reset_edits_.rbegin(); it != reset_edits_.rend(); ++it)
+    if (it->key == key) return it->value;
+  for (auto it = queued_.rbegin(); it != queued_.rend(); ++it)
+    if (it->key == key) return it->value;
+  const Param* p = applied_.params.Find(key);
+  return p == nullptr ? "" : p->Text();
+}
+
+std::string Session::LoadedValue(const std::string& key) const {
+  const Param* p = loaded_.Find(key);
+  return p == nullptr ? "" : p->Text();
+}
+
+bool Session::IsEdited(const std::string& key) const {
+  const Param* p = loaded_.Find(key);
+  return p != nullptr && EffectiveValue(key) != p->Text();
+}
+
 std::map<std::string, std::string> Session::waiting_for_reset() const {
   std::map<std::string, std::string> out;
   for (const Override& o : reset_edits_) out[o.key] = o.value;
@@ -57,7 +87,7 @@ std::map<std::string, std::string> Session::waiting_for_reset() const {
 }
 
 std::string Session::Edit(const std::string& key, const std::string& value,
-                          const std::string& origin) {
+                          const std::string& origin, bool continues_gesture) {
   const Param* p = applied_.params.Find(key);
   if (p == nullptr) {
     const std::string why = "unknown parameter (not a tunable of this scenario)";
@@ -70,6 +100,7 @@ std::string Session::Edit(const std::string& key, const std::string& value,
     Reject(key, why);
     return why;
   }
+  const std::string before = EffectiveValue(key);
   const Override edit{key, canonical, origin, -1};
   // The scenario as the next reset would read it must stay valid (cross-field rules included).
   std::vector<Override> all = All(true);
@@ -102,15 +133,73 @@ std::string Session::Edit(const std::string& key, const std::string& value,
   }
   ++accepted_;
   refusals_.erase(key);
+  // Undo steps: undo and redo move between the two stacks themselves.
+  if (origin != "undo" && origin != "redo") {
+    if (continues_gesture && !undo_.empty() && undo_.back().key == key) {
+      undo_.back().after = canonical;
+      if (undo_.back().after == undo_.back().before) undo_.pop_back();  // dragged back
+    } else if (before != canonical) {
+      undo_.push_back({key, before, canonical});
+      if (undo_.size() > 500) undo_.erase(undo_.begin());
+    }
+    redo_.clear();
+  }
+  SessionEvent e;
+  e.kind = SessionEvent::Kind::kEdit;
+  e.key = key;
+  e.value = canonical;
+  e.origin = origin;
+  Notify(e);
   return "";
 }
 
-void Session::Move(const std::string& name, double x, double y) { moves_.push_back({name, x, y}); }
+std::string Session::Undo() {
+  if (undo_.empty()) return "nothing to undo";
+  const UndoStep u = undo_.back();
+  if (std::string err = Edit(u.key, u.before, "undo"); !err.empty()) return "undo refused: " + err;
+  undo_.pop_back();
+  redo_.push_back(u);
+  return "";
+}
+
+std::string Session::Redo() {
+  if (redo_.empty()) return "nothing to redo";
+  const UndoStep u = redo_.back();
+  if (std::string err = Edit(u.key, u.after, "redo"); !err.empty()) return "redo refused: " + err;
+  redo_.pop_back();
+  undo_.push_back(u);
+  return "";
+}
+
+std::string Session::UndoText() const {
+  if (undo_.empty()) return "";
+  return undo_.back().key + " " + undo_.back().after + " -> " + undo_.back().before;
+}
+
+std::string Session::RedoText() const {
+  if (redo_.empty()) return "";
+  return redo_.back().key + " " + redo_.back().before + " -> " + redo_.back().after;
+}
+
+void Session::Move(const std::string& name, double x, double y) {
+  moves_.push_back({name, x, y});
+  SessionEvent e;
+  e.kind = SessionEvent::Kind::kMove;
+  e.key = name;
+  e.x = x;
+  e.y = y;
+  Notify(e);
+}
 
 std::string Session::Action(const std::string& id, const std::string& origin) {
   for (const ActionSpec& a : exp_->Actions())
     if (a.id == id) {
       actions_.push_back({"action", id, origin, -1});
+      SessionEvent e;
+      e.kind = SessionEvent::Kind::kAction;
+      e.key = id;
+      e.origin = origin;
+      Notify(e);
       return "";
     }
   const std::string why = "no action '" + id + "' in this scenario";
@@ -119,34 +208,53 @@ std::string Session::Action(const std::string& id, const std::string& origin) {
 }
 
 void Session::ApplyPending() {
+  if (!has_pending()) return;
+  SessionEvent apply;
+  apply.kind = SessionEvent::Kind::kApply;
+  Notify(apply);
+  // Each change goes through ApplyRunChange, as a replay of the run log applies it.
   if (!queued_.empty() && queued_parse_) {
-    try {
-      exp_->Retune(*queued_parse_->config);
+    RunChange c;
+    c.kind = RunChange::Kind::kEdits;
+    c.step = exp_->steps();
+    c.edits = queued_;
+    for (Override& o : c.edits) o.step = c.step;
+    const std::string err = ApplyRunChange(*exp_, c, &*queued_parse_);
+    if (err.empty()) {
       applied_ = std::move(*queued_parse_);
-      for (Override o : queued_) {
-        o.step = exp_->steps();
-        run_edits_.push_back(o);
-        exp_->NoteOverride(o);
-      }
-    } catch (const std::exception& e) {
-      for (const Override& o : queued_) Reject(o.key, std::string("could not apply: ") + e.what());
+      run_edits_.insert(run_edits_.end(), c.edits.begin(), c.edits.end());
+      changes_.push_back(std::move(c));
+    } else {
+      for (const Override& o : queued_) Reject(o.key, err);
     }
   }
   queued_.clear();
   queued_parse_.reset();
   for (const MoveRequest& m : moves_) {
-    const std::string err = exp_->Move(m.name, {m.x, m.y});
-    if (!err.empty()) Reject("move", err);
+    RunChange c;
+    c.kind = RunChange::Kind::kMove;
+    c.step = exp_->steps();
+    c.name = m.name;
+    c.x = m.x;
+    c.y = m.y;
+    const std::string err = ApplyRunChange(*exp_, c, nullptr);
+    if (!err.empty())
+      Reject("move", err);
+    else
+      changes_.push_back(std::move(c));
   }
   moves_.clear();
-  for (Override a : actions_) {
-    const std::string err = exp_->RunAction(a.value);
-    if (!err.empty()) {
+  for (const Override& a : actions_) {
+    RunChange c;
+    c.kind = RunChange::Kind::kAction;
+    c.step = exp_->steps();
+    c.name = a.value;
+    c.origin = a.origin;
+    const std::string err = ApplyRunChange(*exp_, c, nullptr);
+    if (!err.empty())
       Reject("action " + a.value, err);
-      continue;
-    }
-    a.step = exp_->steps();
-    exp_->NoteOverride(a);
+    else
+      changes_.push_back(std::move(c));
   }
   actions_.clear();
 }
@@ -157,6 +265,7 @@ void Session::Step() {
 }
 
 std::string Session::Reset(std::optional<std::uint64_t> seed) {
+  const long from = exp_->steps();
   std::vector<Override> all = All(true);
   if (seed) all.push_back({"seed", std::to_string(*seed), "reset with seed", -1});
   all = LastValuePerKey(all);
@@ -173,18 +282,41 @@ std::string Session::Reset(std::optional<std::uint64_t> seed) {
     return std::string("reset failed, the run goes on unchanged: ") + e.what();
   }
   base_ = std::move(all);
+  reset_edits_.clear();
+  StartRun();
+  SessionEvent e;
+  e.kind = SessionEvent::Kind::kReset;
+  e.has_seed = seed.has_value();
+  e.seed = seed.value_or(0);
+  Notify(e, from);
+  return "";
+}
+
+void Session::StartRun() {
   run_edits_.clear();
+  changes_.clear();
   queued_.clear();
   queued_parse_.reset();
-  reset_edits_.clear();
   moves_.clear();
   actions_.clear();
-  return "";
+  ++run_id_;
 }
 
 std::string Session::Reload() {
   try {
-    ScenarioSource source = ScenarioSource::FromFile(source_.file());
+    return Reloaded(ScenarioSource::FromFile(source_.file()));
+  } catch (const std::exception& e) {
+    return std::string("reload failed, the run goes on unchanged: ") + e.what();
+  }
+}
+
+std::string Session::ReloadFrom(ScenarioSource source) {
+  return Reloaded(std::move(source));
+}
+
+std::string Session::Reloaded(ScenarioSource source) {
+  const long from = exp_->steps();
+  try {
     ParsedScenario parsed = ParseScenario(source, cli_);
     std::unique_ptr<Experiment> exp = BuildExperiment(parsed);
     if (run_setup_) {
@@ -197,15 +329,60 @@ std::string Session::Reload() {
   } catch (const std::exception& e) {
     return std::string("reload failed, the run goes on unchanged: ") + e.what();
   }
+  loaded_ = applied_.params;
   base_ = cli_;
-  run_edits_.clear();
-  queued_.clear();
-  queued_parse_.reset();
   reset_edits_.clear();
-  moves_.clear();
-  actions_.clear();
+  StartRun();
   refusals_.clear();
+  undo_.clear();
+  redo_.clear();
   accepted_ = 0;
+  SessionEvent e;
+  e.kind = SessionEvent::Kind::kReload;
+  e.source = std::make_shared<ScenarioSource>(source_);
+  Notify(e, from);
+  return "";
+}
+
+std::string Session::Branch(long step) {
+  if (step < 0 || step > exp_->steps())
+    return "branch: step " + std::to_string(step) + " is not in the run (0 ... " +
+           std::to_string(exp_->steps()) + ")";
+  const RunLog log = run_log().Before(step);
+  // Edits asked for but not applied yet are asked for again on the branch.
+  const std::vector<Override> asked = queued_;
+  const long from = exp_->steps();
+  try {
+    // The new run streams its rows from step 0 to where the old one streamed them.
+    if (run_setup_) exp_->mutable_recorder().AbandonStream();
+    RunReplay replay(source_, log, run_setup_);
+    replay.AdvanceTo(step, false);
+    applied_ = replay.parsed();
+    exp_ = replay.Release();
+  } catch (const std::exception& e) {
+    try {
+      if (run_setup_) run_setup_(*exp_);
+    } catch (const std::exception&) {
+      // The old run's rows were thinned in memory: its file cannot be written again.
+    }
+    return std::string("branch failed, the run goes on unchanged: ") + e.what();
+  }
+  base_ = log.base;
+  StartRun();
+  changes_ = log.changes;
+  run_edits_ = log.Edits();
+  SessionEvent ev;
+  ev.kind = SessionEvent::Kind::kBranch;
+  ev.at = step;
+  Notify(ev, from);
+  // A replay of the record branches the same way, so these are not recorded again.
+  auto observer = std::move(observer_);
+  observer_ = nullptr;
+  const std::vector<UndoStep> undo = undo_, redo = redo_;
+  for (const Override& o : asked) Edit(o.key, o.value, o.origin);
+  observer_ = std::move(observer);
+  undo_ = undo;
+  redo_ = redo;
   return "";
 }
 

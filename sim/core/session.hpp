@@ -13,9 +13,36 @@
 #include <string>
 #include <vector>
 
+#include "sim/core/run_log.hpp"
 #include "sim/core/scenario.hpp"
 
 namespace formsim::sim {
+
+/// Something done to a session, with the step of the run it happened at: what a session record
+/// (`formsim gui --session FILE`) keeps so that `formsim replay` can do it again.
+struct SessionEvent {
+  enum class Kind {
+    kLoad,    ///< a scenario loaded: `source`, command-line `overrides`
+    kEdit,    ///< an accepted edit: key, value, origin
+    kApply,   ///< queued edits, drags and actions applied (one Retune)
+    kAction,  ///< an accepted action request: key = id, origin
+    kMove,    ///< a drag request: key = name, x, y
+    kReset,   ///< a reset, with `seed` when one was given
+    kReload,  ///< the file re-read: `source` = its text then
+    kBranch,  ///< the run restarted from its own step `at`
+    kNote,    ///< for the record only (pin, unpin, seeds, restore): key = what, value = detail
+    kEnd,     ///< the last step of the record
+  };
+  Kind kind = Kind::kNote;
+  long step = 0;  ///< steps of the current run when it happened
+  std::string key, value, origin;
+  double x = 0, y = 0;
+  bool has_seed = false;
+  std::uint64_t seed = 0;
+  long at = 0;
+  std::shared_ptr<const ScenarioSource> source;
+  std::vector<Override> overrides;
+};
 
 class Session {
  public:
@@ -23,6 +50,14 @@ class Session {
   Session(const std::string& file, std::vector<Override> cli_overrides);
   /// Same with `--set` strings and a seed (< 0: the scenario's).
   Session(const std::string& file, const std::vector<std::string>& sets, long long seed);
+  /// A scenario held in memory (a replayed session record). Throws ScenarioError.
+  Session(ScenarioSource source, std::vector<Override> cli_overrides);
+
+  /// Called with everything done to the session (accepted edits, applies, drags, actions,
+  /// resets, reloads, branches), each with its step: the session record of the GUI.
+  void SetObserver(std::function<void(const SessionEvent&)> observer) {
+    observer_ = std::move(observer);
+  }
 
   /// Called with every experiment the session builds (now, and after each reset or reload),
   /// e.g. to stream its rows to disk and bound the history kept in memory.
@@ -35,12 +70,36 @@ class Session {
   /// Every tunable with the value the running experiment uses.
   const ParamTable& params() const { return applied_.params; }
   std::uint64_t seed() const { return exp_->setup().seed; }
+  /// The command-line overrides the scenario was loaded with.
+  const std::vector<Override>& cli_overrides() const { return cli_; }
+  /// Every tunable as loaded (the file with the command-line overrides): what "revert" goes
+  /// back to and what "edited" is measured against.
+  const ParamTable& loaded_params() const { return loaded_; }
+  /// The value (YAML text) the next reset would run `key` with: a waiting or queued edit, else
+  /// the value in use. "" for an unknown key.
+  std::string EffectiveValue(const std::string& key) const;
+  /// The loaded value of `key` as text ("" for an unknown key).
+  std::string LoadedValue(const std::string& key) const;
+  /// True when the effective value of `key` differs from the loaded one.
+  bool IsEdited(const std::string& key) const;
 
   /// Asks for an edit of tunable `key` (value as YAML text). Returns "" when accepted, else the
   /// reason (also kept in rejected() and refusal()). Live tunables apply before the next step;
   /// OnReset ones wait for Reset(). `origin` names the edit in messages and provenance.
+  /// Every accepted edit can be undone: `continues_gesture` merges it with the previous edit of
+  /// the same key into one undo step (a slider dragged over many frames).
   std::string Edit(const std::string& key, const std::string& value,
-                   const std::string& origin = "GUI edit");
+                   const std::string& origin = "GUI edit", bool continues_gesture = false);
+  /// Edits the last edited tunable back to its value before that edit (through Edit, origin
+  /// "undo"). Returns "" or why not (nothing to undo, or the edit is refused now).
+  std::string Undo();
+  /// Does again the edit the last Undo took back (origin "redo").
+  std::string Redo();
+  bool can_undo() const { return !undo_.empty(); }
+  bool can_redo() const { return !redo_.empty(); }
+  /// "k_l 0.15 -> 0.4": what Undo (Redo) would take back (do again); "" when nothing.
+  std::string UndoText() const;
+  std::string RedoText() const;
   /// Queues one of the experiment's actions (Experiment::Actions), run between two steps.
   /// Returns "" or why it is refused (unknown action).
   std::string Action(const std::string& id, const std::string& origin = "GUI action");
@@ -56,6 +115,19 @@ class Session {
   /// Re-reads the file from disk with the command-line overrides only (GUI edits are dropped).
   /// Returns "" or the reason; on failure everything stays as it was.
   std::string Reload();
+  /// Reload with `source` as the file's text (a replayed session record).
+  std::string ReloadFrom(ScenarioSource source);
+  /// Restarts the current run from its own step `step` (0 ... steps()): the run is replayed
+  /// from step 0 with the same start and the same changes at the same steps up to `step`
+  /// (changes of `step` itself are not applied), so the branch starts from the exact state of
+  /// the whole world at that step. Later changes are dropped; edits waiting for a reset stay.
+  /// Costs `step` steps. Returns "" or why not (the run then goes on unchanged).
+  std::string Branch(long step);
+  /// How the current run came about (start and changes with their steps): replaying it gives
+  /// the run again exactly.
+  RunLog run_log() const { return {base_, changes_}; }
+  /// Counts the runs of this session: changes with every reset, reload and branch.
+  long run_id() const { return run_id_; }
   bool has_pending() const { return !queued_.empty() || !moves_.empty() || !actions_.empty(); }
 
   /// Edits that were refused, newest last, each "t=1.23 s key: reason".
@@ -83,17 +155,30 @@ class Session {
  private:
   void Reject(const std::string& key, const std::string& why);
   std::vector<Override> All(bool with_reset_edits) const;
+  void Notify(SessionEvent e, long step = -1) const;  ///< step -1: the current one
+  /// Adopts a new run (reset, reload, branch): clears what belonged to the old one.
+  void StartRun();
+  std::string Reloaded(ScenarioSource source);
+
+  struct UndoStep {
+    std::string key, before, after;
+  };
 
   ScenarioSource source_;
   std::vector<Override> cli_;         ///< --set / --seed as given
   std::vector<Override> base_;        ///< in force from the start of the current run
   std::vector<Override> run_edits_;   ///< applied during the current run (with their step)
+  std::vector<RunChange> changes_;    ///< everything applied during the current run
   std::vector<Override> queued_;      ///< accepted live edits, applied at the next ApplyPending
   std::vector<Override> reset_edits_; ///< accepted OnReset edits, waiting for a reset
   std::optional<ParsedScenario> queued_parse_;  ///< the scenario with queued_ applied
   ParsedScenario applied_;
+  ParamTable loaded_;
   std::unique_ptr<Experiment> exp_;
   std::function<void(Experiment&)> run_setup_;
+  std::function<void(const SessionEvent&)> observer_;
+  std::vector<UndoStep> undo_, redo_;
+  long run_id_ = 0;
   struct MoveRequest {
     std::string name;
     double x = 0, y = 0;

@@ -8,7 +8,8 @@ namespace formsim::sim {
 
 std::optional<SweepRecord> RunScenarioOnce(const ScenarioSource& source,
                                            const std::vector<Override>& overrides,
-                                           const std::function<bool()>& stop) {
+                                           const std::function<bool()>& stop,
+                                           const std::function<void(const Experiment&)>& inspect) {
   SweepRecord rec;
   try {
     std::unique_ptr<Experiment> exp = BuildExperiment(ParseScenario(source, overrides));
@@ -21,6 +22,7 @@ std::optional<SweepRecord> RunScenarioOnce(const ScenarioSource& source,
     rec.status = exp->status();
     rec.message = exp->stop_reason();
     rec.metrics = exp->Results().Scalars();
+    if (inspect) inspect(*exp);
   } catch (const std::exception& e) {
     rec.status = "error";
     rec.message = e.what();
@@ -30,8 +32,11 @@ std::optional<SweepRecord> RunScenarioOnce(const ScenarioSource& source,
 }
 
 std::optional<SweepRecord> RunSweepRun(const ScenarioSource& source, const SweepDefinition& def,
-                                       std::size_t run, const std::function<bool()>& stop) {
-  std::optional<SweepRecord> rec = RunScenarioOnce(source, def.RunOverrides(run), stop);
+                                       std::size_t run, const std::function<bool()>& stop,
+                                       const RunInspector& inspect) {
+  std::function<void(const Experiment&)> see;
+  if (inspect) see = [&](const Experiment& exp) { inspect(run, exp); };
+  std::optional<SweepRecord> rec = RunScenarioOnce(source, def.RunOverrides(run), stop, see);
   if (rec) rec->run = run;
   return rec;
 }
@@ -39,14 +44,14 @@ std::optional<SweepRecord> RunSweepRun(const ScenarioSource& source, const Sweep
 SweepProgress RunSweep(
     const ScenarioSource& source, const SweepDefinition& def, const std::vector<std::size_t>& runs,
     TaskPool& pool, const std::function<void(const SweepRecord&, const SweepProgress&)>& on_record,
-    const std::function<bool()>& stop) {
+    const std::function<bool()>& stop, const RunInspector& inspect) {
   SweepProgress progress;
   progress.total = runs.size();
   std::mutex mu;
   pool.ForEach(
       runs.size(),
       [&](std::size_t i) {
-        const std::optional<SweepRecord> rec = RunSweepRun(source, def, runs[i], stop);
+        const std::optional<SweepRecord> rec = RunSweepRun(source, def, runs[i], stop, inspect);
         if (!rec) return;
         std::lock_guard<std::mutex> lock(mu);
         ++progress.done;

@@ -16,17 +16,23 @@
 
 namespace formsim::sim {
 
+/// Sees a finished run of a sweep (its index and experiment) on the worker that ran it.
+using RunInspector = std::function<void(std::size_t run, const Experiment& exp)>;
+
 /// Runs one parameterisation of `source` to its end and returns its record (run index 0):
 /// status "completed", "numerical_fault" (message: the fault) or "error" (a scenario error or
 /// an exception while building or stepping; message: what it said). When `stop()` turns true
-/// mid-run the run is abandoned and std::nullopt returned.
-std::optional<SweepRecord> RunScenarioOnce(const ScenarioSource& source,
-                                           const std::vector<Override>& overrides,
-                                           const std::function<bool()>& stop = {});
+/// mid-run the run is abandoned and std::nullopt returned. `inspect`, when given, sees the
+/// finished experiment before it is destroyed (e.g. to keep its recorded series).
+std::optional<SweepRecord> RunScenarioOnce(
+    const ScenarioSource& source, const std::vector<Override>& overrides,
+    const std::function<bool()>& stop = {},
+    const std::function<void(const Experiment&)>& inspect = {});
 
 /// Run `run` of `def` (RunScenarioOnce with the run's overrides).
 std::optional<SweepRecord> RunSweepRun(const ScenarioSource& source, const SweepDefinition& def,
-                                       std::size_t run, const std::function<bool()>& stop = {});
+                                       std::size_t run, const std::function<bool()>& stop = {},
+                                       const RunInspector& inspect = {});
 
 /// Where a sweep stands.
 struct SweepProgress {
@@ -37,10 +43,11 @@ struct SweepProgress {
 
 /// Runs `runs` of `def` on `pool`. Each finished run is handed to `on_record` at once (calls
 /// are serialised; completion order varies, the records do not). Runs abandoned because
-/// `stop()` turned true are not handed over. Returns the final progress.
+/// `stop()` turned true are not handed over. Returns the final progress. `inspect` sees each
+/// finished experiment (on the worker that ran it) before its record is handed over.
 SweepProgress RunSweep(
     const ScenarioSource& source, const SweepDefinition& def, const std::vector<std::size_t>& runs,
     TaskPool& pool, const std::function<void(const SweepRecord&, const SweepProgress&)>& on_record,
-    const std::function<bool()>& stop = {});
+    const std::function<bool()>& stop = {}, const RunInspector& inspect = {});
 
 }  // namespace formsim::sim

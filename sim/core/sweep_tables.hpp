@@ -22,7 +22,7 @@ struct MetricStats {
   double mean = 0, std = 0, min = 0, max = 0;  ///< std: sample (n - 1); NaN when n < 2
 };
 
-/// Statistics of `values` (all of them: filter non-finite ones first).
+/// The statistics of `values` (all of them; the caller leaves out what does not count).
 MetricStats StatsOf(const std::vector<double>& values);
 
 struct SweepTables {

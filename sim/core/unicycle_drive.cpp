@@ -19,7 +19,10 @@ void UnicycleDrive::SetCommand(double v, double omega) {
 void UnicycleDrive::Apply(Robot& robot, World& world, double dt) {
   b2Body* body = robot.body();
   const double a = body->GetAngle(), c = std::cos(a), s = std::sin(a);
-  const double u = robot.forward_speed(), lat = robot.lateral_speed(), r = robot.yaw_rate();
+  // Forward and lateral speeds as Robot::forward_speed and lateral_speed compute them, from the
+  // sine and cosine already at hand.
+  const Vec2 vel = robot.world_velocity();
+  const double u = c * vel.x + s * vel.y;
   // Motor acceleration limit on the forward speed.
   double v_target = v_cmd_;
   if (std::isfinite(def_.accel_max)) {
@@ -36,6 +39,7 @@ void UnicycleDrive::Apply(Robot& robot, World& world, double dt) {
 
   // Traction: the forces that would reach the command in one step, shared by two wheels at
   // ±track_half_width, each wheel's force limited by μ·N (N = m g / 2): friction circle.
+  const double lat = -s * vel.x + c * vel.y, r = robot.yaw_rate();
   const double m = robot.mass(), inertia = robot.inertia(), b = def_.track_half_width;
   const double mu = world.FrictionAt(robot.pose().p());
   const double fx = m * (v_target - u) / dt;   // longitudinal, body frame

@@ -356,8 +356,9 @@ class ClosestRay : public b2RayCastCallback {
 RayHit World::RayCast(Vec2 from, Vec2 to, bool include_robots, const Robot* ignore) const {
   RayHit out;
   // Box2D asserts on a zero-length or non-finite ray: such a ray hits nothing.
+  const Vec2 d = to - from;
   if (!std::isfinite(from.x) || !std::isfinite(from.y) || !std::isfinite(to.x) ||
-      !std::isfinite(to.y) || !((to - from).Norm() >= 1e-6))
+      !std::isfinite(to.y) || !(d.x * d.x + d.y * d.y >= 1e-12))
     return out;
   ClosestRay cb(include_robots, ignore ? ignore->body() : nullptr);
   b2_->RayCast(&cb, ToB2(from), ToB2(to));
@@ -428,3 +429,14 @@ void World::Draw(DrawSink& draw) const {
 }
 
 }  // namespace formsim::sim
+
+// Box2D's profiling timers, made free. Box2D 2.4 fills b2World::GetProfile() by reading the clock
+// (gettimeofday) about four times per island per step; robots that do not touch are islands of
+// their own, so a thousand-robot step read the clock four thousand times, which was 60% of
+// Box2D's time for such a world. formsim never reads the profile, so these definitions replace
+// the library's: a program's own definitions take precedence over a shared library's for the
+// library's calls too (ELF symbol interposition; Box2D is linked as libbox2d.so). The profile then
+// reads 0; tests/sim/test_world.cpp checks that the replacement is in effect.
+b2Timer::b2Timer() = default;
+void b2Timer::Reset() {}
+float b2Timer::GetMilliseconds() const { return 0.0f; }

@@ -159,7 +159,9 @@ class World {
   double FrictionAt(Vec2 p) const;
   const std::string& PatchNameAt(Vec2 p) const;
 
-  /// First obstacle (and robot, if `include_robots`) hit along a ray, skipping `ignore`.
+  /// First obstacle (and robot, if `include_robots`) hit along a ray, skipping `ignore`. A ray
+  /// shorter than 1e-6 m or not finite hits nothing. Safe to call from several threads at once
+  /// (it only reads the world).
   RayHit RayCast(Vec2 from, Vec2 to, bool include_robots = false, const Robot* ignore = nullptr) const;
 
   std::vector<std::unique_ptr<Robot>>& robots() { return robots_; }

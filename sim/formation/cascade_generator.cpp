@@ -1,106 +1,180 @@
 #include "sim/formation/cascade_generator.hpp"
 
-#include <yaml-cpp/yaml.h>
-
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 #include <string>
+#include <vector>
+
+#include "control/common/angle.hpp"
+#include "sim/core/number_format.hpp"
+#include "sim/core/world.hpp"
 
 namespace formsim::sim::formation {
 namespace {
 
-YAML::Node Flow(std::initializer_list<double> v) {
-  YAML::Node n(YAML::NodeType::Sequence);
-  for (double x : v) n.push_back(x);
-  n.SetStyle(YAML::EmitterStyle::Flow);
-  return n;
-}
+constexpr double kL = 0.15;          // control point offset, m (the paper's)
+constexpr double kGain = 0.15;       // per-sample gain (K = 15/s)
+constexpr double kSpeed = 2.5;       // root speed, m/s (the paper's)
+constexpr double kClearance = 0.2;   // least gap between neighbouring bodies, m
+constexpr double kHeading = 0.3;     // initial heading of the whole formation, rad
+constexpr double kStraight = 2.0;    // the root drives straight this long first, s
+constexpr double kTurn = 4.0;        // then turns left and right for this long each, s
+constexpr double kRamp = 1.0;        // each change of turn rate takes this long, s
+constexpr double kPaperVariance = 0.9186e-4;  // the paper's angle noise h, rad²
+constexpr double kRangeSigma = 0.003;         // range noise, m (formation_traj2_noisy_raw's)
 
-std::string Name(int index) {
-  return "R" + std::to_string(index + 1);
+// A number rounded to 1e-6 as short text (the scenario stays readable and small).
+std::string Num(double v) { return FormatDouble(std::round(v * 1e6) / 1e6 + 0.0); }
+
+std::string Name(int index) { return "R" + std::to_string(index + 1); }
+
+// A lattice slot: row r (0 = the root's), column c (0 = leftmost of the row).
+struct Slot {
+  int r = 0, c = 0;
+};
+
+// The slots of the first n robots: full rows, then the middle of a partial last row (inner
+// slots before the edges, so an edge always has its inner neighbour).
+std::vector<Slot> Slots(int n) {
+  std::vector<Slot> out;
+  int r = 0;
+  while (static_cast<int>(out.size()) + r + 1 <= n) {
+    for (int c = 0; c <= r; ++c) out.push_back({r, c});
+    ++r;
+  }
+  const int rest = n - static_cast<int>(out.size());
+  if (rest > 0) {
+    std::vector<int> cols(r + 1);
+    for (int c = 0; c <= r; ++c) cols[c] = c;
+    std::stable_sort(cols.begin(), cols.end(), [&](int a, int b) {
+      const bool edge_a = a == 0 || a == r, edge_b = b == 0 || b == r;
+      if (edge_a != edge_b) return !edge_a;
+      return std::abs(2 * a - r) < std::abs(2 * b - r);
+    });
+    cols.resize(rest);
+    std::sort(cols.begin(), cols.end());
+    for (int c : cols) out.push_back({r, c});
+  }
+  return out;
 }
 
 }  // namespace
 
-YAML::Node MakeCascadeTree(int n_robots, bool ukf, double spacing) {
-  if (n_robots < 1) throw std::invalid_argument("MakeCascadeScenario: n_robots must be >= 1");
-  const double L = 0.15, d = spacing, h = 0.9186e-4;
-  const int cols = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n_robots))));
-  YAML::Node root;
-  root["type"] = "formation";
-  root["name"] = "cascade" + std::to_string(n_robots) + (ukf ? "_ukf" : "");
-  root["description"] = "Generated " + std::to_string(n_robots) + "-robot cascade grid" +
-                        (ukf ? " with a UKF per link" : "");
-  root["seed"] = 1;
-  root["dt"] = 0.01;
-  root["duration"] = 10.0;
-  root["record_every"] = 10;
-  root["formation"]["L"] = L;
-  root["formation"]["gain_reading"] = "per_sample";
-  if (ukf) {
-    root["noise"]["phi_variance"] = h;
-    root["noise"]["alpha_variance"] = h;
-  }
-  root["draw"]["trail_length"] = 100;
+std::string MakeCascadeScenario(const CascadeOptions& o) {
+  const int n = o.robots;
+  if (n < 1) throw std::invalid_argument("MakeCascadeScenario: robots must be >= 1");
+  const RobotDef body = DefaultRobotDef();
+  const double radius = std::hypot(body.half_length, body.half_width);
+  if (!(o.spacing >= 2 * radius + kClearance))
+    throw std::invalid_argument("MakeCascadeScenario: spacing must be at least " +
+                                FormatDouble(2 * radius + kClearance) + " m for the robots' bodies");
+  const double d = o.spacing, h = d * std::sqrt(3.0) / 2;
+  const std::vector<Slot> slots = Slots(n);
+  // Desired place of a slot in the root's frame (x forward, y left), headings 0.
+  auto place = [&](const Slot& s) { return Vec2{-s.r * h, (0.5 * s.r - s.c) * d}; };
+  std::map<std::pair<int, int>, int> index;
+  for (int i = 0; i < n; ++i) index[{slots[i].r, slots[i].c}] = i;
+  auto index_of = [&](int r, int c) {
+    const auto it = index.find({r, c});
+    return it == index.end() ? -1 : it->second;
+  };
+  double extent = 0.0;
+  for (const Slot& s : slots) extent = std::max(extent, place(s).Norm());
+  const double radius_turn = std::max(2.0 * extent, 5.0);
+  const double omega = kSpeed / radius_turn;
 
-  // Desired place of grid cell (r, c) in the leader frame (x forward, y left), heading 0.
-  auto cell = [&](int r, int c) { return std::pair<double, double>{-r * d, -c * d}; };
-  const double heading = 0.3;
-  const double ch = std::cos(heading), sh = std::sin(heading);
-  for (int k = 0; k < n_robots; ++k) {
-    const int r = k / cols, c = k % cols;
-    auto [x, y] = cell(r, c);
+  const std::string name =
+      o.name.empty() ? "cascade" + std::to_string(n) + (o.ukf ? "_ukf" : "") : o.name;
+  const std::string description =
+      o.description.empty() ? "Generated " + std::to_string(n) + "-robot wedge formation" +
+                                  (o.ukf ? " with a UKF per link" : "")
+                            : o.description;
+  std::string y;
+  y += "# Generated by sim/formation/cascade_generator.cpp (MakeCascadeScenario): " +
+       std::to_string(n) + " robots on an\n";
+  y += "# equilateral triangular lattice (spacing " + Num(d) +
+       " m) in a wedge behind the root R1, every follower l-l to\n";
+  y += "# two robots ahead except R3 (l-phi to R1). Root: " + Num(kSpeed) +
+       " m/s, turns of radius " + Num(radius_turn) + " m (twice the\n";
+  y += "# formation's extent " + Num(extent) + " m), each change of turn rate over " + Num(kRamp) +
+       " s. Per-sample gains " + Num(kGain) + ".\n";
+  if (o.ukf)
+    y += "# Each link's UKF measures [l, phi, alpha]: the paper's angle noise, 3 mm on the range.\n";
+  y += "type: formation\n";
+  y += "name: " + name + "\n";
+  y += "description: \"" + description + "\"\n";
+  y += "seed: 1\ndt: 0.01\nduration: " + Num(o.duration) + "\nrecord_every: 10\n";
+  y += "formation: {L: " + Num(kL) + ", gain_reading: per_sample}\n";
+  if (o.ukf)
+    y += "noise: {l_sigma: " + Num(kRangeSigma) + ", phi_variance: " + FormatDouble(kPaperVariance) +
+         ", alpha_variance: " + FormatDouble(kPaperVariance) + "}\n";
+  y += "draw: {trail_length: 100}\n";
+  y += "robots:\n";
+
+  const double ch = std::cos(kHeading), sh = std::sin(kHeading);
+  for (int k = 0; k < n; ++k) {
+    const Slot s = slots[k];
+    const Vec2 p = place(s);
     // A deterministic displacement of up to ±3 cm and ±0.05 rad.
-    const double jx = 0.03 * std::sin(1.7 * k + 0.3), jy = 0.03 * std::cos(2.3 * k + 0.1);
+    const double jx = k == 0 ? 0.0 : 0.03 * std::sin(1.7 * k + 0.3);
+    const double jy = k == 0 ? 0.0 : 0.03 * std::cos(2.3 * k + 0.1);
     const double jt = k == 0 ? 0.0 : 0.05 * std::sin(0.9 * k);
-    YAML::Node robot;
-    robot["name"] = Name(k);
-    robot["pose"] =
-        Flow({ch * (x + jx) - sh * (y + jy), sh * (x + jx) + ch * (y + jy), heading + jt});
+    const double x = p.x + jx, yy = p.y + jy;
+    y += "  - {name: " + Name(k) + ", pose: [" + Num(ch * x - sh * yy) + ", " +
+         Num(sh * x + ch * yy) + ", " + Num(kHeading + jt) + "], ";
     if (k == 0) {
-      robot["schedule"]["kind"] = "line_curve";
-      robot["schedule"]["v"] = 2.5;
-      robot["schedule"]["omega"] = 0.05;
-    } else {
-      YAML::Node f;
-      if (r == 0 || c == 0) {
-        // l-φ to the left neighbour (front line) or to the robot ahead (left column).
-        const int leader = r == 0 ? k - 1 : k - cols;
-        auto [lx, ly] = r == 0 ? cell(r, c - 1) : cell(r - 1, c);
-        const double mx = x + L - lx, my = y - ly;
-        f["law"] = "l_phi";
-        f["leaders"].push_back(Name(leader));
-        f["l_des"] = std::hypot(mx, my);
-        f["phi_des"] = std::atan2(my, mx);
-      } else {
-        // l-l to the robot ahead and the left neighbour.
-        auto [ax, ay] = cell(r - 1, c);
-        auto [bx, by] = cell(r, c - 1);
-        f["law"] = "l_l";
-        f["leaders"].push_back(Name(k - cols));
-        f["leaders"].push_back(Name(k - 1));
-        f["l_des"] = std::hypot(x + L - ax, y - ay);
-        f["l2_des"] = std::hypot(x + L - bx, y - by);
-        f["k_l2"] = 0.15;
-      }
-      f["leaders"].SetStyle(YAML::EmitterStyle::Flow);
-      f["k_l"] = 0.15;
-      if (ukf) f["estimator"] = "ukf";
-      robot["follow"] = f;
+      // Straight, then alternating turns until the end of the run.
+      y += "schedule: {kind: segments, ramp: " + Num(kRamp) + ", segments: [{until: " +
+           Num(kStraight) + ", v: " + Num(kSpeed) + ", w: 0}";
+      double until = kStraight;
+      int sign = 1;
+      do {
+        until += kTurn;
+        y += ", {until: " + Num(until) + ", v: " + Num(kSpeed) + ", w: " + Num(sign * omega) + "}";
+        sign = -sign;
+      } while (until < o.duration);
+      y += "]}}\n";
+      continue;
     }
-    root["robots"].push_back(robot);
+    // The control point of the follower in its desired place.
+    const Vec2 m = p + Vec2{kL, 0.0};
+    auto distance = [&](int leader) { return (m - place(slots[leader])).Norm(); };
+    int a = -1, b = -1;  // l-l leaders (a: first)
+    // The one l-φ follower: R3 (or R2 when alone in its row).
+    if (s.r == 1 && (s.c == 1 || index_of(1, 1) < 0)) {
+      const Vec2 r = m - place(slots[0]);
+      y += "follow: {law: l_phi, leaders: [R1], l_des: " + Num(r.Norm()) +
+           ", phi_des: " + Num(std::atan2(r.y, r.x)) + ", k_l: " + Num(kGain) +
+           ", k_phi: " + Num(kGain);
+    } else {
+      if (s.r == 1) {
+        a = 0, b = index_of(1, 1);
+      } else if (s.c == 0) {
+        a = index_of(s.r - 1, 0), b = index_of(s.r, 1);
+      } else if (s.c == s.r) {
+        a = index_of(s.r - 1, s.r - 1), b = index_of(s.r, s.r - 1);
+      } else {
+        a = index_of(s.r - 1, s.c - 1), b = index_of(s.r - 1, s.c);
+      }
+      if (a < 0 || b < 0) throw std::logic_error("MakeCascadeScenario: a leader slot is empty");
+      y += "follow: {law: l_l, leaders: [" + Name(a) + ", " + Name(b) + "], l_des: " +
+           Num(distance(a)) + ", l2_des: " + Num(distance(b)) + ", k_l: " + Num(kGain) +
+           ", k_l2: " + Num(kGain);
+    }
+    if (o.ukf) y += ", estimator: ukf, measure: [l, phi, alpha]";
+    y += "}}\n";
   }
-  return root;
+  return y;
 }
 
-}  // namespace formsim::sim::formation
-
-namespace formsim::sim::formation {
-
 std::string MakeCascadeScenario(int n_robots, bool ukf, double spacing) {
-  YAML::Emitter out;
-  out << MakeCascadeTree(n_robots, ukf, spacing);
-  return std::string(out.c_str()) + "\n";
+  CascadeOptions o;
+  o.robots = n_robots;
+  o.ukf = ukf;
+  o.spacing = spacing;
+  return MakeCascadeScenario(o);
 }
 
 }  // namespace formsim::sim::formation

@@ -4,6 +4,7 @@
 #include <set>
 
 #include "sim/core/multirate.hpp"
+#include "sim/core/number_format.hpp"
 
 namespace formsim::sim::formation {
 namespace {
@@ -89,6 +90,12 @@ LeaderScheduleDef ReadSchedule(YamlReader& m, const std::string& group) {
       d.segments.push_back(seg);
     }
     if (d.segments.empty()) m.Fail("segments", "needs at least one segment");
+    d.ramp = m.Double("ramp", 0.0);
+    if (!(d.ramp >= 0.0)) m.Fail("ramp", "must be >= 0");
+    for (std::size_t k = 1; k < d.segments.size(); ++k)
+      if (d.ramp > d.segments[k].until - d.segments[k - 1].until)
+        m.Fail("ramp", "must not exceed the length of any segment after the first (" +
+                           Sprintf("%g", d.segments[k].until - d.segments[k - 1].until) + " s)");
   } else {
     d.v = m.Real("v", d.v, Tune("leader v", "m/s").AtLeast(-10).AtMost(10).Slider(0.0, 5.0).Group(group));
     if (d.kind == LeaderScheduleDef::Kind::kSpiral) {

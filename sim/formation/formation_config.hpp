@@ -14,7 +14,7 @@
 ///   robots: (required, a list)
 ///     - name: R1 (required)   pose: [x, y, theta]   body: {...}   drive: {...}
 ///       schedule: {kind: segments|line_curve|figure_eight|spiral, v, omega, accel, r0, r_rate,
-///                  segments: [{until, v, w}, ...]}          # root leaders only
+///                  segments: [{until, v, w}, ...], ramp: 0}  # root leaders only
 ///       follow:                                             # followers only
 ///         law: l_phi|l_l (required)   leaders: [R1] or [R1, R2] (required)
 ///         l_des: 0.3   phi_des: 5π/4 (l_phi)   l2_des: 0.3 (l_l)

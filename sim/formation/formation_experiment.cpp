@@ -16,6 +16,10 @@ using cf::LinkState;
 using cf::Twist;
 
 constexpr double kMinL = 1e-3;  // a distance handed to a law is at least this (noisy raw l)
+// Parallel sections hand out at least this much work per task (a link's sensor and UKF is about
+// a microsecond; an agent's law or sin_ll a tenth of that).
+constexpr std::size_t kLinksPerTask = 16;
+constexpr std::size_t kAgentsPerTask = 128;
 
 
 }  // namespace
@@ -40,6 +44,7 @@ void FormationExperiment::BuildWorld() {
     a.drive = drive.get();
     a.robot->SetDrive(std::move(drive));
     a.saturation = events_.DeclareCondition(event::kSaturation, r.body.name);
+    a.trail.SetCapacity(static_cast<std::size_t>(cfg_.trail_length));
   }
   // Links in topological order of their followers, leaders in declaration order.
   for (int j : cfg_.graph.order) {
@@ -113,6 +118,24 @@ LinkState FormationExperiment::ForControl(const Link& link) const {
 
 void FormationExperiment::Control(double t) {
   if (steps() % cfg_.control_every != 0) return;
+  // What each follower's law needs except its leaders' commands (the sines, cosines and errors
+  // of its links' states), for every follower at once.
+  pool().ParallelFor(
+      agents_.size(),
+      [&](std::size_t begin, std::size_t end) {
+        for (std::size_t j = begin; j < end; ++j) {
+          const FormationRobotDef& r = cfg_.robots[j];
+          Agent& a = agents_[j];
+          const cf::FormationGains gains{Gain(r.follow.k1), Gain(r.follow.k2)};
+          if (r.node.law == FormationLaw::kLPhi)
+            a.lphi = cf::PrepareLPhi(ForControl(links_[a.links[0]]), r.node.l_des, r.node.phi_des, gains);
+          else if (r.node.law == FormationLaw::kLL)
+            a.ll = cf::PrepareLL(ForControl(links_[a.links[0]]), ForControl(links_[a.links[1]]),
+                                 r.node.l_des, r.node.l2_des, gains, cfg_.singular_threshold);
+        }
+      },
+      kAgentsPerTask);
+  // Then in cascade order: a follower uses its leaders' commands of this step as feed-forward.
   for (int j : cfg_.graph.order) {
     const FormationRobotDef& r = cfg_.robots[j];
     Agent& a = agents_[j];
@@ -120,23 +143,21 @@ void FormationExperiment::Control(double t) {
     if (r.node.law == FormationLaw::kRoot) {
       cmd = cf::ScheduleAt(r.schedule, t);
     } else if (r.node.law == FormationLaw::kLPhi) {
-      const Link& l = links_[a.links[0]];
-      cmd = cf::LPhiControl(ForControl(l), agents_[l.leader].cmd, r.node.l_des, r.node.phi_des,
-                            {Gain(r.follow.k1), Gain(r.follow.k2)}, cfg_.L);
+      cmd = cf::FinishLPhi(a.lphi, agents_[links_[a.links[0]].leader].cmd, cfg_.L);
     } else {
       const Link& l1 = links_[a.links[0]];
       const Link& l2 = links_[a.links[1]];
-      const cf::LLCommand c = cf::LLControl(
-          ForControl(l1), ForControl(l2), agents_[l1.leader].cmd, agents_[l2.leader].cmd,
-          r.node.l_des, r.node.l2_des, {Gain(r.follow.k1), Gain(r.follow.k2)}, cfg_.L,
-          cfg_.singular_threshold);
+      const cf::LLCommand c = cf::FinishLL(a.ll, agents_[l1.leader].cmd, agents_[l2.leader].cmd, cfg_.L);
       cmd = c.cmd;
       // One event per entry into the singular band.
-      events_.Update(a.singular, t, c.singular, [&] {
-        return r.body.name + " near the line through " + cfg_.robots[l1.leader].body.name +
-               " and " + cfg_.robots[l2.leader].body.name +
-               " (|sin| = " + Sprintf("%.3f", std::abs(c.sin_angle)) + " < " +
-               Sprintf("%.3g", cfg_.singular_threshold) + "), regularised inverse in use";
+      events_.Update(a.singular, t, c.singular, [&](std::string& m) {
+        m += r.body.name;
+        m += " near the line through ";
+        m += cfg_.robots[l1.leader].body.name;
+        m += " and ";
+        m += cfg_.robots[l2.leader].body.name;
+        AppendSprintf(m, " (|sin| = %.3f < %.3g), regularised inverse in use",
+                      std::abs(c.sin_angle), cfg_.singular_threshold);
       });
     }
     a.drive->SetCommand(cmd.v, cmd.w);
@@ -160,19 +181,17 @@ void FormationExperiment::InitFilter(Link& link, bool restart) {
   link.used = link.filter->state();
 }
 
-void FormationExperiment::RunFilter(Link& link, double t) {
+void FormationExperiment::RunFilter(Link& link) {
   link.ever_ukf = true;
+  link.filter_ran = false;
   if (!link.filter_ready) {
     InitFilter(link, false);
     return;
   }
+  link.filter_ran = true;
   control::UkfStatus st = link.filter->Predict(agents_[link.leader].cmd, agents_[link.follower].cmd);
   if (st == control::UkfStatus::kOk) st = link.filter->Update(link.measured);
-  // One event per entry into a run of faults; every fault is counted for the summary.
-  events_.Update(link.fault, t, st != control::UkfStatus::kOk, [&] {
-    return "UKF of link " + link.name + " at t = " + Sprintf("%.3f", t) +
-           " s: " + control::UkfStatusName(st) + "; restarted with P0";
-  });
+  link.status = st;
   if (st != control::UkfStatus::kOk) {
     ++link.fault_count;
     InitFilter(link, true);
@@ -181,50 +200,73 @@ void FormationExperiment::RunFilter(Link& link, double t) {
   link.used = link.filter->state();
 }
 
+void FormationExperiment::SenseLink(Link& l, double t, bool filter_step) {
+  const Pose2 pi = agents_[l.leader].robot->pose(), pj = agents_[l.follower].robot->pose();
+  const EstimatorMode mode = Mode(l.follower);
+  if (mode == EstimatorMode::kTruth) {
+    // Nobody reads the measurement: skip the noise draws (this link's stream only).
+    l.truth_conv = cf::ComputeLinkState(pi, pj, cfg_.L, cfg_.bearing);
+    l.measured = l.truth_conv;
+  } else {
+    const NoiseDef n = EffectiveNoise(cfg_, cfg_.robots[l.follower].follow);
+    l.measured = l.sensor.Sample(pi, pj, cfg_.L, cfg_.bearing, n.l.sigma(), n.phi.sigma(),
+                                 n.alpha.sigma(), l.truth_conv);
+  }
+  l.truth = cfg_.bearing == cf::BearingConvention::kDas
+                ? l.truth_conv
+                : cf::ComputeLinkState(pi, pj, cfg_.L, cf::BearingConvention::kDas);
+  l.filter_ran = false;
+  if (filter_step) {
+    if (mode == EstimatorMode::kUkf)
+      RunFilter(l);
+    else if (mode == EstimatorMode::kRaw)
+      l.used = l.measured;
+    else
+      l.used = l.truth_conv;
+  }
+  Accumulate(l, t);
+}
+
 void FormationExperiment::Sense(double t) {
   const bool filter_step = steps() % cfg_.control_every == 0;
   for (Agent& a : agents_) {
     a.saturated = a.drive->saturated();
-    events_.Update(a.saturation, t, a.saturated, [&] {
-      return a.drive->slipping() ? a.robot->name() + " slips (traction limit)"
-                                 : a.robot->name() + " command clamped to the drive limits";
+    events_.Update(a.saturation, t, a.saturated, [&](std::string& m) {
+      m += a.robot->name();
+      m += a.drive->slipping() ? " slips (traction limit)" : " command clamped to the drive limits";
     });
-    if (cfg_.trail_length > 0 && sense_count_ % cfg_.trail_every == 0) {
-      a.trail.push_back(a.robot->pose().p());
-      while (static_cast<int>(a.trail.size()) > cfg_.trail_length) a.trail.pop_front();
-    }
+    if (cfg_.trail_length > 0 && sense_count_ % cfg_.trail_every == 0) a.trail.Push(a.robot->pose().p());
   }
-  for (Link& l : links_) {
-    const Pose2 pi = agents_[l.leader].robot->pose(), pj = agents_[l.follower].robot->pose();
-    const EstimatorMode mode = Mode(l.follower);
-    if (mode == EstimatorMode::kTruth) {
-      // Nobody reads the measurement: skip the noise draws (this link's stream only).
-      l.truth_conv = cf::ComputeLinkState(pi, pj, cfg_.L, cfg_.bearing);
-      l.measured = l.truth_conv;
-    } else {
-      const NoiseDef n = EffectiveNoise(cfg_, cfg_.robots[l.follower].follow);
-      l.measured = l.sensor.Sample(pi, pj, cfg_.L, cfg_.bearing, n.l.sigma(), n.phi.sigma(),
-                                   n.alpha.sigma(), l.truth_conv);
-    }
-    l.truth = cfg_.bearing == cf::BearingConvention::kDas
-                  ? l.truth_conv
-                  : cf::ComputeLinkState(pi, pj, cfg_.L, cf::BearingConvention::kDas);
-    if (filter_step) {
-      if (mode == EstimatorMode::kUkf)
-        RunFilter(l, t);
-      else if (mode == EstimatorMode::kRaw)
-        l.used = l.measured;
-      else
-        l.used = l.truth_conv;
-    }
-    Accumulate(l, t);
+  // Each link's sensor (its own noise stream), filter and statistics touch that link only.
+  pool().ParallelFor(
+      links_.size(),
+      [&](std::size_t b, std::size_t e) {
+        for (std::size_t i = b; i < e; ++i) SenseLink(links_[i], t, filter_step);
+      },
+      kLinksPerTask);
+  // Filter faults, one event per entry into a run of faults, raised in link order so that the
+  // log does not depend on the threads; every fault is counted for the summary.
+  for (Link& link : links_) {
+    if (!link.filter_ran) continue;
+    const control::UkfStatus st = link.status;
+    events_.Update(link.fault, t, st != control::UkfStatus::kOk, [&](std::string& m) {
+      m += "UKF of link ";
+      m += link.name;
+      AppendSprintf(m, " at t = %.3f s: %s; restarted with P0", t, control::UkfStatusName(st));
+    });
   }
   // The l-l determinant sin(γ_kj − γ_ij) from the states the law will use (recorded as sin_ll).
-  for (Agent& a : agents_) {
-    if (a.links.size() != 2) continue;
-    a.sin_ll =
-        std::sin(ForControl(links_[a.links[1]]).gamma() - ForControl(links_[a.links[0]]).gamma());
-  }
+  pool().ParallelFor(
+      agents_.size(),
+      [&](std::size_t b, std::size_t e) {
+        for (std::size_t i = b; i < e; ++i) {
+          Agent& a = agents_[i];
+          if (a.links.size() != 2) continue;
+          a.sin_ll = std::sin(ForControl(links_[a.links[1]]).gamma() -
+                              ForControl(links_[a.links[0]]).gamma());
+        }
+      },
+      kAgentsPerTask);
   ++sense_count_;
 }
 
@@ -243,10 +285,7 @@ void FormationExperiment::Accumulate(Link& l, double t) {
   l.est_l.Add(e(0));
   l.est_phi.Add(e(1));
   l.est_alpha.Add(e(2));
-  if (mode == EstimatorMode::kUkf) {
-    const Eigen::LDLT<Eigen::Matrix3d> ldlt(l.filter->cov());
-    l.nees = e.dot(ldlt.solve(e));
-  }
+  if (mode == EstimatorMode::kUkf) l.nees = l.filter->Mahalanobis2(e);
 }
 
 Pose2 FormationExperiment::EstimatedPose(const Agent& a) const {
@@ -274,6 +313,25 @@ void FormationExperiment::DeclareChannels() {
       });
     }
     if (r.node.law == FormationLaw::kLL) recorder_.Add(n + ".sin_ll", [a] { return a->sin_ll; });
+  }
+  if (links_.size() > kManyLinks) {
+    // Over all links, computed when a row is recorded.
+    recorder_.AddGroup({"links.max_abs_e_l", "links.median_abs_e_l"}, [this](double* o) {
+      std::vector<double>& e = error_scratch_;
+      e.clear();
+      for (const Link& l : links_) e.push_back(std::abs(DesiredL(l) - l.truth.l));
+      const auto mid = e.begin() + static_cast<long>(e.size() / 2);
+      std::nth_element(e.begin(), mid, e.end());
+      o[1] = *mid;
+      o[0] = *std::max_element(mid, e.end());
+    });
+    recorder_.Add("links.max_abs_e_phi", [this] {
+      double worst = 0.0;
+      for (const Link& l : links_)
+        if (cfg_.robots[l.follower].node.law == FormationLaw::kLPhi)
+          worst = std::max(worst, std::abs(control::WrapToPi(cfg_.robots[l.follower].node.phi_des - l.truth.phi)));
+      return worst;
+    });
   }
   for (const Link& link : links_) {
     const Link* l = &link;

@@ -3,8 +3,9 @@
 /// root leaders on open-loop schedules, followers with the l-φ or l-l law, a relative sensor and
 /// (optionally) a UKF per link, any graph.
 ///
-/// Step order: Control(t) computes commands in topological order (a follower uses its leaders'
-/// commands of the same step as feed-forward) from the link states chosen by each follower's
+/// Step order: Control(t) prepares every follower's law from its links' states (in parallel),
+/// then computes commands in topological order (a follower uses its leaders' commands of the
+/// same step as feed-forward) from the link states chosen by each follower's
 /// estimator mode; the world steps; Sense(t+dt) samples every link sensor and, on filter steps,
 /// runs each link UKF (predict with the commands applied during the last period, update with the
 /// new measurement), so the recorded row at t holds truth, measurement and estimate of the same
@@ -27,9 +28,10 @@
 ///                  .l_sd .phi_sd .alpha_sd (square roots of the diagonal of P) and .nees
 ///                  (normalised estimation error squared, 3 dof): while the estimator is ukf
 ///   per l-l follower j: j.sin_ll (sin(γ_kj − γ_ij) of the law; 0 on the singular line)
+///   more links than the figures show (kManyLinks):  links.max_abs_e_l, links.median_abs_e_l
+///                  (over every link), and links.max_abs_e_phi over the l-φ links
 /// The estimator is a live tunable, so every follower has its estimate channels from the start.
 
-#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
@@ -38,6 +40,7 @@
 #include "control/formation/link_filter.hpp"
 #include "sim/core/error_stats.hpp"
 #include "sim/core/experiment.hpp"
+#include "sim/core/ring_buffer.hpp"
 #include "sim/core/unicycle_drive.hpp"
 #include "sim/formation/formation_config.hpp"
 #include "sim/formation/relative_sensor.hpp"
@@ -46,6 +49,9 @@ namespace formsim::sim::formation {
 
 class FormationExperiment : public ExperimentOf<FormationConfig> {
  public:
+  /// Figures show at most this many robots' or links' series; a larger formation also records
+  /// the largest and median errors over all its links (and plots them).
+  static constexpr std::size_t kManyLinks = 12;
   static FormationConfig ReadConfig(YamlReader& root, const ExperimentSetup& setup) {
     return ReadFormationConfig(root, setup.dt);
   }
@@ -85,7 +91,8 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
     RelativeSensor sensor;
     std::unique_ptr<cf::LinkFilter> filter;
     bool filter_ready = false;
-    bool estimated_now = false;  ///< an estimate was produced on this (control) step
+    bool filter_ran = false;  ///< this step ran predict and update (their status below)
+    control::UkfStatus status = control::UkfStatus::kOk;
     EventLog::ConditionId fault = 0;
     int fault_count = 0;
     cf::LinkState truth;       ///< physical (Das) state
@@ -101,10 +108,12 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
     UnicycleDrive* drive = nullptr;
     std::vector<int> links;  ///< indices into links_, in leader order
     cf::Twist cmd;           ///< command of the current period (after the drive's limits)
+    cf::LPhiPrepared lphi;   ///< this period's law before the leaders' commands (l-φ)
+    cf::LLPrepared ll;       ///< (l-l)
     bool saturated = false;
     EventLog::ConditionId saturation = 0, singular = 0;
     double sin_ll = 1.0;
-    std::deque<Vec2> trail;
+    RingBuffer<Vec2> trail;
   };
 
   void BuildWorld();
@@ -114,7 +123,10 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
   /// Starts (or restarts after a fault) a link filter: measured components from the
   /// measurement, the others from the truth (first start) or the last estimate (restart).
   void InitFilter(Link& link, bool restart);
-  void RunFilter(Link& link, double t);
+  void RunFilter(Link& link);
+  /// Everything a step does for one link alone (sensor, filter, statistics): links run in
+  /// parallel; events are raised afterwards in link order.
+  void SenseLink(Link& link, double t, bool filter_step);
   void Accumulate(Link& link, double t);
   double Gain(double k) const;
   double DesiredL(const Link& l) const;
@@ -125,6 +137,7 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
   std::vector<Agent> agents_;
   std::vector<Link> links_;
   long sense_count_ = 0;
+  std::vector<double> error_scratch_;  ///< the links' errors of a recorded row
 };
 
 }  // namespace formsim::sim::formation

@@ -86,6 +86,17 @@ Metrics FormationExperiment::Results() const {
     table.rows.emplace_back(l.name, "links." + l.name);
   }
   m.AddTable(std::move(table));
+  // Comparing runs (the GUI's pins, history, Monte Carlo): errors and event counts are better low.
+  for (const char* p :
+       {"links.*.max_abs_error*", "links.*.rmse_after_settle.*", "links.*.estimation_rmse.*",
+        "links.*.filter_fault_steps", "links.*.events.*"})
+    m.SetBetter(p, Better::kLower);
+  using C = Metrics::Combine;
+  // The worst link of each (the table has one row per link).
+  m.AddHeadline({"max|e_l| [m]", "links.*.max_abs_error_after_settle.l", C::kMax, "%.3g"});
+  m.AddHeadline({"max|e_phi| [rad]", "links.*.max_abs_error_after_settle.phi", C::kMax, "%.3g"});
+  m.AddHeadline({"rmse e_l [m]", "links.*.rmse_after_settle.l", C::kMax, "%.3g"});
+  m.AddHeadline({"collisions", "links.*.events.collision", C::kSum, "%.0f"});
   return m;
 }
 

@@ -12,11 +12,19 @@ namespace {
 using cf::FormationLaw;
 
 // Plots stay readable: at most this many series of one kind per figure.
-constexpr std::size_t kMaxSeries = 12;
+constexpr std::size_t kMaxSeries = FormationExperiment::kManyLinks;
 // Seconds an event flash stays visible.
 constexpr double kFlashSeconds = 1.0;
 // The view (Bounds) covers the robots plus this margin, m.
 constexpr double kBoundsMargin = 0.6;
+// Level of detail: above kManyRobots robots, trails are drawn without fading for at most about
+// kMaxTrails of them, and ellipses only when they span a few pixels; a link is labelled only
+// when it spans kLinkLabelPx pixels.
+constexpr std::size_t kManyRobots = 100;
+constexpr std::size_t kMaxTrails = 50;
+constexpr double kLinkLabelPx = 90.0;
+// What lies this far outside the view is still drawn (links and labels reach in), m.
+constexpr double kViewMargin = 1.0;
 
 
 }  // namespace
@@ -71,6 +79,18 @@ std::vector<FigureSpec> FormationExperiment::Figures() const {
   }
   if (!phi.series.empty()) figs.push_back(phi);
   figs.push_back(dist);
+  if (links_.size() > kManyLinks) {
+    // Every link at once: the largest and the median distance error, and the l-φ bearing's.
+    FigureSpec all = TimeFigure(
+        "distance_error_all",
+        Sprintf("(c) Distance errors over all %zu links: largest and median |e_l|", links_.size()),
+        "|e| [m], [rad]", {});
+    all.series.push_back(Line("max |e_l|", "links.max_abs_e_l", 0));
+    all.series.push_back(Line("median |e_l|", "links.median_abs_e_l", 2));
+    all.series.push_back(Line("max |e_φ| (l-φ links) [rad]", "links.max_abs_e_phi", 1, true));
+    all.reference_lines = {0.0};
+    figs.push_back(all);
+  }
   figs.push_back(alpha);
 
   FigureSpec v = TimeFigure("follower_v", "(e) Follower speeds v", "v [m/s]", {});
@@ -114,67 +134,104 @@ Pose2 FormationExperiment::DesiredPose(int j) const {
 
 void FormationExperiment::DrawScene(DrawSink& draw) const {
   const double now = time();
-  // Trails, oldest faded.
+  // Level of detail (a thousand robots stay interactive): how large things are on screen.
+  double extent = 0.0;
+  if (!agents_.empty())
+    for (const Vec2& v : agents_[0].robot->outline()) extent = std::max(extent, v.Norm());
+  const double body_px = PixelsOf(draw, 2.0 * extent);
+  const bool many = agents_.size() > kManyRobots;
+  // Only what is in view (with a margin for links and labels) is drawn.
+  Vec2 lo, hi;
+  draw.ViewBox(lo, hi);
+  auto in_view = [&](Vec2 p) {
+    return p.x >= lo.x - kViewMargin && p.x <= hi.x + kViewMargin && p.y >= lo.y - kViewMargin &&
+           p.y <= hi.y + kViewMargin;
+  };
+  // Trails, oldest faded. Many robots: plain lines, and only every k-th robot's (the roots'
+  // always), so that the paths stay readable and the view cheap; robots that are dots: only
+  // the roots'.
+  std::size_t trail_every = many ? (agents_.size() + kMaxTrails - 1) / kMaxTrails : 1;
+  // Coprime with the palette's ten colours, so the trails drawn do not all share one.
+  while (trail_every > 1 && (trail_every % 2 == 0 || trail_every % 5 == 0)) ++trail_every;
   for (std::size_t i = 0; i < agents_.size(); ++i) {
     const Agent& a = agents_[i];
     if (a.trail.size() < 2) continue;
-    std::vector<Vec2> pts(a.trail.begin(), a.trail.end());
+    const bool root = a.links.empty();
+    if (!root && (body_px < 2.0 || i % trail_every != 0)) continue;
+    std::vector<Vec2> pts;
+    pts.reserve(a.trail.size() + 1);
+    for (std::size_t k = 0; k < a.trail.size(); ++k) pts.push_back(a.trail[k]);
     pts.push_back(a.robot->pose().p());
-    draw.Polyline(pts, PaletteColor(cfg_.robots[i].body.color_index).WithAlpha(0.8f), 2.0f, true);
+    draw.Polyline(pts, PaletteColor(cfg_.robots[i].body.color_index).WithAlpha(0.8f), 2.0f, !many);
   }
-  // Desired slots (ghosts) and leader → control point links.
-  for (std::size_t j = 0; j < agents_.size(); ++j) {
-    const Agent& a = agents_[j];
-    if (a.links.empty()) continue;
-    const Color c = PaletteColor(cfg_.robots[j].body.color_index);
-    const Pose2 g = DesiredPose(static_cast<int>(j));
-    if (std::isfinite(g.x)) DrawRobotBody(draw, g, a.robot->outline(), c, "", true);
-    const Vec2 m = cf::ControlPoint(a.robot->pose(), cfg_.L);
-    for (int li : a.links)
-      draw.Segment(agents_[links_[li].leader].robot->pose().p(), m,
-                   Color{0.35f, 0.35f, 0.35f, 0.7f}, 1.0f);
+  // Desired slots (ghosts, once they can be told from the robots) and leader → control point
+  // links, once the robots are bodies.
+  if (body_px >= 4.0) {
+    for (std::size_t j = 0; j < agents_.size(); ++j) {
+      const Agent& a = agents_[j];
+      if (a.links.empty() || !in_view(a.robot->pose().p())) continue;
+      const Color c = PaletteColor(cfg_.robots[j].body.color_index);
+      const Pose2 g = body_px >= 8.0 ? DesiredPose(static_cast<int>(j)) : Pose2{std::nan(""), 0, 0};
+      if (std::isfinite(g.x)) DrawRobotBody(draw, g, a.robot->outline(), c, "", true);
+      const Vec2 m = cf::ControlPoint(a.robot->pose(), cfg_.L);
+      for (int li : a.links)
+        draw.Segment(agents_[links_[li].leader].robot->pose().p(), m,
+                     Color{0.35f, 0.35f, 0.35f, 0.7f}, 1.0f);
+    }
   }
   // Robots, then their control points and the link labels (l, and φ for l-φ links) on top.
   for (std::size_t i = 0; i < agents_.size(); ++i) {
     const Agent& a = agents_[i];
+    if (!in_view(a.robot->pose().p())) continue;
     DrawRobotBody(draw, a.robot->pose(), a.robot->outline(),
                   PaletteColor(cfg_.robots[i].body.color_index), a.robot->name());
   }
-  for (std::size_t j = 0; j < agents_.size(); ++j) {
-    const Agent& a = agents_[j];
-    if (a.links.empty()) continue;
-    const Vec2 m = cf::ControlPoint(a.robot->pose(), cfg_.L);
-    draw.Circle(m, 0.012, PaletteColor(cfg_.robots[j].body.color_index),
-                Color{0.1f, 0.1f, 0.1f, 1.0f});
-    for (int li : a.links) {
-      const Link& l = links_[li];
-      const Vec2 mid = (agents_[l.leader].robot->pose().p() + m) * 0.5;
-      std::string label = Sprintf("%.3f m", l.truth.l);
-      if (cfg_.robots[l.follower].node.law == FormationLaw::kLPhi)
-        label += Sprintf(", %.1f°", control::WrapTo2Pi(l.truth.phi) * 180 / control::kPi);
-      draw.Text(mid, label, Color{0.25f, 0.25f, 0.25f, 0.9f}, 4.0f, 4.0f);
+  if (body_px >= 6.0) {
+    for (std::size_t j = 0; j < agents_.size(); ++j) {
+      const Agent& a = agents_[j];
+      if (a.links.empty() || !in_view(a.robot->pose().p())) continue;
+      const Vec2 m = cf::ControlPoint(a.robot->pose(), cfg_.L);
+      draw.Circle(m, 0.012, PaletteColor(cfg_.robots[j].body.color_index),
+                  Color{0.1f, 0.1f, 0.1f, 1.0f});
+      for (int li : a.links) {
+        const Link& l = links_[li];
+        // A label needs about 90 px of link to sit on without covering its neighbours.
+        if (PixelsOf(draw, l.truth.l) < kLinkLabelPx) continue;
+        const Vec2 mid = (agents_[l.leader].robot->pose().p() + m) * 0.5;
+        std::string label = Sprintf("%.3f m", l.truth.l);
+        if (cfg_.robots[l.follower].node.law == FormationLaw::kLPhi)
+          label += Sprintf(", %.1f°", control::WrapTo2Pi(l.truth.phi) * 180 / control::kPi);
+        draw.Text(mid, label, Color{0.25f, 0.25f, 0.25f, 0.9f}, 4.0f, 4.0f);
+      }
     }
   }
   // Estimated poses with 2σ position ellipses. The link covariance P (over l, φ, α) is mapped
   // to the follower's position through the Jacobian J of p_j(l, φ, α) at the leader's true
   // pose: Σ = J P Jᵀ (first-order propagation; the leader's own uncertainty is not included).
-  for (std::size_t j = 0; j < agents_.size(); ++j) {
+  // Crosses and ellipses smaller than a few pixels are left out.
+  for (std::size_t j = 0; j < agents_.size() && body_px >= 4.0; ++j) {
     const Agent& a = agents_[j];
     if (a.links.empty() || Mode(static_cast<int>(j)) == EstimatorMode::kTruth) continue;
+    if (!in_view(a.robot->pose().p())) continue;
     const Link& l = links_[a.links[0]];
     const Color c = PaletteColor(cfg_.robots[j].body.color_index);
     const Pose2 e = EstimatedPose(a);
-    draw.Cross(e.p(), 0.03, c);
+    if (PixelsOf(draw, 0.03) >= 4.0) draw.Cross(e.p(), 0.03, c);
     if (Mode(static_cast<int>(j)) == EstimatorMode::kUkf && l.filter_ready) {
       const Eigen::Matrix<double, 2, 3> J =
           cf::FollowerPositionJacobian(agents_[l.leader].robot->pose(), l.used, cfg_.L);
       const Eigen::Matrix2d S = J * l.filter->cov() * J.transpose();
-      draw.CovarianceEllipse(e.p(), S(0, 0), S(0, 1), S(1, 1), 2.0, c);
+      // The ellipse's long axis, 2 × 2σ: sqrt of the largest eigenvalue of S.
+      const double tr = 0.5 * (S(0, 0) + S(1, 1)), det = S.determinant();
+      const double major = 4.0 * std::sqrt(std::max(0.0, tr + std::sqrt(std::max(0.0, tr * tr - det))));
+      if (!many || PixelsOf(draw, major) >= 3.0)
+        draw.CovarianceEllipse(e.p(), S(0, 0), S(0, 1), S(1, 1), 2.0, c);
     }
   }
   // Flashes for recent saturations, collisions, singularities and filter faults.
   const auto& events = events_.recent();
-  for (auto it = events.rbegin(); it != events.rend(); ++it) {
+  for (std::size_t k = events.size(); k-- > 0;) {
+    const Event* it = &events[k];
     const double age = (now - it->time) / kFlashSeconds;
     if (age > 1.0) break;
     if (age < 0.0) continue;

@@ -319,7 +319,7 @@ void InspectionExperiment::ScoreTracking(double t) {
 void InspectionExperiment::ScanAndFix(double t) {
   ++scans_;
   scan_pose_ = SensorPose();
-  const ins::Scan scan = laser_.Sample(world_, scan_pose_, robot_, &scan_endpoints_);
+  const ins::Scan scan = laser_.Sample(world_, scan_pose_, robot_, &scan_endpoints_, &pool());
   // Identification predicts where the posts should be from the on-board estimate: the chain
   // the controller uses when that is the classical or the raw one (no Kalman filter on board),
   // the Kalman estimate otherwise (dead reckoning alone drifts past the gate, the truth is not

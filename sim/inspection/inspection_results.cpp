@@ -114,6 +114,22 @@ Metrics InspectionExperiment::Results() const {
   counts.columns.push_back({"limit rejected", "limit_filter_rejections", "%.0f"});
   counts.columns.push_back({"heading rejected", "heading_rejections", "%.0f"});
   m.AddTable(std::move(counts));
+  // Comparing runs (the GUI's pins, history, Monte Carlo): errors and faults are better low.
+  for (const char* p : {"localisation.*.rms", "localisation.*.max", "tracking.*.rms",
+                        "tracking.*.max", "localisation.filter_faults", "route.completion_time_s",
+                        "control.no_rule_fired", "control.slip_fraction"})
+    m.SetBetter(p, Better::kLower);
+  for (const char* p :
+       {"route.progress_m", "route.completed", "localisation.fix_rate", "tracking.within_bound"})
+    m.SetBetter(p, Better::kHigher);
+  using C = Metrics::Combine;
+  m.AddHeadline(
+      {"lateral RMS [m]", "tracking.lateral_offset_after_transient_m.rms", C::kValue, "%.3f"});
+  m.AddHeadline(
+      {"lateral max [m]", "tracking.lateral_offset_after_transient_m.max", C::kValue, "%.3f"});
+  m.AddHeadline(
+      {"KF position RMS [m]", "localisation.position_error_m.kalman.rms", C::kValue, "%.3f"});
+  m.AddHeadline({"progress [m]", "route.progress_m", C::kValue, "%.1f"});
   return m;
 }
 

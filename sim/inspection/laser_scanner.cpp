@@ -15,7 +15,8 @@ using control::inspection::PaperFromMath;
 using control::inspection::Rad;
 
 control::inspection::Scan LaserScanner::Sample(const World& world, const Pose2& sensor,
-                                               const Robot* carrier, std::vector<Vec2>* endpoints) {
+                                               const Robot* carrier, std::vector<Vec2>* endpoints,
+                                               ThreadPool* pool) {
   control::inspection::Scan scan;
   const double fov = Rad(std::clamp(def_.fov_deg, 1.0, 360.0));
   const double res = Rad(std::max(def_.resolution_deg, 0.05));
@@ -28,24 +29,37 @@ control::inspection::Scan LaserScanner::Sample(const World& world, const Pose2& 
   const Vec2 origin = sensor.p();
   const double heading = PaperFromMath(sensor.theta);
   const double angle_sigma = Rad(def_.angle_sigma_deg);
-  for (int k = 0; k < n; ++k) {
-    // Draw all noise first, hit or not, so the stream does not depend on the scene.
-    const double jitter = rng_.Normal(0.0, angle_sigma);
-    const double noise = rng_.Normal(0.0, def_.range_sigma);
-    const bool outlier = rng_.Bernoulli(def_.outlier_prob);
-    const double gross = rng_.Normal(0.0, def_.outlier_sigma);
-    const Vec2 dir = AzimuthDirection(heading + scan.Bearing(k) + jitter);
-    const Vec2 end = origin + dir * def_.range_max;
-    const RayHit hit = world.RayCast(origin, end, false, carrier);
-    if (!hit.hit) {
-      scan.ranges[k] = std::numeric_limits<double>::quiet_NaN();
-      if (endpoints) (*endpoints)[k] = end;
-      continue;
-    }
-    const double r = std::max(0.0, hit.distance + noise + (outlier ? gross : 0.0));
-    scan.ranges[k] = r;
-    if (endpoints) (*endpoints)[k] = origin + dir * r;
+  // Draw all noise first, beam by beam, hit or not, so the stream depends neither on the scene
+  // nor on the threads.
+  noise_.resize(static_cast<std::size_t>(n));
+  for (BeamNoise& b : noise_) {
+    b.jitter = rng_.Normal(0.0, angle_sigma);
+    b.range = rng_.Normal(0.0, def_.range_sigma);
+    b.outlier = rng_.Bernoulli(def_.outlier_prob);
+    b.gross = rng_.Normal(0.0, def_.outlier_sigma);
   }
+  // Each beam writes its own range and endpoint.
+  auto cast = [&](std::size_t begin, std::size_t end_k) {
+    for (std::size_t k = begin; k < end_k; ++k) {
+      const BeamNoise& b = noise_[k];
+      const Vec2 dir = AzimuthDirection(heading + scan.Bearing(static_cast<int>(k)) + b.jitter);
+      const Vec2 end = origin + dir * def_.range_max;
+      const RayHit hit = world.RayCast(origin, end, false, carrier);
+      if (!hit.hit) {
+        scan.ranges[k] = std::numeric_limits<double>::quiet_NaN();
+        if (endpoints) (*endpoints)[k] = end;
+        continue;
+      }
+      const double r = std::max(0.0, hit.distance + b.range + (b.outlier ? b.gross : 0.0));
+      scan.ranges[k] = r;
+      if (endpoints) (*endpoints)[k] = origin + dir * r;
+    }
+  };
+  constexpr std::size_t kBeamsPerTask = 32;
+  if (pool != nullptr)
+    pool->ParallelFor(static_cast<std::size_t>(n), cast, kBeamsPerTask);
+  else
+    cast(0, static_cast<std::size_t>(n));
   return scan;
 }
 

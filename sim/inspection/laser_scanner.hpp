@@ -4,13 +4,16 @@
 /// −fov/2 + k·resolution, clockwise from the robot's forward axis (paper convention). Each
 /// beam's direction jitters by angle_sigma, each return gets Gaussian range noise and, with
 /// probability outlier_prob, a gross error of outlier_sigma (dust, reflections). Noise comes
-/// from the scanner's own Rng stream, drawn for every beam, so a run is reproducible.
+/// from the scanner's own Rng stream, drawn for every beam, so a run is reproducible; the ray
+/// casts (most of the time of an inspection run) are shared out on a thread pool, and the scan
+/// does not depend on the number of threads.
 
 #include <vector>
 
 #include "control/common/geometry.hpp"
 #include "control/inspection/post_detector.hpp"
 #include "sim/core/rng.hpp"
+#include "sim/core/thread_pool.hpp"
 #include "sim/core/world.hpp"
 
 namespace formsim::sim {
@@ -44,13 +47,21 @@ class LaserScanner {
   const LaserScannerDef& def() const { return def_; }
   /// One scan taken at `sensor` (the scanner's true world pose, mathematical convention), not
   /// seeing `carrier` (the robot it is mounted on). `endpoints` (optional) receives the world
-  /// point of every beam (the hit, or the end of the range).
+  /// point of every beam (the hit, or the end of the range). The beams are cast on `pool` when
+  /// given.
   control::inspection::Scan Sample(const World& world, const Pose2& sensor, const Robot* carrier,
-                                   std::vector<Vec2>* endpoints = nullptr);
+                                   std::vector<Vec2>* endpoints = nullptr,
+                                   ThreadPool* pool = nullptr);
 
  private:
+  // The noise of one beam, drawn in beam order before any ray is cast.
+  struct BeamNoise {
+    double jitter = 0.0, range = 0.0, gross = 0.0;
+    bool outlier = false;
+  };
   LaserScannerDef def_;
   Rng rng_;
+  std::vector<BeamNoise> noise_;
 };
 
 }  // namespace formsim::sim::inspection

@@ -186,15 +186,27 @@ void VelocityExperiment::DeclareChannels() {
   }
 }
 
-void VelocityExperiment::UpdateEstimators(RobotUnit& u, double t) {
-  // The estimate the speed loop would use without this update (for the Δv_s compensation).
-  const cv::BodyTwist before = u.fused_speed.Peek(u.odo.speed, u.odo.yaw_rate);
-  const auto t0 = std::chrono::steady_clock::now();
-  const cv::UpdateReport r = u.fused.AddKeyframe(t, u.last_obs);
-  const double ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  u.update_ms_sum += ms;
-  u.update_ms_max = std::max(u.update_ms_max, ms);
+void VelocityExperiment::UpdateEstimators(double t) {
+  // Tasks: 2u is unit u's fused window, 2u + 1 its VI-only baseline; each touches only its own.
+  pool().ParallelFor(2 * units_.size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t task = begin; task < end; ++task) {
+      RobotUnit& u = *units_[task / 2];
+      if (!u.keyframe_now) continue;
+      if (task % 2 == 0) {
+        const auto t0 = std::chrono::steady_clock::now();
+        u.fused_report = u.fused.AddKeyframe(t, u.last_obs);
+        u.fused_ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      } else if (cfg_.estimator.vi_baseline) {
+        u.vi_report = u.vi.AddKeyframe(t, u.last_obs);
+      }
+    }
+  });
+}
+
+void VelocityExperiment::AfterUpdate(RobotUnit& u, double t) {
+  u.update_ms_sum += u.fused_ms;
+  u.update_ms_max = std::max(u.update_ms_max, u.fused_ms);
   ++u.updates;
   // One event per run of faults; every fault is counted.
   auto fault = [&](EventLog::ConditionId id, const cv::UpdateReport& rep, const char* which) {
@@ -206,14 +218,17 @@ void VelocityExperiment::UpdateEstimators(RobotUnit& u, double t) {
       return std::string(buf);
     });
   };
-  fault(u.fused_fault, r, "fused");
+  fault(u.fused_fault, u.fused_report, "fused");
+  // The estimate the speed loop used before this update (the fused speed is not touched by
+  // the window's update), then after it: the jump the Δv_s compensation removes.
+  const cv::BodyTwist before = u.fused_speed.Peek(u.odo.speed, u.odo.yaw_rate);
   const cv::KeyframeState& k = u.fused.latest();
   u.fused_speed.OnUpdate(k.body_velocity().x(), k.bv(), k.bw());
   const cv::BodyTwist after = u.fused_speed.Peek(u.odo.speed, u.odo.yaw_rate);
   u.jump_v += after.v - before.v;
   u.jump_w += after.omega - before.omega;
 
-  if (cfg_.estimator.vi_baseline) fault(u.vi_fault, u.vi.AddKeyframe(t, u.last_obs), "VI-only");
+  if (cfg_.estimator.vi_baseline) fault(u.vi_fault, u.vi_report, "VI-only");
 }
 
 void VelocityExperiment::Estimate(RobotUnit& u) {
@@ -252,8 +267,11 @@ void VelocityExperiment::Score(RobotUnit& u) {
 void VelocityExperiment::Sense(double t) {
   const long k = steps();
   const SampleSteps& every = cfg_.every;
+  // The sensors of every unit, in unit order (their noise streams are drawn in that order).
+  bool any_keyframe = false;
   for (auto& up : units_) {
     RobotUnit& u = *up;
+    u.keyframe_now = false;
     if (k == 0) {
       u.last_obs = u.camera.Observe(u.robot->pose(), landmarks_, world_);
       // The robot starts at rest at a known pose: the window starts there.
@@ -274,8 +292,17 @@ void VelocityExperiment::Sense(double t) {
     }
     if (k % every.camera == 0) {
       u.last_obs = u.camera.Observe(CameraPose(*u.robot, dt()), landmarks_, world_);
-      if (++u.camera_frames % cfg_.estimator.keyframe_every == 0) UpdateEstimators(u, t);
+      u.keyframe_now = ++u.camera_frames % cfg_.estimator.keyframe_every == 0;
+      any_keyframe = any_keyframe || u.keyframe_now;
     }
+  }
+  if (k == 0) return;
+  // The sliding-window updates (most of a run's time) in parallel.
+  if (any_keyframe) UpdateEstimators(t);
+  // Then, unit by unit as before: what the updates change, the estimates, events, trails.
+  for (auto& up : units_) {
+    RobotUnit& u = *up;
+    if (u.keyframe_now) AfterUpdate(u, t);
     if (k % every.control == 0) {
       Estimate(u);
       Score(u);

@@ -77,6 +77,9 @@ struct RobotUnit {
   long camera_frames = 0;
   int last_feedback = -1;
   double jump_v = 0.0, jump_w = 0.0;  ///< estimate jump at the last update, to compensate
+  bool keyframe_now = false;  ///< this step's camera frame is a keyframe (estimators update)
+  cv::UpdateReport fused_report, vi_report;  ///< of this step's updates
+  double fused_ms = 0.0;                     ///< wall time of this step's fused update
   double imu_offset = 0.0;  ///< test seam: added to the accelerometer x the estimators see
 
   // Metrics and diagnostics.
@@ -125,7 +128,11 @@ class VelocityExperiment : public ExperimentOf<VelocityConfig> {
   void DeclareChannels();
   cv::SlidingWindowDef EstimatorDef(bool use_odometry) const;
   cv::SpeedLoopDef LoopDef() const;
-  void UpdateEstimators(RobotUnit& u, double t);
+  /// The keyframe updates of this step: every marked unit's fused (and VI-only) window, each on
+  /// its own, in parallel on the pool.
+  void UpdateEstimators(double t);
+  /// What follows a unit's updates, in unit order: fault events, the speed-loop compensation.
+  void AfterUpdate(RobotUnit& u, double t);
   void Estimate(RobotUnit& u);
   void Score(RobotUnit& u);
   /// Figures of one robot ("" suffix when there is only one).

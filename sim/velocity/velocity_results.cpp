@@ -95,6 +95,16 @@ Metrics VelocityExperiment::Results() const {
         1000.0 * keyframe_period());
     m.AddNote(buf);
   }
+  // Comparing runs (the GUI's pins, history, Monte Carlo): errors and faults are better low.
+  for (const char* p : {"robots.*.speed_rmse.*", "robots.*.yaw_rate_rmse.*",
+                        "robots.*.linear_error", "robots.*.angular_error", "robots.*_rms_error",
+                        "robots.*.estimator_faults", "robots.*.events.*"})
+    m.SetBetter(p, Better::kLower);
+  using C = Metrics::Combine;
+  m.AddHeadline({"worst fused speed RMSE", "robots.*.speed_rmse.fused", C::kMax, "%.4f"});
+  m.AddHeadline({"worst Δv_c", "robots.*.control.linear_error", C::kMax, "%.4f"});
+  m.AddHeadline({"worst Δω_c", "robots.*.control.angular_error", C::kMax, "%.4f"});
+  m.AddHeadline({"estimator faults", "robots.*.estimator_faults", C::kSum, "%.0f"});
   return m;
 }
 

@@ -11,6 +11,7 @@
 #include "sim/core/number_format.hpp"
 #include "sim/core/scenario_files.hpp"
 #include "sim/core/session.hpp"
+#include "tests/app/test_util.hpp"
 
 using namespace formsim;
 
@@ -52,7 +53,8 @@ TEST_P(ParamExtremes, EveryWidgetValueIsAcceptedOrRefusedAndTheRunStaysFinite) {
   sim::Session s(file, {}, -1);
   ASSERT_FALSE(s.params().empty()) << file << " exposes no tunable parameters";
   std::vector<std::pair<std::string, std::vector<std::string>>> plan;
-  for (const sim::Param& p : s.params().all()) plan.emplace_back(p.key, WidgetValues(p));
+  for (const sim::Param& p : app::testing::ParamsToExercise(s.params()))
+    plan.emplace_back(p.key, WidgetValues(p));
   int accepted = 0, refused = 0;
   for (const auto& [key, values] : plan) {
     for (const std::string& v : values) {
@@ -73,7 +75,7 @@ TEST_P(ParamExtremes, EveryWidgetValueIsAcceptedOrRefusedAndTheRunStaysFinite) {
   RecordProperty("refused", refused);
 }
 
-std::vector<std::string> Scenarios() { return sim::ShippedScenarios(); }
+std::vector<std::string> Scenarios() { return app::testing::PerParameterScenarios(); }
 
 std::string Name(const ::testing::TestParamInfo<std::string>& info) {
   return std::filesystem::path(info.param).stem().string();

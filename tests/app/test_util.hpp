@@ -9,10 +9,44 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <set>
 #include <string>
 #include <vector>
 
+#include "sim/core/param_table.hpp"
+#include "sim/core/scenario_files.hpp"
+
 namespace formsim::app::testing {
+
+/// Shipped scenarios for the tests that go through every parameter (each edit re-reads the
+/// whole file): all but those over 100 kB, the generated formation_swarm_1000, whose keys are
+/// those of formation_swarm_100 (the same generator).
+inline std::vector<std::string> PerParameterScenarios() {
+  std::vector<std::string> out;
+  for (const std::string& f : sim::ShippedScenarios())
+    if (std::filesystem::file_size(f) <= 100000) out.push_back(f);
+  return out;
+}
+
+/// The parameters such a test goes through: every one, except in a large formation (over 300
+/// tunables, its robots repeating the same keys), where they are the scenario-wide ones and those
+/// of its first three robots (a root, an l-l and an l-φ follower in the generated swarms).
+inline std::vector<sim::Param> ParamsToExercise(const sim::ParamTable& table) {
+  if (table.size() <= 300) return table.all();
+  std::vector<sim::Param> out;
+  std::set<std::string> robots;
+  for (const sim::Param& p : table.all()) {
+    if (p.key.rfind("robots.", 0) != 0) {
+      out.push_back(p);
+      continue;
+    }
+    const std::string robot = p.key.substr(7, p.key.find('.', 7) - 7);
+    if (robots.count(robot) == 0 && robots.size() >= 3) continue;
+    robots.insert(robot);
+    out.push_back(p);
+  }
+  return out;
+}
 
 inline std::string Scenario(const std::string& stem) {
   return std::string(FORMSIM_SOURCE_DIR) + "/assets/scenarios/" + stem + ".yaml";

@@ -12,7 +12,6 @@
 #include <fstream>
 #include <sstream>
 
-#include "sim/formation/cascade_generator.hpp"
 #include "sim/formation/formation_experiment.hpp"
 
 namespace formsim::sim::formation {
@@ -251,22 +250,6 @@ TEST(FormationExperiment, ParamsAreYamlPathsThatSetAccepts) {
   s.Step();
   EXPECT_EQ(dynamic_cast<const FormationExperiment&>(s.exp()).config().robots[1].follow.estimator,
             EstimatorMode::kTruth);
-}
-
-TEST(CascadeGenerator, BuildsValidCascadesThatHoldTheirShape) {
-  for (int n : {1, 10, 40}) {
-    auto exp = LoadExperimentFromText(MakeCascadeScenario(n, n == 10), "generated", {"duration=3"});
-    ASSERT_EQ(exp->world().robots().size(), static_cast<std::size_t>(n));
-    while (!exp->finished()) exp->Step();
-    for (const auto& l : Formation(exp).Links()) {
-      EXPECT_LT(l.e_l.max_abs_settled(), n == 10 ? 0.03 : 2e-3) << n << " " << l.name;
-    }
-    for (const auto& e : exp->events().list()) {
-      EXPECT_NE(e.kind, "collision") << e.message;
-      EXPECT_NE(e.kind, "singular") << e.message;
-    }
-  }
-  EXPECT_THROW(MakeCascadeScenario(0, false), std::invalid_argument);
 }
 
 // Every tests/fixtures/invalid/formation_*.yaml starts with "# expect: <text>"; loading it must

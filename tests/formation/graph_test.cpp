@@ -118,6 +118,22 @@ TEST(FormationGraph, TriangleApexSide) {
   EXPECT_FALSE(TriangleApex({0, 0}, {1, 0}, 0.3, 0.3, +1, apex));
 }
 
+TEST(LeaderSchedule, SegmentsWithARampChangeLinearly) {
+  LeaderScheduleDef d;
+  d.kind = LeaderScheduleDef::Kind::kSegments;
+  d.segments = {{2.0, 2.5, 0.0}, {6.0, 2.5, 0.2}, {10.0, 1.5, -0.2}};
+  EXPECT_EQ(ScheduleAt(d, 2.5).w, 0.2);  // no ramp: steps
+  d.ramp = 1.0;
+  EXPECT_EQ(ScheduleAt(d, 1.0).w, 0.0);
+  EXPECT_EQ(ScheduleAt(d, 2.0).w, 0.0);
+  EXPECT_DOUBLE_EQ(ScheduleAt(d, 2.5).w, 0.1);
+  EXPECT_DOUBLE_EQ(ScheduleAt(d, 3.0).w, 0.2);
+  EXPECT_DOUBLE_EQ(ScheduleAt(d, 6.25).w, 0.1);
+  EXPECT_DOUBLE_EQ(ScheduleAt(d, 6.25).v, 2.25);
+  EXPECT_DOUBLE_EQ(ScheduleAt(d, 7.0).w, -0.2);
+  EXPECT_DOUBLE_EQ(ScheduleAt(d, 50.0).v, 1.5);  // the last segment holds
+}
+
 TEST(LeaderSchedule, PaperTrajectories) {
   LeaderScheduleDef t1;
   t1.kind = LeaderScheduleDef::Kind::kLineCurve;

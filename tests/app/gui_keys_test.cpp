@@ -1,0 +1,154 @@
+// The interface in-process with synthetic mouse and keyboard input (an OSMesa context, no
+// display): typing into a field never triggers a shortcut (even in the frame the click opens the
+// field), the shortcuts work when nothing is being typed into, Ctrl+Z / Ctrl+Y undo and redo
+// edits, and nothing in the parameter panel moves when an edit is made.
+#include <gtest/gtest.h>
+#include <imgui.h>
+#include <imgui_internal.h>
+
+#include <functional>
+#include <map>
+
+#include "app/imgui_layer.hpp"
+#include "app/offscreen_context.hpp"
+#include "app/ui.hpp"
+#include "tests/app/test_util.hpp"
+
+namespace formsim::app {
+namespace {
+
+constexpr int kW = 1280, kH = 800;
+
+class Window {
+ public:
+  Window()
+      : ui_(std::make_unique<sim::Session>(testing::Scenario("formation_traj2"),
+                                           std::vector<sim::Override>{})) {
+    ui_.state().playing = false;
+    ImGui::GetIO().KeyMap[ImGuiKey_Z] = 'Z';
+    ImGui::GetIO().KeyMap[ImGuiKey_Y] = 'Y';
+    for (int i = 0; i < 3; ++i) Frame();  // windows laid out
+  }
+  AppUi& ui() { return ui_; }
+
+  /// One frame with `input` set before it starts; mouse buttons and keys are released after.
+  void Frame(const std::function<void(ImGuiIO&)>& input = {}) {
+    ImGuiIO& io = ImGui::GetIO();
+    if (input) input(io);
+    layer_.NewHeadlessFrame(kW, kH, 1.0f / 60.0f);
+    ui_.Advance(1.0 / 60.0);
+    ui_.Draw(ImVec2(kW, kH), layer_.fonts(), true);
+    ImGui::Render();
+    io.MouseDown[0] = false;
+    io.KeyCtrl = io.KeyShift = false;
+    for (bool& k : io.KeysDown) k = false;
+  }
+  /// The widget under `p` (0: none).
+  ImGuiID Hover(ImVec2 p) {
+    Frame([&](ImGuiIO& io) { io.MousePos = p; });
+    return ImGui::GetCurrentContext()->HoveredId;
+  }
+  /// Where widget `id` of window `window` is, scanning a column of the panel.
+  ImVec2 Find(const char* window, const char* label, float x) {
+    const ImGuiWindow* w = ImGui::FindWindowByName(window);
+    const ImGuiID id = ImHashStr(label, 0, w->ID);
+    for (float y = 0; y < kH; y += 4)
+      if (Hover(ImVec2(x, y)) == id) return ImVec2(x, y);
+    return ImVec2(-1, -1);
+  }
+
+ private:
+  OffscreenContext ctx_{kW, kH};
+  ImGuiLayer layer_;
+  AppUi ui_;
+};
+
+TEST(GuiKeys, TypingIntoAFieldNeverTriggersAShortcut) {
+  Window w;
+  const ImVec2 seed = w.Find("formsim", "seed", 60);
+  ASSERT_GE(seed.y, 0) << "the seed field was not found";
+  const long steps = w.ui().session().exp().steps();
+  // The click that opens the field and the first characters in the same frame: the field was not
+  // active in the frame before, which is when the old check looked.
+  w.Frame([&](ImGuiIO& io) {
+    io.MousePos = seed;
+    io.MouseDown[0] = true;
+    for (char c : std::string("0.03")) io.AddInputCharacter(c);
+  });
+  w.Frame([&](ImGuiIO& io) {
+    for (char c : std::string("r.s 5")) io.AddInputCharacter(c);
+  });
+  w.Frame();
+  EXPECT_EQ(w.ui().session().exp().steps(), steps) << "'.' typed into the field stepped the run";
+  EXPECT_FALSE(w.ui().state().screenshot_requested)
+      << "'s' typed into the field asked for a screenshot";
+  EXPECT_NE(w.ui().state().status, "reset");
+  // Click into the world view: the field lets go, and '.' steps again.
+  w.Frame([&](ImGuiIO& io) {
+    io.MousePos = ImVec2(kW / 2, kH / 2);
+    io.MouseDown[0] = true;
+  });
+  w.Frame();
+  w.Frame([&](ImGuiIO& io) { io.AddInputCharacter('.'); });
+  EXPECT_EQ(w.ui().session().exp().steps(), steps + 1);
+}
+
+TEST(GuiKeys, CtrlZAndCtrlYUndoAndRedoEdits) {
+  Window w;
+  const std::string key = "robots.R2.follow.k_l";
+  ASSERT_EQ(w.ui().CmdEdit(key, "0.4"), "");
+  w.Frame();
+  w.Frame([&](ImGuiIO& io) {
+    io.MousePos = ImVec2(kW / 2, kH / 2);
+    io.KeyCtrl = true;
+    io.KeysDown['Z'] = true;
+  });
+  EXPECT_EQ(w.ui().session().EffectiveValue(key), "0.15");
+  w.Frame([&](ImGuiIO& io) {
+    io.KeyCtrl = true;
+    io.KeysDown['Y'] = true;
+  });
+  EXPECT_EQ(w.ui().session().EffectiveValue(key), "0.4");
+  w.Frame([&](ImGuiIO& io) {
+    io.KeyCtrl = io.KeyShift = true;  // Ctrl+Shift+Z redoes too; here: nothing left to redo
+    io.KeysDown['Z'] = true;
+  });
+  EXPECT_EQ(w.ui().session().EffectiveValue(key), "0.4");
+}
+
+TEST(GuiKeys, NothingInTheParameterPanelMovesWhenAnEditIsMade) {
+  Window w;
+  // What is under each point of the lower panel: labels, sliders, marks.
+  auto probe = [&] {
+    std::map<std::pair<int, int>, ImGuiID> ids;
+    for (int y = 420; y < kH - 10; y += 7)
+      for (int x : {40, 170, 230, 262, 280, 296}) ids[{x, y}] = w.Hover(ImVec2(x, y));
+    return ids;
+  };
+  const auto before = probe();
+  int widgets = 0;
+  for (const auto& [p, id] : before) widgets += id != 0;
+  ASSERT_GT(widgets, 20);
+  // A live edit, an edit waiting for a reset (↻), both marked edited (↺).
+  ASSERT_EQ(w.ui().CmdEdit("robots.R2.follow.k_l", "0.4"), "");
+  ASSERT_EQ(w.ui().CmdEdit("formation.settle_time", "0.5"), "");
+  ASSERT_EQ(w.ui().CmdEdit("robots.R3.follow.k_l", "0.3"), "");
+  w.Frame();
+  EXPECT_TRUE(w.ui().session().IsEdited("formation.settle_time"));
+  const auto after = probe();
+  for (const auto& [p, id] : before) {
+    if (id == 0) continue;
+    EXPECT_EQ(after.at(p), id) << "the widget at (" << p.first << ", " << p.second << ") moved";
+  }
+  // And back: reverting puts the marks away without moving anything either.
+  ASSERT_EQ(w.ui().CmdRevert("formation.settle_time"), "");
+  w.Frame();
+  const auto reverted = probe();
+  for (const auto& [p, id] : before) {
+    if (id == 0) continue;
+    EXPECT_EQ(reverted.at(p), id);
+  }
+}
+
+}  // namespace
+}  // namespace formsim::app
