@@ -1,5 +1,5 @@
 // The papers' cases, tables and figures for `formsim reproduce`. Each table's first rows are the
-// paper's method as the paper describes it; additions of ours are rows labelled "ours".
+// paper's method as the paper describes it; additions of ours are separate rows labelled "(ours)".
 #include "app/reproduce_cases.hpp"
 
 #include <stdexcept>
@@ -157,8 +157,8 @@ ReproPaper Agv() {
   loc.rows = {Row({"odometry only", "fails"}, "odometry", "odometry"),
               Row({"beacon only (Fig. 6(a))", "jumpy"}, "beacon", "beacon"),
               Row({"fused, the paper's plain KF (Fig. 6(b))", "within ~10 mm"}, "plain_kf", "fused"),
-              Row({"ours: fused, KF + χ² gate (shipped `agv_fused`)", ""}, "gate", "fused"),
-              Row({"ours: fused, KF + χ² gate + adaptive R", ""}, "gate_adaptive", "fused")};
+              Row({"fused, KF + χ² gate (ours; shipped `agv_fused`)", ""}, "gate", "fused"),
+              Row({"fused, KF + χ² gate + adaptive R (ours)", ""}, "gate_adaptive", "fused")};
   loc.note =
       "Beacon σ 10 mm / 0.01 rad every 0.1 s, 5% outliers of 0.2-0.6 m, 5% dropouts; "
       "estimation.r_xy = 10 mm. Jumps: steps of the estimate the controller uses (odometry, "
@@ -173,14 +173,14 @@ ReproPaper Agv() {
   out.rows = {Row({"the paper's plain KF", "0%"}, "plain_kf_outliers_0", "fused"),
               Row({"the paper's plain KF", "1%"}, "plain_kf_outliers_0.01", "fused"),
               Row({"the paper's plain KF", "5%"}, "plain_kf", "fused"),
-              Row({"ours: KF + χ² gate", "0%"}, "gate_outliers_0", "fused"),
-              Row({"ours: KF + χ² gate", "1%"}, "gate_outliers_0.01", "fused"),
-              Row({"ours: KF + χ² gate", "5%"}, "gate", "fused")};
+              Row({"KF + χ² gate (ours)", "0%"}, "gate_outliers_0", "fused"),
+              Row({"KF + χ² gate (ours)", "1%"}, "gate_outliers_0.01", "fused"),
+              Row({"KF + χ² gate (ours)", "5%"}, "gate", "fused")};
   p.tables.push_back(out);
 
   ReproTable sens;
   sens.id = "sensitivity";
-  sens.title = "AGV, beacon noise: KF + χ² gate (ours), R as the filter assumes it";
+  sens.title = "AGV, beacon noise against the R the filter assumes (estimation.r_xy), KF + χ² gate (ours)";
   sens.label_headers = {"beacon σ", "estimation.r_xy"};
   sens.columns = {rms, max, loops};
   sens.rows = {Row({"10 mm", "10 mm (= σ)"}, "gate")};
@@ -192,7 +192,10 @@ ReproPaper Agv() {
     const std::string mm = Str(sigma * 1000);
     sens.rows.push_back(Row({mm + " mm", "10 mm (too small)"}, "sigma_" + mm + "_r_10"));
   }
-  sens.note = "5% outliers. The filter's R is estimation.r_xy; the gate's threshold follows it.";
+  sens.note =
+      "5% outliers. The fused figures at σ 20-50 mm hold only with estimation.r_xy set to the "
+      "beacon's σ; left at 10 mm (rows \"too small\") the filter trusts the beacon too much. The "
+      "gate's threshold follows R.";
   p.tables.push_back(sens);
 
   ReproTable adapt;
@@ -202,7 +205,7 @@ ReproPaper Agv() {
   adapt.columns = {rms, max, loops,
                    Stat("R in use at the end [mm]", "filter.r_xy_in_use_m", CellStat::kMeanStdRange,
                         1000.0)};
-  adapt.rows = {Row({"fixed (3 mm)"}, "r_small"), Row({"ours: adaptive R"}, "r_small_adaptive")};
+  adapt.rows = {Row({"fixed (3 mm)"}, "r_small"), Row({"adaptive R (ours)"}, "r_small_adaptive")};
   p.tables.push_back(adapt);
 
   ReproTable slip;
@@ -213,7 +216,7 @@ ReproPaper Agv() {
                   Stat("odometry estimate max error [mm]", "localisation.odometry.position_max_m",
                        CellStat::kMeanStdRange, 1000.0)};
   slip.rows = {Row({"the paper's plain KF"}, "slippery_plain_kf"),
-               Row({"ours: KF + χ² gate"}, "slippery_gate")};
+               Row({"KF + χ² gate (ours)"}, "slippery_gate")};
   p.tables.push_back(slip);
   return p;
 }
@@ -241,7 +244,7 @@ ReproPaper Inspection() {
   tr.rows = {Row({"the paper's fuzzy controller, Kalman fixes (`inspection_u_route`)"}, "paper"),
              Row({"the same with limit + mean instead of Kalman (`inspection_no_kalman`)"},
                  "no_kalman"),
-             Row({"ours: + turn feed-forward (`inspection_u_route_feedforward`)"}, "feedforward")};
+             Row({"+ turn feed-forward (ours; `inspection_u_route_feedforward`)"}, "feedforward")};
   p.tables.push_back(tr);
 
   ReproTable loc;
@@ -301,14 +304,14 @@ ReproPaper Velocity() {
   const std::string paper_est = "the paper's: one inverse depth along the anchor's bearing";
   f6.rows = {Row({paper_est, "R_fused (fused)"}, "paper", "R_fused"),
              Row({paper_est, "R_odo (odometry)"}, "paper", "R_odo"),
-             Row({"ours: the paper's + no-side-slip constraint", "R_fused (fused)"}, "paper_nhc",
+             Row({"the paper's + no-side-slip constraint (ours)", "R_fused (fused)"}, "paper_nhc",
                  "R_fused"),
-             Row({"ours: (ψ, ρ) inverse depth", "R_fused (fused)"}, "psi_rho", "R_fused"),
-             Row({"ours: (ψ, ρ) + no-side-slip constraint (shipped)", "R_fused (fused)"},
+             Row({"(ψ, ρ) inverse depth (ours)", "R_fused (fused)"}, "psi_rho", "R_fused"),
+             Row({"(ψ, ρ) + no-side-slip constraint (ours; shipped)", "R_fused (fused)"},
                  "shipped", "R_fused"),
-             Row({"ours: (ψ, ρ) + no-side-slip constraint (shipped)", "R_odo (odometry)"},
+             Row({"(ψ, ρ) + no-side-slip constraint (ours; shipped)", "R_odo (odometry)"},
                  "shipped", "R_odo"),
-             Row({"ours: world points + no-side-slip constraint", "R_fused (fused)"},
+             Row({"world points + no-side-slip constraint (ours)", "R_fused (fused)"},
                  "world_points", "R_fused")};
   f6.note =
       "Each run drives R_fused and R_odo side by side; each runs the fused and the "
@@ -328,7 +331,7 @@ ReproPaper Velocity() {
            {"tile μ 0.8", "floor"}, {"wet μ 0.15", "wet"}, {"gravel μ 0.55", "gravel"},
            {"asphalt μ 0.9", "asphalt"}}) {
     floors.rows.push_back(Row({label, "the paper's"}, "paper", key));
-    floors.rows.push_back(Row({label, "ours (shipped)"}, "shipped", key));
+    floors.rows.push_back(Row({label, "(ψ, ρ) + no-side-slip (ours; shipped)"}, "shipped", key));
   }
   p.tables.push_back(floors);
 
@@ -342,7 +345,7 @@ ReproPaper Velocity() {
   fig.series = {{"odometry", "shipped", "robots.R_fused.{}speed_rmse.odometry"},
                 {"visual-inertial only", "shipped", "robots.R_fused.{}speed_rmse.vi_only"},
                 {"fused, the paper's estimator", "paper", "robots.R_fused.{}speed_rmse.fused"},
-                {"fused, ours (shipped)", "shipped", "robots.R_fused.{}speed_rmse.fused"}};
+                {"fused, (ψ, ρ) + no-side-slip (ours; shipped)", "shipped", "robots.R_fused.{}speed_rmse.fused"}};
   p.figures.push_back(fig);
 
   // Tables 2-3: speed and yaw-rate control over a grid of commands on two floors; each case
@@ -358,10 +361,10 @@ ReproPaper Velocity() {
     const std::string fused = "robots.R_fused.control." + metric,
                       odo = "robots.R_odo.control." + metric;
     t.columns = {InCase(ms("fused-fed, the paper's estimator", fused), "{}_paper"),
-                 InCase(ms("fused-fed, ours (shipped)", fused), "{}"),
+                 InCase(ms("fused-fed, shipped estimator (ours)", fused), "{}"),
                  InCase(ms("odometry-fed", odo), "{}"),
                  InCase(Below("paper's fused-fed better", fused, odo), "{}_paper"),
-                 InCase(Below("ours fused-fed better", fused, odo), "{}")};
+                 InCase(Below("shipped fused-fed better (ours)", fused, odo), "{}")};
     for (const auto& [floor, label] : std::vector<std::pair<std::string, std::string>>{
              {"high", "asphalt μ 0.9"}, {"low", "wet μ 0.15"}}) {
       for (double v : values) {
