@@ -338,12 +338,13 @@ ReproPaper Velocity() {
   ReproFigure fig;
   fig.id = "fig6_speed_rmse";
   fig.table = "fig6";
-  fig.title = "Speed-estimate RMSE per floor, R_fused, mean ± std over the seeds";
+  fig.title = "Fig. 6: speed-estimate RMSE per floor, R_fused, mean ± std";
   fig.y_label = "speed RMSE [m/s]";
   fig.categories = {{"all", ""},          {"tile", "floors.floor."}, {"wet", "floors.wet."},
                     {"gravel", "floors.gravel."}, {"asphalt", "floors.asphalt."}};
   fig.series = {{"odometry", "shipped", "robots.R_fused.{}speed_rmse.odometry"},
-                {"visual-inertial only", "shipped", "robots.R_fused.{}speed_rmse.vi_only"},
+                {"visual-inertial only, (ψ, ρ) (ours)", "shipped",
+                 "robots.R_fused.{}speed_rmse.vi_only"},
                 {"fused, the paper's estimator", "paper", "robots.R_fused.{}speed_rmse.fused"},
                 {"fused, (ψ, ρ) + no-side-slip (ours; shipped)", "shipped", "robots.R_fused.{}speed_rmse.fused"}};
   p.figures.push_back(fig);

@@ -28,17 +28,6 @@ std::string Substitute(const std::string& pattern, const std::string& key) {
   return out;
 }
 
-std::vector<std::string> SplitList(const std::string& s, char sep) {
-  std::vector<std::string> out;
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t at = s.find(sep, start);
-    out.push_back(s.substr(start, at == std::string::npos ? std::string::npos : at - start));
-    if (at == std::string::npos) return out;
-    start = at + 1;
-  }
-}
-
 // The value of `metric` (one path, or the largest of comma-separated paths) in one record, or
 // NaN when the record has none of them.
 double RecordValue(const SweepRecord& rec, const std::vector<std::string>& paths) {
@@ -169,7 +158,7 @@ ReproPaper SelectTables(const ReproPaper& paper, const std::string& ids) {
   std::string known;
   for (const ReproTable& t : paper.tables) known += (known.empty() ? "" : ", ") + t.id;
   std::set<std::string> want;
-  for (const std::string& id : SplitList(ids, ',')) {
+  for (const std::string& id : SplitAt(ids, ',')) {
     if (std::none_of(paper.tables.begin(), paper.tables.end(),
                      [&](const ReproTable& t) { return t.id == id; }))
       throw std::runtime_error("--tables '" + id + "': " + paper.name + " has tables " + known);
@@ -254,7 +243,7 @@ ReproResults RunPaper(const ReproPaper& paper, const std::vector<std::uint64_t>&
 
 std::vector<double> MetricValues(const ReproCaseRuns& runs, const std::string& metric,
                                  double scale) {
-  const std::vector<std::string> paths = SplitList(metric, ',');
+  const std::vector<std::string> paths = SplitAt(metric, ',');
   std::vector<double> out;
   for (const SweepRecord& r : runs.records) {
     if (r.failed()) continue;
@@ -285,8 +274,8 @@ ReproCell ComputeCell(const ReproTable& table, const ReproRow& row, const ReproC
   cell.metric = Substitute(col.metric, row.key);
   const std::size_t total = runs.records.size();
   if (col.stat == CellStat::kBelow) {
-    const std::vector<std::string> a = SplitList(cell.metric, ','),
-                                   b = SplitList(Substitute(col.versus, row.key), ',');
+    const std::vector<std::string> a = SplitAt(cell.metric, ','),
+                                   b = SplitAt(Substitute(col.versus, row.key), ',');
     cell.metric += " < " + Substitute(col.versus, row.key);
     for (const SweepRecord& r : runs.records) {
       if (r.failed()) continue;
@@ -378,7 +367,8 @@ FigureSpec ReproBarFigure(const ReproFigure& f, const ReproResults& results) {
     }
     series.push_back(Bars(s.label, mid, lo, hi, static_cast<int>(k)));
   }
-  return BarFigure(f.id, f.title, f.y_label, labels, std::move(series));
+  return BarFigure(f.id, f.title + " (seeds " + results.seeds_text + ")", f.y_label, labels,
+                   std::move(series));
 }
 
 }  // namespace formsim::sim
