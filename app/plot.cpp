@@ -587,7 +587,8 @@ PlotLayout DrawPlot(Canvas& cv, ImVec2 min, ImVec2 max, const PlotData& data, co
       cv.StrokeRect(lo, hi, look.color, 1.0f);
       const double e0 = At(s.err_lo, i), e1 = At(s.err_hi, i);
       if (std::isfinite(e0) && std::isfinite(e1)) {
-        const float xc = X(c), cap = static_cast<float>(0.25 * slot.width * (b.x - a.x) / (x1 - x0));
+        const float xc = X(c),
+                    cap = static_cast<float>(0.25 * slot.width * (b.x - a.x) / (x1 - x0));
         const Stroke err{th.text, 1.5f};
         cv.Line(ImVec2(xc, Y(e0)), ImVec2(xc, Y(e1)), err);
         for (double e : {e0, e1}) cv.Line(ImVec2(xc - cap, Y(e)), ImVec2(xc + cap, Y(e)), err);

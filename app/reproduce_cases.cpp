@@ -73,11 +73,13 @@ ReproPaper Formation() {
   auto over_links = [](const std::string& what) {
     std::string s;
     for (const char* l : {"R1-R2", "R1-R3", "R2-R3"})
-      s += (s.empty() ? "" : ",") + std::string("links.") + l + ".max_abs_error_after_settle." + what;
+      s += (s.empty() ? "" : ",") + std::string("links.") + l + ".max_abs_error_after_settle." +
+           what;
     return s;
   };
   t.columns = {Sci("max\\|e_φ12\\| [rad]", "links.R1-R2.max_abs_error_after_settle.phi"),
-               Sci("max\\|e_l\\| [m]", over_links("l")), Sci("max\\|α\\| [rad]", over_links("alpha")),
+               Sci("max\\|e_l\\| [m]", over_links("l")),
+               Sci("max\\|α\\| [rad]", over_links("alpha")),
                Sci("φ12 estimate RMS [rad]", "links.R1-R2.estimation_rmse.phi")};
   const char* paper[3][4] = {{"0.0064", "~1e-4", "0.0137", ""},
                              {"0.021", "~1e-4", "0.0472", ""},
@@ -97,9 +99,8 @@ ReproPaper Formation() {
           c.sets.push_back("robots.R3.follow.estimator=" + est);
         }
         p.cases.push_back(c);
-        t.rows.push_back(Row({tr, gains == "printed" ? "printed" : "per-sample",
-                              est == "ukf" ? "UKF" : est},
-                             c.id));
+        t.rows.push_back(Row(
+            {tr, gains == "printed" ? "printed" : "per-sample", est == "ukf" ? "UKF" : est}, c.id));
       }
     }
   }
@@ -117,7 +118,9 @@ ReproPaper Agv() {
   p.name = "agv";
   p.title = "Omnidirectional Mecanum AGV (paper 002)";
   auto add = [&](const std::string& id, const std::string& scenario,
-                 std::vector<std::string> sets) { p.cases.push_back({id, scenario, sets}); };
+                 std::vector<std::string> sets) {
+    p.cases.push_back({id, scenario, sets});
+  };
   const std::string plain = "estimation.gate=false";
   add("odometry", "agv_odometry_only", {});
   add("beacon", "agv_beacon_only", {});
@@ -141,24 +144,25 @@ ReproPaper Agv() {
   add("slippery_plain_kf", "agv_slippery_corner", {plain});
   add("slippery_gate", "agv_slippery_corner", {});
 
-  const ReproColumn rms = Stat("cross-track RMS [mm]", "cross_track.rms_m",
-                               CellStat::kMeanStdRange, 1000.0),
-                    max = Stat("cross-track max [mm]", "cross_track.max_m",
-                               CellStat::kMeanStdRange, 1000.0),
+  const ReproColumn rms = Stat("cross-track RMS [mm]", "cross_track.rms_m", CellStat::kMeanStdRange,
+                               1000.0),
+                    max = Stat("cross-track max [mm]", "cross_track.max_m", CellStat::kMeanStdRange,
+                               1000.0),
                     loops = Count("loop completed", "loop_completed"),
-                    jumps = Stat("estimate jumps > 5 cm", "localisation.{}.jumps",
-                                 CellStat::kMeanStd);
+                    jumps =
+                        Stat("estimate jumps > 5 cm", "localisation.{}.jumps", CellStat::kMeanStd);
   ReproTable loc;
   loc.id = "localisation";
   loc.title = "AGV, true cross-track error by localisation (cf. Fig. 6): 5% beacon outliers";
   loc.label_headers = {"localisation", "paper"};
   loc.columns = {rms, max, loops, jumps,
                  Stat("loop rate [Hz]", "control.rate_hz", CellStat::kMeanStd, 1.0, 2)};
-  loc.rows = {Row({"odometry only", "fails"}, "odometry", "odometry"),
-              Row({"beacon only (Fig. 6(a))", "jumpy"}, "beacon", "beacon"),
-              Row({"fused, the paper's plain KF (Fig. 6(b))", "within ~10 mm"}, "plain_kf", "fused"),
-              Row({"fused, KF + χ² gate (ours; shipped `agv_fused`)", ""}, "gate", "fused"),
-              Row({"fused, KF + χ² gate + adaptive R (ours)", ""}, "gate_adaptive", "fused")};
+  loc.rows = {
+      Row({"odometry only", "fails"}, "odometry", "odometry"),
+      Row({"beacon only (Fig. 6(a))", "jumpy"}, "beacon", "beacon"),
+      Row({"fused, the paper's plain KF (Fig. 6(b))", "within ~10 mm"}, "plain_kf", "fused"),
+      Row({"fused, KF + χ² gate (ours; shipped `agv_fused`)", ""}, "gate", "fused"),
+      Row({"fused, KF + χ² gate + adaptive R (ours)", ""}, "gate_adaptive", "fused")};
   loc.note =
       "Beacon σ 10 mm / 0.01 rad every 0.1 s, 5% outliers of 0.2-0.6 m, 5% dropouts; "
       "estimation.r_xy = 10 mm. Jumps: steps of the estimate the controller uses (odometry, "
@@ -180,7 +184,8 @@ ReproPaper Agv() {
 
   ReproTable sens;
   sens.id = "sensitivity";
-  sens.title = "AGV, beacon noise against the R the filter assumes (estimation.r_xy), KF + χ² gate (ours)";
+  sens.title =
+      "AGV, beacon noise against the R the filter assumes (estimation.r_xy), KF + χ² gate (ours)";
   sens.label_headers = {"beacon σ", "estimation.r_xy"};
   sens.columns = {rms, max, loops};
   sens.rows = {Row({"10 mm", "10 mm (= σ)"}, "gate")};
@@ -202,9 +207,9 @@ ReproPaper Agv() {
   adapt.id = "adaptive";
   adapt.title = "AGV, R ten times too small (beacon σ 30 mm, estimation.r_xy 3 mm), KF + χ² gate";
   adapt.label_headers = {"R"};
-  adapt.columns = {rms, max, loops,
-                   Stat("R in use at the end [mm]", "filter.r_xy_in_use_m", CellStat::kMeanStdRange,
-                        1000.0)};
+  adapt.columns = {
+      rms, max, loops,
+      Stat("R in use at the end [mm]", "filter.r_xy_in_use_m", CellStat::kMeanStdRange, 1000.0)};
   adapt.rows = {Row({"fixed (3 mm)"}, "r_small"), Row({"adaptive R (ours)"}, "r_small_adaptive")};
   p.tables.push_back(adapt);
 
@@ -234,17 +239,18 @@ ReproPaper Inspection() {
   };
   ReproTable tr;
   tr.id = "tracking";
-  tr.title = "Inspection robot, lateral offset of the true robot from the route after the first 6 m";
+  tr.title =
+      "Inspection robot, lateral offset of the true robot from the route after the first 6 m";
   tr.label_headers = {"controller"};
   tr.columns = {cm("lateral RMS [cm]", "tracking.lateral_offset_after_transient_m.rms"),
                 cm("lateral max [cm]", "tracking.lateral_offset_after_transient_m.max"),
                 cm("on the turn, RMS [cm]", "tracking.lateral_offset_turn_m.rms"),
                 Stat("route time [s]", "route.completion_time_s", CellStat::kMeanStd),
                 Count("route completed", "route.completed")};
-  tr.rows = {Row({"the paper's fuzzy controller, Kalman fixes (`inspection_u_route`)"}, "paper"),
-             Row({"the same with limit + mean instead of Kalman (`inspection_no_kalman`)"},
-                 "no_kalman"),
-             Row({"+ turn feed-forward (ours; `inspection_u_route_feedforward`)"}, "feedforward")};
+  tr.rows = {
+      Row({"the paper's fuzzy controller, Kalman fixes (`inspection_u_route`)"}, "paper"),
+      Row({"the same with limit + mean instead of Kalman (`inspection_no_kalman`)"}, "no_kalman"),
+      Row({"+ turn feed-forward (ours; `inspection_u_route_feedforward`)"}, "feedforward")};
   p.tables.push_back(tr);
 
   ReproTable loc;
@@ -296,7 +302,8 @@ ReproPaper Velocity() {
       "Velocity, Fig. 5-6: speed-estimate RMSE [m/s] at a constant 0.445 m/s over tile, wet, "
       "gravel and asphalt (`velocity_constant`)";
   f6.label_headers = {"estimator", "robot (speed loop fed by)"};
-  f6.columns = {ms("odometry", rmse + "odometry"), ms("visual-inertial only", rmse + "vi_only"),
+  f6.columns = {ms("odometry", rmse + "odometry"),
+                ms("visual-inertial only", rmse + "vi_only"),
                 ms("fused", rmse + "fused"),
                 Below("fused < odometry", rmse + "fused", rmse + "odometry"),
                 Below("fused < VI only", rmse + "fused", rmse + "vi_only"),
@@ -307,8 +314,8 @@ ReproPaper Velocity() {
              Row({"the paper's + no-side-slip constraint (ours)", "R_fused (fused)"}, "paper_nhc",
                  "R_fused"),
              Row({"(ψ, ρ) inverse depth (ours)", "R_fused (fused)"}, "psi_rho", "R_fused"),
-             Row({"(ψ, ρ) + no-side-slip constraint (ours; shipped)", "R_fused (fused)"},
-                 "shipped", "R_fused"),
+             Row({"(ψ, ρ) + no-side-slip constraint (ours; shipped)", "R_fused (fused)"}, "shipped",
+                 "R_fused"),
              Row({"(ψ, ρ) + no-side-slip constraint (ours; shipped)", "R_odo (odometry)"},
                  "shipped", "R_odo"),
              Row({"world points + no-side-slip constraint (ours)", "R_fused (fused)"},
@@ -326,10 +333,13 @@ ReproPaper Velocity() {
   floors.label_headers = {"floor", "estimator"};
   const std::string fr = "robots.R_fused.floors.{}.speed_rmse.";
   floors.columns = {ms("odometry", fr + "odometry"), ms("visual-inertial only", fr + "vi_only"),
-                    ms("fused", fr + "fused"), Below("fused < odometry", fr + "fused", fr + "odometry")};
-  for (const auto& [label, key] : std::vector<std::pair<std::string, std::string>>{
-           {"tile μ 0.8", "floor"}, {"wet μ 0.15", "wet"}, {"gravel μ 0.55", "gravel"},
-           {"asphalt μ 0.9", "asphalt"}}) {
+                    ms("fused", fr + "fused"),
+                    Below("fused < odometry", fr + "fused", fr + "odometry")};
+  for (const auto& [label, key] :
+       std::vector<std::pair<std::string, std::string>>{{"tile μ 0.8", "floor"},
+                                                        {"wet μ 0.15", "wet"},
+                                                        {"gravel μ 0.55", "gravel"},
+                                                        {"asphalt μ 0.9", "asphalt"}}) {
     floors.rows.push_back(Row({label, "the paper's"}, "paper", key));
     floors.rows.push_back(Row({label, "(ψ, ρ) + no-side-slip (ours; shipped)"}, "shipped", key));
   }
@@ -340,21 +350,24 @@ ReproPaper Velocity() {
   fig.table = "fig6";
   fig.title = "Fig. 6: speed-estimate RMSE per floor, R_fused, mean ± std";
   fig.y_label = "speed RMSE [m/s]";
-  fig.categories = {{"all", ""},          {"tile", "floors.floor."}, {"wet", "floors.wet."},
-                    {"gravel", "floors.gravel."}, {"asphalt", "floors.asphalt."}};
-  fig.series = {{"odometry", "shipped", "robots.R_fused.{}speed_rmse.odometry"},
-                {"visual-inertial only, (ψ, ρ) (ours)", "shipped",
-                 "robots.R_fused.{}speed_rmse.vi_only"},
-                {"fused, the paper's estimator", "paper", "robots.R_fused.{}speed_rmse.fused"},
-                {"fused, (ψ, ρ) + no-side-slip (ours; shipped)", "shipped", "robots.R_fused.{}speed_rmse.fused"}};
+  fig.categories = {{"all", ""},
+                    {"tile", "floors.floor."},
+                    {"wet", "floors.wet."},
+                    {"gravel", "floors.gravel."},
+                    {"asphalt", "floors.asphalt."}};
+  fig.series = {
+      {"odometry", "shipped", "robots.R_fused.{}speed_rmse.odometry"},
+      {"visual-inertial only, (ψ, ρ) (ours)", "shipped", "robots.R_fused.{}speed_rmse.vi_only"},
+      {"fused, the paper's estimator", "paper", "robots.R_fused.{}speed_rmse.fused"},
+      {"fused, (ψ, ρ) + no-side-slip (ours; shipped)", "shipped",
+       "robots.R_fused.{}speed_rmse.fused"}};
   p.figures.push_back(fig);
 
   // Tables 2-3: speed and yaw-rate control over a grid of commands on two floors; each case
   // with the paper's estimator and with ours. The odometry-fed robot does not use the estimator.
-  auto control_table = [&](const std::string& id, const std::string& title,
-                           const std::string& kind, const std::string& key,
-                           const std::vector<double>& values, const std::string& metric,
-                           const std::string& unit) {
+  auto control_table = [&](const std::string& id, const std::string& title, const std::string& kind,
+                           const std::string& key, const std::vector<double>& values,
+                           const std::string& metric, const std::string& unit) {
     ReproTable t;
     t.id = id;
     t.title = title;
@@ -376,8 +389,10 @@ ReproPaper Velocity() {
         t.rows.push_back(Row({label, Str(v)}, "", c));
       }
     }
-    t.note = "Control error: |distance (angle) travelled - commanded| / time after the settle time"
-             " (`velocity_" + kind + "_{high,low}` with --set " + key + "=...).";
+    t.note =
+        "Control error: |distance (angle) travelled - commanded| / time after the settle time"
+        " (`velocity_" +
+        kind + "_{high,low}` with --set " + key + "=...).";
     p.tables.push_back(t);
   };
   control_table("table2", "Velocity, Table 2: linear-speed control error Δv [m/s]", "linear",

@@ -19,8 +19,8 @@ namespace fs = std::filesystem;
 namespace formsim::app {
 
 ReproduceCommand::ReproduceCommand(CLI::App& app) {
-  cmd_ = app.add_subcommand(
-      "reproduce", "Run a paper's cases over seeds and print the README's tables for it");
+  cmd_ = app.add_subcommand("reproduce",
+                            "Run a paper's cases over seeds and print the README's tables for it");
   cmd_->add_option("paper", paper_, "formation, agv, inspection or velocity")->required();
   cmd_->add_option("--seeds", seeds_, "Seeds: 1..10 (default), 1,2,5 or a mixture");
   cmd_->add_option("--out", out_, "Output folder (default out/reproduce_<paper>)");
@@ -54,8 +54,7 @@ int ReproduceCommand::Run() {
       },
       [] { return StopSignal() != 0; });
   bar.Done();
-  const double wall =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (StopSignal() != 0) {
     std::fprintf(stderr, "formsim: reproduce interrupted by %s; the runs so far are in %s\n",
                  StopSignalName(StopSignal()).c_str(), out.c_str());

@@ -23,7 +23,8 @@ const char* const kDash = "–";
 
 std::string Substitute(const std::string& pattern, const std::string& key) {
   std::string out = pattern;
-  for (std::size_t at = out.find("{}"); at != std::string::npos; at = out.find("{}", at + key.size()))
+  for (std::size_t at = out.find("{}"); at != std::string::npos;
+       at = out.find("{}", at + key.size()))
     out.replace(at, 2, key);
   return out;
 }
@@ -72,12 +73,18 @@ std::string CellCase(const ReproRow& row, const ReproColumn& col) {
 
 const char* StatName(CellStat s) {
   switch (s) {
-    case CellStat::kMeanStd: return "mean_std";
-    case CellStat::kMeanStdRange: return "mean_std_range";
-    case CellStat::kMeanRange: return "mean_range";
-    case CellStat::kCount: return "count";
-    case CellStat::kBelow: return "below";
-    case CellStat::kText: return "text";
+    case CellStat::kMeanStd:
+      return "mean_std";
+    case CellStat::kMeanStdRange:
+      return "mean_std_range";
+    case CellStat::kMeanRange:
+      return "mean_range";
+    case CellStat::kCount:
+      return "count";
+    case CellStat::kBelow:
+      return "below";
+    case CellStat::kText:
+      return "text";
   }
   return "?";
 }
@@ -291,9 +298,15 @@ ReproCell ComputeCell(const ReproTable& table, const ReproRow& row, const ReproC
   auto spread = [&] { return std::isnan(s.std) ? std::string() : " ± " + Number(s.std, col); };
   auto range = [&] { return " [" + Number(s.min, col) + kDash + Number(s.max, col) + "]"; };
   switch (col.stat) {
-    case CellStat::kMeanStd: cell.text = Number(s.mean, col) + spread(); break;
-    case CellStat::kMeanStdRange: cell.text = Number(s.mean, col) + spread() + range(); break;
-    case CellStat::kMeanRange: cell.text = Number(s.mean, col) + range(); break;
+    case CellStat::kMeanStd:
+      cell.text = Number(s.mean, col) + spread();
+      break;
+    case CellStat::kMeanStdRange:
+      cell.text = Number(s.mean, col) + spread() + range();
+      break;
+    case CellStat::kMeanRange:
+      cell.text = Number(s.mean, col) + range();
+      break;
     case CellStat::kCount:
     case CellStat::kBelow: {
       long k = 0;
@@ -301,7 +314,8 @@ ReproCell ComputeCell(const ReproTable& table, const ReproRow& row, const ReproC
       cell.text = std::to_string(k) + "/" + std::to_string(total);
       break;
     }
-    case CellStat::kText: break;
+    case CellStat::kText:
+      break;
   }
   return cell;
 }
@@ -317,7 +331,8 @@ std::string ReproTablesText(const ReproPaper& paper, const ReproResults& results
     for (const ReproRow& r : t.rows) {
       std::string line = "|";
       for (const std::string& l : r.labels) line += " " + l + " |";
-      for (const ReproColumn& c : t.columns) line += " " + ComputeCell(t, r, c, results).text + " |";
+      for (const ReproColumn& c : t.columns)
+        line += " " + ComputeCell(t, r, c, results).text + " |";
       out += line + "\n";
     }
     out += "\n";
@@ -336,8 +351,8 @@ std::string ReproCellsCsv(const ReproPaper& paper, const ReproResults& results) 
         if (c.stat == CellStat::kText || r.text_only()) continue;
         const ReproCell cell = ComputeCell(t, r, c, results);
         out += CsvField(t.id) + "," + CsvField(RowName(r)) + "," + CsvField(c.header) + "," +
-               CsvField(cell.case_id) + "," + CsvField(cell.metric) + "," + StatName(c.stat) +
-               "," + std::to_string(cell.stats.n);
+               CsvField(cell.case_id) + "," + CsvField(cell.metric) + "," + StatName(c.stat) + "," +
+               std::to_string(cell.stats.n);
         for (double v : {cell.stats.mean, cell.stats.std, cell.stats.min, cell.stats.max}) {
           out += ",";
           if (!std::isnan(v)) AppendDouble(out, v);

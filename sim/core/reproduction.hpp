@@ -143,9 +143,9 @@ ReproResults RunPaper(const ReproPaper& paper, const std::vector<std::uint64_t>&
 
 /// One cell computed: the per-seed values it summarises and its text.
 struct ReproCell {
-  std::string text;           ///< as printed
-  std::string case_id;        ///< empty for rows without a case
-  std::string metric;         ///< with the row's key substituted
+  std::string text;            ///< as printed
+  std::string case_id;         ///< empty for rows without a case
+  std::string metric;          ///< with the row's key substituted
   std::vector<double> values;  ///< per completed run, scaled (kBelow: 1 or 0 per run)
   MetricStats stats;           ///< of `values`
 };

@@ -180,12 +180,11 @@ void ReadEstimator(YamlReader& m, EstimatorSettings& e) {
                 Tune("frames per keyframe").In(1, 1000).Slider(1, 20).Group(gw).OnReset());
   w.landmarks = static_cast<cv::LandmarkParam>(
       m.Pick("landmarks", {"inverse_depth", "world_point", "inverse_depth_1d"},
-             static_cast<int>(w.landmarks),
-             Tune("landmark parameterisation").Group(gw).OnReset()));
+             static_cast<int>(w.landmarks), Tune("landmark parameterisation").Group(gw).OnReset()));
   w.max_iterations = m.Int("max_iterations", w.max_iterations, Tune().In(1, 1000));
   // The no-side-slip constraint is ours (the paper has none): switchable to measure its effect.
-  w.use_nonholonomic = m.Flag("nonholonomic", w.use_nonholonomic,
-                              Tune("no-side-slip constraint (ours)").Group(gw));
+  w.use_nonholonomic =
+      m.Flag("nonholonomic", w.use_nonholonomic, Tune("no-side-slip constraint (ours)").Group(gw));
   e.vi_baseline = m.Bool("vi_baseline", e.vi_baseline);
   m.Finish();
 }

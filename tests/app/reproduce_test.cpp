@@ -8,9 +8,9 @@
 #include <map>
 #include <sstream>
 
+#include "app/figure_data.hpp"
 #include "app/offscreen_renderer.hpp"
 #include "app/reproduce_cases.hpp"
-#include "app/figure_data.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/recorder.hpp"
 #include "sim/core/reproduction.hpp"
@@ -109,18 +109,20 @@ TEST(ReproduceCli, TablesAreTheSweepTablesStatistics) {
     ASSERT_FALSE(cells.empty());
     int numeric = 0;
     for (const auto& cell : cells) {
-      const std::string what = cell.at("table") + " / " + cell.at("row") + " / " + cell.at("column");
+      const std::string what =
+          cell.at("table") + " / " + cell.at("row") + " / " + cell.at("column");
       // The printed row (its labels, then the cells) holds the cell's text.
       std::string row_start = "|";
       for (std::size_t at = 0, next;; at = next + 3) {
         next = cell.at("row").find(" / ", at);
-        row_start += " " + cell.at("row").substr(at, next == std::string::npos ? next : next - at) +
-                     " |";
+        row_start +=
+            " " + cell.at("row").substr(at, next == std::string::npos ? next : next - at) + " |";
         if (next == std::string::npos) break;
       }
       bool found = false;
       for (const std::string& l : md)
-        if (l.rfind(row_start, 0) == 0 && l.find("| " + cell.at("text") + " |") != std::string::npos)
+        if (l.rfind(row_start, 0) == 0 &&
+            l.find("| " + cell.at("text") + " |") != std::string::npos)
           found = true;
       EXPECT_TRUE(found) << what << ": '" << cell.at("text") << "' not printed in its row";
       if (cell.at("stat") == "count" || cell.at("stat") == "below" || cell.at("n") == "0") continue;
@@ -202,7 +204,8 @@ TEST(ReproduceCli, BadInputNamesTheFlag) {
     const std::string err = ReadText(d + ".log");
     EXPECT_NE(err.find(b.message), std::string::npos) << b.args << ": " << err;
     EXPECT_TRUE(ReadText(d + ".md").empty()) << b.args;
-    EXPECT_FALSE(fs::exists(d + "/out")) << b.args << ": nothing is written before the input is checked";
+    EXPECT_FALSE(fs::exists(d + "/out"))
+        << b.args << ": nothing is written before the input is checked";
   }
 }
 
@@ -243,10 +246,12 @@ TEST(ReproduceFigure, BarsStandSideBySideWithTheirErrorBars) {
   EXPECT_LE(L.x0, -0.4);
   EXPECT_GE(L.x1, 2.4);
   auto sx = [&](double x) {
-    return static_cast<float>(L.area_min.x + (x - L.x0) / (L.x1 - L.x0) * (L.area_max.x - L.area_min.x));
+    return static_cast<float>(L.area_min.x +
+                              (x - L.x0) / (L.x1 - L.x0) * (L.area_max.x - L.area_min.x));
   };
   auto sy = [&](double y) {
-    return static_cast<float>(L.area_max.y - (y - L.y0) / (L.y1 - L.y0) * (L.area_max.y - L.area_min.y));
+    return static_cast<float>(L.area_max.y -
+                              (y - L.y0) / (L.y1 - L.y0) * (L.area_max.y - L.area_min.y));
   };
   const sim::Color bg = r.theme().background;
   auto faded = [&](int k) {  // the series colour at 75% over the background
@@ -263,7 +268,8 @@ TEST(ReproduceFigure, BarsStandSideBySideWithTheirErrorBars) {
       const std::string where = "category " + std::to_string(k) + ", series " + std::to_string(j);
       // Inside the bar, off its centre line and the error bar's caps (± 0.1 around it).
       const Rgb in = At(px, w, sx(xc - 0.15), sy(0.5 * mean));
-      EXPECT_LT(Distance(in, faded(j)), 20.0) << where << ": " << in.r << "," << in.g << "," << in.b;
+      EXPECT_LT(Distance(in, faded(j)), 20.0)
+          << where << ": " << in.r << "," << in.g << "," << in.b;
       // The bar starts at zero: below it, background.
       EXPECT_LT(Distance(At(px, w, sx(xc - 0.15), sy(0.0) + 4), bg), 20.0) << where;
       // Above the top of the error bar: background.

@@ -62,10 +62,10 @@ TEST(Reproduction, CellsSummariseTheCompletedRunsOverTheSeeds) {
   below.versus = "b";
   ReproColumn sci = Col("a", CellStat::kMeanStd, 1e-3, 2);
   sci.sci = true;
-  const ReproTable t = OneRowTable({Col("a", CellStat::kMeanStd),
-                                    Col("a", CellStat::kMeanStdRange, 10.0),
-                                    Col("a", CellStat::kMeanRange, 1.0, 2), Col("a", CellStat::kCount),
-                                    below, sci, Col("nope", CellStat::kMeanStd)});
+  const ReproTable t =
+      OneRowTable({Col("a", CellStat::kMeanStd), Col("a", CellStat::kMeanStdRange, 10.0),
+                   Col("a", CellStat::kMeanRange, 1.0, 2), Col("a", CellStat::kCount), below, sci,
+                   Col("nope", CellStat::kMeanStd)});
   EXPECT_EQ(Cell(t, 0, res), "2.0 ± 1.0");
   EXPECT_EQ(Cell(t, 1, res), "20.0 ± 10.0 [10.0–30.0]");
   EXPECT_EQ(Cell(t, 2, res), "2.00 [1.00–3.00]");

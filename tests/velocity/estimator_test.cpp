@@ -89,9 +89,9 @@ const cv::LandmarkParam kAllParams[] = {cv::LandmarkParam::kInverseDepth,
                                         cv::LandmarkParam::kWorldPoint,
                                         cv::LandmarkParam::kInverseDepth1d};
 const char* Name(cv::LandmarkParam p) {
-  return p == cv::LandmarkParam::kInverseDepth  ? "inverse depth"
+  return p == cv::LandmarkParam::kInverseDepth ? "inverse depth"
          : p == cv::LandmarkParam::kWorldPoint ? "world point"
-                                                : "one inverse depth";
+                                               : "one inverse depth";
 }
 
 double SpeedRmse(const std::vector<SyntheticSample>& run, double t_from) {

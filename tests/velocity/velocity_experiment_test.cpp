@@ -64,8 +64,9 @@ TEST(VelocityExperiment, EveryScenarioLoadsAndRuns) {
     const std::string stem = entry.path().filename().string();
     if (stem.rfind("velocity_", 0) != 0) continue;
     // Each scenario with every landmark parameterisation, and without the side-slip constraint.
-    for (const char* set : {"estimator.landmarks=world_point",
-                            "estimator.landmarks=inverse_depth_1d", "estimator.nonholonomic=false"}) {
+    for (const char* set :
+         {"estimator.landmarks=world_point", "estimator.landmarks=inverse_depth_1d",
+          "estimator.nonholonomic=false"}) {
       auto other = RunToEnd(LoadExperiment(entry.path().string(), {"duration=1.5", set}));
       for (int i = 0; i < Vel(other).robot_count(); ++i) {
         EXPECT_GT(Vel(other).unit(i).updates, 3) << stem << " " << set;
