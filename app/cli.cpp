@@ -15,6 +15,7 @@
 #include "app/gui.hpp"
 #include "app/progress.hpp"
 #include "app/replay_command.hpp"
+#include "app/reproduce_cli.hpp"
 #include "app/stop_signal.hpp"
 #include "app/study_cli.hpp"
 #include "sim/core/run_output.hpp"
@@ -323,6 +324,7 @@ int Main(int argc, char** argv) {
   gui_cmd->add_option("--threads", threads, threads_help)->check(CLI::Range(1, 1024));
 
   StudyCommands study(app);  // sweep, sweep collect, tune
+  ReproduceCommand reproduce(app);
   ReplayCommand replay(app);
 
   try {
@@ -343,6 +345,7 @@ int Main(int argc, char** argv) {
     }
     if (app.got_subcommand("list")) return ListCommand();
     if (study.parsed()) return study.Run();
+    if (reproduce.parsed()) return reproduce.Run();
     if (replay.parsed()) return replay.Run();
     if (figs_cmd->parsed()) return FiguresCommand(figs);
     if (gui_cmd->parsed()) {

@@ -10,13 +10,17 @@ PlotData ResolveFigure(const sim::FigureSpec& spec, const sim::Recorder& rec) {
   d.reference_lines = spec.reference_lines;
   d.equal_aspect = spec.equal_aspect;
   d.marker_x = spec.marker_x;
-  d.x_is_time = !spec.series.empty();
+  d.x_is_time = !spec.series.empty() && spec.categories.empty();
+  d.x_tick_labels = spec.categories;
   for (std::size_t i = 0; i < spec.series.size(); ++i) {
     const sim::SeriesSpec& s = spec.series[i];
     PlotSeries p;
     p.label = s.label;
     p.dashed = s.dashed;
     p.markers_only = s.markers_only;
+    p.bars = s.bars;
+    p.err_lo = s.err_lo;
+    p.err_hi = s.err_hi;
     p.style_index = s.color_index >= 0 ? s.color_index : static_cast<int>(i);
     p.color = sim::PaletteColor(p.style_index);
     if (s.column.empty() || !(s.x_column.empty() || s.x_column == "t")) d.x_is_time = false;

@@ -160,6 +160,20 @@ void DrawBand(Canvas& cv, const PlotSeries& s, sim::Color col,
   }
 }
 
+// Where the bars of bar series `j` of `n` stand in their category: the offset of their centre
+// from the category's x and their width (the group fills 80% of a category).
+struct BarSlot {
+  double offset, width;
+};
+BarSlot BarSlotOf(int j, int n) {
+  const double w = 0.8 / std::max(1, n);
+  return {-0.4 + w * (j + 0.5), w};
+}
+
+double At(const std::vector<double>& v, std::size_t i) {
+  return i < v.size() ? v[i] : kNaN;
+}
+
 }  // namespace
 
 LineDash DashStyle(int k) {
@@ -261,6 +275,7 @@ PlotLayout DrawPlot(Canvas& cv, ImVec2 min, ImVec2 max, const PlotData& data, co
       if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
       rx.Add(s.x[i]);
       ry.Add(s.y[i]);
+      if (s.bars) ry.Add(0.0), ry.Add(At(s.err_lo, i)), ry.Add(At(s.err_hi, i));
     }
     const std::size_t nb = std::min({s.x.size(), s.band_lo.size(), s.band_hi.size()});
     for (std::size_t i = 0; i < nb; ++i) {
@@ -271,6 +286,9 @@ PlotLayout DrawPlot(Canvas& cv, ImVec2 min, ImVec2 max, const PlotData& data, co
       ry.Add(s.band_hi[i]);
     }
   }
+  // Bar series: their number (they share each category) and whether all stand on zero.
+  int bar_series = 0;
+  for (const auto& s : data.series) bar_series += s.bars;
   // Heatmaps and categorical axes: half a cell of room around the first and last category.
   const bool heat = !data.heatmap.empty();
   const bool cat_x = !data.x_tick_labels.empty(), cat_y = !data.y_tick_labels.empty();
@@ -298,6 +316,7 @@ PlotLayout DrawPlot(Canvas& cv, ImVec2 min, ImVec2 max, const PlotData& data, co
   double x0 = rx.lo - data.x_margin * (rx.hi - rx.lo), x1 = rx.hi + data.x_margin * (rx.hi - rx.lo);
   const double ypad = heat || cat_y ? 0.0 : 0.06 * (ry.hi - ry.lo);
   double y0 = ry.lo - ypad, y1 = ry.hi + ypad;
+  if (bar_series > 0 && ry.lo >= 0.0) y0 = 0.0;  // bars stand on the axis
   if (data.equal_aspect) {
     const double xpad = 0.06 * (x1 - x0);
     x0 -= xpad, x1 += xpad;
@@ -417,12 +436,19 @@ PlotLayout DrawPlot(Canvas& cv, ImVec2 min, ImVec2 max, const PlotData& data, co
   auto count_inside = [&](ImVec2 lo, ImVec2 hi) {
     long count = 0;
     const double sx = (b.x - a.x) / (x1 - x0), sy = (b.y - a.y) / (y1 - y0);
+    int bar_j = 0;
     for (const auto& s : data.series) {
       const std::size_t n = std::min(s.x.size(), s.y.size());
       const std::size_t stride = std::max<std::size_t>(1, n / 3000);
+      const double dx = s.bars ? BarSlotOf(bar_j++, bar_series).offset : 0.0;
       for (std::size_t i = 0; i < n; i += stride) {
-        const double px = a.x + (s.x[i] - x0) * sx, py = b.y - (s.y[i] - y0) * sy;
-        if (px >= lo.x - 4 && px <= hi.x + 4 && py >= lo.y - 4 && py <= hi.y + 4) ++count;
+        const double px = a.x + (s.x[i] + dx - x0) * sx;
+        // A bar covers its whole height up to the top of its error bar.
+        const double top = s.bars ? std::max(s.y[i], At(s.err_hi, i)) : s.y[i];
+        const double bottom = s.bars ? std::min(0.0, s.y[i]) : s.y[i];
+        const double py_top = b.y - (top - y0) * sy, py_bottom = b.y - (bottom - y0) * sy;
+        if (px >= lo.x - 4 && px <= hi.x + 4 && py_top <= hi.y + 4 && py_bottom >= lo.y - 4)
+          ++count;
       }
     }
     for (double r : data.reference_lines) {
@@ -546,7 +572,31 @@ PlotLayout DrawPlot(Canvas& cv, ImVec2 min, ImVec2 max, const PlotData& data, co
   for (double r : data.reference_lines)
     cv.Line(ImVec2(a.x, Y(r)), ImVec2(b.x, Y(r)), {th.reference, 1.2f, LineDash::Dashes(6, 4)});
   if (!data.error.empty()) Text(label_font, ImVec2(a.x + 8, a.y + 8), th.error, data.error);
+  // Bars from zero in their slot of each category, outlined, with their error bars.
+  int bar_j = 0;
   for (const auto& s : data.series) {
+    if (!s.bars) continue;
+    const SeriesLook look = th.Series(s.color, s.style_index, false);
+    const BarSlot slot = BarSlotOf(bar_j++, bar_series);
+    for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
+      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+      const double c = s.x[i] + slot.offset, hw = 0.5 * slot.width;
+      const ImVec2 lo(std::round(X(c - hw)), std::round(Y(std::max(0.0, s.y[i]))));
+      const ImVec2 hi(std::round(X(c + hw)), std::round(Y(std::min(0.0, s.y[i]))));
+      cv.FillRect(lo, hi, look.color.WithAlpha(0.75f));
+      cv.StrokeRect(lo, hi, look.color, 1.0f);
+      const double e0 = At(s.err_lo, i), e1 = At(s.err_hi, i);
+      if (std::isfinite(e0) && std::isfinite(e1)) {
+        const float xc = X(c),
+                    cap = static_cast<float>(0.25 * slot.width * (b.x - a.x) / (x1 - x0));
+        const Stroke err{th.text, 1.5f};
+        cv.Line(ImVec2(xc, Y(e0)), ImVec2(xc, Y(e1)), err);
+        for (double e : {e0, e1}) cv.Line(ImVec2(xc - cap, Y(e)), ImVec2(xc + cap, Y(e)), err);
+      }
+    }
+  }
+  for (const auto& s : data.series) {
+    if (s.bars) continue;
     SeriesLook look = th.Series(s.color, s.style_index, s.dashed);
     if (s.dash_style > 0) look.dash = DashStyle(s.dash_style);
     const Stroke stroke{look.color, line_w, look.dash};
@@ -618,7 +668,11 @@ PlotLayout DrawPlot(Canvas& cv, ImVec2 min, ImVec2 max, const PlotData& data, co
       const float y = lo.y + 4 + row_h * static_cast<float>(k / leg_cols);
       const float cy = y + row_h / 2;
       const ImVec2 p0(x + 7, cy), p1(x + 7 + sample_w, cy);
-      if (s.markers_only) {
+      if (s.bars) {
+        const ImVec2 lo(p0.x + 4, cy - 6), hi(p1.x - 4, cy + 6);
+        cv.FillRect(lo, hi, look.color.WithAlpha(0.75f));
+        cv.StrokeRect(lo, hi, look.color, 1.0f);
+      } else if (s.markers_only) {
         const ImVec2 c(0.5f * (p0.x + p1.x), cy);
         if (look.hollow_markers)
           cv.StrokeCircle(c, 3.0f, look.color, 1.2f);

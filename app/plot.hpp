@@ -30,6 +30,10 @@ struct PlotSeries {
   /// seeds of a sweep); empty: none. With `y` empty the band is drawn alone.
   std::vector<double> band_lo, band_hi;
   float band_alpha = 0.22f;  ///< opacity of the band's shade
+  /// Bars (y[i] at category x[i], from zero) with error bars from err_lo to err_hi (empty or
+  /// NaN: none). The bar series of a plot stand side by side within each category.
+  bool bars = false;
+  std::vector<double> err_lo, err_hi;
 };
 
 /// A heatmap (a metric over two swept keys): cell (column c, row r) is drawn centred on x = c,

@@ -44,16 +44,26 @@ run formation_traj2 --set duration=6 --out "$TMP/d" --snapshot "$OUT/ui_headless
 run agv_fused --out "$TMP/agv" --snapshot "$OUT/agv_world.png"
 cp "$FIGS/agv_fused/trajectory.png" "$OUT/agv_fused_trajectory.png"
 cp "$FIGS/agv_odometry_only/trajectory.png" "$OUT/agv_odometry_trajectory.png"
+# The paper's Fig. 6: (a) the beacon's fixes alone, (b) the fused estimate, on the fused run.
+cp "$FIGS/agv_fused/fig6a_beacon_points.png" "$OUT/agv_fig6a_beacon.png"
+cp "$FIGS/agv_fused/fig6b_fused_points.png" "$OUT/agv_fig6b_fused.png"
 # Inspection robot (paper 003): laser rays and posts mid-run, Fig. 8 style X coordinates, and the
 # lateral-offset membership functions with the current input marked.
 run inspection_u_route --set duration=20 --out "$TMP/insp_mid" --snapshot "$OUT/inspection_world.png"
 cp "$FIGS/inspection_u_route/fig8_x.png" "$OUT/inspection_fig8_x.png"
 cp "$FIGS/inspection_u_route/mf_s_near.png" "$OUT/inspection_mf_s.png"
+# The paper's Fig. 9 (Y on the route) and the u3 (steering) membership functions, fired set marked.
+cp "$FIGS/inspection_u_route/fig9_y.png" "$OUT/inspection_fig9_y.png"
+cp "$FIGS/inspection_u_route/mf_u3.png" "$OUT/inspection_mf_u3.png"
 # Velocity control (paper 004): two robots crossing floors of different friction, keyframes and
 # tracked features; the speed of the robot whose loop is fed by the fused estimate.
 run velocity_constant --out "$TMP/vel" --snapshot "$OUT/velocity_world.png"
 cp "$FIGS/velocity_constant/speed_R_fused.png" "$OUT/velocity_speed_fused.png"
 cp "$FIGS/velocity_constant/speed_R_odo.png" "$OUT/velocity_speed_odo.png"
+# The paper's Fig. 6 as bars over seeds 1-10 (mean ± std per floor), from `formsim reproduce`.
+env -u DISPLAY "$BIN" reproduce velocity --tables fig6 --seeds 1..10 --out "$TMP/repro_vel" -q \
+  >/dev/null
+cp "$TMP/repro_vel/fig6_speed_rmse.png" "$OUT/velocity_fig6_bars.png"
 # Sweeps and tuning: R2's bearing error over k_phi (log range) x estimator, mean of 5 seeds (a
 # heatmap); the AGV's RMS cross-track error against the cross-track kp with a ±1σ band over 5
 # seeds; the convergence of tuning the cross-track PID.

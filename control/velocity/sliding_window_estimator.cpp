@@ -101,12 +101,13 @@ OdometryPreintegration SlidingWindowEstimator::NewOdometry() const {
 
 Eigen::VectorXd SlidingWindowEstimator::LandmarkValue(const Track& t) const {
   if (inverse_depth()) return Eigen::Vector2d(t.psi, t.inv_depth);
+  if (one_depth()) return Eigen::VectorXd::Constant(1, t.inv_depth);
   return t.position;
 }
 
 Vec2d SlidingWindowEstimator::Position(const std::deque<KeyframeState>& frames,
                                        const Track& t) const {
-  if (!inverse_depth()) return t.position;
+  if (!anchored()) return t.position;
   return EvaluateAnchoredPoint(FrameById(frames, t.anchor), t.psi, t.inv_depth, def_.camera_offset)
       .f;
 }
@@ -119,7 +120,7 @@ SlidingWindowEstimator::Layout SlidingWindowEstimator::FullLayout() const {
   for (const auto& [id, track] : tracks_)
     if (track.initialized) {
       layout.landmark_offset[id] = layout.dim;
-      layout.dim += kLandmarkDim;
+      layout.dim += landmark_dim();
     }
   return layout;
 }
@@ -197,11 +198,18 @@ void SlidingWindowEstimator::InitialiseLandmarks() {
     const TriangulationResult tri =
         Triangulate(rays, def_.min_parallax, def_.min_depth, def_.max_landmark_range);
     if (!tri.ok) continue;
-    if (inverse_depth()) {
-      // Anchored at the first keyframe that saw it, at the triangulated point.
-      const long fid = track.obs.front().first;
-      const AnchorCoordinates c = EvaluateAnchorCoordinates(
-          frames_[static_cast<std::size_t>(fid - id0)], tri.point, def_.camera_offset);
+    if (anchored()) {
+      // Anchored at the first keyframe that saw it, at the triangulated point (one-number form:
+      // on the anchor's measured ray, at the point's distance along it).
+      const auto& [fid, z] = track.obs.front();
+      const KeyframeState& a = frames_[static_cast<std::size_t>(fid - id0)];
+      AnchorCoordinates c = EvaluateAnchorCoordinates(a, tri.point, def_.camera_offset);
+      if (one_depth()) {
+        const Vec2d u(std::cos(a.theta() + z), std::sin(a.theta() + z));
+        const double d = (tri.point - rays.front().origin).dot(u);
+        c.psi = z;
+        c.rho = d > 0.0 ? 1.0 / d : 0.0;
+      }
       if (!(c.rho > 0.0 && c.rho * def_.min_depth <= 1.0)) continue;
       track.anchor = fid;
       track.psi = c.psi;
@@ -306,16 +314,18 @@ double SlidingWindowEstimator::Linearize(const std::deque<KeyframeState>& frames
   }
 
   // Bearings of initialised landmarks (only the residuals that touch the oldest keyframe when
-  // marginalising). With inverse depth the anchor's own bearing is not a residual.
+  // marginalising; with inverse depth, every residual of a landmark anchored there). In the
+  // one-number form the anchor's own bearing is taken as exact, no residual.
   int count = 0;
   for (const auto& [id, track] : tracks) {
     if (!track.initialized) continue;
     auto it = layout.landmark_offset.find(id);
     const int ol = it == layout.landmark_offset.end() ? -1 : it->second;
-    if (inverse_depth()) {
+    if (anchored()) {
       const std::size_t a = static_cast<std::size_t>(track.anchor - id0);
       for (const auto& [fid, z] : track.obs) {
         if (marg && fid != id0 && track.anchor != id0) continue;
+        if (one_depth() && fid == track.anchor) continue;
         ++count;
         if (fid == track.anchor) {
           // From its anchor the landmark's bearing is ψ itself.
@@ -331,9 +341,10 @@ double SlidingWindowEstimator::Linearize(const std::deque<KeyframeState>& frames
                                               def_.bearing_sigma, def_.camera_offset);
         cost += 0.5 * f.r * f.r;
         if (lin)
-          AccumulateRow(
-              *H, *g, f.r,
-              {{layout.frame_offset[s], f.Jk}, {layout.frame_offset[a], f.Ja}, {ol, f.Jl}});
+          AccumulateRow(*H, *g, f.r,
+                        {{layout.frame_offset[s], f.Jk},
+                         {layout.frame_offset[a], f.Ja},
+                         {ol, f.Jl.rightCols(landmark_dim())}});  // ρ alone: its column
       }
       continue;
     }
@@ -395,6 +406,8 @@ bool SlidingWindowEstimator::Optimize(UpdateReport& report) {
       if (inverse_depth()) {
         tracks[id].psi = WrapToPi(tracks[id].psi + delta(off));
         tracks[id].inv_depth += delta(off + 1);
+      } else if (one_depth()) {
+        tracks[id].inv_depth += delta(off);
       } else {
         tracks[id].position += delta.segment<2>(off);
       }
@@ -437,7 +450,7 @@ void SlidingWindowEstimator::RemoveOutliers() {
     const Vec2d position = Position(frames_, t);
     bool bad = !position.allFinite() ||
                (position - frames_.back().p()).norm() > 2.0 * def_.max_landmark_range ||
-               (inverse_depth() && !(t.inv_depth > 0.0 && t.inv_depth * def_.min_depth <= 1.0));
+               (anchored() && !(t.inv_depth > 0.0 && t.inv_depth * def_.min_depth <= 1.0));
     for (std::size_t o = 0; o < t.obs.size() && !bad; ++o) {
       const BearingFactor b =
           EvaluateBearingFactor(FrameById(frames_, t.obs[o].first), position, t.obs[o].second,
@@ -544,6 +557,35 @@ void SlidingWindowEstimator::ReanchorLandmarks(long keep_from) {
   }
 }
 
+std::vector<int> SlidingWindowEstimator::AnchoredAtOldest() const {
+  std::vector<int> ids;
+  for (const auto& [id, track] : tracks_)
+    if (track.initialized && track.anchor == frames_.front().id) ids.push_back(id);
+  return ids;
+}
+
+void SlidingWindowEstimator::ShiftAnchorsOfOldest(const std::vector<int>& ids) {
+  // VINS-Mono's removeBackShiftDepth: the point at its last estimate, seen from the next
+  // keyframe that saw it, keeps its depth along that camera's optical axis and moves onto that
+  // keyframe's measured ray; ρ becomes a new variable without prior. Too few bearings left, or
+  // behind the camera: the landmark is triangulated again when it can be.
+  for (int id : ids) {
+    Track& t = tracks_[id];
+    t.initialized = false;
+    if (t.obs.size() < 3) continue;  // fewer than two bearings once the anchor's goes
+    const auto& [fid, z] = t.obs[1];
+    const KeyframeState& b = FrameById(frames_, fid);
+    const Vec2d q = Rot(b.theta()).transpose() * (Position(frames_, t) - b.p()) -
+                    Vec2d(def_.camera_offset, 0.0);
+    const double d = q.x() / std::cos(z);
+    if (!(std::cos(z) > 0.0 && d >= def_.min_depth && std::isfinite(d))) continue;
+    t.initialized = true;
+    t.anchor = fid;
+    t.psi = z;
+    t.inv_depth = 1.0 / d;
+  }
+}
+
 void SlidingWindowEstimator::ReanchorPrior(const std::vector<Reanchoring>& moves) {
   if (moves.empty()) return;
   // Keyframes a move needs that the prior lacks are appended (no information yet, linearised
@@ -622,13 +664,16 @@ bool SlidingWindowEstimator::Marginalize(std::string& error) {
   const long id0 = frames_.front().id;
   // Normally done before the solve (AddKeyframe); here it only catches what is left.
   if (inverse_depth()) ReanchorLandmarks(frames_[1].id);
-  // Removed: the oldest keyframe. Kept: every other keyframe, the initialised landmarks it saw
-  // and the landmarks already in the prior.
+  // Removed: the oldest keyframe (one-number form: with the ρ of the landmarks it anchors).
+  // Kept: every other keyframe, the initialised landmarks it saw and the landmarks already in
+  // the prior.
   Layout layout;
   layout.frame_offset.assign(frames_.size(), -1);
   layout.frame_offset[0] = 0;
   layout.dim = kD;
-  const int m = kD;
+  const std::vector<int> shifted = one_depth() ? AnchoredAtOldest() : std::vector<int>{};
+  for (int id : shifted) layout.landmark_offset[id] = layout.dim++;
+  const int m = layout.dim;
   std::vector<PriorVar> kept;
   for (std::size_t s = 1; s < frames_.size(); ++s) {
     layout.frame_offset[s] = layout.dim;
@@ -636,12 +681,12 @@ bool SlidingWindowEstimator::Marginalize(std::string& error) {
     kept.push_back({true, frames_[s].id, kD, frames_[s].x});
   }
   for (const auto& [id, track] : tracks_) {
-    if (!track.initialized) continue;
+    if (!track.initialized || layout.landmark_offset.count(id)) continue;
     const bool seen = !track.obs.empty() && track.obs.front().first == id0;
     if (!seen && !InPrior(id)) continue;
     layout.landmark_offset[id] = layout.dim;
-    layout.dim += kLandmarkDim;
-    kept.push_back({false, id, kLandmarkDim, LandmarkValue(track)});
+    layout.dim += landmark_dim();
+    kept.push_back({false, id, landmark_dim(), LandmarkValue(track)});
   }
   const int k = layout.dim - m;
 
@@ -663,6 +708,7 @@ bool SlidingWindowEstimator::Marginalize(std::string& error) {
   }
   p.vars = std::move(kept);
   prior_ = std::move(p);
+  ShiftAnchorsOfOldest(shifted);
 
   frames_.pop_front();
   imu_.pop_front();

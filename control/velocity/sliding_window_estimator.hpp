@@ -27,6 +27,13 @@
 /// re-anchoring above respectively), and velocity_constant's fused speed RMSE went from 0.005 to
 /// 0.035-0.14 m/s.
 ///
+/// The paper's one-number form ships as `kInverseDepth1d`, as VINS-Mono does it: ρ along the
+/// anchor's measured bearing (the anchor's own bearing is no residual); when the anchor keyframe
+/// is marginalised, the ρ of the landmarks it anchors are marginalised with it (their
+/// information goes into the prior on the keyframes), and a landmark still tracked restarts at
+/// the next keyframe that saw it, along that keyframe's measured bearing at the depth (along the
+/// optical axis) of its last estimate, with no prior (VINS-Mono's removeBackShiftDepth).
+///
 /// Marginalisation (VINS-Mono's "marginalise old"): when the window is full, the oldest keyframe
 /// is removed; every factor touching it (the prior, IMU and odometry to the next keyframe, its
 /// non-holonomic constraint and its bearings) is linearised and folded by a Schur complement
@@ -68,8 +75,9 @@ struct BearingObservation {
 
 /// How the window holds landmarks.
 enum class LandmarkParam {
-  kInverseDepth,  ///< (ψ, ρ): ray bearing and inverse depth from the anchor keyframe
-  kWorldPoint     ///< 2-D world position
+  kInverseDepth,   ///< (ψ, ρ): ray bearing and inverse depth from the anchor keyframe
+  kWorldPoint,     ///< 2-D world position
+  kInverseDepth1d  ///< ρ alone, along the anchor's measured bearing (the paper's, VINS-Mono's)
 };
 
 /// Estimator settings, Box2D-style with defaults.
@@ -165,7 +173,8 @@ class SlidingWindowEstimator {
     bool initialized = false;
     Vec2d position = Vec2d::Zero();  ///< world-point parameterisation
     long anchor = -1;                ///< inverse depth: the anchor keyframe's id
-    double psi = 0.0;                ///< inverse depth: the ray's bearing from the anchor, rad
+    /// Inverse depth: the ray's bearing from the anchor, rad (one-number form: the measured one).
+    double psi = 0.0;
     double inv_depth = 0.0;          ///< inverse depth: ρ along that ray, 1/m
   };
   /// A variable of the marginalisation prior: a keyframe (by id) or a landmark (by track id).
@@ -192,9 +201,18 @@ class SlidingWindowEstimator {
 
   void AddObservations(long frame_id, const std::vector<BearingObservation>& obs);
   void InitialiseLandmarks();
+  /// (ψ, ρ): the ray's bearing is estimated with the inverse depth.
   bool inverse_depth() const { return def_.landmarks == LandmarkParam::kInverseDepth; }
-  /// Both parameterisations estimate two numbers per landmark: (ψ, ρ) or (x, y).
-  static constexpr int kLandmarkDim = 2;
+  /// ρ alone along the anchor's measured bearing.
+  bool one_depth() const { return def_.landmarks == LandmarkParam::kInverseDepth1d; }
+  /// Either inverse-depth form: the landmark lives in its anchor keyframe's coordinates.
+  bool anchored() const { return inverse_depth() || one_depth(); }
+  /// Numbers estimated per landmark: (ψ, ρ), (x, y), or ρ.
+  int landmark_dim() const { return one_depth() ? 1 : 2; }
+  /// One-number form: landmarks anchored at the oldest keyframe, marginalised with it (they
+  /// restart at the next keyframe that saw them, ShiftAnchorsOfOldest).
+  std::vector<int> AnchoredAtOldest() const;
+  void ShiftAnchorsOfOldest(const std::vector<int>& ids);
   /// A landmark's estimated variables ((ψ, ρ) or the world position) and its world position.
   Eigen::VectorXd LandmarkValue(const Track& t) const;
   Vec2d Position(const std::deque<KeyframeState>& frames, const Track& t) const;

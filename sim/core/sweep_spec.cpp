@@ -14,17 +14,6 @@
 namespace formsim::sim {
 namespace {
 
-std::vector<std::string> Split(const std::string& s, char sep) {
-  std::vector<std::string> out;
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t at = s.find(sep, start);
-    out.push_back(s.substr(start, at == std::string::npos ? std::string::npos : at - start));
-    if (at == std::string::npos) return out;
-    start = at + 1;
-  }
-}
-
 // A computed design value rounded to 12 significant digits, so ranges read as 0.15, not
 // 0.15000000000000002 (a change far below anything a sweep resolves).
 double Tidy(double v) {
@@ -224,6 +213,17 @@ void SweepDefinition::Finish() {
   id = Sha256Hex(what);
 }
 
+std::vector<std::string> SplitAt(const std::string& text, char sep) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t at = text.find(sep, start);
+    out.push_back(text.substr(start, at == std::string::npos ? std::string::npos : at - start));
+    if (at == std::string::npos) return out;
+    start = at + 1;
+  }
+}
+
 std::vector<std::uint64_t> ParseSeeds(const std::string& text, const std::string& flag) {
   auto fail = [&](const std::string& why) -> std::runtime_error {
     return std::runtime_error(flag + " '" + text + "': " + why);
@@ -235,7 +235,7 @@ std::vector<std::uint64_t> ParseSeeds(const std::string& text, const std::string
     if (out.size() >= 1000000) throw fail("more than 1000000 seeds");
     out.push_back(s);
   };
-  for (const std::string& part : Split(text, ',')) {
+  for (const std::string& part : SplitAt(text, ',')) {
     const std::size_t dots = part.find("..");
     std::uint64_t a = 0, b = 0;
     if (dots == std::string::npos) {
@@ -332,7 +332,7 @@ SweepDefinition DefineSweep(const ScenarioSource& source, const std::vector<Over
     b.axis.kind = p->kind;
     b.axis.choices =
         p->kind == Param::Kind::kBool ? std::vector<std::string>{"false", "true"} : p->choices;
-    const std::vector<std::string> parts = Split(spec, ':');
+    const std::vector<std::string> parts = SplitAt(spec, ':');
     if (parts[0] == "random") {
       double lo = 0, hi = 0;
       const std::size_t n = b.Random(parts, &lo, &hi);
@@ -354,7 +354,7 @@ SweepDefinition DefineSweep(const ScenarioSource& source, const std::vector<Over
     } else if (spec == "all" && b.axis.categorical()) {
       for (const std::string& c : b.axis.choices) b.Add(c);
     } else {
-      for (const std::string& v : Split(spec, ',')) {
+      for (const std::string& v : SplitAt(spec, ',')) {
         if (v.empty()) b.Fail("empty value in the list '" + spec + "'");
         b.Add(v);
       }

@@ -66,6 +66,10 @@ struct SweepDefinition {
   void Finish();
 };
 
+/// `text` cut at every `sep` ("a,,b" -> "a", "", "b"; "" -> one empty piece): the lists of
+/// --vary, --seeds, --tables and metric paths.
+std::vector<std::string> SplitAt(const std::string& text, char sep);
+
 /// "1..20", "1,2,5", "3" or mixtures ("1..5,9"); seeds are 0 ... 2^64-1, no duplicates. Throws
 /// std::runtime_error naming `flag`.
 std::vector<std::uint64_t> ParseSeeds(const std::string& text, const std::string& flag = "--seeds");

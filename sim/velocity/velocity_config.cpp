@@ -179,10 +179,12 @@ void ReadEstimator(YamlReader& m, EstimatorSettings& e) {
       m.Integer("keyframe_every", e.keyframe_every,
                 Tune("frames per keyframe").In(1, 1000).Slider(1, 20).Group(gw).OnReset());
   w.landmarks = static_cast<cv::LandmarkParam>(
-      m.Pick("landmarks", {"inverse_depth", "world_point"}, static_cast<int>(w.landmarks),
-             Tune("landmark parameterisation").Group(gw).OnReset()));
+      m.Pick("landmarks", {"inverse_depth", "world_point", "inverse_depth_1d"},
+             static_cast<int>(w.landmarks), Tune("landmark parameterisation").Group(gw).OnReset()));
   w.max_iterations = m.Int("max_iterations", w.max_iterations, Tune().In(1, 1000));
-  w.use_nonholonomic = m.Bool("nonholonomic", w.use_nonholonomic);
+  // The no-side-slip constraint is ours (the paper has none): switchable to measure its effect.
+  w.use_nonholonomic =
+      m.Flag("nonholonomic", w.use_nonholonomic, Tune("no-side-slip constraint (ours)").Group(gw));
   e.vi_baseline = m.Bool("vi_baseline", e.vi_baseline);
   m.Finish();
 }

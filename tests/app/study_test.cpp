@@ -396,17 +396,9 @@ TEST(TuneCli, BadInputNamesTheFlag) {
 
 // --- figures, on pixels -------------------------------------------------------------------
 
-struct Rgb {
-  int r, g, b;
-};
-Rgb At(const std::vector<std::uint8_t>& px, int w, float x, float y) {
-  const std::size_t i = (static_cast<std::size_t>(y) * w + static_cast<std::size_t>(x)) * 4;
-  return {px[i], px[i + 1], px[i + 2]};
-}
-double Distance(Rgb a, sim::Color c) {
-  const double dr = a.r - 255.0 * c.r, dg = a.g - 255.0 * c.g, db = a.b - 255.0 * c.b;
-  return std::sqrt(dr * dr + dg * dg + db * db);
-}
+using testing::At;
+using testing::Distance;
+using testing::Rgb;
 
 // Records with metric m = a given function of the point, for figure tests.
 std::vector<sim::SweepRecord> FakeRecords(

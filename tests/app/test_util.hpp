@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/core/draw.hpp"
 #include "sim/core/param_table.hpp"
 #include "sim/core/scenario_files.hpp"
 
@@ -109,6 +111,21 @@ inline double NonBackgroundFraction(const std::vector<std::uint8_t>& rgba) {
   std::size_t other = 0;
   for (std::uint32_t p : px) other += p != bg;
   return static_cast<double>(other) / px.size();
+}
+
+/// One pixel's colour, 0-255 per channel.
+struct Rgb {
+  int r, g, b;
+};
+/// The pixel at logical (x, y) of an RGBA image `w` pixels wide.
+inline Rgb At(const std::vector<std::uint8_t>& px, int w, float x, float y) {
+  const std::size_t i = (static_cast<std::size_t>(y) * w + static_cast<std::size_t>(x)) * 4;
+  return {px[i], px[i + 1], px[i + 2]};
+}
+/// Euclidean distance in 0-255 units between a pixel and a colour.
+inline double Distance(Rgb a, sim::Color c) {
+  const double dr = a.r - 255.0 * c.r, dg = a.g - 255.0 * c.g, db = a.b - 255.0 * c.b;
+  return std::sqrt(dr * dr + dg * dg + db * db);
 }
 
 }  // namespace formsim::app::testing

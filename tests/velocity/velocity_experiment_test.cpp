@@ -63,12 +63,15 @@ TEST(VelocityExperiment, EveryScenarioLoadsAndRuns) {
   for (const auto& entry : std::filesystem::directory_iterator(kScenarios)) {
     const std::string stem = entry.path().filename().string();
     if (stem.rfind("velocity_", 0) != 0) continue;
-    // Each scenario with either landmark parameterisation.
-    auto world_points = RunToEnd(LoadExperiment(
-        entry.path().string(), {"duration=1.5", "estimator.landmarks=world_point"}));
-    for (int i = 0; i < Vel(world_points).robot_count(); ++i) {
-      EXPECT_GT(Vel(world_points).unit(i).updates, 3) << stem;
-      EXPECT_EQ(Vel(world_points).unit(i).faults, 0) << stem;
+    // Each scenario with every landmark parameterisation, and without the side-slip constraint.
+    for (const char* set :
+         {"estimator.landmarks=world_point", "estimator.landmarks=inverse_depth_1d",
+          "estimator.nonholonomic=false"}) {
+      auto other = RunToEnd(LoadExperiment(entry.path().string(), {"duration=1.5", set}));
+      for (int i = 0; i < Vel(other).robot_count(); ++i) {
+        EXPECT_GT(Vel(other).unit(i).updates, 3) << stem << " " << set;
+        EXPECT_EQ(Vel(other).unit(i).faults, 0) << stem << " " << set;
+      }
     }
     auto exp = RunToEnd(LoadExperiment(entry.path().string(), {"duration=1.5"}));
     EXPECT_EQ(exp->setup().type, "velocity") << stem;
@@ -344,10 +347,11 @@ TEST(VelocityExperiment, TunablesAreYamlPathsWithTheirDeclarations) {
                           "estimator.min_parallax_deg",
                           "estimator.window_size",
                           "estimator.keyframe_every",
-                          "estimator.landmarks"})
+                          "estimator.landmarks",
+                          "estimator.nonholonomic"})
     ASSERT_NE(p.Find(key), nullptr) << key;
   EXPECT_EQ(p.size(),
-            40u);  // the 35 above and the friction and terrain of gravel, asphalt μ and rr
+            41u);  // the 36 above and the friction and terrain of gravel, asphalt μ and rr
   EXPECT_EQ(p.Find("estimator.landmarks")->Text(), "inverse_depth");
   for (const char* key : {"estimator.window_size", "estimator.keyframe_every",
                           "estimator.landmarks", "patches.gravel.friction"})
