@@ -31,18 +31,32 @@ void CopyString(char* dst, std::size_t n, const std::string& s) {
   std::snprintf(dst, n, "%s", s.c_str());
 }
 
+// What the scenario list offers: the shipped scenarios, then the lessons.
+std::vector<std::string> ShippedAndLessons() {
+  std::vector<std::string> out = sim::ShippedScenarios();
+  for (std::string& f : sim::ShippedLessons()) out.push_back(std::move(f));
+  return out;
+}
+
+// A list entry's name: its stem, lessons marked as such.
+std::string ListName(const std::string& file) {
+  const fs::path p(file);
+  const std::string stem = p.stem().string();
+  return p.parent_path().filename() == "lessons" ? "lesson: " + stem : stem;
+}
+
 }  // namespace
 
 AppUi::AppUi(std::unique_ptr<sim::Session> session) : owned_(std::move(session)) {
   session_ = owned_.get();
-  shipped_ = sim::ShippedScenarios();
+  shipped_ = ShippedAndLessons();
   SyncScenarioFields();
   StartRecording(session_->cli_overrides(), 0);
   LoadHistoryFor(session_->file());
 }
 
 AppUi::AppUi(sim::Session& borrowed) : session_(&borrowed) {
-  shipped_ = sim::ShippedScenarios();
+  shipped_ = ShippedAndLessons();
   SyncScenarioFields();
   StartRecording(session_->cli_overrides(), 0);
   LoadHistoryFor(session_->file());
@@ -66,6 +80,8 @@ void AppUi::SetStatus(const std::string& message, bool error) {
 // Per-scenario fields of the interface, after a load or reload.
 void AppUi::SyncScenarioFields() {
   const std::string current = session_->file();
+  // The loaded file's entry, or none (-1) for a file of the user's.
+  shipped_index_ = -1;
   for (std::size_t i = 0; i < shipped_.size(); ++i)
     if (fs::path(shipped_[i]).filename() == fs::path(current).filename())
       shipped_index_ = static_cast<int>(i);
@@ -546,18 +562,19 @@ void AppUi::DrawScenarioSection() {
     ImGui::PopStyleColor();
   }
   if (!shipped_.empty()) {
-    const std::string preview = fs::path(shipped_[shipped_index_]).stem().string();
+    const std::string preview =
+        shipped_index_ >= 0 ? ListName(shipped_[shipped_index_]) : std::string("(a file of yours)");
     ImGui::SetNextItemWidth(-70);
     if (ImGui::BeginCombo("##shipped", preview.c_str())) {
       for (std::size_t i = 0; i < shipped_.size(); ++i) {
-        const std::string stem = fs::path(shipped_[i]).stem().string();
-        if (ImGui::Selectable(stem.c_str(), static_cast<int>(i) == shipped_index_))
+        const std::string name = ListName(shipped_[i]);
+        if (ImGui::Selectable(name.c_str(), static_cast<int>(i) == shipped_index_))
           shipped_index_ = static_cast<int>(i);
       }
       ImGui::EndCombo();
     }
     ImGui::SameLine();
-    if (ImGui::Button("Load")) CmdOpen(shipped_[shipped_index_]);
+    if (ImGui::Button("Load") && shipped_index_ >= 0) CmdOpen(shipped_[shipped_index_]);
   }
   ImGui::SetNextItemWidth(-70);
   ImGui::InputText("##open", state_.open_path, sizeof(state_.open_path));

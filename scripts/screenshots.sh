@@ -152,6 +152,20 @@ if command -v xvfb-run >/dev/null; then
     --set duration=16.3 --size 1600x900 --speed max --exit-after 202 --script "$TMP/lesson.txt" \
     >/dev/null
 fi
+# Large formations (issue 15): 100 robots mid-run and their first trajectories, 1000 robots after
+# their S-turns (robots drawn as dots at this scale, a subset of trails) with the errors of all
+# 1997 links, and the window with 1000 robots.
+run formation_swarm_100 --set duration=8 --out "$TMP/s100" --plots "$TMP/s100/plots" \
+  --snapshot "$OUT/swarm100_world.png"
+cp "$TMP/s100/plots/trajectories.png" "$OUT/swarm100_trajectories.png"
+run formation_swarm_1000 --out "$TMP/s1000" --plots "$TMP/s1000/plots" --whole-run \
+  --snapshot "$OUT/swarm1000_world.png"
+cp "$TMP/s1000/plots/distance_error_all.png" "$OUT/swarm1000_distance_error_all.png"
+if command -v xvfb-run >/dev/null; then
+  printf '298 screenshot screenshots/gui_swarm1000.png\n' >"$TMP/swarm.txt"
+  xvfb-run -a -s "-screen 0 1600x900x24" "$BIN" gui formation_swarm_1000 --size 1600x900 \
+    --speed max --exit-after 300 --script "$TMP/swarm.txt" >/dev/null
+fi
 # Teaching: the formation editor, overlays, presentation mode (README "Teaching").
 bash scripts/screenshots_teaching.sh "$BIN"
 ls -1 "$OUT"/*.png "$OUT"/*.svg
