@@ -503,8 +503,22 @@ PlotLayout DrawPlot(Canvas& cv, ImVec2 min, ImVec2 max, const PlotData& data, co
 
   // ---- title, grid, ticks, labels ----
   if (title_h > 0) {
-    const ImVec2 ts = TextSize(title_font, data.title);
-    Text(title_font, ImVec2(0.5f * (a.x + b.x) - ts.x / 2, min.y + pad), th.text, data.title);
+    // Centred over the data, kept inside the figure; a title wider than the figure is cut at a
+    // character boundary and ends in "...".
+    const float avail = std::max(0.0f, max.x - min.x - 2 * pad);
+    std::string title = data.title;
+    ImVec2 ts = TextSize(title_font, title);
+    if (ts.x > avail) {
+      while (!title.empty() && TextSize(title_font, title + "...").x > avail) {
+        while (!title.empty() && (static_cast<unsigned char>(title.back()) & 0xC0) == 0x80)
+          title.pop_back();  // UTF-8 continuation bytes, then their lead byte
+        if (!title.empty()) title.pop_back();
+      }
+      title += "...";
+      ts = TextSize(title_font, title);
+    }
+    const float x = std::max(min.x + pad, std::min(0.5f * (a.x + b.x) - ts.x / 2, max.x - pad - ts.x));
+    Text(title_font, ImVec2(x, min.y + pad), th.text, title);
   }
   // Grid and ticks as 1-px rectangles on whole pixels (sharp on screen and in PNGs).
   auto px_col = [&](double v) { return std::floor(X(v)); };

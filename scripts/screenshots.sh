@@ -120,14 +120,14 @@ SCRIPT
 SCRIPT
   xvfb-run -a -s "-screen 0 1920x1080x24" "$BIN" gui formation_traj2_ukf --size 1920x1000 \
     --speed max --exit-after 192 --script "$TMP/history.txt" >/dev/null
-  # Monte Carlo in the window: the AGV over 20 seeds, bands on every time plot.
+  # Monte Carlo in the window: the UKF cascade over 20 seeds, bands on every time plot.
   cat >"$TMP/montecarlo.txt" <<'SCRIPT'
 2 seeds 20
 3 wait
 30 screenshot screenshots/tuning_montecarlo.png
 SCRIPT
-  xvfb-run -a -s "-screen 0 1600x900x24" "$BIN" gui agv_fused --size 1600x900 --speed max \
-    --exit-after 32 --script "$TMP/montecarlo.txt" >/dev/null
+  xvfb-run -a -s "-screen 0 1600x900x24" "$BIN" gui formation_traj2_ukf --size 1600x900 \
+    --speed max --exit-after 32 --script "$TMP/montecarlo.txt" >/dev/null
 else
   echo "screenshots: xvfb-run not installed, GUI screenshot skipped" >&2
 fi
