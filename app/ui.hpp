@@ -133,6 +133,8 @@ class AppUi {
   std::string CmdUnpinAll();
   /// Edits the settings of history row `number` back in (seed into the seed field).
   std::string CmdRestore(int number);
+  /// History row `number`; null when there is none, with the reason in `why` and the status.
+  const sim::HistoryRow* HistoryRowOrRefuse(const std::string& action, int number, std::string* why);
   /// Pins history row `number` (replayed exactly from its log).
   std::string CmdPinRow(int number);
   /// Runs the current settings over seeds 1..n in the background (as `formsim sweep`).

@@ -61,13 +61,20 @@ void AppUi::LoadHistoryFor(const std::string& file) {
   }
 }
 
-std::string AppUi::CmdRestore(int number) {
+const sim::HistoryRow* AppUi::HistoryRowOrRefuse(const std::string& action, int number,
+                                                 std::string* why) {
   const sim::HistoryRow* row = history_.Find(number);
   if (row == nullptr) {
-    const std::string why = "restore: no history row " + std::to_string(number);
-    SetStatus(why, true);
-    return why;
+    *why = action + ": no history row " + std::to_string(number);
+    SetStatus(*why, true);
   }
+  return row;
+}
+
+std::string AppUi::CmdRestore(int number) {
+  std::string why;
+  const sim::HistoryRow* row = HistoryRowOrRefuse("restore", number, &why);
+  if (row == nullptr) return why;
   const sim::HistoryRow r = *row;  // edits below may not touch the history, but be safe
   const sim::ParamTable& text = TextParams(*r.source);
   int edits = 0;

@@ -61,12 +61,9 @@ std::string AppUi::CmdPin() {
 }
 
 std::string AppUi::CmdPinRow(int number) {
-  const sim::HistoryRow* row = history_.Find(number);
-  if (row == nullptr) {
-    const std::string why = "pin-row: no history row " + std::to_string(number);
-    SetStatus(why, true);
-    return why;
-  }
+  std::string missing;
+  const sim::HistoryRow* row = HistoryRowOrRefuse("pin-row", number, &missing);
+  if (row == nullptr) return missing;
   if (row->source->sha256() != session_->source().sha256() &&
       sim::ParseScenario(*row->source, {}).setup.type != session_->exp().setup().type) {
     const std::string why =
