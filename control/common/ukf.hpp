@@ -71,8 +71,17 @@ inline UkfScaling DefaultUkfScaling(int n) {
 /// Lower Cholesky factor L of a small symmetric matrix A (A = L Lᵀ), plain loops that the
 /// compiler unrolls for fixed sizes. Returns false when A is not positive definite (a pivot
 /// ≤ 0 or NaN), like Eigen::LLT's info().
+// The small factorisations and solves are inlined into each filter step so that their operands
+// stay in registers (called through memory, the solve's results were reloaded before the stores
+// had completed, which stalls store forwarding).
+#if defined(__GNUC__)
+#define FORMSIM_UKF_INLINE inline __attribute__((always_inline))
+#else
+#define FORMSIM_UKF_INLINE inline
+#endif
+
 template <int K>
-bool CholeskyLower(const Eigen::Matrix<double, K, K>& A, Eigen::Matrix<double, K, K>& L) {
+FORMSIM_UKF_INLINE bool CholeskyLower(const Eigen::Matrix<double, K, K>& A, Eigen::Matrix<double, K, K>& L) {
   L.setZero();
   for (int j = 0; j < K; ++j) {
     double d = A(j, j);
@@ -91,7 +100,7 @@ bool CholeskyLower(const Eigen::Matrix<double, K, K>& A, Eigen::Matrix<double, K
 
 /// Solves L Lᵀ x = b in place with a lower Cholesky factor.
 template <int K>
-void CholeskySolveInPlace(const Eigen::Matrix<double, K, K>& L, Eigen::Matrix<double, K, 1>& b) {
+FORMSIM_UKF_INLINE void CholeskySolveInPlace(const Eigen::Matrix<double, K, K>& L, Eigen::Matrix<double, K, 1>& b) {
   double inv[K];
   for (int i = 0; i < K; ++i) inv[i] = 1.0 / L(i, i);
   for (int i = 0; i < K; ++i) {
@@ -175,7 +184,7 @@ class Ukf {
       if (!p.allFinite()) return UkfStatus::kNonFinite;
     const State mean = MeanState(out);
     Cov P = Q;
-    for (int i = 0; i < kSigma; ++i) AddOuter(P, wc_[i], StateDiff(out[i], mean));
+    AddSpread(P, out, mean);
     Symmetrize(P);
     return Accept(mean, P);
   }
@@ -289,12 +298,27 @@ class Ukf {
     flags.fill(false);
     for (int i : idx) flags[i] = true;
   }
-  // P += w d dᵀ (lower triangle; Symmetrize mirrors it).
-  static void AddOuter(Cov& P, double w, const State& d) {
-    for (int c = 0; c < N; ++c) {
-      const double wd = w * d(c);
-      for (int r = c; r < N; ++r) P(r, c) += wd * d(r);
+  // P += Σᵢ wcᵢ dᵢ dᵢᵀ with dᵢ = ptsᵢ − mean (angles wrapped), lower triangle (Symmetrize
+  // mirrors it), point by point in scalars: with each dᵢ in a vector on the stack the compiler
+  // reloaded two just-stored doubles as one, which stalls store forwarding (12% of the paper
+  // scenario's time went to that one load).
+  void AddSpread(Cov& P, const SigmaSet& pts, const State& mean) const {
+    double acc[N][N];
+    for (int c = 0; c < N; ++c)
+      for (int r = c; r < N; ++r) acc[r][c] = P(r, c);
+    for (int i = 0; i < kSigma; ++i) {
+      double d[N];
+      for (int k = 0; k < N; ++k) {
+        const double v = pts[i](k) - mean(k);
+        d[k] = angle_state_[k] ? WrapToPi(v) : v;
+      }
+      for (int c = 0; c < N; ++c) {
+        const double wd = wc_[i] * d[c];
+        for (int r = c; r < N; ++r) acc[r][c] += wd * d[r];
+      }
     }
+    for (int c = 0; c < N; ++c)
+      for (int r = c; r < N; ++r) P(r, c) = acc[r][c];
   }
   template <int K>
   static void Symmetrize(Eigen::Matrix<double, K, K>& A) {
@@ -361,13 +385,15 @@ class Ukf {
     for (std::size_t c = 0; c < D; ++c) {
       if (!angle[c]) continue;
       const double ref = pts[0](c);
+      double dev[K], sn[K], cs[K];
+      for (std::size_t i = 0; i < K; ++i) dev[i] = WrapToPi(pts[i](c) - ref);
+      SinCosSmallAll(dev, sn, cs);
       double s = 0.0, co = 0.0;
       for (std::size_t i = 0; i < K; ++i) {
-        const SinCos e = SinCosSmall(WrapToPi(pts[i](c) - ref));
-        s += wm_[i] * e.s;
-        co += wm_[i] * e.c;
+        s += wm_[i] * sn[i];
+        co += wm_[i] * cs[i];
       }
-      mean(c) = WrapToPi(ref + std::atan2(s, co));
+      mean(c) = WrapToPi(ref + Atan2NearAxis(s, co));
     }
     return mean;
   }

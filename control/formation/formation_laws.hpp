@@ -84,8 +84,8 @@ inline LLPrepared PrepareLL(const LinkState& s1, const LinkState& s2, double l1_
   LLPrepared r;
   r.e1 = -gains.k1 * (s1.l - l1_des);
   r.e2 = -gains.k2 * (s2.l - l2_des);
-  r.cp1 = std::cos(s1.phi);
-  r.cp2 = std::cos(s2.phi);
+  r.cp1 = SinCosOf(s1.phi).c;
+  r.cp2 = SinCosOf(s2.phi).c;
   // Unit-free matrix B = A diag(1, 1/L) acting on u' = [v, Lω]; det B = sin(g2 − g1).
   const SinCos g1 = SinCosOf(s1.gamma()), g2 = SinCosOf(s2.gamma());
   r.a = g1.c, r.b = g1.s, r.c = g2.c, r.d = g2.s;

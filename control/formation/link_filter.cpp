@@ -32,11 +32,17 @@ class LinkUkf final : public LinkFilter {
         return Eigen::Vector3d(s(0) + Tc * r.l_dot, s(1) + Tc * r.phi_dot, s(2) + Tc * r.alpha_dot);
       };
       out[0] = propagate(m, phi0, gamma0);
+      // The six offsets' sines and cosines in one vectorised pass: [0, 3) of φ, [3, 6) of γ.
+      double off[6], sn[6], cs[6];
       for (int j = 0; j < 3; ++j) {
         const Eigen::Vector3d& plus = pts[1 + j];
-        const SinCos dphi = SinCosSmall(plus(1) - m(1));
-        const SinCos dgamma = SinCosSmall((plus(1) + plus(2)) - (m(1) + m(2)));
-        out[1 + j] = propagate(plus, AddAngles(phi0, dphi), AddAngles(gamma0, dgamma));
+        off[j] = plus(1) - m(1);
+        off[3 + j] = (plus(1) + plus(2)) - (m(1) + m(2));
+      }
+      SinCosSmallAll(off, sn, cs);
+      for (int j = 0; j < 3; ++j) {
+        const SinCos dphi{sn[j], cs[j]}, dgamma{sn[3 + j], cs[3 + j]};
+        out[1 + j] = propagate(pts[1 + j], AddAngles(phi0, dphi), AddAngles(gamma0, dgamma));
         out[4 + j] = propagate(pts[4 + j], SubAngles(phi0, dphi), SubAngles(gamma0, dgamma));
       }
     };

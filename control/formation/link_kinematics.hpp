@@ -50,7 +50,8 @@ struct LinkRates {
 
 /// Control point of a follower: p + L (cosθ, sinθ).
 inline Vec2 ControlPoint(const Pose2& follower, double L) {
-  return {follower.x + L * std::cos(follower.theta), follower.y + L * std::sin(follower.theta)};
+  const SinCos t = SinCosOf(follower.theta);
+  return {follower.x + L * t.c, follower.y + L * t.s};
 }
 
 /// The true link state from two poses, under the chosen bearing convention. φ and α are wrapped
@@ -60,7 +61,7 @@ inline LinkState ComputeLinkState(const Pose2& leader, const Pose2& follower, do
   const Vec2 m = ControlPoint(follower, L);
   const double rx = m.x - leader.x, ry = m.y - leader.y;
   LinkState s;
-  s.l = std::hypot(rx, ry);
+  s.l = std::sqrt(rx * rx + ry * ry);  // no overflow or underflow at robot distances
   if (convention == BearingConvention::kDas) {
     s.phi = WrapToPi(std::atan2(ry, rx) - leader.theta);
   } else {
@@ -92,8 +93,8 @@ inline LinkRates LinkDerivative(const LinkState& s, const Twist& leader, const T
 /// sinθ_j).
 inline Pose2 FollowerPoseFromLink(const Pose2& leader, const LinkState& s, double L) {
   const double b = leader.theta + s.phi, th = leader.theta - s.alpha;
-  return {leader.x + s.l * std::cos(b) - L * std::cos(th),
-          leader.y + s.l * std::sin(b) - L * std::sin(th), WrapToPi(th)};
+  const SinCos sb = SinCosOf(b), st = SinCosOf(th);
+  return {leader.x + s.l * sb.c - L * st.c, leader.y + s.l * sb.s - L * st.s, WrapToPi(th)};
 }
 
 /// Jacobian ∂(x_j, y_j)/∂(l, φ, α) of FollowerPoseFromLink (for mapping a link covariance to a

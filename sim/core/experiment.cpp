@@ -22,6 +22,10 @@ void Experiment::SetThreads(int threads) {
 Experiment::~Experiment() = default;
 
 void Experiment::Start() {
+  // Row 0, one every record_every steps, and the last (a run may end between two).
+  const double steps = std::ceil(setup_.duration / setup_.dt - 0.5);
+  if (steps > 0 && steps < 1e12)
+    recorder_.ExpectRows(static_cast<std::size_t>(steps) / static_cast<std::size_t>(std::max(1, setup_.record_every)) + 2);
   Sense(0.0);
   recorder_.Sample();
 }
@@ -80,6 +84,7 @@ bool Experiment::CheckRobots() {
 void Experiment::CheckRow() {
   // The row just sampled (the bounded history may not keep it).
   const std::vector<double>& row = recorder_.last_sample();
+  if (AllFiniteOrNotSampled(row.data(), row.size())) return;
   for (std::size_t c = 0; c < row.size(); ++c) {
     const double v = row[c];
     if (std::isfinite(v) || IsNotSampled(v)) continue;

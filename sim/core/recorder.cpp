@@ -19,7 +19,6 @@
 namespace formsim::sim {
 
 namespace {
-constexpr std::uint64_t kNotSampledBits = 0x7ff80000'5e1f0001ULL;  // quiet NaN, own payload
 // Rows the background writer holds at most (the simulation waits when they are all taken).
 constexpr std::size_t kWriterSlots = 8;
 
@@ -32,16 +31,16 @@ void AppendCells(const double* v, std::size_t begin, std::size_t end, std::strin
 }
 }  // namespace
 
-double NotSampled() {
-  double v;
-  std::memcpy(&v, &kNotSampledBits, sizeof v);
-  return v;
-}
-
-bool IsNotSampled(double v) {
-  std::uint64_t bits;
-  std::memcpy(&bits, &v, sizeof v);
-  return bits == kNotSampledBits;
+bool AllFiniteOrNotSampled(const double* v, std::size_t n) {
+  // Not finite: all exponent bits set (infinity or NaN).
+  constexpr std::uint64_t kExponent = 0x7ff00000'00000000ULL;
+  std::uint64_t bad = 0;
+  for (std::size_t c = 0; c < n; ++c) {
+    std::uint64_t bits;
+    std::memcpy(&bits, v + c, sizeof bits);
+    bad |= static_cast<std::uint64_t>((bits & kExponent) == kExponent && bits != kNotSampledBits);
+  }
+  return bad == 0;
 }
 
 // Checked, buffered writing of one CSV file through a temporary name.
@@ -211,8 +210,19 @@ void Recorder::Sample() {
     stride_ *= 2;
     if ((sampled_ - 1) % stride_ != 0) return;
   }
+  if (data_.size() + n > data_.capacity()) Grow();
   data_.insert(data_.end(), scratch_.begin(), scratch_.end());
   ++rows_;
+}
+
+void Recorder::Grow() {
+  constexpr std::size_t kMaxReserve = std::size_t{256} << 20;  // bytes
+  const std::size_t n = names_.size();
+  std::size_t rows = expected_rows_;
+  if (limit_ > 0) rows = std::min(rows, limit_);
+  // Beyond the expected rows, or too many to reserve at once: the vector's own doubling.
+  if (rows <= rows_ || rows * n * sizeof(double) > kMaxReserve) return;
+  data_.reserve(rows * n);
 }
 
 void Recorder::SetHistoryLimit(std::size_t max_rows) { limit_ = max_rows < 2 && max_rows > 0 ? 2 : max_rows; }

@@ -5,7 +5,9 @@
 /// plots all read these rows.
 
 #include <cstddef>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <functional>
 #include <memory>
 #include <string>
@@ -16,11 +18,23 @@ namespace formsim::sim {
 
 class ThreadPool;
 
+/// Bits of NotSampled(): a quiet NaN with its own payload.
+constexpr std::uint64_t kNotSampledBits = 0x7ff80000'5e1f0001ULL;
 /// The value a channel returns when it has nothing to say in this row (an empty CSV cell). A
 /// NaN with its own payload, so that a NaN that was computed stays visible as `nan`.
-double NotSampled();
+inline double NotSampled() {
+  double v;
+  std::memcpy(&v, &kNotSampledBits, sizeof v);
+  return v;
+}
 /// True for exactly the NotSampled() bit pattern.
-bool IsNotSampled(double v);
+inline bool IsNotSampled(double v) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &v, sizeof v);
+  return bits == kNotSampledBits;
+}
+/// True when every value of v[0, n) is finite or NotSampled() (one branch-free pass).
+bool AllFiniteOrNotSampled(const double* v, std::size_t n);
 
 class Recorder {
  public:
@@ -62,8 +76,10 @@ class Recorder {
   void SetHistoryLimit(std::size_t max_rows);
   /// The row sampled last, whether the history kept it or not (for checks on every row).
   const std::vector<double>& last_sample() const { return scratch_; }
-  /// Makes room for `rows` rows of history, so sampling them allocates nothing.
-  void ReserveRows(std::size_t rows) { data_.reserve(rows * names_.size()); }
+  /// The rows the run will sample (its duration over the recording interval): the history
+  /// makes room for them (at most the history limit, at most 256 MB) when it first grows, so
+  /// it is neither copied as it grows nor its pages touched twice.
+  void ExpectRows(std::size_t rows) { expected_rows_ = rows; }
   /// Rows sampled since the start (kept in memory or not).
   std::size_t rows_sampled() const { return sampled_; }
   /// 1 while every sampled row is in memory; 2, 4, ... after decimation.
@@ -92,6 +108,8 @@ class Recorder {
   void AppendRow(std::string& line, std::size_t row) const;
   /// Stops the background writer after it wrote every row handed to it.
   void StopWriter();
+  /// Room for one more row of history (see ExpectRows).
+  void Grow();
   struct Group {
     int first = 0, count = 1;
     std::function<void(double*)> fill;
@@ -104,6 +122,7 @@ class Recorder {
   std::size_t sampled_ = 0;
   std::size_t limit_ = 0;   ///< rows kept in memory at most (0: all)
   std::size_t stride_ = 1;  ///< keep every stride-th sampled row
+  std::size_t expected_rows_ = 0;  ///< see ExpectRows
   std::vector<double> scratch_;  ///< the row being sampled
   std::string line_;             ///< its text when streaming on the caller's thread
   ThreadPool* pool_ = nullptr;

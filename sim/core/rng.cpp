@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "control/common/angle.hpp"
+
 namespace formsim::sim {
 
 double Rng::Normal() {
@@ -14,9 +16,10 @@ double Rng::Normal() {
   const double u2 = Uniform();
   const double r = std::sqrt(-2.0 * std::log(u1));
   const double a = 6.283185307179586476925 * u2;
-  cached_ = r * std::sin(a);
+  const control::SinCos sc = control::SinCosOf(a);
+  cached_ = r * sc.s;
   has_cached_ = true;
-  return r * std::cos(a);
+  return r * sc.c;
 }
 
 Rng Rng::Fork(std::uint64_t stream_id) const {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "control/common/angle.hpp"
 #include "sim/core/yaml_reader.hpp"
 
 namespace formsim::sim {
@@ -18,7 +19,8 @@ void UnicycleDrive::SetCommand(double v, double omega) {
 
 void UnicycleDrive::Apply(Robot& robot, World& world, double dt) {
   b2Body* body = robot.body();
-  const double a = body->GetAngle(), c = std::cos(a), s = std::sin(a);
+  const control::SinCos sc = control::SinCosOf(body->GetAngle());
+  const double c = sc.c, s = sc.s;
   // Forward and lateral speeds as Robot::forward_speed and lateral_speed compute them, from the
   // sine and cosine already at hand.
   const Vec2 vel = robot.world_velocity();
