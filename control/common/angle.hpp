@@ -17,8 +17,9 @@ constexpr double kPi = 3.14159265358979323846;
 
 /// Wraps an angle to (-pi, pi].
 inline double WrapToPi(double a) {
-  // In range already: exactly what std::remainder would return.
-  if (a > -kPi && a <= kPi) return a;
+  // In range already: exactly what std::remainder would return (±π itself goes on: π stays,
+  // −π becomes π).
+  if (std::abs(a) < kPi) return a;
   // One turn out: a ∓ 2π is exact there (Sterbenz), and is what std::remainder returns.
   if (a > kPi && a <= 3.0 * kPi) return a - 2.0 * kPi;
   if (a <= -kPi && a > -3.0 * kPi) return a + 2.0 * kPi;
@@ -54,6 +55,7 @@ constexpr double kSinCosReduced = 1.0e5;
 /// beyond |a| = kSinCosReduced and for NaN or infinity.
 inline SinCos SinCosOf(double a) {
   if (!(std::abs(a) <= kSinCosReduced)) return {std::sin(a), std::cos(a)};
+  if (a == 0.0) return {a, 1.0};  // keeps the sign of −0 (the polynomial would return +0)
   // k = a / (π/2) rounded to nearest (adding 1.5·2⁵² rounds in the default mode).
   constexpr double kTwoOverPi = 6.36619772367581382433e-01, kRound = 6755399441055744.0;
   const double k = (a * kTwoOverPi + kRound) - kRound;

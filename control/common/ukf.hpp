@@ -98,21 +98,32 @@ FORMSIM_UKF_INLINE bool CholeskyLower(const Eigen::Matrix<double, K, K>& A, Eige
   return true;
 }
 
+/// Solves L Lᵀ x = b in place with a lower Cholesky factor and the reciprocals of its diagonal
+/// (`inv`, shared by several solves with the same factor). The unknowns live in a local array
+/// that the compiler keeps in registers.
+template <int K>
+FORMSIM_UKF_INLINE void CholeskySolveInPlace(const Eigen::Matrix<double, K, K>& L, const double (&inv)[K],
+                                             Eigen::Matrix<double, K, 1>& b) {
+  double x[K];
+  for (int i = 0; i < K; ++i) {
+    double v = b(i);
+    for (int k = 0; k < i; ++k) v -= L(i, k) * x[k];
+    x[i] = v * inv[i];
+  }
+  for (int i = K - 1; i >= 0; --i) {
+    double v = x[i];
+    for (int k = i + 1; k < K; ++k) v -= L(k, i) * x[k];
+    x[i] = v * inv[i];
+  }
+  for (int i = 0; i < K; ++i) b(i) = x[i];
+}
+
 /// Solves L Lᵀ x = b in place with a lower Cholesky factor.
 template <int K>
 FORMSIM_UKF_INLINE void CholeskySolveInPlace(const Eigen::Matrix<double, K, K>& L, Eigen::Matrix<double, K, 1>& b) {
   double inv[K];
   for (int i = 0; i < K; ++i) inv[i] = 1.0 / L(i, i);
-  for (int i = 0; i < K; ++i) {
-    double v = b(i);
-    for (int k = 0; k < i; ++k) v -= L(i, k) * b(k);
-    b(i) = v * inv[i];
-  }
-  for (int i = K - 1; i >= 0; --i) {
-    double v = b(i);
-    for (int k = i + 1; k < K; ++k) v -= L(k, i) * b(k);
-    b(i) = v * inv[i];
-  }
+  CholeskySolveInPlace<K>(L, inv, b);
 }
 
 template <int N, int M>
@@ -139,6 +150,7 @@ class Ukf {
     wm_[0] = lambda_ / c;
     wc_[0] = wm_[0] + 1.0 - s.alpha * s.alpha + s.beta;
     for (int i = 1; i < kSigma; ++i) wm_[i] = wc_[i] = 0.5 / c;
+    sqrt_c_ = c > 0.0 ? std::sqrt(c) : 0.0;
   }
   const UkfScaling& scaling() const { return scaling_; }
   double lambda() const { return lambda_; }
@@ -157,6 +169,7 @@ class Ukf {
     P_ = P0;
     WrapState(x_);
     chol_valid_ = false;
+    pd_known_ = false;
   }
 
   /// Time update (eq. 13-15): propagates the sigma points through `f` (State -> State) and adds
@@ -186,7 +199,8 @@ class Ukf {
     Cov P = Q;
     AddSpread(P, out, mean);
     Symmetrize(P);
-    return Accept(mean, P);
+    // Only checked here: the closed-form update that usually follows needs no factor.
+    return Accept(mean, P, /*factor=*/false);
   }
 
   /// Measurement update (eq. 16-21) with measurement function `h` (State -> Meas) and noise R.
@@ -231,7 +245,7 @@ class Ukf {
           },
           R);
     // The sigma-point update would fail here when (n+λ)P is not positive definite.
-    if (!chol_valid_) {
+    if (!pd_known_) {
       Cov L;
       if (!CholeskyLower<N>(P_, L)) return UkfStatus::kNotPositiveDefinite;
       Factored(L);
@@ -277,11 +291,17 @@ class Ukf {
  private:
   // The sigma points of (x, P), from the Cholesky factor of P kept by the last step when there
   // is one ((n+λ)P = (√(n+λ) L)(√(n+λ) L)ᵀ).
-  UkfStatus CurrentSigmaPoints(SigmaSet& pts) const {
-    if (!chol_valid_) return SigmaPoints(x_, P_, pts);
+  UkfStatus CurrentSigmaPoints(SigmaSet& pts) {
+    if (!chol_valid_ && !pd_known_) return SigmaPoints(x_, P_, pts);
     const double c = N + lambda_;
     if (!(c > 0.0)) return UkfStatus::kNotPositiveDefinite;
-    const Cov S = std::sqrt(c) * chol_;
+    if (!chol_valid_) {
+      // A prediction checked P without factoring it.
+      Cov L;
+      if (!CholeskyLower<N>(P_, L)) return UkfStatus::kNotPositiveDefinite;
+      Factored(L);
+    }
+    const Cov S = sqrt_c_ * chol_;
     pts[0] = x_;
     for (int i = 0; i < N; ++i) {
       pts[1 + i] = x_ + S.col(i);
@@ -292,6 +312,25 @@ class Ukf {
   void Factored(const Cov& L) {
     chol_ = L;
     chol_valid_ = true;
+    pd_known_ = true;
+  }
+  // Positive definiteness without the factor: the leading principal minors up to 3×3 (no square
+  // root, no division: a Cholesky of a 3×3 is a chain of three of each), else a Cholesky.
+  static bool PositiveDefinite(const Cov& P) {
+    if constexpr (N == 1) {
+      return P(0, 0) > 0.0;
+    } else if constexpr (N == 2) {
+      return P(0, 0) > 0.0 && P(0, 0) * P(1, 1) - P(1, 0) * P(1, 0) > 0.0;
+    } else if constexpr (N == 3) {
+      const double m2 = P(0, 0) * P(1, 1) - P(1, 0) * P(1, 0);
+      const double m3 = P(0, 0) * (P(1, 1) * P(2, 2) - P(2, 1) * P(2, 1)) -
+                        P(1, 0) * (P(1, 0) * P(2, 2) - P(2, 1) * P(2, 0)) +
+                        P(2, 0) * (P(1, 0) * P(2, 1) - P(1, 1) * P(2, 0));
+      return P(0, 0) > 0.0 && m2 > 0.0 && m3 > 0.0;
+    } else {
+      Cov L;
+      return CholeskyLower<N>(P, L);
+    }
   }
   template <std::size_t K>
   static void SetFlags(std::array<bool, K>& flags, std::initializer_list<int> idx) {
@@ -303,6 +342,22 @@ class Ukf {
   // reloaded two just-stored doubles as one, which stalls store forwarding (12% of the paper
   // scenario's time went to that one load).
   void AddSpread(Cov& P, const SigmaSet& pts, const State& mean) const {
+    if constexpr (N == 3) {
+      // Six named sums: an array of them was packed in pairs and kept in memory.
+      double p00 = P(0, 0), p10 = P(1, 0), p20 = P(2, 0), p11 = P(1, 1), p21 = P(2, 1), p22 = P(2, 2);
+      for (int i = 0; i < kSigma; ++i) {
+        double d0 = pts[i](0) - mean(0), d1 = pts[i](1) - mean(1), d2 = pts[i](2) - mean(2);
+        if (angle_state_[0]) d0 = WrapToPi(d0);
+        if (angle_state_[1]) d1 = WrapToPi(d1);
+        if (angle_state_[2]) d2 = WrapToPi(d2);
+        const double w = wc_[i], wd0 = w * d0, wd1 = w * d1, wd2 = w * d2;
+        p00 += wd0 * d0, p10 += wd0 * d1, p20 += wd0 * d2;
+        p11 += wd1 * d1, p21 += wd1 * d2;
+        p22 += wd2 * d2;
+      }
+      P(0, 0) = p00, P(1, 0) = p10, P(2, 0) = p20, P(1, 1) = p11, P(2, 1) = p21, P(2, 2) = p22;
+      return;
+    }
     double acc[N][N];
     for (int c = 0; c < N; ++c)
       for (int r = c; r < N; ++r) acc[r][c] = P(r, c);
@@ -333,15 +388,17 @@ class Ukf {
     MeasCov Ly;
     if (!CholeskyLower<M>(Pyy, Ly)) return UkfStatus::kNotPositiveDefinite;
     // K = Psy Pyy⁻¹, row by row: Pyy kᵀ = (row of Psy)ᵀ.
+    double inv[M];
+    for (int i = 0; i < M; ++i) inv[i] = 1.0 / Ly(i, i);
     CrossCov K;
     for (int r = 0; r < N; ++r) {
       Meas row = Psy.row(r).transpose();
-      CholeskySolveInPlace<M>(Ly, row);
+      CholeskySolveInPlace<M>(Ly, inv, row);
       K.row(r) = row.transpose();
     }
     const Meas innovation = MeasDiff(z, y_mean);
     Meas w = innovation;
-    CholeskySolveInPlace<M>(Ly, w);
+    CholeskySolveInPlace<M>(Ly, inv, w);
     last_nis_ = innovation.dot(w);
     State x = x_ + K * innovation;
     Cov P = P_ - K * Pyy * K.transpose();
@@ -349,10 +406,19 @@ class Ukf {
     WrapState(x);
     return Accept(x, P);
   }
-  // The new state when it is finite and P positive definite (its factor is kept for the next
-  // sigma points); else a fault and nothing changes.
-  UkfStatus Accept(const State& x, const Cov& P) {
+  // The new state when it is finite and P positive definite (with `factor`, its Cholesky factor
+  // is kept for the next sigma points; else it is computed when they are needed); else a fault
+  // and nothing changes.
+  UkfStatus Accept(const State& x, const Cov& P, bool factor = true) {
     if (!x.allFinite() || !P.allFinite()) return UkfStatus::kNonFinite;
+    if (!factor) {
+      if (!PositiveDefinite(P)) return UkfStatus::kNotPositiveDefinite;
+      x_ = x;
+      P_ = P;
+      chol_valid_ = false;
+      pd_known_ = true;
+      return UkfStatus::kOk;
+    }
     Cov L;
     if (!CholeskyLower<N>(P, L)) return UkfStatus::kNotPositiveDefinite;
     x_ = x;
@@ -402,6 +468,7 @@ class Ukf {
 
   UkfScaling scaling_;
   double lambda_ = 0.0;
+  double sqrt_c_ = 0.0;  ///< √(n+λ), the scale of the sigma points' columns
   std::array<double, kSigma> wm_{}, wc_{};
   std::array<bool, N> angle_state_{};
   std::array<bool, M> angle_meas_{};
@@ -409,6 +476,7 @@ class Ukf {
   Cov P_ = Cov::Identity();
   Cov chol_ = Cov::Identity();  ///< lower Cholesky factor of P_ when chol_valid_
   bool chol_valid_ = false;
+  bool pd_known_ = false;  ///< P_ is known positive definite (factored, or its minors checked)
   double last_nis_ = 0.0;
 };
 

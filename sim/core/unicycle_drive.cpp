@@ -8,15 +8,6 @@
 
 namespace formsim::sim {
 
-void UnicycleDrive::SetCommand(double v, double omega) {
-  if (!std::isfinite(v)) v = 0.0;
-  if (!std::isfinite(omega)) omega = 0.0;
-  v_cmd_ = std::clamp(v, -def_.v_max, def_.v_max);
-  w_cmd_ = std::clamp(omega, -def_.omega_max, def_.omega_max);
-  saturated_v_ = v_cmd_ != v;
-  saturated_omega_ = w_cmd_ != omega;
-}
-
 void UnicycleDrive::Apply(Robot& robot, World& world, double dt) {
   b2Body* body = robot.body();
   const control::SinCos sc = control::SinCosOf(body->GetAngle());

@@ -6,6 +6,8 @@
 ///    command in one step, limited together by the ground's friction μ·m·g (friction circle), so
 ///    the robot slides when asked for more than the ground gives.
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <string>
 
@@ -25,8 +27,17 @@ inline UnicycleDriveDef DefaultUnicycleDriveDef() { return UnicycleDriveDef{}; }
 class UnicycleDrive : public DriveModel {
  public:
   explicit UnicycleDrive(const UnicycleDriveDef& def) : def_(def) {}
-  /// The command for the next steps (clamped to the limits; the clamping is reported).
-  void SetCommand(double v, double omega);
+  /// The command for the next steps (clamped to the limits; the clamping is reported). Inline:
+  /// a caller reading the command back right away gets it from registers (loading it from the
+  /// two separate stores of an out-of-line call stalled store forwarding).
+  void SetCommand(double v, double omega) {
+    if (!std::isfinite(v)) v = 0.0;
+    if (!std::isfinite(omega)) omega = 0.0;
+    v_cmd_ = std::clamp(v, -def_.v_max, def_.v_max);
+    w_cmd_ = std::clamp(omega, -def_.omega_max, def_.omega_max);
+    saturated_v_ = v_cmd_ != v;
+    saturated_omega_ = w_cmd_ != omega;
+  }
   void Apply(Robot& robot, World& world, double dt) override;
   bool saturated() const override { return saturated_v_ || saturated_omega_ || slipping_; }
   bool saturated_v() const { return saturated_v_; }

@@ -108,13 +108,19 @@ class Robot {
  public:
   const std::string& name() const { return def_.name; }
   const RobotDef& def() const { return def_; }
-  /// True pose from the physics body.
-  Pose2 pose() const;
+  /// True pose from the physics body (inline: read many times a step).
+  Pose2 pose() const {
+    const b2Vec2 p = body_->GetPosition();
+    return {p.x, p.y, body_->GetAngle()};
+  }
   /// Velocity in the body frame: forward, lateral (left), yaw rate.
   double forward_speed() const;
   double lateral_speed() const;
-  double yaw_rate() const;
-  Vec2 world_velocity() const;
+  double yaw_rate() const { return body_->GetAngularVelocity(); }
+  Vec2 world_velocity() const {
+    const b2Vec2 v = body_->GetLinearVelocity();
+    return {v.x, v.y};
+  }
   b2Body* body() { return body_; }
   const b2Body* body() const { return body_; }
   double mass() const { return body_->GetMass(); }

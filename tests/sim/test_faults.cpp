@@ -4,12 +4,14 @@
 // fail leave no partial file.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "sim/core/bounded_history.hpp"
 #include "sim/core/json.hpp"
+#include "sim/core/recorder.hpp"
 #include "sim/core/run_output.hpp"
 #include "sim/core/scenario.hpp"
 #include "tests/sim/test_kind.hpp"
@@ -99,6 +101,20 @@ TEST(Recorder, StreamsEveryRowWhileKeepingABoundedHistory) {
   while (std::getline(in, line)) ++lines;
   EXPECT_EQ(lines, 2002u);
   EXPECT_FALSE(std::filesystem::exists(CsvPath(dir) + ".tmp"));
+}
+
+TEST(Recorder, FiniteCheckSeesEveryKindOfNonFiniteValueAndSkipsNotSampled) {
+  std::vector<double> row(37, 1.5);
+  row[3] = -0.0;
+  row[20] = NotSampled();
+  EXPECT_TRUE(AllFiniteOrNotSampled(row.data(), row.size()));
+  for (double bad : {std::nan(""), -std::nan(""), HUGE_VAL, -HUGE_VAL})
+    for (std::size_t at : {std::size_t{0}, std::size_t{19}, std::size_t{36}}) {
+      std::vector<double> r = row;
+      r[at] = bad;
+      EXPECT_FALSE(AllFiniteOrNotSampled(r.data(), r.size())) << bad << " at " << at;
+    }
+  EXPECT_TRUE(AllFiniteOrNotSampled(row.data(), 0));
 }
 
 TEST(Recorder, AFailedWriteLeavesNoFile) {
