@@ -34,10 +34,14 @@ inline double WrapTo2Pi(double a) {
 }
 
 /// Smallest signed difference a - b, in (-pi, pi].
-inline double AngleDiff(double a, double b) { return WrapToPi(a - b); }
+inline double AngleDiff(double a, double b) {
+  return WrapToPi(a - b);
+}
 
 /// Wraps `a` to the branch nearest to `reference` (a + 2k*pi closest to reference).
-inline double UnwrapNear(double a, double reference) { return reference + AngleDiff(a, reference); }
+inline double UnwrapNear(double a, double reference) {
+  return reference + AngleDiff(a, reference);
+}
 
 /// Sine and cosine of one angle.
 struct SinCos {
@@ -69,8 +73,8 @@ inline SinCos SinCosOf(double a) {
               (-1.66666666666666324348e-01 +
                z * (8.33333333332248946124e-03 +
                     z * (-1.98412698298579493134e-04 +
-                         z * (2.75573137070700676789e-06 +
-                              z * (-2.50507602534068634195e-08 + z * 1.58969099521155010221e-10)))));
+                         z * (2.75573137070700676789e-06 + z * (-2.50507602534068634195e-08 +
+                                                                z * 1.58969099521155010221e-10)))));
   const double cpoly =
       z * z *
       (4.16666666666666019037e-02 +
@@ -113,15 +117,14 @@ constexpr double kSmallAngle = 0.125;
 /// them over an array is vectorised).
 inline void SinCosSmallPoly(double a, double& s_out, double& c_out) {
   const double a2 = a * a;
-  s_out = a + a * a2 *
-                  (-1.0 / 6 +
-                   a2 * (1.0 / 120 +
-                         a2 * (-1.0 / 5040 + a2 * (1.0 / 362880 + a2 * (-1.0 / 39916800)))));
+  s_out =
+      a + a * a2 *
+              (-1.0 / 6 + a2 * (1.0 / 120 +
+                                a2 * (-1.0 / 5040 + a2 * (1.0 / 362880 + a2 * (-1.0 / 39916800)))));
   c_out = 1.0 +
-          a2 * (-0.5 +
-                a2 * (1.0 / 24 +
-                      a2 * (-1.0 / 720 +
-                            a2 * (1.0 / 40320 + a2 * (-1.0 / 3628800 + a2 * (1.0 / 479001600))))));
+          a2 * (-0.5 + a2 * (1.0 / 24 + a2 * (-1.0 / 720 +
+                                              a2 * (1.0 / 40320 + a2 * (-1.0 / 3628800 +
+                                                                        a2 * (1.0 / 479001600))))));
 }
 
 /// Sine and cosine of a small angle: Taylor polynomials to degree 11 / 12, whose truncation
@@ -156,15 +159,17 @@ inline void SinCosSmallAll(const double (&a)[K], double (&s)[K], double (&c)[K])
 inline double Atan2NearAxis(double y, double x) {
   if (!(x > 0.0 && std::abs(y) <= 0.4375 * x)) return std::atan2(y, x);
   const double t = y / x, z = t * t, w = z * z;
-  const double s1 = z * (3.33333333333329318027e-01 +
-                         w * (1.42857142725034663711e-01 +
-                              w * (9.09088713343650656196e-02 +
-                                   w * (6.66107313738753120669e-02 +
-                                        w * (4.97687799461593236017e-02 + w * 1.62858201153657823623e-02)))));
-  const double s2 = w * (-1.99999999998764832476e-01 +
-                         w * (-1.11111104054623557880e-01 +
-                              w * (-7.69187620504482999495e-02 +
-                                   w * (-5.83357013379057348645e-02 + w * -3.65315727442169155270e-02))));
+  const double s1 =
+      z * (3.33333333333329318027e-01 +
+           w * (1.42857142725034663711e-01 +
+                w * (9.09088713343650656196e-02 +
+                     w * (6.66107313738753120669e-02 +
+                          w * (4.97687799461593236017e-02 + w * 1.62858201153657823623e-02)))));
+  const double s2 =
+      w * (-1.99999999998764832476e-01 +
+           w * (-1.11111104054623557880e-01 +
+                w * (-7.69187620504482999495e-02 +
+                     w * (-5.83357013379057348645e-02 + w * -3.65315727442169155270e-02))));
   return t - t * (s1 + s2);
 }
 

@@ -81,7 +81,8 @@ inline UkfScaling DefaultUkfScaling(int n) {
 #endif
 
 template <int K>
-FORMSIM_UKF_INLINE bool CholeskyLower(const Eigen::Matrix<double, K, K>& A, Eigen::Matrix<double, K, K>& L) {
+FORMSIM_UKF_INLINE bool CholeskyLower(const Eigen::Matrix<double, K, K>& A,
+                                      Eigen::Matrix<double, K, K>& L) {
   L.setZero();
   for (int j = 0; j < K; ++j) {
     double d = A(j, j);
@@ -102,7 +103,8 @@ FORMSIM_UKF_INLINE bool CholeskyLower(const Eigen::Matrix<double, K, K>& A, Eige
 /// (`inv`, shared by several solves with the same factor). The unknowns live in a local array
 /// that the compiler keeps in registers.
 template <int K>
-FORMSIM_UKF_INLINE void CholeskySolveInPlace(const Eigen::Matrix<double, K, K>& L, const double (&inv)[K],
+FORMSIM_UKF_INLINE void CholeskySolveInPlace(const Eigen::Matrix<double, K, K>& L,
+                                             const double (&inv)[K],
                                              Eigen::Matrix<double, K, 1>& b) {
   double x[K];
   for (int i = 0; i < K; ++i) {
@@ -120,7 +122,8 @@ FORMSIM_UKF_INLINE void CholeskySolveInPlace(const Eigen::Matrix<double, K, K>& 
 
 /// Solves L Lᵀ x = b in place with a lower Cholesky factor.
 template <int K>
-FORMSIM_UKF_INLINE void CholeskySolveInPlace(const Eigen::Matrix<double, K, K>& L, Eigen::Matrix<double, K, 1>& b) {
+FORMSIM_UKF_INLINE void CholeskySolveInPlace(const Eigen::Matrix<double, K, K>& L,
+                                             Eigen::Matrix<double, K, 1>& b) {
   double inv[K];
   for (int i = 0; i < K; ++i) inv[i] = 1.0 / L(i, i);
   CholeskySolveInPlace<K>(L, inv, b);
@@ -234,7 +237,8 @@ class Ukf {
     bool exact = c > 0.0;
     for (int k = 0; k < N && exact; ++k) exact = !angle_state_[k] || c * P_(k, k) < 9.0;
     for (int k = 0; k < M && exact; ++k)
-      exact = angle_meas_[k] == angle_state_[idx[k]] && (!angle_meas_[k] || P_(idx[k], idx[k]) < 1.0);
+      exact =
+          angle_meas_[k] == angle_state_[idx[k]] && (!angle_meas_[k] || P_(idx[k], idx[k]) < 1.0);
     if (!exact)
       return Update(
           z,
@@ -291,7 +295,7 @@ class Ukf {
  private:
   // The sigma points of (x, P), from the Cholesky factor of P kept by the last step when there
   // is one ((n+λ)P = (√(n+λ) L)(√(n+λ) L)ᵀ).
-  UkfStatus CurrentSigmaPoints(SigmaSet& pts) {
+  FORMSIM_UKF_INLINE UkfStatus CurrentSigmaPoints(SigmaSet& pts) {
     if (!chol_valid_ && !pd_known_) return SigmaPoints(x_, P_, pts);
     const double c = N + lambda_;
     if (!(c > 0.0)) return UkfStatus::kNotPositiveDefinite;
@@ -344,7 +348,8 @@ class Ukf {
   void AddSpread(Cov& P, const SigmaSet& pts, const State& mean) const {
     if constexpr (N == 3) {
       // Six named sums: an array of them was packed in pairs and kept in memory.
-      double p00 = P(0, 0), p10 = P(1, 0), p20 = P(2, 0), p11 = P(1, 1), p21 = P(2, 1), p22 = P(2, 2);
+      double p00 = P(0, 0), p10 = P(1, 0), p20 = P(2, 0), p11 = P(1, 1), p21 = P(2, 1),
+             p22 = P(2, 2);
       for (int i = 0; i < kSigma; ++i) {
         double d0 = pts[i](0) - mean(0), d1 = pts[i](1) - mean(1), d2 = pts[i](2) - mean(2);
         if (angle_state_[0]) d0 = WrapToPi(d0);
@@ -445,7 +450,8 @@ class Ukf {
   // Weighted mean; angle components as the circular mean atan2(Σ w sin, Σ w cos), taken
   // around the first point so that the deviations are small.
   template <class Vec, std::size_t K, std::size_t D>
-  Vec Mean(const std::array<Vec, K>& pts, const std::array<bool, D>& angle) const {
+  FORMSIM_UKF_INLINE Vec Mean(const std::array<Vec, K>& pts,
+                              const std::array<bool, D>& angle) const {
     Vec mean = Vec::Zero();
     for (std::size_t i = 0; i < K; ++i) mean += wm_[i] * pts[i];
     for (std::size_t c = 0; c < D; ++c) {

@@ -1,17 +1,17 @@
 #include "sim/core/recorder.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <condition_variable>
 #include <cstdint>
-#include <cerrno>
-#include <cstring>
 #include <cstdio>
+#include <cstring>
 #include <mutex>
 #include <stdexcept>
 #include <thread>
-
-#include <unistd.h>
 
 #include "sim/core/number_format.hpp"
 #include "sim/core/thread_pool.hpp"
@@ -56,7 +56,8 @@ class Recorder::Stream {
  public:
   explicit Stream(const std::string& path) : path_(path), tmp_(path + ".tmp") {
     f_ = std::fopen(tmp_.c_str(), "wb");
-    if (f_ == nullptr) throw std::runtime_error("cannot write '" + tmp_ + "': " + std::strerror(errno));
+    if (f_ == nullptr)
+      throw std::runtime_error("cannot write '" + tmp_ + "': " + std::strerror(errno));
     std::setvbuf(f_, nullptr, _IOFBF, 1 << 20);
   }
   ~Stream() { Abandon(); }
@@ -166,7 +167,9 @@ class Recorder::Writer {
 };
 
 Recorder::Recorder() = default;
-Recorder::~Recorder() { StopWriter(); }
+Recorder::~Recorder() {
+  StopWriter();
+}
 
 int Recorder::Declare(const std::string& name) {
   if (rows_ > 0) throw std::logic_error("Recorder: column '" + name + "' declared after rows");
@@ -233,7 +236,9 @@ void Recorder::Grow() {
   data_.reserve(rows * n);
 }
 
-void Recorder::SetHistoryLimit(std::size_t max_rows) { limit_ = max_rows < 2 && max_rows > 0 ? 2 : max_rows; }
+void Recorder::SetHistoryLimit(std::size_t max_rows) {
+  limit_ = max_rows < 2 && max_rows > 0 ? 2 : max_rows;
+}
 
 void Recorder::AppendRow(std::string& line, std::size_t r) const {
   AppendCells(&data_[r * names_.size()], 0, names_.size(), line);
@@ -256,7 +261,8 @@ void Recorder::StreamTo(const std::string& path) {
     stream_.reset();
     throw std::runtime_error("cannot write '" + path + "': " + why);
   }
-  if (pool_ != nullptr && pool_->threads() > 1) writer_ = std::make_unique<Writer>(*stream_, names_.size());
+  if (pool_ != nullptr && pool_->threads() > 1)
+    writer_ = std::make_unique<Writer>(*stream_, names_.size());
 }
 
 void Recorder::StopWriter() {

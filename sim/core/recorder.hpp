@@ -120,11 +120,11 @@ class Recorder {
   std::vector<double> data_;
   std::size_t rows_ = 0;
   std::size_t sampled_ = 0;
-  std::size_t limit_ = 0;   ///< rows kept in memory at most (0: all)
-  std::size_t stride_ = 1;  ///< keep every stride-th sampled row
+  std::size_t limit_ = 0;          ///< rows kept in memory at most (0: all)
+  std::size_t stride_ = 1;         ///< keep every stride-th sampled row
   std::size_t expected_rows_ = 0;  ///< see ExpectRows
-  std::vector<double> scratch_;  ///< the row being sampled
-  std::string line_;             ///< its text when streaming on the caller's thread
+  std::vector<double> scratch_;    ///< the row being sampled
+  std::string line_;               ///< its text when streaming on the caller's thread
   ThreadPool* pool_ = nullptr;
   std::unique_ptr<Stream> stream_;
   std::unique_ptr<Writer> writer_;  ///< formats and writes streamed rows in the background

@@ -17,12 +17,14 @@ namespace formsim::sim {
 
 struct UnicycleDriveDef {
   enum class Mode { kIdeal, kTraction } mode = Mode::kIdeal;
-  double v_max = 6.0;       ///< |v| limit, m/s
-  double omega_max = 12.0;  ///< |ω| limit, rad/s
+  double v_max = 6.0;                                          ///< |v| limit, m/s
+  double omega_max = 12.0;                                     ///< |ω| limit, rad/s
   double accel_max = std::numeric_limits<double>::infinity();  ///< |dv/dt| limit, m/s² (motors)
   double track_half_width = 0.06;  ///< wheel half-track for the yaw-torque friction limit, m
 };
-inline UnicycleDriveDef DefaultUnicycleDriveDef() { return UnicycleDriveDef{}; }
+inline UnicycleDriveDef DefaultUnicycleDriveDef() {
+  return UnicycleDriveDef{};
+}
 
 class UnicycleDrive : public DriveModel {
  public:

@@ -1,7 +1,8 @@
 #pragma once
 /// \file The Box2D world, top-down (no gravity), with robots, static obstacles and ground
 /// patches of their own friction. Definition structs with defaults, Box2D style:
-///   RobotDef def = DefaultRobotDef(); def.name = "R1"; def.pose = {0, 0, 0}; world.CreateRobot(def);
+///   RobotDef def = DefaultRobotDef(); def.name = "R1"; def.pose = {0, 0, 0};
+///   world.CreateRobot(def);
 
 #include <box2d/box2d.h>
 
@@ -32,7 +33,6 @@ inline constexpr double kMaxMass = 1e6;     ///< kg
 inline constexpr double kMaxFriction = 10;  ///< Coulomb μ
 }  // namespace world_limits
 
-
 /// How a robot turns commands into motion. Each robot kind supplies one (unicycle, Mecanum,
 /// differential drive with motors, steered vehicle). Apply() runs before every world step.
 class DriveModel {
@@ -55,19 +55,23 @@ struct RobotDef {
   int color_index = 0;        ///< palette entry
   bool collide_with_robots = true;
 };
-inline RobotDef DefaultRobotDef() { return RobotDef{}; }
+inline RobotDef DefaultRobotDef() {
+  return RobotDef{};
+}
 
 /// A static obstacle.
 struct ObstacleDef {
   std::string name = "obstacle";
   enum class Shape { kBox, kCircle, kPolygon, kWall } shape = Shape::kBox;
-  Pose2 pose;                    ///< centre and rotation (box, polygon), centre (circle)
+  Pose2 pose;  ///< centre and rotation (box, polygon), centre (circle)
   double half_x = 0.5, half_y = 0.5;
   double radius = 0.5;
   std::vector<Vec2> vertices;  ///< polygon (local frame, convex, <= 8) or wall polyline (world)
   double friction = 0.6;
 };
-inline ObstacleDef DefaultObstacleDef() { return ObstacleDef{}; }
+inline ObstacleDef DefaultObstacleDef() {
+  return ObstacleDef{};
+}
 
 /// A region of floor with its own friction coefficient (slippery zones, gravel, ...).
 struct PatchDef {
@@ -168,7 +172,8 @@ class World {
   /// First obstacle (and robot, if `include_robots`) hit along a ray, skipping `ignore`. A ray
   /// shorter than 1e-6 m or not finite hits nothing. Safe to call from several threads at once
   /// (it only reads the world).
-  RayHit RayCast(Vec2 from, Vec2 to, bool include_robots = false, const Robot* ignore = nullptr) const;
+  RayHit RayCast(Vec2 from, Vec2 to, bool include_robots = false,
+                 const Robot* ignore = nullptr) const;
 
   std::vector<std::unique_ptr<Robot>>& robots() { return robots_; }
   const std::vector<std::unique_ptr<Robot>>& robots() const { return robots_; }
@@ -205,7 +210,8 @@ class World {
 };
 
 /// Reads the shared scenario blocks into defs: `world:` (floor_friction), `obstacles:` and
-/// `patches:` lists. Defined in scenario_common.cpp. Declared here to keep one place for world setup.
+/// `patches:` lists. Defined in scenario_common.cpp. Declared here to keep one place for world
+/// setup.
 class YamlReader;
 /// `floor_friction` is a tunable (group "Floor"): live when `friction_live` (the kind applies
 /// world friction between steps), else on reset.

@@ -1,9 +1,10 @@
-#include "sim/core/number_format.hpp"
 #include "sim/formation/formation_experiment.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+
+#include "sim/core/number_format.hpp"
 
 namespace formsim::sim::formation {
 
@@ -23,7 +24,8 @@ constexpr std::size_t kAgentsPerTask = 128;
 
 }  // namespace
 
-FormationExperiment::FormationExperiment(const ExperimentSetup& setup, const FormationConfig& config)
+FormationExperiment::FormationExperiment(const ExperimentSetup& setup,
+                                         const FormationConfig& config)
     : ExperimentOf(setup, config) {
   slots_ = cfg_.ShapeSlots(-1);
   slot_rates_.assign(slots_.size(), cf::SlotRates{});
@@ -53,7 +55,10 @@ void FormationExperiment::BuildWorld() {
     for (std::size_t k = 0; k < leaders.size(); ++k) {
       const int i = leaders[k];
       const std::string name = cfg_.robots[i].body.name + "-" + cfg_.robots[j].body.name;
-      links_.emplace_back(name, i, j, RelativeSensor(rng_, name));
+      links_.emplace_back(name, i, j);
+      sensors_.emplace_back(rng_, name);
+      link_fault_now_.push_back(0);
+      link_faulty_.push_back(0);
       Link& l = links_.back();
       l.first = k == 0;
       l.fault = events_.DeclareCondition(event::kFilterFault, cfg_.robots[j].body.name, name);
@@ -67,6 +72,17 @@ void FormationExperiment::BuildWorld() {
     }
   }
   for (Link& l : links_) l.filter = cf::LinkFilter::Make(FilterDef(l.follower));
+  LinkSettings();
+}
+
+void FormationExperiment::LinkSettings() {
+  for (Link& l : links_) {
+    const FormationRobotDef& r = cfg_.robots[static_cast<std::size_t>(l.follower)];
+    const NoiseDef n = EffectiveNoise(cfg_, r.follow);
+    l.mode = r.follow.estimator;
+    l.lphi = r.node.law == FormationLaw::kLPhi;
+    l.sigma_l = n.l.sigma(), l.sigma_phi = n.phi.sigma(), l.sigma_alpha = n.alpha.sigma();
+  }
 }
 
 cf::LinkFilterDef FormationExperiment::FilterDef(int follower) const {
@@ -97,6 +113,7 @@ void FormationExperiment::ApplyTunables(const FormationConfig& next) {
       for (int li : agents_[i].links) links_[li].filter_ready = false;
   }
   for (Link& l : links_) l.filter->Retune(FilterDef(l.follower));
+  LinkSettings();
   // Without switching the slots are the follow: values, which are live tunables.
   if (!cfg_.switching.enabled())
     for (std::size_t j = 0; j < slots_.size(); ++j) slots_[j] = cf::SlotOf(cfg_.robots[j].node);
@@ -112,7 +129,7 @@ double FormationExperiment::DesiredL(const Link& l) const {
 }
 
 LinkState FormationExperiment::ForControl(const Link& link) const {
-  const EstimatorMode mode = Mode(link.follower);
+  const EstimatorMode mode = link.mode;
   LinkState s = mode == EstimatorMode::kTruth ? link.truth_conv
                 : mode == EstimatorMode::kRaw ? link.measured
                                               : link.used;
@@ -149,9 +166,9 @@ void FormationExperiment::Control(double t) {
             a.near = NearestObstacle(world_, cf::ControlPoint(a.robot->pose(), cfg_.L), reach);
             if (a.near.obstacle >= 0) {
               const Pose2 g = DesiredPose(static_cast<int>(j));
-              a.slot_d = std::isfinite(g.x)
-                             ? DistanceToObstacle(world_, a.near.obstacle, cf::ControlPoint(g, cfg_.L))
-                             : 0.0;
+              a.slot_d = std::isfinite(g.x) ? DistanceToObstacle(world_, a.near.obstacle,
+                                                                 cf::ControlPoint(g, cfg_.L))
+                                            : 0.0;
             }
           }
         }
@@ -169,18 +186,22 @@ void FormationExperiment::Control(double t) {
     } else {
       const Link& l1 = links_[a.links[0]];
       const Link& l2 = links_[a.links[1]];
-      const cf::LLCommand c = cf::FinishLL(a.ll, agents_[l1.leader].cmd, agents_[l2.leader].cmd, cfg_.L);
+      const cf::LLCommand c =
+          cf::FinishLL(a.ll, agents_[l1.leader].cmd, agents_[l2.leader].cmd, cfg_.L);
       cmd = c.cmd;
-      // One event per entry into the singular band.
-      events_.Update(a.singular, t, c.singular, [&](std::string& m) {
-        m += r.body.name;
-        m += " near the line through ";
-        m += cfg_.robots[l1.leader].body.name;
-        m += " and ";
-        m += cfg_.robots[l2.leader].body.name;
-        AppendSprintf(m, " (|sin| = %.3f < %.3g), regularised inverse in use",
-                      std::abs(c.sin_angle), cfg_.singular_threshold);
-      });
+      // One event per entry into the singular band (the log visited only when it is or was on).
+      const bool was = a.in_singular;
+      a.in_singular = c.singular;
+      if (c.singular || was)
+        events_.Update(a.singular, t, c.singular, [&](std::string& m) {
+          m += r.body.name;
+          m += " near the line through ";
+          m += cfg_.robots[l1.leader].body.name;
+          m += " and ";
+          m += cfg_.robots[l2.leader].body.name;
+          AppendSprintf(m, " (|sin| = %.3f < %.3g), regularised inverse in use",
+                        std::abs(c.sin_angle), cfg_.singular_threshold);
+        });
     }
     if (cfg_.avoidance.present && r.node.law != FormationLaw::kRoot) cmd = Avoid(j, t, cmd);
     a.drive->SetCommand(cmd.v, cmd.w);
@@ -212,7 +233,8 @@ void FormationExperiment::RunFilter(Link& link) {
     return;
   }
   link.filter_ran = true;
-  control::UkfStatus st = link.filter->Predict(agents_[link.leader].cmd, agents_[link.follower].cmd);
+  control::UkfStatus st =
+      link.filter->Predict(agents_[link.leader].cmd, agents_[link.follower].cmd);
   if (st == control::UkfStatus::kOk) st = link.filter->Update(link.measured);
   link.status = st;
   if (st != control::UkfStatus::kOk) {
@@ -223,17 +245,18 @@ void FormationExperiment::RunFilter(Link& link) {
   link.used = link.filter->state();
 }
 
-void FormationExperiment::SenseLink(Link& l, double t, bool filter_step) {
+void FormationExperiment::SenseLink(std::size_t i, double t, bool filter_step) {
+  Link& l = links_[i];
+  link_fault_now_[i] = 0;
   const Pose2 pi = agents_[l.leader].robot->pose(), pj = agents_[l.follower].robot->pose();
-  const EstimatorMode mode = Mode(l.follower);
+  const EstimatorMode mode = l.mode;
   if (mode == EstimatorMode::kTruth) {
     // Nobody reads the measurement: skip the noise draws (this link's stream only).
     l.truth_conv = cf::ComputeLinkState(pi, pj, cfg_.L, cfg_.bearing);
     l.measured = l.truth_conv;
   } else {
-    const NoiseDef n = EffectiveNoise(cfg_, cfg_.robots[l.follower].follow);
-    l.measured = l.sensor.Sample(pi, pj, cfg_.L, cfg_.bearing, n.l.sigma(), n.phi.sigma(),
-                                 n.alpha.sigma(), l.truth_conv);
+    l.measured = sensors_[i].Sample(pi, pj, cfg_.L, cfg_.bearing, l.sigma_l, l.sigma_phi,
+                                    l.sigma_alpha, l.truth_conv);
   }
   l.truth = cfg_.bearing == cf::BearingConvention::kDas
                 ? l.truth_conv
@@ -247,36 +270,48 @@ void FormationExperiment::SenseLink(Link& l, double t, bool filter_step) {
     else
       l.used = l.truth_conv;
   }
+  link_fault_now_[i] = l.filter_ran && l.status != control::UkfStatus::kOk;
   Accumulate(l, t);
 }
 
 void FormationExperiment::Sense(double t) {
   const bool filter_step = steps() % cfg_.control_every == 0;
   for (Agent& a : agents_) {
+    // The event log is only visited when the condition is or was on (a.saturated mirrors it).
+    const bool was = a.saturated;
     a.saturated = a.drive->saturated();
-    events_.Update(a.saturation, t, a.saturated, [&](std::string& m) {
-      m += a.robot->name();
-      m += a.drive->slipping() ? " slips (traction limit)" : " command clamped to the drive limits";
-    });
-    if (cfg_.trail_length > 0 && sense_count_ % cfg_.trail_every == 0) a.trail.Push(a.robot->pose().p());
+    if (a.saturated || was)
+      events_.Update(a.saturation, t, a.saturated, [&](std::string& m) {
+        m += a.robot->name();
+        m += a.drive->slipping() ? " slips (traction limit)"
+                                 : " command clamped to the drive limits";
+      });
+    if (cfg_.trail_length > 0 && sense_count_ % cfg_.trail_every == 0)
+      a.trail.Push(a.robot->pose().p());
   }
   // Each link's sensor (its own noise stream), filter and statistics touch that link only.
   pool().ParallelFor(
       links_.size(),
       [&](std::size_t b, std::size_t e) {
-        for (std::size_t i = b; i < e; ++i) SenseLink(links_[i], t, filter_step);
+        for (std::size_t i = b; i < e; ++i) SenseLink(i, t, filter_step);
       },
       kLinksPerTask);
   // Filter faults, one event per entry into a run of faults, raised in link order so that the
-  // log does not depend on the threads; every fault is counted for the summary.
-  for (Link& link : links_) {
+  // log does not depend on the threads; every fault is counted for the summary. The links are
+  // visited only while faulty or when their run of faults ends (link_faulty_ is a byte per link:
+  // a pass over ten thousand Link structs is ten thousand cache misses).
+  for (std::size_t i = 0; i < links_.size(); ++i) {
+    const bool faulty = link_fault_now_[i] != 0;
+    if (!faulty && link_faulty_[i] == 0) continue;
+    Link& link = links_[i];
     if (!link.filter_ran) continue;
     const control::UkfStatus st = link.status;
-    events_.Update(link.fault, t, st != control::UkfStatus::kOk, [&](std::string& m) {
+    events_.Update(link.fault, t, faulty, [&](std::string& m) {
       m += "UKF of link ";
       m += link.name;
       AppendSprintf(m, " at t = %.3f s: %s; restarted with P0", t, control::UkfStatusName(st));
     });
+    link_faulty_[i] = faulty;
   }
   // The l-l determinant sin(γ_kj − γ_ij) from the states the law will use (recorded as sin_ll).
   pool().ParallelFor(
@@ -295,13 +330,14 @@ void FormationExperiment::Sense(double t) {
 }
 
 void FormationExperiment::Accumulate(Link& l, double t) {
-  const FormationRobotDef& r = cfg_.robots[l.follower];
   const bool settled = t >= cfg_.settle_time - 1e-9;
   l.e_l.Add(DesiredL(l) - l.truth.l, settled);
-  if (r.node.law == FormationLaw::kLPhi)
-    l.e_phi.Add(control::WrapToPi(slots_[static_cast<std::size_t>(l.follower)].phi_des - l.truth.phi), settled);
+  if (l.lphi)
+    l.e_phi.Add(
+        control::WrapToPi(slots_[static_cast<std::size_t>(l.follower)].phi_des - l.truth.phi),
+        settled);
   l.e_alpha.Add(l.truth.alpha, settled);
-  const EstimatorMode mode = r.follow.estimator;
+  const EstimatorMode mode = l.mode;
   if (mode == EstimatorMode::kTruth || steps() % cfg_.control_every != 0) return;
   const Eigen::Vector3d e(l.used.l - l.truth_conv.l,
                           control::WrapToPi(l.used.phi - l.truth_conv.phi),
@@ -325,7 +361,8 @@ void FormationExperiment::DeclareChannels() {
       const Pose2 p = a->robot->pose();
       o[0] = p.x, o[1] = p.y, o[2] = p.theta;
     });
-    recorder_.AddGroup({n + ".v_cmd", n + ".w_cmd"}, [a](double* o) { o[0] = a->cmd.v, o[1] = a->cmd.w; });
+    recorder_.AddGroup({n + ".v_cmd", n + ".w_cmd"},
+                       [a](double* o) { o[0] = a->cmd.v, o[1] = a->cmd.w; });
     recorder_.Add(n + ".sat", [a] { return a->saturated ? 1.0 : 0.0; });
     const FormationRobotDef& r = cfg_.robots[i];
     if (r.node.law != FormationLaw::kRoot) {
@@ -341,7 +378,8 @@ void FormationExperiment::DeclareChannels() {
       recorder_.Add(n + ".avoiding", [a] { return a->avoiding ? 1.0 : 0.0; });
       // Beyond reach (nothing within 2 (d_s + h)) the distance reads as the reach.
       recorder_.Add(n + ".obstacle_d", [this, a] {
-        return a->near.obstacle >= 0 ? std::min(a->near.distance, AvoidanceReach()) : AvoidanceReach();
+        return a->near.obstacle >= 0 ? std::min(a->near.distance, AvoidanceReach())
+                                     : AvoidanceReach();
       });
     }
   }
@@ -362,7 +400,9 @@ void FormationExperiment::DeclareChannels() {
       double worst = 0.0;
       for (const Link& l : links_)
         if (cfg_.robots[l.follower].node.law == FormationLaw::kLPhi)
-          worst = std::max(worst, std::abs(control::WrapToPi(slots_[static_cast<std::size_t>(l.follower)].phi_des - l.truth.phi)));
+          worst = std::max(
+              worst, std::abs(control::WrapToPi(
+                         slots_[static_cast<std::size_t>(l.follower)].phi_des - l.truth.phi)));
       return worst;
     });
   }
@@ -374,11 +414,14 @@ void FormationExperiment::DeclareChannels() {
       o[0] = l->truth.l, o[1] = l->truth.phi, o[2] = l->truth.alpha;
     });
     recorder_.Add(n + ".l_des", [this, l] { return DesiredL(*l); });
-    if (lphi) recorder_.Add(n + ".phi_des", [this, l] { return slots_[static_cast<std::size_t>(l->follower)].phi_des; });
+    if (lphi)
+      recorder_.Add(n + ".phi_des",
+                    [this, l] { return slots_[static_cast<std::size_t>(l->follower)].phi_des; });
     recorder_.Add(n + ".e_l", [this, l] { return DesiredL(*l) - l->truth.l; });
     if (lphi)
       recorder_.Add(n + ".e_phi", [this, l] {
-        return control::WrapToPi(slots_[static_cast<std::size_t>(l->follower)].phi_des - l->truth.phi);
+        return control::WrapToPi(slots_[static_cast<std::size_t>(l->follower)].phi_des -
+                                 l->truth.phi);
       });
     recorder_.Add(n + ".e_alpha", [l] { return l->truth.alpha; });
     recorder_.AddGroup({n + ".l_est", n + ".phi_est", n + ".alpha_est", n + ".l_est_err",
@@ -390,12 +433,13 @@ void FormationExperiment::DeclareChannels() {
                          o[4] = control::WrapToPi(l->used.phi - l->truth_conv.phi);
                          o[5] = control::WrapToPi(l->used.alpha - l->truth_conv.alpha);
                        });
-    recorder_.AddGroup({n + ".l_sd", n + ".phi_sd", n + ".alpha_sd", n + ".nees"}, [this, l](double* o) {
-      if (Mode(l->follower) != EstimatorMode::kUkf || !l->filter_ready) return;
-      const Eigen::Matrix3d P = l->filter->cov();
-      for (int k = 0; k < 3; ++k) o[k] = std::sqrt(std::max(0.0, P(k, k)));
-      o[3] = l->nees;
-    });
+    recorder_.AddGroup({n + ".l_sd", n + ".phi_sd", n + ".alpha_sd", n + ".nees"},
+                       [this, l](double* o) {
+                         if (Mode(l->follower) != EstimatorMode::kUkf || !l->filter_ready) return;
+                         const Eigen::Matrix3d P = l->filter->cov();
+                         for (int k = 0; k < 3; ++k) o[k] = std::sqrt(std::max(0.0, P(k, k)));
+                         o[3] = l->nees;
+                       });
   }
 }
 

@@ -106,8 +106,8 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
   /// next switch (`end`).
   struct SwitchRecord {
     double time = 0.0;
-    std::string kind;  ///< "formation" or "avoidance_end"
-    std::string what;  ///< the target shape, or the follower
+    std::string kind;          ///< "formation" or "avoidance_end"
+    std::string what;          ///< the target shape, or the follower
     double last_above = -1.0;  ///< last time the error was >= kRecoveredError
     double end = -1.0;         ///< when the next switch began (−1 while open)
     double Recover(double step) const { return last_above < time ? 0.0 : last_above - time + step; }
@@ -129,14 +129,17 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
 
  private:
   struct Link {
-    Link(std::string n, int i, int j, RelativeSensor s)
-        : name(std::move(n)), leader(i), follower(j), sensor(std::move(s)) {}
+    Link(std::string n, int i, int j) : name(std::move(n)), leader(i), follower(j) {}
     std::string name;
     int leader = -1, follower = -1;
     bool first = true;  ///< the follower's first link (l_des), else its second (l2_des)
-    RelativeSensor sensor;
     std::unique_ptr<cf::LinkFilter> filter;
     bool filter_ready = false;
+    // The follower's settings this link reads every step, copied here by LinkSettings() so
+    // that a step over ten thousand links does not visit ten thousand robot definitions.
+    EstimatorMode mode = EstimatorMode::kTruth;
+    bool lphi = false;  ///< the follower's law is l-φ
+    double sigma_l = 0.0, sigma_phi = 0.0, sigma_alpha = 0.0;
     bool filter_ran = false;  ///< this step ran predict and update (their status below)
     control::UkfStatus status = control::UkfStatus::kOk;
     EventLog::ConditionId fault = 0;
@@ -159,6 +162,7 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
     bool saturated = false;
     EventLog::ConditionId saturation = 0, singular = 0;
     double sin_ll = 1.0;
+    bool in_singular = false;  ///< mirrors the singular condition in the event log
     RingBuffer<Vec2> trail;
     // Obstacle avoidance (avoidance: enabled).
     bool avoiding = false;
@@ -168,6 +172,9 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
   };
 
   void BuildWorld();
+  /// Copies each follower's estimator mode, law and sensor noise into its links (after the
+  /// configuration changed).
+  void LinkSettings();
   /// Fires due scheduled switches and sets every slot (and its rate) for time t.
   void UpdateSlots(double t);
   /// Starts a transition to `shape` now; "" or why not.
@@ -191,7 +198,7 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
   void RunFilter(Link& link);
   /// Everything a step does for one link alone (sensor, filter, statistics): links run in
   /// parallel; events are raised afterwards in link order.
-  void SenseLink(Link& link, double t, bool filter_step);
+  void SenseLink(std::size_t i, double t, bool filter_step);
   void Accumulate(Link& link, double t);
   double Gain(double k) const;
   double DesiredL(const Link& l) const;
@@ -199,11 +206,18 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
   Pose2 DesiredPose(int robot) const;
   /// The optional layers of "what the law sees" (measured arcs, error vectors, l-l triangles,
   /// feed-forward / feedback velocity, formation graph), each when the sink Shows() it.
-  void DrawLawOverlays(DrawSink& draw, double body_px, const std::function<bool(Vec2)>& in_view) const;
+  void DrawLawOverlays(DrawSink& draw, double body_px,
+                       const std::function<bool(Vec2)>& in_view) const;
   cf::LinkState ForControl(const Link& link) const;
 
   std::vector<Agent> agents_;
   std::vector<Link> links_;
+  /// Each link's sensor, beside links_ rather than in it: its noise stream's state (2.5 kB)
+  /// would spread ten thousand links over ten times the cache lines.
+  std::vector<RelativeSensor> sensors_;
+  /// Per link: the filter faulted in this step's Sense (written by its task), and its run of
+  /// faults is open in the event log.
+  std::vector<unsigned char> link_fault_now_, link_faulty_;
   long sense_count_ = 0;
   std::vector<double> error_scratch_;  ///< the links' errors of a recorded row
   // Formation switching.

@@ -1,6 +1,8 @@
 // The fast angle functions of control/common/angle.hpp against libm and against their own
 // definitions: SinCosOf within 2 ulp of glibc, Atan2NearAxis within 1 ulp, WrapToPi bit for bit
 // what std::remainder gives, SinCosSmallAll bit for bit SinCosSmall.
+#include "control/common/angle.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,8 +10,6 @@
 #include <cstring>
 #include <limits>
 #include <random>
-
-#include "control/common/angle.hpp"
 
 namespace formsim::control {
 namespace {
@@ -24,7 +24,9 @@ std::int64_t Ulps(double a, double b) {
   return x > y ? x - y : y - x;
 }
 
-bool SameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool SameBits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
 
 // WrapToPi as it was defined before its fast paths: std::remainder, then −π to π.
 double WrapByRemainder(double a) {
