@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <condition_variable>
 #include <cstdint>
@@ -22,12 +23,34 @@ namespace {
 // Rows the background writer holds at most (the simulation waits when they are all taken).
 constexpr std::size_t kWriterSlots = 8;
 
-// Cells [begin, end) of a row, each preceded by a comma except column 0; not sampled: empty.
-void AppendCells(const double* v, std::size_t begin, std::size_t end, std::string& out) {
-  for (std::size_t c = begin; c < end; ++c) {
-    if (c) out += ',';
-    if (!IsNotSampled(v[c])) AppendDouble(out, v[c]);
+// The longest cell: a comma and the longest shortest form of a double
+// ("-2.2250738585072014e-308", 24 characters).
+constexpr std::size_t kMaxCell = 25;
+
+// Cells [0, n) of a row and a newline, written at `out` (room for n * kMaxCell + 1 characters);
+// returns the end. Each number is the shortest text that reads back to the same double (to_chars);
+// not sampled: empty; NaN, ±infinity: nan, inf, -inf.
+char* FormatRow(const double* v, std::size_t n, char* out) {
+  for (std::size_t c = 0; c < n; ++c) {
+    if (c) *out++ = ',';
+    const double x = v[c];
+    if (std::isfinite(x)) {
+      out = std::to_chars(out, out + kMaxCell, x).ptr;
+    } else if (!IsNotSampled(x)) {
+      const char* text = std::isnan(x) ? "nan" : x > 0 ? "inf" : "-inf";
+      const std::size_t len = std::strlen(text);
+      std::memcpy(out, text, len);
+      out += len;
+    }
   }
+  *out++ = '\n';
+  return out;
+}
+
+// A row's text in `buf` (grown to fit once; no per-cell appends to a string).
+std::size_t FormatRowInto(const double* v, std::size_t n, std::vector<char>& buf) {
+  if (buf.size() < n * kMaxCell + 1) buf.resize(n * kMaxCell + 1);
+  return static_cast<std::size_t>(FormatRow(v, n, buf.data()) - buf.data());
 }
 }  // namespace
 
@@ -61,9 +84,10 @@ class Recorder::Stream {
     std::setvbuf(f_, nullptr, _IOFBF, 1 << 20);
   }
   ~Stream() { Abandon(); }
-  void Write(const std::string& text) {
+  void Write(const std::string& text) { Write(text.data(), text.size()); }
+  void Write(const char* text, std::size_t size) {
     if (failed_) return;
-    if (std::fwrite(text.data(), 1, text.size(), f_) != text.size()) Fail();
+    if (std::fwrite(text, 1, size, f_) != size) Fail();
   }
   void Finish() {
     if (f_ == nullptr) return;
@@ -143,10 +167,7 @@ class Recorder::Writer {
       const std::vector<double>& row = slots_[head_];
       busy_ = true;
       lock.unlock();
-      line_.clear();
-      AppendCells(row.data(), 0, columns_, line_);
-      line_ += '\n';
-      stream_.Write(line_);
+      stream_.Write(line_.data(), FormatRowInto(row.data(), columns_, line_));
       lock.lock();
       busy_ = false;
       head_ = (head_ + 1) % kWriterSlots;
@@ -162,7 +183,7 @@ class Recorder::Writer {
   bool busy_ = false, stop_ = false;
   std::mutex mutex_;
   std::condition_variable changed_;
-  std::string line_;
+  std::vector<char> line_;
   std::thread thread_;
 };
 
@@ -205,10 +226,7 @@ void Recorder::Sample() {
   if (writer_) {
     writer_->Push(scratch_.data());
   } else if (stream_) {
-    line_.clear();
-    AppendCells(scratch_.data(), 0, n, line_);
-    line_ += '\n';
-    stream_->Write(line_);
+    stream_->Write(line_.data(), FormatRowInto(scratch_.data(), n, line_));
   }
   // The history keeps every stride-th sampled row; when full it drops every second row.
   if (sampled_++ % stride_ != 0) return;
@@ -241,8 +259,10 @@ void Recorder::SetHistoryLimit(std::size_t max_rows) {
 }
 
 void Recorder::AppendRow(std::string& line, std::size_t r) const {
-  AppendCells(&data_[r * names_.size()], 0, names_.size(), line);
-  line += '\n';
+  const std::size_t n = names_.size();
+  const std::size_t at = line.size();
+  line.resize(at + n * kMaxCell + 1);
+  line.resize(static_cast<std::size_t>(FormatRow(&data_[r * n], n, line.data() + at) - line.data()));
 }
 
 void Recorder::StreamTo(const std::string& path) {

@@ -124,7 +124,7 @@ class Recorder {
   std::size_t stride_ = 1;         ///< keep every stride-th sampled row
   std::size_t expected_rows_ = 0;  ///< see ExpectRows
   std::vector<double> scratch_;    ///< the row being sampled
-  std::string line_;               ///< its text when streaming on the caller's thread
+  std::vector<char> line_;         ///< its text when streaming on the caller's thread
   ThreadPool* pool_ = nullptr;
   std::unique_ptr<Stream> stream_;
   std::unique_ptr<Writer> writer_;  ///< formats and writes streamed rows in the background

@@ -320,8 +320,9 @@ void FormationExperiment::Sense(double t) {
         for (std::size_t i = b; i < e; ++i) {
           Agent& a = agents_[i];
           if (a.links.size() != 2) continue;
-          a.sin_ll = std::sin(ForControl(links_[a.links[1]]).gamma() -
-                              ForControl(links_[a.links[0]]).gamma());
+          a.sin_ll = control::SinCosOf(ForControl(links_[a.links[1]]).gamma() -
+                                       ForControl(links_[a.links[0]]).gamma())
+                         .s;
         }
       },
       kAgentsPerTask);
