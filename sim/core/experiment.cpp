@@ -1,15 +1,16 @@
 #include "sim/core/experiment.hpp"
 
-#include <stdexcept>
-
 #include <algorithm>
 #include <cstdio>
 #include <map>
+#include <stdexcept>
 
 namespace formsim::sim {
 
 Experiment::Experiment(const ExperimentSetup& setup)
-    : setup_(setup), pool_(std::make_unique<ThreadPool>(ThreadPool::DefaultThreads())), rng_(setup.seed) {
+    : setup_(setup),
+      pool_(std::make_unique<ThreadPool>(ThreadPool::DefaultThreads())),
+      rng_(setup.seed) {
   recorder_.Add("t", [this] { return time_; });
   recorder_.SetPool(pool_.get());
 }
@@ -25,7 +26,9 @@ void Experiment::Start() {
   // Row 0, one every record_every steps, and the last (a run may end between two).
   const double steps = std::ceil(setup_.duration / setup_.dt - 0.5);
   if (steps > 0 && steps < 1e12)
-    recorder_.ExpectRows(static_cast<std::size_t>(steps) / static_cast<std::size_t>(std::max(1, setup_.record_every)) + 2);
+    recorder_.ExpectRows(static_cast<std::size_t>(steps) /
+                             static_cast<std::size_t>(std::max(1, setup_.record_every)) +
+                         2);
   Sense(0.0);
   recorder_.Sample();
 }
@@ -33,7 +36,8 @@ void Experiment::Start() {
 void Experiment::Step() {
   if (finished()) return;
   Control(time_);
-  world_.Step(setup_.dt);
+  pool_->ParallelForBeside([&] { world_.Step(setup_.dt); }, PredictItems(),
+                           [&](std::size_t b, std::size_t e) { Predict(b, e); });
   ++steps_;
   // Integer step count times dt, so time does not drift by accumulated rounding.
   time_ = static_cast<double>(steps_) * setup_.dt;
@@ -74,8 +78,8 @@ bool Experiment::CheckRobots() {
       continue;
     NumericalFault(r->name(), r->name() + "'s state became non-finite at t = " + Num(time_) +
                                   " s (x = " + Num(p.x) + ", y = " + Num(p.y) +
-                                  ", θ = " + Num(p.theta) + ", v = (" + Num(v.x) + ", " +
-                                  Num(v.y) + "), ω = " + Num(w) + ")");
+                                  ", θ = " + Num(p.theta) + ", v = (" + Num(v.x) + ", " + Num(v.y) +
+                                  "), ω = " + Num(w) + ")");
     return false;
   }
   return true;
@@ -116,7 +120,8 @@ std::string Experiment::status() const {
 }
 
 std::string Experiment::Move(const std::string& name, Vec2 p) {
-  if (!std::isfinite(p.x) || !std::isfinite(p.y)) return "cannot move '" + name + "' to a non-finite position";
+  if (!std::isfinite(p.x) || !std::isfinite(p.y))
+    return "cannot move '" + name + "' to a non-finite position";
   if (Robot* r = world_.FindRobot(name)) {
     Pose2 pose = r->pose();
     pose.x = p.x;
@@ -132,7 +137,8 @@ std::string Experiment::RestructuredText(const std::string&, const std::string&)
   throw std::runtime_error("this kind of scenario offers no structural changes");
 }
 
-std::vector<std::pair<std::string, std::string>> Experiment::SlotEdits(const std::string&, Vec2) const {
+std::vector<std::pair<std::string, std::string>> Experiment::SlotEdits(const std::string&,
+                                                                       Vec2) const {
   throw std::runtime_error("this kind of scenario has no desired slots to drag");
 }
 
@@ -203,7 +209,8 @@ Json Experiment::Summary() const {
 
 std::string Experiment::SummaryText() const {
   std::string out = Results().Text();
-  if (!stop_reason_.empty()) out += "run stopped at t = " + Num(time_) + " s: " + stop_reason_ + "\n";
+  if (!stop_reason_.empty())
+    out += "run stopped at t = " + Num(time_) + " s: " + stop_reason_ + "\n";
   if (!events_.counts().empty()) {
     out += "events:";
     for (const auto& [kind, n] : events_.counts()) out += " " + kind + " " + std::to_string(n);

@@ -46,10 +46,10 @@ struct ExperimentSetup {
   std::string description;  ///< one line, for `formsim list`
   std::string type;         ///< experiment kind
   std::uint64_t seed = 1;
-  double dt = 0.01;          ///< fixed world step, s
-  double duration = 10.0;    ///< run length, s
-  int record_every = 1;      ///< record one row every N steps
-  Provenance provenance;     ///< what produced this run
+  double dt = 0.01;        ///< fixed world step, s
+  double duration = 10.0;  ///< run length, s
+  int record_every = 1;    ///< record one row every N steps
+  Provenance provenance;   ///< what produced this run
 };
 
 /// A kind's parsed configuration, type-erased so the core can carry it.
@@ -79,8 +79,9 @@ class Experiment {
   Experiment& operator=(const Experiment&) = delete;
 
   /// One fixed step, always in this order: Control (controllers and estimators read the sensors
-  /// and command the drives), world step (drives apply, Box2D integrates), Sense (sensors
-  /// sample), then a recorded row every `record_every` steps.
+  /// and command the drives), world step (drives apply, Box2D integrates) with the kind's
+  /// Predict items beside it, Sense (sensors sample), then a recorded row every `record_every`
+  /// steps.
   void Step();
   /// Takes the live tunables of `config`, a configuration of this kind read from the scenario
   /// with the user's edits (the session has checked it). Call between two steps.
@@ -94,7 +95,9 @@ class Experiment {
   double dt() const { return setup_.dt; }
   long steps() const { return steps_; }
   /// The run has ended: it reached its duration, or stopped early (numerical fault, interrupt).
-  bool finished() const { return !stop_reason_.empty() || time_ >= setup_.duration - 0.5 * setup_.dt; }
+  bool finished() const {
+    return !stop_reason_.empty() || time_ >= setup_.duration - 0.5 * setup_.dt;
+  }
   /// How the run ended so far: "running", "completed", "numerical_fault" or "interrupted".
   std::string status() const;
   /// Why the run stopped early ("" when it did not).
@@ -153,6 +156,14 @@ class Experiment {
  protected:
   virtual void Control(double t) = 0;
   virtual void Sense(double t) = 0;
+  /// Work of the coming Sense that needs only the state before the world step (the estimators'
+  /// time updates from this step's commands): PredictItems() independent items, taken by the
+  /// pool's other threads while this one steps Box2D (then it helps), so that Box2D, which only
+  /// one thread can run, is not alone on the machine. Called after Control; each item writes
+  /// only its own data (a run that stops at the world step's state check keeps the predicted
+  /// estimates). Default: none.
+  virtual std::size_t PredictItems() const { return 0; }
+  virtual void Predict(std::size_t /*begin*/, std::size_t /*end*/) {}
   virtual void DrawScene(DrawSink& draw) const = 0;
   virtual void OnRetune(const ExperimentConfig& config) = 0;
   /// Call at the end of the derived constructor, after declaring the recorder's channels:
@@ -184,7 +195,7 @@ class Experiment {
   double time_ = 0.0;
   long steps_ = 0;
   std::string event_robots_, event_message_;  ///< text of the events raised by Step
-  std::string stop_status_;  ///< "numerical_fault" or "interrupted" once stopped
+  std::string stop_status_;                   ///< "numerical_fault" or "interrupted" once stopped
   std::string stop_reason_;
 };
 
@@ -214,8 +225,10 @@ class ExperimentOf : public Experiment {
 /// One kind of experiment: how to read its configuration and how to build it.
 struct ExperimentKind {
   std::string type;
-  std::shared_ptr<const ExperimentConfig> (*read)(YamlReader& root, const ExperimentSetup& setup) = nullptr;
-  std::unique_ptr<Experiment> (*build)(const ExperimentSetup& setup, const ExperimentConfig& config) = nullptr;
+  std::shared_ptr<const ExperimentConfig> (*read)(YamlReader& root,
+                                                  const ExperimentSetup& setup) = nullptr;
+  std::unique_ptr<Experiment> (*build)(const ExperimentSetup& setup,
+                                       const ExperimentConfig& config) = nullptr;
 };
 
 /// Registry of experiment kinds (the `type:` of a scenario).
@@ -231,10 +244,12 @@ bool RegisterExperimentKind(const char* type) {
   using C = typename E::Config;
   ExperimentKind k;
   k.type = type;
-  k.read = [](YamlReader& root, const ExperimentSetup& setup) -> std::shared_ptr<const ExperimentConfig> {
+  k.read = [](YamlReader& root,
+              const ExperimentSetup& setup) -> std::shared_ptr<const ExperimentConfig> {
     return std::make_shared<ConfigOf<C>>(E::ReadConfig(root, setup));
   };
-  k.build = [](const ExperimentSetup& setup, const ExperimentConfig& config) -> std::unique_ptr<Experiment> {
+  k.build = [](const ExperimentSetup& setup,
+               const ExperimentConfig& config) -> std::unique_ptr<Experiment> {
     const auto* c = dynamic_cast<const ConfigOf<C>*>(&config);
     if (c == nullptr) throw std::logic_error("build with a configuration of another kind");
     return std::make_unique<E>(setup, c->value);

@@ -262,7 +262,8 @@ void Recorder::AppendRow(std::string& line, std::size_t r) const {
   const std::size_t n = names_.size();
   const std::size_t at = line.size();
   line.resize(at + n * kMaxCell + 1);
-  line.resize(static_cast<std::size_t>(FormatRow(&data_[r * n], n, line.data() + at) - line.data()));
+  line.resize(
+      static_cast<std::size_t>(FormatRow(&data_[r * n], n, line.data() + at) - line.data()));
 }
 
 void Recorder::StreamTo(const std::string& path) {

@@ -28,9 +28,7 @@ ThreadPool::ThreadPool(int threads) : threads_(std::max(1, threads)) {}
 
 ThreadPool::~ThreadPool() {
   stop_ = true;
-  {
-    std::lock_guard<std::mutex> lock(wake_mutex_);
-  }
+  { std::lock_guard<std::mutex> lock(wake_mutex_); }
   wake_.notify_all();
   for (auto& w : workers_) w.join();
 }
@@ -44,10 +42,14 @@ int ThreadPool::DefaultThreads() {
   return n > 0 ? n : HardwareThreads();
 }
 
-void ThreadPool::SetDefaultThreads(int threads) { g_default_threads = std::max(0, threads); }
+void ThreadPool::SetDefaultThreads(int threads) {
+  g_default_threads = std::max(0, threads);
+}
 
-void ThreadPool::Run(std::size_t n, std::size_t grain, Body body, void* ctx) {
-  while (static_cast<int>(workers_.size()) < threads_ - 1) workers_.emplace_back([this] { WorkerLoop(); });
+void ThreadPool::Run(std::size_t n, std::size_t grain, Body body, void* ctx, Side side,
+                     void* side_ctx) {
+  while (static_cast<int>(workers_.size()) < threads_ - 1)
+    workers_.emplace_back([this] { WorkerLoop(); });
   {
     std::lock_guard<std::mutex> lock(job_mutex_);
     body_ = body;
@@ -64,6 +66,14 @@ void ThreadPool::Run(std::size_t n, std::size_t grain, Body body, void* ctx) {
     { std::lock_guard<std::mutex> lock(wake_mutex_); }
     wake_.notify_all();
   }
+  std::exception_ptr side_error;
+  if (side != nullptr) {
+    try {
+      side(side_ctx);
+    } catch (...) {
+      side_error = std::current_exception();
+    }
+  }
   Work();
   {
     std::lock_guard<std::mutex> lock(job_mutex_);
@@ -77,6 +87,7 @@ void ThreadPool::Run(std::size_t n, std::size_t grain, Body body, void* ctx) {
     else
       std::this_thread::yield();
   }
+  if (side_error) std::rethrow_exception(side_error);
   if (error_) std::rethrow_exception(error_);
 }
 

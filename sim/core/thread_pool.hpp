@@ -19,8 +19,8 @@
 #include <condition_variable>
 #include <cstddef>
 #include <exception>
-#include <mutex>
 #include <memory>
+#include <mutex>
 #include <thread>
 #include <type_traits>
 #include <vector>
@@ -55,8 +55,35 @@ class ThreadPool {
       ~Release() { busy = false; }
     } release{busy_};
     using Fn = std::remove_reference_t<F>;
-    Run(n, grain, [](void* ctx, std::size_t b, std::size_t e) { (*static_cast<Fn*>(ctx))(b, e); },
+    Run(
+        n, grain, [](void* ctx, std::size_t b, std::size_t e) { (*static_cast<Fn*>(ctx))(b, e); },
         const_cast<void*>(static_cast<const void*>(std::addressof(fn))));
+  }
+
+  /// Runs `side()` on the calling thread while the other threads start on fn's ranges of
+  /// [0, n); once side() returns the caller takes ranges too; returns when all are done. For
+  /// work that is independent of side's (the estimators' time updates beside the Box2D step,
+  /// which only the caller may run). With one thread, or while the pool is busy, side() then
+  /// fn(0, n) inline. An exception from side() or fn is rethrown after everything finished.
+  template <class S, class F>
+  void ParallelForBeside(S&& side, std::size_t n, F&& fn, std::size_t grain = 1) {
+    if (grain < 1) grain = 1;
+    if (threads_ < 2 || n == 0 || busy_.exchange(true)) {
+      side();
+      if (n > 0) fn(std::size_t{0}, n);
+      return;
+    }
+    struct Release {
+      std::atomic<bool>& busy;
+      ~Release() { busy = false; }
+    } release{busy_};
+    using Fn = std::remove_reference_t<F>;
+    using Side = std::remove_reference_t<S>;
+    Run(
+        n, grain, [](void* ctx, std::size_t b, std::size_t e) { (*static_cast<Fn*>(ctx))(b, e); },
+        const_cast<void*>(static_cast<const void*>(std::addressof(fn))),
+        [](void* ctx) { (*static_cast<Side*>(ctx))(); },
+        const_cast<void*>(static_cast<const void*>(std::addressof(side))));
   }
 
   /// Threads of this machine (std::thread::hardware_concurrency, at least 1).
@@ -67,7 +94,11 @@ class ThreadPool {
 
  private:
   using Body = void (*)(void*, std::size_t, std::size_t);
-  void Run(std::size_t n, std::size_t grain, Body body, void* ctx);
+  using Side = void (*)(void*);
+  // Publishes the job, runs `side` (if any) on this thread, then works on the job with the
+  // workers until it is done.
+  void Run(std::size_t n, std::size_t grain, Body body, void* ctx, Side side = nullptr,
+           void* side_ctx = nullptr);
   void WorkerLoop();
   // Takes chunks of the current job until none is left.
   void Work();

@@ -124,6 +124,8 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
  protected:
   void Control(double t) override;
   void Sense(double t) override;
+  std::size_t PredictItems() const override;
+  void Predict(std::size_t begin, std::size_t end) override;
   void DrawScene(DrawSink& draw) const override;
   void ApplyTunables(const FormationConfig& next) override;
 
@@ -141,6 +143,8 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
     bool lphi = false;  ///< the follower's law is l-φ
     double sigma_l = 0.0, sigma_phi = 0.0, sigma_alpha = 0.0;
     bool filter_ran = false;  ///< this step ran predict and update (their status below)
+    bool predicted = false;   ///< Predict ran beside the world step (its status below)
+    control::UkfStatus predict_status = control::UkfStatus::kOk;
     control::UkfStatus status = control::UkfStatus::kOk;
     EventLog::ConditionId fault = 0;
     int fault_count = 0;

@@ -1,13 +1,13 @@
 // The thread pool of a step's independent work: every index exactly once, whatever the number
 // of threads; exceptions reach the caller; nested and concurrent calls run inline.
-#include "sim/core/thread_pool.hpp"
-
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <stdexcept>
 #include <thread>
 #include <vector>
+
+#include "sim/core/thread_pool.hpp"
 
 namespace formsim::sim {
 namespace {
@@ -27,7 +27,8 @@ TEST(ThreadPool, CoversEveryIndexOnceForAnyThreadCount) {
               for (std::size_t i = b; i < e; ++i) ++hits[i];
             },
             grain);
-        for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(hits[i], 1) << threads << " " << n << " " << i;
+        for (std::size_t i = 0; i < n; ++i)
+          ASSERT_EQ(hits[i], 1) << threads << " " << n << " " << i;
       }
     }
   }
@@ -65,19 +66,66 @@ TEST(ThreadPool, NestedAndConcurrentCallsRunInline) {
   std::atomic<int> inner{0};
   pool.ParallelFor(8, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i)
-      pool.ParallelFor(10, [&](std::size_t ib, std::size_t ie) { inner += static_cast<int>(ie - ib); });
+      pool.ParallelFor(10,
+                       [&](std::size_t ib, std::size_t ie) { inner += static_cast<int>(ie - ib); });
   });
   EXPECT_EQ(inner.load(), 80);
   // Two threads sharing one pool: both loops complete.
   std::atomic<int> total{0};
   auto loop = [&] {
     for (int k = 0; k < 200; ++k)
-      pool.ParallelFor(100, [&](std::size_t b, std::size_t e) { total += static_cast<int>(e - b); });
+      pool.ParallelFor(100,
+                       [&](std::size_t b, std::size_t e) { total += static_cast<int>(e - b); });
   };
   std::thread other(loop);
   loop();
   other.join();
   EXPECT_EQ(total.load(), 2 * 200 * 100);
+}
+
+// The side task runs once on the calling thread while the ranges are taken by the others; every
+// index is still covered exactly once, and with one thread it is side() then fn(0, n).
+TEST(ThreadPool, BesideRunsTheSideTaskOnTheCallerAndCoversEveryIndexOnce) {
+  for (int threads : {1, 2, 4}) {
+    ThreadPool pool(threads);
+    for (std::size_t n : {0u, 1u, 5u, 333u, 20000u}) {
+      std::vector<std::atomic<int>> seen(n);
+      std::atomic<int> sides{0};
+      std::thread::id side_thread;
+      bool side_first_inline = false;
+      pool.ParallelForBeside(
+          [&] {
+            side_thread = std::this_thread::get_id();
+            side_first_inline = true;
+            ++sides;
+          },
+          n,
+          [&](std::size_t b, std::size_t e) {
+            if (threads == 1) {
+              EXPECT_TRUE(side_first_inline) << "inline order: side, then fn";
+            }
+            for (std::size_t i = b; i < e; ++i) ++seen[i];
+          });
+      EXPECT_EQ(sides.load(), 1);
+      EXPECT_EQ(side_thread, std::this_thread::get_id());
+      for (std::size_t i = 0; i < n; ++i)
+        ASSERT_EQ(seen[i].load(), 1) << threads << " " << n << " " << i;
+    }
+  }
+}
+
+TEST(ThreadPool, BesideRethrowsTheSideTasksExceptionAfterTheRangesRan) {
+  ThreadPool pool(2);
+  std::atomic<std::size_t> done{0};
+  EXPECT_THROW(pool.ParallelForBeside([] { throw std::runtime_error("side"); }, 1000,
+                                      [&](std::size_t b, std::size_t e) { done += e - b; }),
+               std::runtime_error);
+  EXPECT_EQ(done.load(), 1000u);
+  EXPECT_THROW(pool.ParallelForBeside([] {}, 1000,
+                                      [&](std::size_t b, std::size_t) {
+                                        if (b == 0) throw std::logic_error("range");
+                                      }),
+               std::logic_error);
 }
 
 TEST(ThreadPool, DefaultThreadsFollowTheSetting) {
