@@ -2,8 +2,6 @@
 
 #include <cmath>
 
-#include "control/common/angle.hpp"
-
 namespace formsim::sim {
 
 double Rng::Normal() {
@@ -16,10 +14,12 @@ double Rng::Normal() {
   const double u2 = Uniform();
   const double r = std::sqrt(-2.0 * std::log(u1));
   const double a = 6.283185307179586476925 * u2;
-  const control::SinCos sc = control::SinCosOf(a);
-  cached_ = r * sc.s;
+  // libm's sine and cosine, not control::SinCosOf: a different last bit in a draw changes the
+  // velocity kind's sliding-window decisions and so its reproduced tables; every seed keeps the
+  // noise it had.
+  cached_ = r * std::sin(a);
   has_cached_ = true;
-  return r * sc.c;
+  return r * std::cos(a);
 }
 
 Rng Rng::Fork(std::uint64_t stream_id) const {

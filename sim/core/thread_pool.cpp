@@ -46,7 +46,7 @@ void ThreadPool::SetDefaultThreads(int threads) {
   g_default_threads = std::max(0, threads);
 }
 
-void ThreadPool::Run(std::size_t n, std::size_t grain, Body body, void* ctx, Side side,
+void ThreadPool::Run(std::size_t n, std::size_t grain, Body body, void* ctx, SideFn side,
                      void* side_ctx) {
   while (static_cast<int>(workers_.size()) < threads_ - 1)
     workers_.emplace_back([this] { WorkerLoop(); });

@@ -50,14 +50,7 @@ class ThreadPool {
       fn(std::size_t{0}, n);
       return;
     }
-    struct Release {
-      std::atomic<bool>& busy;
-      ~Release() { busy = false; }
-    } release{busy_};
-    using Fn = std::remove_reference_t<F>;
-    Run(
-        n, grain, [](void* ctx, std::size_t b, std::size_t e) { (*static_cast<Fn*>(ctx))(b, e); },
-        const_cast<void*>(static_cast<const void*>(std::addressof(fn))));
+    RunTaken(n, grain, fn, nullptr, nullptr);
   }
 
   /// Runs `side()` on the calling thread while the other threads start on fn's ranges of
@@ -73,16 +66,9 @@ class ThreadPool {
       if (n > 0) fn(std::size_t{0}, n);
       return;
     }
-    struct Release {
-      std::atomic<bool>& busy;
-      ~Release() { busy = false; }
-    } release{busy_};
-    using Fn = std::remove_reference_t<F>;
     using Side = std::remove_reference_t<S>;
-    Run(
-        n, grain, [](void* ctx, std::size_t b, std::size_t e) { (*static_cast<Fn*>(ctx))(b, e); },
-        const_cast<void*>(static_cast<const void*>(std::addressof(fn))),
-        [](void* ctx) { (*static_cast<Side*>(ctx))(); },
+    RunTaken(
+        n, grain, fn, [](void* ctx) { (*static_cast<Side*>(ctx))(); },
         const_cast<void*>(static_cast<const void*>(std::addressof(side))));
   }
 
@@ -94,11 +80,23 @@ class ThreadPool {
 
  private:
   using Body = void (*)(void*, std::size_t, std::size_t);
-  using Side = void (*)(void*);
+  using SideFn = void (*)(void*);
+  // Runs fn's job on the pool once the caller has taken busy_, and gives busy_ back however
+  // it ends.
+  template <class F>
+  void RunTaken(std::size_t n, std::size_t grain, F& fn, SideFn side, void* side_ctx) {
+    struct Release {
+      std::atomic<bool>& busy;
+      ~Release() { busy = false; }
+    } release{busy_};
+    using Fn = std::remove_reference_t<F>;
+    Run(
+        n, grain, [](void* ctx, std::size_t b, std::size_t e) { (*static_cast<Fn*>(ctx))(b, e); },
+        const_cast<void*>(static_cast<const void*>(std::addressof(fn))), side, side_ctx);
+  }
   // Publishes the job, runs `side` (if any) on this thread, then works on the job with the
   // workers until it is done.
-  void Run(std::size_t n, std::size_t grain, Body body, void* ctx, Side side = nullptr,
-           void* side_ctx = nullptr);
+  void Run(std::size_t n, std::size_t grain, Body body, void* ctx, SideFn side, void* side_ctx);
   void WorkerLoop();
   // Takes chunks of the current job until none is left.
   void Work();
