@@ -167,7 +167,9 @@ class Recorder::Writer {
       const std::vector<double>& row = slots_[head_];
       busy_ = true;
       lock.unlock();
-      stream_.Write(line_.data(), FormatRowInto(row.data(), columns_, line_));
+      // The length first: FormatRowInto may grow line_ (and move its data).
+      const std::size_t length = FormatRowInto(row.data(), columns_, line_);
+      stream_.Write(line_.data(), length);
       lock.lock();
       busy_ = false;
       head_ = (head_ + 1) % kWriterSlots;
@@ -226,7 +228,8 @@ void Recorder::Sample() {
   if (writer_) {
     writer_->Push(scratch_.data());
   } else if (stream_) {
-    stream_->Write(line_.data(), FormatRowInto(scratch_.data(), n, line_));
+    const std::size_t length = FormatRowInto(scratch_.data(), n, line_);  // may grow line_
+    stream_->Write(line_.data(), length);
   }
   // The history keeps every stride-th sampled row; when full it drops every second row.
   if (sampled_++ % stride_ != 0) return;
