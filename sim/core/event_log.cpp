@@ -23,7 +23,8 @@ void EventLog::Add(double t, const std::string& kind, const std::string& robots,
                    const std::string& message, const std::string& subject) {
   auto kind_count = by_kind_.find(kind);
   if (kind_count == by_kind_.end()) kind_count = by_kind_.emplace(kind, 0).first;
-  if (++kind_count->second <= kMaxStoredPerKind) events_.push_back({t, kind, robots, subject, message});
+  if (++kind_count->second <= kMaxStoredPerKind)
+    events_.push_back({t, kind, robots, subject, message});
   // The ring's slots keep their strings, so assigning into them reuses their capacity.
   Event& r = recent_.PushSlot();
   r.time = t;
@@ -37,17 +38,18 @@ void EventLog::Add(double t, const std::string& kind, const std::string& robots,
   std::size_t start = 0;
   while (start <= all.size()) {
     const std::size_t end = all.find(',', start);
-    const std::string_view robot = all.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start);
+    const std::string_view robot =
+        all.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start);
     if (!robot.empty()) Increment(by_robot_, kind, robot);
     if (end == std::string_view::npos) break;
     start = end + 1;
   }
 }
 
-EventLog::ConditionId EventLog::DeclareCondition(const std::string& kind,
-                                                 const std::string& robots,
+EventLog::ConditionId EventLog::DeclareCondition(const std::string& kind, const std::string& robots,
                                                  const std::string& subject) {
-  conditions_.push_back({kind, robots, subject, false});
+  conditions_.push_back({kind, robots, subject});
+  active_.push_back(0);
   return static_cast<ConditionId>(conditions_.size() - 1);
 }
 

@@ -63,10 +63,13 @@ class EventLog {
                                const std::string& subject = "");
   template <class MessageFn>
   bool Update(ConditionId id, double t, bool active, MessageFn&& message) {
-    Cond& c = conditions_[static_cast<std::size_t>(id)];
-    const bool raise = active && !c.active;
-    c.active = active;
+    // Only the byte of its state is read unless an event is raised: a step over ten thousand
+    // conditions that stay off touches 10 kB, not ten thousand Conds with their strings.
+    unsigned char& on = active_[static_cast<std::size_t>(id)];
+    const bool raise = active && !on;
+    on = active;
     if (raise) {
+      const Cond& c = conditions_[static_cast<std::size_t>(id)];
       if constexpr (std::is_invocable_v<MessageFn&, std::string&>) {
         message_.clear();
         message(message_);
@@ -77,7 +80,7 @@ class EventLog {
     }
     return raise;
   }
-  bool IsActive(ConditionId id) const { return conditions_[static_cast<std::size_t>(id)].active; }
+  bool IsActive(ConditionId id) const { return active_[static_cast<std::size_t>(id)] != 0; }
 
   /// Stored events in time order (at most kMaxStoredPerKind of each kind).
   const std::vector<Event>& list() const { return events_; }
@@ -111,9 +114,9 @@ class EventLog {
   std::string message_;  ///< the buffer condition messages are written into
   struct Cond {
     std::string kind, robots, subject;
-    bool active = false;
   };
   std::vector<Cond> conditions_;
+  std::vector<unsigned char> active_;  ///< per condition: on (kept apart from the strings)
 };
 
 }  // namespace formsim::sim

@@ -195,19 +195,16 @@ void FormationExperiment::Control(double t) {
       const cf::LLCommand c =
           cf::FinishLL(a.ll, agents_[l1.leader].cmd, agents_[l2.leader].cmd, cfg_.L);
       cmd = c.cmd;
-      // One event per entry into the singular band (the log visited only when it is or was on).
-      const bool was = a.in_singular;
-      a.in_singular = c.singular;
-      if (c.singular || was)
-        events_.Update(a.singular, t, c.singular, [&](std::string& m) {
-          m += r.body.name;
-          m += " near the line through ";
-          m += cfg_.robots[l1.leader].body.name;
-          m += " and ";
-          m += cfg_.robots[l2.leader].body.name;
-          AppendSprintf(m, " (|sin| = %.3f < %.3g), regularised inverse in use",
-                        std::abs(c.sin_angle), cfg_.singular_threshold);
-        });
+      // One event per entry into the singular band.
+      events_.Update(a.singular, t, c.singular, [&](std::string& m) {
+        m += r.body.name;
+        m += " near the line through ";
+        m += cfg_.robots[l1.leader].body.name;
+        m += " and ";
+        m += cfg_.robots[l2.leader].body.name;
+        AppendSprintf(m, " (|sin| = %.3f < %.3g), regularised inverse in use",
+                      std::abs(c.sin_angle), cfg_.singular_threshold);
+      });
     }
     if (cfg_.avoidance.present && r.node.law != FormationLaw::kRoot) cmd = Avoid(j, t, cmd);
     a.drive->SetCommand(cmd.v, cmd.w);
@@ -302,15 +299,11 @@ void FormationExperiment::SenseLink(std::size_t i, double t, bool filter_step) {
 void FormationExperiment::Sense(double t) {
   const bool filter_step = steps() % cfg_.control_every == 0;
   for (Agent& a : agents_) {
-    // The event log is only visited when the condition is or was on (a.saturated mirrors it).
-    const bool was = a.saturated;
     a.saturated = a.drive->saturated();
-    if (a.saturated || was)
-      events_.Update(a.saturation, t, a.saturated, [&](std::string& m) {
-        m += a.robot->name();
-        m += a.drive->slipping() ? " slips (traction limit)"
-                                 : " command clamped to the drive limits";
-      });
+    events_.Update(a.saturation, t, a.saturated, [&](std::string& m) {
+      m += a.robot->name();
+      m += a.drive->slipping() ? " slips (traction limit)" : " command clamped to the drive limits";
+    });
     if (cfg_.trail_length > 0 && sense_count_ % cfg_.trail_every == 0)
       a.trail.Push(a.robot->pose().p());
   }

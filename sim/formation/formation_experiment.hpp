@@ -166,7 +166,6 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
     bool saturated = false;
     EventLog::ConditionId saturation = 0, singular = 0;
     double sin_ll = 1.0;
-    bool in_singular = false;  ///< mirrors the singular condition in the event log
     RingBuffer<Vec2> trail;
     // Obstacle avoidance (avoidance: enabled).
     bool avoiding = false;
