@@ -1,9 +1,9 @@
 #include "sim/core/record_yaml.hpp"
 
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
+#include "sim/core/bounded_file.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/yaml_reader.hpp"
 
@@ -49,12 +49,11 @@ YAML::Node RecordReader::List(const YAML::Node& map, const std::string& key, boo
 }
 
 std::string ReadRecordFile(const std::string& file, const std::string& what) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw std::runtime_error(file + ": cannot open the " + what);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw std::runtime_error(file + ": cannot read the " + what);
-  return ss.str();
+  try {
+    return ReadBoundedFile(file);
+  } catch (const FileReadError& e) {
+    throw std::runtime_error(file + ": the " + what + " " + e.reason());
+  }
 }
 
 YAML::Node LoadRecordText(const std::string& text, const std::string& file) {

@@ -2,9 +2,9 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
+#include "sim/core/bounded_file.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/sha256.hpp"
 
@@ -13,14 +13,13 @@ namespace fs = std::filesystem;
 namespace formsim::sim {
 
 ScenarioSource ScenarioSource::FromFile(const std::string& file) {
-  std::error_code ec;
-  if (fs::is_directory(file, ec)) throw ScenarioError(file, 0, 0, "", "is a folder, not a scenario file");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw ScenarioError(file, 0, 0, "", "cannot open file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw ScenarioError(file, 0, 0, "", "cannot read file");
-  return FromText(ss.str(), file, fs::path(file).parent_path().string());
+  std::string text;
+  try {
+    text = ReadBoundedFile(file);
+  } catch (const FileReadError& e) {
+    throw ScenarioError(file, 0, 0, "", e.reason());
+  }
+  return FromText(std::move(text), file, fs::path(file).parent_path().string());
 }
 
 ScenarioSource ScenarioSource::FromText(std::string text, std::string name, std::string dir) {
@@ -84,6 +83,11 @@ ParsedScenario ParseScenario(const ScenarioSource& source, const std::vector<Ove
   ctx->file = source.file();
   ctx->dir = source.dir();
   for (const Override& o : overrides) {
+    if (o.value.size() > kMaxOverrideBytes)
+      throw ScenarioError(o.origin + " " + o.key + "=" + o.value.substr(0, 40) + "...", o.key,
+                          "the value is " + std::to_string(o.value.size()) +
+                              " characters long; a value of --set or an edit takes at most " +
+                              std::to_string(kMaxOverrideBytes));
     const std::string where = o.origin + " " + o.key + "=" + o.value;
     YAML::Node value;
     if (o.value.find_first_not_of(" \t") == std::string::npos)

@@ -5,6 +5,7 @@
 /// overrides (--set, --seed, GUI edits) in order, read strictly by the kind's reader. An error
 /// names file:line:key, or the override that put the bad value there.
 
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
@@ -44,7 +45,11 @@ struct ParsedScenario {
   LessonDef lesson;               ///< the `lesson:` block of a lesson file (present = false else)
 };
 
-/// Reads `source` with `overrides` applied in order. Throws ScenarioError.
+/// The longest value one override (`--set`, a GUI or script edit) may carry: 64 KiB.
+constexpr std::size_t kMaxOverrideBytes = std::size_t{64} << 10;
+
+/// Reads `source` with `overrides` applied in order (each value at most kMaxOverrideBytes).
+/// Throws ScenarioError.
 ParsedScenario ParseScenario(const ScenarioSource& source, const std::vector<Override>& overrides);
 /// Builds the experiment. Throws on failures of the kind's constructor.
 std::unique_ptr<Experiment> BuildExperiment(const ParsedScenario& parsed);

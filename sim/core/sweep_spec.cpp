@@ -4,8 +4,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <set>
 #include <stdexcept>
+#include <unordered_set>
 
 #include "sim/core/number_format.hpp"
 #include "sim/core/rng.hpp"
@@ -22,10 +24,18 @@ double Tidy(double v) {
   return std::strtod(buf, nullptr);
 }
 
+// a * b, or SIZE_MAX when that overflows.
+std::size_t SaturatingProduct(std::size_t a, std::size_t b) {
+  if (a != 0 && b > std::numeric_limits<std::size_t>::max() / a)
+    return std::numeric_limits<std::size_t>::max();
+  return a * b;
+}
+
 struct AxisBuilder {
   const std::string where;  // "--vary KEY=SPEC"
   const Param& param;
   SweepAxis axis;
+  std::unordered_set<std::string> seen = {};  // axis.values, for the duplicate check
 
   [[noreturn]] void Fail(const std::string& why) const {
     throw ScenarioError(where, param.key, why);
@@ -50,7 +60,7 @@ struct AxisBuilder {
     std::string canonical;
     const std::string why = param.Parse(text, &canonical);
     if (!why.empty()) Fail("value '" + text + "': " + why);
-    if (std::find(axis.values.begin(), axis.values.end(), canonical) != axis.values.end()) {
+    if (!seen.insert(canonical).second) {
       if (axis.random) {
         axis.values.push_back(canonical);  // samples may coincide (integers, choices)
         return;
@@ -186,8 +196,8 @@ void SweepDefinition::Finish() {
   std::size_t total = 1;
   for (const Factor& f : factors) {
     if (f.size == 0) throw std::runtime_error("a sweep axis without values");
-    total *= f.size;
-    if (total * std::max<std::size_t>(1, seeds.size()) > kMaxSweepRuns)
+    total = SaturatingProduct(total, f.size);
+    if (SaturatingProduct(total, std::max<std::size_t>(1, seeds.size())) > kMaxSweepRuns)
       throw std::runtime_error("the sweep would have more than " + std::to_string(kMaxSweepRuns) +
                                " runs; vary fewer values");
   }
@@ -228,6 +238,9 @@ std::vector<std::uint64_t> ParseSeeds(const std::string& text, const std::string
   auto fail = [&](const std::string& why) -> std::runtime_error {
     return std::runtime_error(flag + " '" + text + "': " + why);
   };
+  if (text.find_first_not_of(" \t") == std::string::npos)
+    throw fail("no seeds (write 1..20 or 1,2,5, or leave " + flag +
+               " out for the scenario's seed)");
   std::vector<std::uint64_t> out;
   std::set<std::uint64_t> seen;
   auto add = [&](std::uint64_t s) {
@@ -275,10 +288,58 @@ std::vector<std::vector<double>> LatinHypercube(std::size_t n, std::size_t dims,
   return pts;
 }
 
+std::size_t CountSweepRuns(const ParamTable& params, const std::vector<std::string>& vary,
+                           std::size_t seed_count) {
+  auto count = [](const std::string& text) -> std::size_t {
+    long long n = 0;
+    return ParseInteger(text, 1, 1000000, &n) ? static_cast<std::size_t>(n) : 1;
+  };
+  std::size_t runs = std::max<std::size_t>(1, seed_count), random_n = 0;
+  for (const std::string& arg : vary) {
+    const std::size_t eq = arg.find('=');
+    if (eq == std::string::npos) continue;
+    const std::string key = arg.substr(0, eq), spec = arg.substr(eq + 1);
+    const std::vector<std::string> parts = SplitAt(spec, ':');
+    std::size_t n = 1;
+    if (parts[0] == "random") {
+      // Every random axis is one factor of N samples (DefineSweep insists on one N).
+      if (parts.size() > 1) random_n = std::max(random_n, count(parts[1]));
+      continue;
+    } else if (parts[0] == "log") {
+      if (parts.size() == 4) n = count(parts[3]);
+    } else if (parts.size() > 1) {
+      if (parts.size() == 3) n = count(parts[2]);
+    } else if (spec == "all") {
+      const Param* p = params.Find(key);
+      if (p != nullptr && p->kind == Param::Kind::kBool)
+        n = 2;
+      else if (p != nullptr && p->kind == Param::Kind::kChoice)
+        n = std::max<std::size_t>(1, p->choices.size());
+    } else {
+      n = static_cast<std::size_t>(std::count(spec.begin(), spec.end(), ',')) + 1;
+    }
+    runs = SaturatingProduct(runs, n);
+  }
+  return SaturatingProduct(runs, std::max<std::size_t>(1, random_n));
+}
+
 SweepDefinition DefineSweep(const ScenarioSource& source, const std::vector<Override>& sets,
                             const std::vector<std::string>& vary, std::vector<std::uint64_t> seeds,
-                            std::uint64_t sample_seed) {
+                            std::uint64_t sample_seed, std::size_t max_runs) {
   const ParsedScenario base = ParseScenario(source, sets);
+  // The size first, from the specs alone: a sweep of 10^18 runs is refused before a value of it
+  // is built (building a million values of one axis already takes a while).
+  max_runs = std::min(max_runs, kMaxSweepRuns);
+  const std::size_t runs = CountSweepRuns(base.params, vary, seeds.size());
+  if (runs > max_runs)
+    throw std::runtime_error(
+        "the sweep has " +
+        (runs == std::numeric_limits<std::size_t>::max() ? "more than " + std::to_string(runs)
+                                                         : std::to_string(runs)) +
+        " runs (points x seeds), more than " + std::to_string(max_runs) +
+        (max_runs < kMaxSweepRuns ? "; vary fewer values, or allow it with --max-runs N (N <= " +
+                                        std::to_string(kMaxSweepRuns) + ")"
+                                  : ", the most formsim plans; vary fewer values"));
   SweepDefinition def;
   def.scenario = source.file();
   def.scenario_sha256 = source.sha256();

@@ -20,8 +20,10 @@
 
 namespace formsim::sim {
 
-/// The largest sweep formsim plans (runs = points x seeds).
+/// The largest sweep formsim plans at all (runs = points x seeds), whatever `--max-runs` says.
 constexpr std::size_t kMaxSweepRuns = 10000000;
+/// The largest sweep formsim plans unless asked for more (`formsim sweep --max-runs N`).
+constexpr std::size_t kDefaultMaxSweepRuns = 100000;
 
 /// One varied tunable.
 struct SweepAxis {
@@ -70,16 +72,26 @@ struct SweepDefinition {
 /// --vary, --seeds, --tables and metric paths.
 std::vector<std::string> SplitAt(const std::string& text, char sep);
 
-/// "1..20", "1,2,5", "3" or mixtures ("1..5,9"); seeds are 0 ... 2^64-1, no duplicates. Throws
-/// std::runtime_error naming `flag`.
+/// "1..20", "1,2,5", "3" or mixtures ("1..5,9"); seeds are 0 ... 2^64-1, no duplicates, at most
+/// 1000000. An empty text is refused too. Throws std::runtime_error naming `flag`.
 std::vector<std::uint64_t> ParseSeeds(const std::string& text, const std::string& flag = "--seeds");
+
+/// The number of runs `vary` x `seeds` makes, counted from the specs alone (a list's items, a
+/// range's N, random:N once for all random axes, `all` as the choices of `params`' tunable),
+/// without building any value; saturates at SIZE_MAX instead of overflowing. A spec that does
+/// not parse counts 1 (DefineSweep reports it). `seed_count` 0 counts as 1 (the scenario's).
+std::size_t CountSweepRuns(const ParamTable& params, const std::vector<std::string>& vary,
+                           std::size_t seed_count);
 
 /// Builds a sweep of `source` with fixed `sets`. `vary` holds "KEY=SPEC" strings; every key must
 /// be a tunable of the scenario (with `sets` applied) and every value valid for it. Empty
-/// `seeds`: the scenario's own seed. Throws ScenarioError naming the --vary argument.
+/// `seeds`: the scenario's own seed. A sweep of more than `max_runs` runs (at most
+/// kMaxSweepRuns) is refused before any value is built, with its run count. Throws
+/// ScenarioError naming the --vary argument, std::runtime_error for the run count.
 SweepDefinition DefineSweep(const ScenarioSource& source, const std::vector<Override>& sets,
                             const std::vector<std::string>& vary, std::vector<std::uint64_t> seeds,
-                            std::uint64_t sample_seed = 1);
+                            std::uint64_t sample_seed = 1,
+                            std::size_t max_runs = kDefaultMaxSweepRuns);
 
 /// `n` points of a Latin hypercube in [0, 1)^dims: each dimension is cut into n equal strata
 /// and every stratum holds exactly one point. Deterministic for a seed.

@@ -1,13 +1,14 @@
 #include "sim/core/sweep_store.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
 
+#include "sim/core/bounded_file.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/run_output.hpp"
 
@@ -113,13 +114,10 @@ class LineReader {
   int line_ = 0;
 };
 
+// A manifest or run file; a manifest lists every value of every axis, so it gets the limit of
+// any text file formsim reads (bounded_file.hpp).
 std::string ReadText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read '" + path + "'");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw std::runtime_error("cannot read '" + path + "'");
-  return ss.str();
+  return ReadBoundedFile(path);
 }
 
 const char* KindName(Param::Kind k) {
@@ -298,7 +296,12 @@ std::string RecordText(const SweepDefinition& def, const SweepRecord& rec) {
   t += "message " + Esc(rec.message) + "\n";
   for (const auto& [name, value] : rec.metrics) {
     t += "m " + Esc(name) + " ";
-    AppendDouble(t, value);
+    // A metric the run could not compute (a route never completed: NaN) is written as "-";
+    // "nan" and "inf" are never written, so one found in a run file was put there by hand.
+    if (std::isfinite(value))
+      AppendDouble(t, value);
+    else
+      t += "-";
     t += "\n";
   }
   t += "end\n";
@@ -327,15 +330,14 @@ SweepRecord ParseRecord(const std::string& text, const SweepDefinition& def,
       rec.message = f[1];
     } else if (k == "m" && f.size() == 3) {
       double v = 0;
-      // nan, inf and -inf are valid metric values (written by FormatDouble).
-      if (f[2] == "nan")
+      // "-": the run computed no value (NaN in the tables). Anything else is a finite number:
+      // formsim never writes nan or inf here, so such a value was edited in, and is refused.
+      if (f[2] == "-")
         v = std::numeric_limits<double>::quiet_NaN();
-      else if (f[2] == "inf")
-        v = std::numeric_limits<double>::infinity();
-      else if (f[2] == "-inf")
-        v = -std::numeric_limits<double>::infinity();
       else if (!ParseFiniteDouble(f[2], &v))
-        in.Fail("bad number '" + f[2] + "'");
+        in.Fail("metric '" + f[1] + "': '" + f[2] +
+                "' is not a finite number (a run file holds finite numbers, or '-' for a value "
+                "the run could not compute; was it edited?)");
       rec.metrics.emplace_back(f[1], v);
     } else if (k == "end") {
       ended = true;

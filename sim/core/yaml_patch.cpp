@@ -131,8 +131,8 @@ bool InsertIntoMap(std::string& text, const YAML::Node& map, const std::string& 
 bool PatchOne(std::string& text, const std::string& path, const std::string& value, std::string* why) {
   YAML::Node root;
   try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
+    root = LoadYamlText(text, "the text");  // aliases and nesting bounded like any scenario
+  } catch (const std::exception& e) {
     *why = std::string("text does not parse: ") + e.what();
     return false;
   }

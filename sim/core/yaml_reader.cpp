@@ -3,10 +3,11 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
+#include "sim/core/bounded_file.hpp"
 #include "sim/core/number_format.hpp"
+#include "sim/core/yaml_limits.hpp"
 
 namespace fs = std::filesystem;
 
@@ -464,6 +465,9 @@ YAML::Node LoadYamlText(const std::string& text, const std::string& file) {
                             " levels (a scenario needs a handful)");
   YAML::Node root;
   try {
+    // Aliases expand: the event stream is counted first, so a "billion laughs" document is
+    // refused at its alias before any walk over the tree could take hours.
+    CheckYamlLimits(text, file);
     root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     throw ScenarioError(file, e.mark.line + 1, e.mark.column + 1, "",
@@ -476,11 +480,13 @@ YAML::Node LoadYamlText(const std::string& text, const std::string& file) {
 }
 
 YAML::Node LoadYamlFile(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in || fs::is_directory(file)) throw ScenarioError(file, 0, 0, "", "cannot open file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return LoadYamlText(ss.str(), file);
+  std::string text;
+  try {
+    text = ReadBoundedFile(file);
+  } catch (const FileReadError& e) {
+    throw ScenarioError(file, 0, 0, "", e.reason());
+  }
+  return LoadYamlText(text, file);
 }
 
 std::vector<std::string> SplitKeyPath(const std::string& path) {

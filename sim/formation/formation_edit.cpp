@@ -11,6 +11,7 @@
 #include "control/formation/formation_shapes.hpp"
 #include "control/formation/link_kinematics.hpp"
 #include "sim/core/number_format.hpp"
+#include "sim/core/yaml_reader.hpp"
 #include "sim/formation/formation_experiment.hpp"
 
 namespace formsim::sim::formation {
@@ -186,8 +187,8 @@ std::string RestructureFormationText(const std::string& text, const std::string&
                                      const FormationState& st) {
   YAML::Node root;
   try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
+    root = LoadYamlText(text, "the scenario text");  // aliases and nesting bounded
+  } catch (const std::exception& e) {
     Fail(std::string("the scenario text does not parse: ") + e.what());
   }
   YAML::Node robots = root["robots"];

@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <set>
 #include <sstream>
 
 #include "control/inspection/fuzzy_controller.hpp"
 #include "control/inspection/paper_frame.hpp"
+#include "sim/core/bounded_file.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/multirate.hpp"
 
@@ -278,11 +278,11 @@ InspectionConfig ReadInspectionConfig(YamlReader& root, const ExperimentSetup& s
     if (!fs::is_regular_file(c.fuzzy_file, ec))
       f.Fail("file", "cannot open the rule base '" + c.fuzzy_file +
                          "' (relative paths start at the scenario's folder)");
-    std::ifstream in(c.fuzzy_file, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (!in.good() && !in.eof()) f.Fail("file", "cannot read the rule base '" + c.fuzzy_file + "'");
-    c.fuzzy_text = text.str();
+    try {
+      c.fuzzy_text = ReadBoundedFile(c.fuzzy_file);
+    } catch (const FileReadError& e) {
+      f.Fail("file", "the rule base " + std::string(e.what()));
+    }
     // Checked here, so that a broken rule base is a scenario error at this key (also on reset).
     try {
       control::inspection::FuzzyController check;

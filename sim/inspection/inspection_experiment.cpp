@@ -7,6 +7,7 @@
 
 #include "control/common/angle.hpp"
 #include "control/inspection/paper_frame.hpp"
+#include "sim/core/bounded_file.hpp"
 
 namespace formsim::sim::inspection {
 
@@ -105,7 +106,9 @@ std::vector<ActionSpec> InspectionExperiment::Actions() const {
 std::string InspectionExperiment::RunAction(const std::string& id) {
   if (id != kReloadAction) return Experiment::RunAction(id);
   try {
-    fuzzy_.LoadFile(cfg_.fuzzy_file);  // keeps the previous engine on any error
+    // Read like every file formsim opens (a regular file, bounded); keeps the previous engine on
+    // any error.
+    fuzzy_.LoadText(ReadBoundedFile(cfg_.fuzzy_file), cfg_.fuzzy_file);
   } catch (const std::exception& e) {
     AddEvent("fuzzy_reload_failed", robot_->name(), std::string(e.what()) + " (the previous rule base stays)");
     return e.what();
