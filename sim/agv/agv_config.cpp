@@ -143,7 +143,7 @@ BeaconDef ReadBeacon(YamlReader& b, double dt) {
   const std::string g = "Noise/beacon";
   BeaconDef def;
   def.period = b.Real("period", def.period,
-                      Tune("period Ts", "s").AtLeast(0.005).Slider(0.02, 1.0).Group(g));
+                      Tune("period Ts", "s").In(0.005, 3600).Slider(0.02, 1.0).Group(g));
   int steps = 1;
   if (const std::string err = StepsPerPeriod(def.period, dt, false, &steps); !err.empty())
     b.Fail("period", err);
@@ -269,7 +269,7 @@ AgvConfig ReadAgvConfig(YamlReader& root, double dt) {
     YamlReader m = c.Map("heading_pid");
     t.heading = ReadPid(m, t.heading, "Gains/heading eθ");
   }
-  cfg.control_rate = c.Double("rate", cfg.control_rate, Tune().Above(0));
+  cfg.control_rate = c.Double("rate", cfg.control_rate, Tune().Above(0).AtMost(1e6));
   if (const std::string err = StepsPerPeriod(1.0 / cfg.control_rate, dt, true, &cfg.control_every);
       !err.empty())
     c.Fail("rate",

@@ -40,16 +40,22 @@ void Tune::CheckDeclaration(const std::string& key) const {
 
 namespace {
 
+double ClampToSlider(double v) {
+  return std::clamp(v, -kSliderLimit, kSliderLimit);
+}
+
 // A default slider when none is declared: the validity where it is finite, else a span around
-// the value that stays valid.
+// the value that stays valid. Always finite and within ±kSliderLimit (ImGui asserts on a
+// slider range beyond half the largest double, and 1e308 + 1e308 is infinite).
 double DerivedEnd(const Param& p, bool upper) {
   const Tune& t = p.tune;
   const double end = upper ? t.slider_hi : t.slider_lo;
-  if (std::isfinite(end)) return end;
+  if (std::isfinite(end)) return ClampToSlider(end);
   const double bound = upper ? t.hi : t.lo;
-  if (std::isfinite(bound)) return bound;
-  const double span = std::max(1.0, 2.0 * std::abs(p.value));
-  return upper ? p.value + span : p.value - span;
+  if (std::isfinite(bound)) return ClampToSlider(bound);
+  const double v = std::isfinite(p.value) ? ClampToSlider(p.value) : 0.0;
+  const double span = std::min(kSliderLimit, std::max(1.0, 2.0 * std::abs(v)));
+  return ClampToSlider(upper ? v + span : v - span);
 }
 
 }  // namespace

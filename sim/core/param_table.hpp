@@ -16,6 +16,10 @@ namespace formsim::sim {
 
 /// Slider scale flag for Tune::Slider.
 constexpr bool kLog = true;
+/// The largest magnitude a slider end takes (Param::slider_min/max). A value beyond it (a
+/// tunable left unbounded, edited to 1e308) is shown in a text field, not a slider: ImGui
+/// asserts on slider ranges beyond half the largest double or float.
+constexpr double kSliderLimit = 1e15;
 
 /// The declaration of one tunable: label, unit, group, validity and slider. Built with chained
 /// setters at the reader's call site, e.g.
@@ -67,7 +71,8 @@ struct Param {
   double value = 0.0;  ///< kDouble value, kInt value, kBool 0/1, kChoice index
   bool in_file = false;  ///< the key is written in the scenario (else the default applies)
 
-  /// Slider range: the declared one, or a range derived from the validity and the value.
+  /// Slider range: the declared one, or a range derived from the validity and the value;
+  /// always finite and within ±kSliderLimit.
   double slider_min() const;
   double slider_max() const;
   /// The value as YAML text: shortest round-trip number, true/false, or the choice's name.

@@ -8,6 +8,7 @@
 #include "sim/core/number_format.hpp"
 #include "sim/core/record_yaml.hpp"
 #include "sim/core/run_output.hpp"
+#include "sim/core/session_journal.hpp"
 
 namespace formsim::sim {
 namespace {
@@ -126,7 +127,10 @@ void SessionRecord::Write(const std::string& path, long end_step) const {
 }
 
 SessionRecord SessionRecord::Read(const std::string& file) {
-  return Parse(ReadRecordFile(file, "session file"), file);
+  const std::string text = ReadRecordFile(file, "session file");
+  // A window's crash-safe journal replays like a session file (up to its last entry).
+  if (LooksLikeJournal(text)) return ParseJournal(text, file).record;
+  return Parse(text, file);
 }
 
 SessionRecord SessionRecord::Parse(const std::string& text, const std::string& file) {

@@ -19,7 +19,14 @@ namespace formsim::sim {
 class SessionRecord {
  public:
   /// Appends an event (as a Session observer, and for loads, pins and notes of the GUI).
-  void Add(const SessionEvent& e) { events_.push_back(e); }
+  void Add(const SessionEvent& e) {
+    events_.push_back(e);
+    if (listener_) listener_(e);
+  }
+  /// Called with every event added from now on (the window's crash-safe journal).
+  void SetListener(std::function<void(const SessionEvent&)> listener) { listener_ = std::move(listener); }
+  /// The step the record ends at when written without one (a recovered journal).
+  void SetEndStep(long step) { end_step_ = step; }
   const std::vector<SessionEvent>& events() const { return events_; }
   bool empty() const { return events_.empty(); }
 
@@ -39,6 +46,7 @@ class SessionRecord {
  private:
   std::vector<SessionEvent> events_;
   long end_step_ = -1;
+  std::function<void(const SessionEvent&)> listener_;
 };
 
 /// Does a record again, headless, through sim::Session: each event at its step (the run is
@@ -56,6 +64,8 @@ class SessionReplay {
   /// behind the run, an edit refused now that was accepted then, a run that ended early).
   bool Advance();
   Session& session() { return *session_; }
+  /// Hands over the replayed session (a restored window session goes on from it).
+  std::unique_ptr<Session> Release() { return std::move(session_); }
   /// Events done so far and in all (for a progress line).
   std::size_t done() const { return next_; }
   std::size_t total() const { return record_.events().size(); }

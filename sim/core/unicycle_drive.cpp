@@ -63,9 +63,9 @@ UnicycleDriveDef ReadUnicycleDrive(YamlReader& d, const std::string& group) {
   UnicycleDriveDef def = DefaultUnicycleDriveDef();
   def.mode = static_cast<UnicycleDriveDef::Mode>(
       d.Pick("mode", {"ideal", "traction"}, 0, Tune("mode").Group(group)));
-  def.v_max = d.Real("v_max", def.v_max, Tune("v max", "m/s").Above(0).Slider(0.1, 10.0).Group(group));
+  def.v_max = d.Real("v_max", def.v_max, Tune("v max", "m/s").Above(0).AtMost(100).Slider(0.1, 10.0).Group(group));
   def.omega_max =
-      d.Real("omega_max", def.omega_max, Tune("ω max", "rad/s").Above(0).Slider(0.1, 20.0).Group(group));
+      d.Real("omega_max", def.omega_max, Tune("ω max", "rad/s").Above(0).AtMost(1000).Slider(0.1, 20.0).Group(group));
   def.accel_max = d.Double("accel_max", def.accel_max);
   def.track_half_width = d.Double("track_half_width", def.track_half_width);
   if (def.accel_max <= 0) d.Fail("accel_max", "must be positive");

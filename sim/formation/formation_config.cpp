@@ -22,11 +22,11 @@ void ReadNoiseValue(YamlReader& m, const std::string& name, NoiseValue& v, const
   const bool angle = name != "l";
   if (has_v) {
     m.Double(ks, 0.0);  // mark the other spelling as allowed
-    v = {m.Real(kv, 0.0, Tune(name + " variance", angle ? "rad²" : "m²").AtLeast(0).Slider(0.0, 1e-2).Group(group)),
+    v = {m.Real(kv, 0.0, Tune(name + " variance", angle ? "rad²" : "m²").In(0, 1e4).Slider(0.0, 1e-2).Group(group)),
          true, true};
   } else if (has_s || !inherit) {
     m.Double(kv, 0.0);
-    v = {m.Real(ks, 0.0, Tune(name + " σ", angle ? "rad" : "m").AtLeast(0).Slider(0.0, 0.1).Group(group)), false,
+    v = {m.Real(ks, 0.0, Tune(name + " σ", angle ? "rad" : "m").In(0, 100).Slider(0.0, 0.1).Group(group)), false,
          has_s};
   } else {
     m.Double(ks, 0.0);
@@ -46,26 +46,26 @@ NoiseDef ReadNoise(YamlReader& m, const std::string& group, bool inherit) {
 UkfDef ReadUkf(YamlReader& m) {
   const std::string g = "Estimation/UKF";
   UkfDef u;
-  u.alpha = m.Real("alpha", u.alpha, Tune("sigma spread a").Above(0).Slider(1e-3, 1.0).Group(g).OnReset());
-  u.beta = m.Real("beta", u.beta, Tune("b").AtLeast(0).Slider(0.0, 4.0).Group(g).OnReset());
-  u.kappa = m.Real("kappa", u.kappa, Tune("κ").Above(-3).Slider(-2.0, 3.0).Group(g).OnReset());
+  u.alpha = m.Real("alpha", u.alpha, Tune("sigma spread a").Above(0).AtMost(1).Slider(1e-3, 1.0).Group(g).OnReset());
+  u.beta = m.Real("beta", u.beta, Tune("b").In(0, 100).Slider(0.0, 4.0).Group(g).OnReset());
+  u.kappa = m.Real("kappa", u.kappa, Tune("κ").Above(-3).AtMost(100).Slider(-2.0, 3.0).Group(g).OnReset());
   if (u.alpha * u.alpha * (3.0 + u.kappa) <= 0.0)
     m.Fail("kappa", "alpha² (3 + kappa) must be > 0 (sigma point spread)");
-  u.q_l = m.Real("q_l", u.q_l, Tune("Q l", "m²").AtLeast(0).Slider(1e-12, 1e-2, kLog).Group(g));
-  u.q_phi = m.Real("q_phi", u.q_phi, Tune("Q φ", "rad²").AtLeast(0).Slider(1e-12, 1e-2, kLog).Group(g));
-  u.q_alpha = m.Real("q_alpha", u.q_alpha, Tune("Q α", "rad²").AtLeast(0).Slider(1e-12, 1e-2, kLog).Group(g));
+  u.q_l = m.Real("q_l", u.q_l, Tune("Q l", "m²").In(0, 1e4).Slider(1e-12, 1e-2, kLog).Group(g));
+  u.q_phi = m.Real("q_phi", u.q_phi, Tune("Q φ", "rad²").In(0, 1e4).Slider(1e-12, 1e-2, kLog).Group(g));
+  u.q_alpha = m.Real("q_alpha", u.q_alpha, Tune("Q α", "rad²").In(0, 1e4).Slider(1e-12, 1e-2, kLog).Group(g));
   // R defaults to the sensor variance; given explicitly it is a tunable of its own.
   auto r = [&](const std::string& key, const std::string& label, const std::string& unit) {
     if (!m.Has(key)) return m.Double(key, -1.0);
-    return m.Real(key, 1.0, Tune(label, unit).Above(0).Slider(1e-12, 1e-2, kLog).Group(g));
+    return m.Real(key, 1.0, Tune(label, unit).Above(0).AtMost(1e4).Slider(1e-12, 1e-2, kLog).Group(g));
   };
   u.r_l = r("r_l", "R l", "m²");
   u.r_phi = r("r_phi", "R φ", "rad²");
   u.r_alpha = r("r_alpha", "R α", "rad²");
-  u.p0_l = m.Real("p0_l", u.p0_l, Tune("P0 l", "m²").Above(0).Slider(1e-12, 1.0, kLog).Group(g).OnReset());
-  u.p0_phi = m.Real("p0_phi", u.p0_phi, Tune("P0 φ", "rad²").Above(0).Slider(1e-12, 1.0, kLog).Group(g).OnReset());
+  u.p0_l = m.Real("p0_l", u.p0_l, Tune("P0 l", "m²").Above(0).AtMost(1e6).Slider(1e-12, 1.0, kLog).Group(g).OnReset());
+  u.p0_phi = m.Real("p0_phi", u.p0_phi, Tune("P0 φ", "rad²").Above(0).AtMost(1e6).Slider(1e-12, 1.0, kLog).Group(g).OnReset());
   u.p0_alpha =
-      m.Real("p0_alpha", u.p0_alpha, Tune("P0 α", "rad²").Above(0).Slider(1e-12, 1.0, kLog).Group(g).OnReset());
+      m.Real("p0_alpha", u.p0_alpha, Tune("P0 α", "rad²").Above(0).AtMost(1e6).Slider(1e-12, 1.0, kLog).Group(g).OnReset());
   u.l0_error = m.Double("l0_error", u.l0_error);
   m.Finish();
   return u;
@@ -100,8 +100,8 @@ LeaderScheduleDef ReadSchedule(YamlReader& m, const std::string& group) {
     d.v = m.Real("v", d.v, Tune("leader v", "m/s").AtLeast(-10).AtMost(10).Slider(0.0, 5.0).Group(group));
     if (d.kind == LeaderScheduleDef::Kind::kSpiral) {
       d.accel = m.Real("accel", d.accel, Tune("spiral dv/dt", "m/s²").In(-10, 10).Slider(-0.5, 0.5).Group(group));
-      d.r0 = m.Real("r0", d.r0, Tune("spiral R0", "m").Above(0).Slider(0.2, 10.0).Group(group));
-      d.r_rate = m.Real("r_rate", d.r_rate, Tune("spiral dR/dt", "m/s").AtLeast(0).Slider(0.0, 2.0).Group(group));
+      d.r0 = m.Real("r0", d.r0, Tune("spiral R0", "m").Above(0).AtMost(1e4).Slider(0.2, 10.0).Group(group));
+      d.r_rate = m.Real("r_rate", d.r_rate, Tune("spiral dR/dt", "m/s").In(0, 100).Slider(0.0, 2.0).Group(group));
     } else {
       d.omega = m.Real("omega", d.omega,
                        Tune("leader ω amplitude", "rad/s").In(-20, 20).Slider(0.0, 3.0).Group(group));
@@ -131,16 +131,16 @@ void ReadFollow(YamlReader& f, FormationRobotDef& r) {
   n.leaders = f.Strings("leaders", {});
   const bool lphi = n.law == FormationLaw::kLPhi;
   n.l_des = f.Real("l_des", n.l_des,
-                   Tune(lphi ? "l desired" : "l1 desired", "m").Above(0).Slider(0.1, 2.0).Group(gains));
-  r.follow.k1 = f.Real("k_l", r.follow.k1, Tune(lphi ? "k l" : "k l1").Above(0).Slider(1e-3, 1.0, kLog).Group(gains));
+                   Tune(lphi ? "l desired" : "l1 desired", "m").Above(0).AtMost(1000).Slider(0.1, 2.0).Group(gains));
+  r.follow.k1 = f.Real("k_l", r.follow.k1, Tune(lphi ? "k l" : "k l1").Above(0).AtMost(1e4).Slider(1e-3, 1.0, kLog).Group(gains));
   if (lphi) {
     n.phi_des = f.Real("phi_des", n.phi_des,
                        Tune("φ desired", "rad").In(-2 * control::kPi, 2 * control::kPi)
                            .Slider(-control::kPi, 2 * control::kPi).Group(gains));
-    r.follow.k2 = f.Real("k_phi", r.follow.k2, Tune("k φ").Above(0).Slider(1e-3, 1.0, kLog).Group(gains));
+    r.follow.k2 = f.Real("k_phi", r.follow.k2, Tune("k φ").Above(0).AtMost(1e4).Slider(1e-3, 1.0, kLog).Group(gains));
   } else {
-    n.l2_des = f.Real("l2_des", n.l2_des, Tune("l2 desired", "m").Above(0).Slider(0.1, 2.0).Group(gains));
-    r.follow.k2 = f.Real("k_l2", r.follow.k2, Tune("k l2").Above(0).Slider(1e-3, 1.0, kLog).Group(gains));
+    n.l2_des = f.Real("l2_des", n.l2_des, Tune("l2 desired", "m").Above(0).AtMost(1000).Slider(0.1, 2.0).Group(gains));
+    r.follow.k2 = f.Real("k_l2", r.follow.k2, Tune("k l2").Above(0).AtMost(1e4).Slider(1e-3, 1.0, kLog).Group(gains));
   }
   r.follow.estimator = static_cast<EstimatorMode>(
       f.Pick("estimator", EstimatorModeNames(), 0, Tune("estimator").Group("Estimation/" + r.body.name)));
@@ -173,13 +173,13 @@ ShapeDef ReadShape(YamlReader& s, const FormationConfig& cfg, const std::map<std
     cf::SlotValues& v = shape.slots[static_cast<std::size_t>(at->second)];
     const bool lphi = r.node.law == FormationLaw::kLPhi;
     const std::string g = group + "/" + name;
-    v.l_des = m.Real("l_des", v.l_des, Tune(lphi ? "l desired" : "l1 desired", "m").Above(0).Slider(0.1, 2.0).Group(g));
+    v.l_des = m.Real("l_des", v.l_des, Tune(lphi ? "l desired" : "l1 desired", "m").Above(0).AtMost(1000).Slider(0.1, 2.0).Group(g));
     if (lphi)
       v.phi_des = m.Real("phi_des", v.phi_des,
                          Tune("φ desired", "rad").In(-2 * control::kPi, 2 * control::kPi)
                              .Slider(-control::kPi, 2 * control::kPi).Group(g));
     else
-      v.l2_des = m.Real("l2_des", v.l2_des, Tune("l2 desired", "m").Above(0).Slider(0.1, 2.0).Group(g));
+      v.l2_des = m.Real("l2_des", v.l2_des, Tune("l2 desired", "m").Above(0).AtMost(1000).Slider(0.1, 2.0).Group(g));
     m.Finish();
   }
   sl.Finish();
@@ -296,7 +296,7 @@ AvoidanceConfig ReadAvoidance(YamlReader& root) {
                             Tune("hysteresis", "m").AtLeast(0).AtMost(100).Slider(0.0, 0.5).Group(g));
   a.def.min_dwell = m.Real("min_dwell", a.def.min_dwell,
                            Tune("min time avoiding", "s").AtLeast(0).AtMost(1e3).Slider(0.0, 2.0).Group(g));
-  a.k_obstacle = m.Real("k_obstacle", a.k_obstacle, Tune("k obstacle").Above(0).Slider(1e-3, 1.0, kLog).Group(g));
+  a.k_obstacle = m.Real("k_obstacle", a.k_obstacle, Tune("k obstacle").Above(0).AtMost(1e4).Slider(1e-3, 1.0, kLog).Group(g));
   m.Finish();
   return a;
 }
@@ -336,9 +336,9 @@ FormationConfig ReadFormationConfig(YamlReader& root, double dt) {
         f.Pick("bearing", {"das", "printed"}, 0, Tune("bearing convention").Group(g)));
     cfg.singular_threshold = f.Real("singular_threshold", cfg.singular_threshold,
                                     Tune("l-l singular |sin|").Above(0).Below(1).Slider(0.01, 0.5).Group(g));
-    cfg.L = f.Real("L", cfg.L, Tune("control point L", "m").Above(0).Slider(0.05, 0.5).Group(g));
+    cfg.L = f.Real("L", cfg.L, Tune("control point L", "m").Above(0).AtMost(10).Slider(0.05, 0.5).Group(g));
     cfg.settle_time = f.Real("settle_time", cfg.settle_time,
-                             Tune("settle time", "s").AtLeast(0).Slider(0.0, 10.0).Group(g).OnReset());
+                             Tune("settle time", "s").In(0, 1e7).Slider(0.0, 10.0).Group(g).OnReset());
     cfg.control_period = f.Double("control_period", cfg.control_period);
     cfg.control_every = ReadPeriodSteps(f, "control_period", dt, dt, true);
     f.Finish();

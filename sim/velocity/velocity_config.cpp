@@ -26,7 +26,7 @@ constexpr double kMaxTime = 1e6;                       // s
 // rate not given is the nominal one, or one sample per world step when the step is longer.
 int RateOrNominalSteps(YamlReader& m, const std::string& key, double* rate, double dt) {
   if (!m.Has(key)) *rate = std::min(*rate, 1.0 / dt);
-  *rate = m.Double(key, *rate, Tune().Above(0));
+  *rate = m.Double(key, *rate, Tune().Above(0).AtMost(1e6));
   return sim::RateSteps(m, key, *rate, dt);
 }
 
