@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 #include <vector>
 
@@ -20,6 +21,7 @@
 #include "app/imgui_layer.hpp"
 #include "app/png_writer.hpp"
 #include "app/ui.hpp"
+#include "sim/core/bounded_file.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/run_output.hpp"
 #include "sim/core/scenario_files.hpp"
@@ -84,8 +86,13 @@ struct GlfwSession {
 }  // namespace
 
 std::vector<ScriptAction> ReadScript(const std::string& file) {
-  std::ifstream in(file);
-  if (!in) throw std::runtime_error("--script '" + file + "': cannot open the file");
+  std::string text;
+  try {
+    text = sim::ReadBoundedFile(file);  // a regular file of at most 4 MiB (never /dev/zero)
+  } catch (const sim::FileReadError& e) {
+    throw std::runtime_error("--script '" + file + "': " + e.reason());
+  }
+  std::istringstream in(text);
   std::vector<ScriptAction> out;
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {

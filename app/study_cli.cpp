@@ -187,6 +187,8 @@ StudyCommands::StudyCommands(CLI::App& app) {
       "--print-jobs", print_jobs_,
       "Print one self-contained command line per run (GNU parallel, Slurm, HTCondor) and exit");
   sweep_->add_option("--run", run_, "Run only run I and record it (what --print-jobs lines do)");
+  sweep_->add_option("--max-runs", max_runs_,
+                     "Allow a sweep of up to N runs (default 100000, at most 10000000)");
   sweep_->add_option("--sample-seed", sample_seed_,
                      "Seed of the Latin hypercube of random:N (default 1)");
   sweep_->add_flag("--no-figures", no_figures_, "Write the tables only");
@@ -237,17 +239,26 @@ int StudyCommands::Sweep() {
         "formsim sweep: give a scenario (or `sweep collect DIR... --out DIR`)");
   const std::string file = sim::ResolveScenario(scenario_);
   const sim::ScenarioSource source = sim::ScenarioSource::FromFile(file);
+  // Given but empty (`--seeds ''`) is refused, never read as "the scenario's seed".
   const std::vector<std::uint64_t> seeds =
-      seeds_.empty() ? std::vector<std::uint64_t>{} : sim::ParseSeeds(seeds_);
-  const sim::SweepDefinition def = sim::DefineSweep(source, sim::CliOverrides(sets_, -1), vary_,
-                                                    seeds, ParseSampleSeed(sample_seed_));
+      sweep_->count("--seeds") == 0 ? std::vector<std::uint64_t>{} : sim::ParseSeeds(seeds_);
+  if (max_runs_ < 1 || max_runs_ > static_cast<long long>(sim::kMaxSweepRuns))
+    throw std::runtime_error("--max-runs " + std::to_string(max_runs_) + ": must be in 1 ... " +
+                             std::to_string(sim::kMaxSweepRuns));
+  const bool one_run = sweep_->count("--run") > 0;
+  if (one_run && run_ < 0)
+    throw std::runtime_error("--run " + std::to_string(run_) +
+                             ": a run number is 0 or more (runs are numbered 0 ... N-1)");
+  const sim::SweepDefinition def =
+      sim::DefineSweep(source, sim::CliOverrides(sets_, -1), vary_, seeds,
+                       ParseSampleSeed(sample_seed_), static_cast<std::size_t>(max_runs_));
   const std::string out = out_.empty() ? "out/sweep_" + fs::path(file).stem().string() : out_;
   int shard_k = 1, shard_n = 1;
   if (!shard_.empty()) sim::ParseShard(shard_, &shard_k, &shard_n);
   const int jobs = CheckJobs(jobs_, "--jobs");
   const std::vector<std::size_t> mine = sim::ShardRuns(def.runs(), shard_k, shard_n);
 
-  if (run_ >= 0) {
+  if (one_run) {
     // One job line: this run only, recorded like any other.
     if (static_cast<std::size_t>(run_) >= def.runs())
       throw std::runtime_error("--run " + std::to_string(run_) + ": the sweep has runs 0 ... " +
@@ -277,6 +288,7 @@ int StudyCommands::Sweep() {
     for (const std::string& s : sets_) common += " --set " + ShellWord(s);
     if (!seeds_.empty()) common += " --seeds " + ShellWord(seeds_);
     if (def.sample_seed != 1) common += " --sample-seed " + std::to_string(def.sample_seed);
+    if (sweep_->count("--max-runs") > 0) common += " --max-runs " + std::to_string(max_runs_);
     common += " --out " + ShellWord(fs::absolute(out).string()) + " -q --run ";
     RemoveDamaged(out, mine, false);
     for (std::size_t r : sim::PendingRuns(out, mine)) std::printf("%s%zu\n", common.c_str(), r);
@@ -395,8 +407,8 @@ int StudyCommands::Tune() {
         throw std::runtime_error("--param " + p + ": tuned twice");
   }
   s.objective = sim::ParseMetricExpr(tune_metric_);
-  s.seeds = tune_seeds_.empty() ? std::vector<std::uint64_t>{base.setup.seed}
-                                : sim::ParseSeeds(tune_seeds_);
+  s.seeds = tune_->count("--seeds") == 0 ? std::vector<std::uint64_t>{base.setup.seed}
+                                         : sim::ParseSeeds(tune_seeds_);
   s.budget = budget_;
   s.algorithm = algorithm_;
   if (budget_ < 1 || budget_ > 100000) throw std::runtime_error("--budget must be in 1 ... 100000");

@@ -40,7 +40,8 @@ class StudyCommands {
   std::string shard_;
   bool resume_ = false;
   bool print_jobs_ = false;
-  long long run_ = -1;  ///< --run I: only run I (a job line)
+  long long run_ = -1;  ///< --run I: only run I (a job line); given when sweep_->count("--run")
+  long long max_runs_ = 100000;  ///< --max-runs N: the largest sweep planned (kDefaultMaxSweepRuns)
   bool quiet_ = false;
   bool no_figures_ = false;
   // collect

@@ -6,8 +6,10 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "sim/core/bounded_file.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/run_output.hpp"
+#include "sim/core/yaml_reader.hpp"
 
 namespace fs = std::filesystem;
 
@@ -33,7 +35,8 @@ UiSettings LoadUiSettings(std::string* warning) {
                  " (the default is used)";
   };
   try {
-    const YAML::Node root = YAML::LoadFile(path);
+    // Bounded like every file formsim reads (a regular file, at most 4 MiB, aliases counted).
+    const YAML::Node root = sim::LoadYamlText(sim::ReadBoundedFile(path), path);
     if (!root.IsMap()) return s;
     if (const YAML::Node n = root["ui_scale"]) {
       double v = 0;
@@ -49,7 +52,10 @@ UiSettings LoadUiSettings(std::string* warning) {
         warn(n, "angle_unit", "must be deg or rad");
     }
   } catch (const std::exception& e) {
-    if (warning != nullptr) *warning = path + ": " + e.what() + " (defaults used)";
+    if (warning != nullptr) {
+      const std::string what = e.what();  // the file's own errors name it already
+      *warning = (what.rfind(path, 0) == 0 ? what : path + ": " + what) + " (defaults used)";
+    }
   }
   return s;
 }

@@ -48,8 +48,15 @@ void AppUi::AdvanceTimeline(double budget_s) {
 
 std::string AppUi::CmdScrub(double t, bool finish_now) {
   const sim::Experiment& exp = session_->exp();
-  if (!std::isfinite(t) || t < 0) {
-    const std::string why = "scrub: the time must be >= 0 s";
+  // [0, end of the run so far]: refused outside it before t becomes a step (1e308 / dt is no
+  // step number). A step of slack (and the float rounding of the slider) so that the live end,
+  // typed as shown or dragged to, is accepted.
+  const double end = std::max(exp.time(), static_cast<double>(exp.steps()) * exp.dt());
+  if (!std::isfinite(t) || t < 0 || t > end + std::max(exp.dt(), 1e-6 * end)) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "scrub: t = %.6g s is outside the run so far, 0 ... %.6g s",
+                  t, end);
+    const std::string why = buf;
     SetStatus(why, true);
     return why;
   }
