@@ -11,13 +11,19 @@
 #include "app/ui.hpp"
 #include "control/formation/formation_shapes.hpp"
 #include "sim/core/number_format.hpp"
+#include "sim/formation/formation_editing.hpp"
 
 namespace formsim::app {
 namespace {
 
 using EditMode = UiState::EditMode;
+using control::formation::FormationLaw;
+namespace sf = sim::formation;
 
-const char* const kLaws[] = {"l_phi", "l_l"};
+// The editor's law choice (UiState::edit_law: 0 l-φ, 1 l-l).
+FormationLaw LawOf(int edit_law) {
+  return edit_law == 0 ? FormationLaw::kLPhi : FormationLaw::kLL;
+}
 
 std::string Joined(const std::vector<std::string>& v) {
   std::string out;
@@ -25,11 +31,18 @@ std::string Joined(const std::vector<std::string>& v) {
   return out;
 }
 
-// A clicked point as short text (0.1 mm): the command stays readable in the session record.
-std::string Coord(double v) { return sim::FormatDouble(std::round(v * 1e4) / 1e4 + 0.0); }
+// A clicked point to 0.1 mm: the change's text stays readable in the session record.
+double Rounded(double v) {
+  return std::round(v * 1e4) / 1e4 + 0.0;
+}
+std::string Coord(double v) {
+  return sim::FormatDouble(Rounded(v));
+}
 
 // Leaders a law needs.
-std::size_t Needed(int law) { return law == 0 ? 1 : 2; }
+std::size_t Needed(int edit_law) {
+  return control::formation::LeadersOfLaw(LawOf(edit_law));
+}
 
 const char* ModeHint(EditMode m) {
   switch (m) {
@@ -52,9 +65,19 @@ const char* ModeHint(EditMode m) {
 }  // namespace
 
 std::string AppUi::CmdFormation(const std::string& command) {
+  return RunRestructure(command, [&] { return sf::Restructure(*session_, command, "GUI edit"); });
+}
+
+std::string AppUi::CmdFormationChange(const sf::StructureChange& change) {
+  return RunRestructure(sf::StructureChangeText(change),
+                        [&] { return sf::Restructure(*session_, change, "GUI edit"); });
+}
+
+std::string AppUi::RunRestructure(const std::string& command,
+                                  const std::function<std::string()>& restructure) {
   CmdLive();
   auto row = PendingRow("restructured");
-  const std::string err = session_->Restructure(command, "GUI edit");
+  const std::string err = restructure();
   state_.edit_picks.clear();  // a refused change starts its picks again
   if (!err.empty()) {
     SetStatus("formation " + command + " refused: " + err, true);
@@ -70,7 +93,10 @@ std::string AppUi::CmdFormation(const std::string& command) {
 std::string AppUi::CmdSlot(const std::string& robot, double x, double y, bool continues_drag) {
   std::vector<std::pair<std::string, std::string>> edits;
   try {
-    edits = session_->exp().SlotEdits(robot, {x, y});
+    const sf::FormationEditing* editing = sf::EditingOf(session_->exp());
+    if (editing == nullptr)
+      throw std::runtime_error("this kind of scenario has no desired slots to drag");
+    edits = editing->SlotEdits(robot, {x, y});
   } catch (const std::exception& e) {
     SetStatus(std::string("slot: ") + e.what(), true);
     return e.what();
@@ -102,9 +128,11 @@ std::string AppUi::CmdEditor(const std::string& mode) {
   }
   auto set_law = [&]() -> std::string {
     if (law.empty()) return "";
-    if (law == "l_phi") state_.edit_law = 0;
-    else if (law == "l_l") state_.edit_law = 1;
-    else return "editor " + m + ": law must be l_phi or l_l, got '" + law + "'";
+    FormationLaw l;
+    if (!control::formation::ParseLaw(law, &l))
+      return "editor " + m + ": law must be " + control::formation::LawName(FormationLaw::kLPhi) +
+             " or " + control::formation::LawName(FormationLaw::kLL) + ", got '" + law + "'";
+    state_.edit_law = l == FormationLaw::kLPhi ? 0 : 1;
     return "";
   };
   EditMode next;
@@ -119,7 +147,7 @@ std::string AppUi::CmdEditor(const std::string& mode) {
     SetStatus(why, true);
     return why;
   }
-  if (next != EditMode::kOff && !session_->exp().Restructurable()) {
+  if (next != EditMode::kOff && sf::EditingOf(session_->exp()) == nullptr) {
     const std::string why = "editor: this scenario has no formation to edit";
     SetStatus(why, true);
     return why;
@@ -149,7 +177,11 @@ std::string AppUi::RobotAt(Vec2 p, const View& view) const {
 std::string AppUi::EditorClick(Vec2 p) {
   const std::string hit = RobotAt(p, state_.view);
   auto& picks = state_.edit_picks;
-  const std::string law = kLaws[state_.edit_law];
+  const FormationLaw law = LawOf(state_.edit_law);
+  const sf::FormationEditing* editing = sf::EditingOf(session_->exp());
+  auto leaders_of = [&](const std::string& robot) {
+    return editing != nullptr ? editing->LeadersOf(robot) : std::vector<std::string>{};
+  };
   auto picked = [&](const std::string& what) {
     SetStatus(what + ": " + Joined(picks));
     return std::string();
@@ -159,7 +191,7 @@ std::string AppUi::EditorClick(Vec2 p) {
       return "editor: off (choose what a click does first)";
     case EditMode::kRemove:
       if (hit.empty()) return picked("no robot there; click the robot to remove");
-      return CmdFormation("remove " + hit);
+      return CmdFormationChange({sf::RemoveRobot{hit}});
     case EditMode::kAdd:
       if (!hit.empty()) {
         if (std::find(picks.begin(), picks.end(), hit) == picks.end()) {
@@ -171,36 +203,38 @@ std::string AppUi::EditorClick(Vec2 p) {
       }
       if (picks.size() != Needed(state_.edit_law)) {
         const std::string why = "add: pick " + std::to_string(Needed(state_.edit_law)) +
-                                " leader(s) for " + law + " first (click them)";
+                                " leader(s) for " + control::formation::LawName(law) +
+                                " first (click them)";
         SetStatus(why, true);
         return why;
       }
-      return CmdFormation("add " + law + " " + Joined(picks) + " " + Coord(p.x) + " " + Coord(p.y));
+      return CmdFormationChange({sf::AddFollower{law, picks, Rounded(p.x), Rounded(p.y), ""}});
     case EditMode::kAttach:
       if (hit.empty()) return picked("no robot there; follower, then leader(s)");
       if (std::find(picks.begin(), picks.end(), hit) == picks.end()) picks.push_back(hit);
       if (picks.size() < 1 + Needed(state_.edit_law)) return picked("follower, leaders");
-      return CmdFormation("attach " + picks[0] + " " + law + " " +
-                          Joined({picks.begin() + 1, picks.end()}));
+      return CmdFormationChange(
+          {sf::AttachFollower{picks[0], law, {picks.begin() + 1, picks.end()}}});
     case EditMode::kSwitchLaw: {
       if (hit.empty()) return picked("no robot there; click a follower");
       if (picks.empty()) {
-        const std::vector<std::string> leaders = session_->exp().LeadersOf(hit);
+        const std::vector<std::string> leaders = leaders_of(hit);
         if (leaders.empty()) {
           const std::string why = hit + " is a root leader: it has no law to switch";
           SetStatus(why, true);
           return why;
         }
-        if (leaders.size() == 2) return CmdFormation("attach " + hit + " l_phi " + leaders[0]);
+        if (leaders.size() == 2)
+          return CmdFormationChange({sf::AttachFollower{hit, FormationLaw::kLPhi, {leaders[0]}}});
         picks = {hit, leaders[0]};
         return picked("l-φ -> l-l: now click the second leader for");
       }
       if (hit == picks[0] || hit == picks[1]) return picked("click another robot as second leader");
-      return CmdFormation("attach " + picks[0] + " l_l " + picks[1] + "," + hit);
+      return CmdFormationChange({sf::AttachFollower{picks[0], FormationLaw::kLL, {picks[1], hit}}});
     }
     case EditMode::kSlots:
       if (!hit.empty() && state_.slot_drag.empty()) {
-        if (session_->exp().LeadersOf(hit).empty()) {
+        if (leaders_of(hit).empty()) {
           const std::string why = hit + " is a root leader: it has no desired slot";
           SetStatus(why, true);
           return why;
@@ -301,7 +335,9 @@ void AppUi::DrawFormationSection() {
   ImGui::InputFloat("m##spacing", &state_.shape_spacing, 0, 0, "%.2f");
   ImGui::SameLine();
   if (ImGui::Button("Apply shape"))
-    CmdFormation("shape " + shapes[state_.shape_index] + " " + Coord(state_.shape_spacing));
+    CmdFormationChange(
+        {sf::ApplyShape{static_cast<control::formation::ShapeKind>(state_.shape_index),
+                        Rounded(state_.shape_spacing)}});
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Every robot after the root leader is placed on its slot of the shape,\n"
                       "with l-l links wherever a well-shaped triangle exists (else l-φ)");

@@ -7,6 +7,7 @@
 
 #include "sim/core/session.hpp"
 #include "sim/formation/cascade_generator.hpp"
+#include "sim/formation/formation_editing.hpp"
 
 using namespace formsim::sim;
 
@@ -21,7 +22,7 @@ void Restructure(benchmark::State& state, const std::string& command) {
     Session s(src, {});
     s.Step();
     state.ResumeTiming();
-    const std::string err = s.Restructure(command);
+    const std::string err = formation::Restructure(s, command);
     if (!err.empty()) state.SkipWithError(err.c_str());
   }
 }

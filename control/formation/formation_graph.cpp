@@ -5,6 +5,38 @@
 #include <map>
 
 namespace formsim::control::formation {
+
+const char* LawName(FormationLaw law) {
+  switch (law) {
+    case FormationLaw::kLPhi:
+      return "l_phi";
+    case FormationLaw::kLL:
+      return "l_l";
+    case FormationLaw::kRoot:
+      break;
+  }
+  return "root";
+}
+
+const std::vector<std::string>& FollowerLawNames() {
+  static const std::vector<std::string> names = {LawName(FormationLaw::kLPhi),
+                                                 LawName(FormationLaw::kLL)};
+  return names;
+}
+
+bool ParseLaw(const std::string& name, FormationLaw* law) {
+  for (FormationLaw l : {FormationLaw::kLPhi, FormationLaw::kLL})
+    if (name == LawName(l)) {
+      *law = l;
+      return true;
+    }
+  return false;
+}
+
+std::size_t LeadersOfLaw(FormationLaw law) {
+  return law == FormationLaw::kRoot ? 0 : law == FormationLaw::kLPhi ? 1 : 2;
+}
+
 namespace {
 
 std::string Fmt(double v) {
@@ -25,13 +57,12 @@ void CheckNode(const std::vector<FormationNodeDef>& nodes, int i,
   if (!(n.l_des > 0.0)) throw FormationGraphError(i, "l_des", "desired distance must be > 0");
   if (n.law == FormationLaw::kLL && !(n.l2_des > 0.0))
     throw FormationGraphError(i, "l2_des", "desired distance must be > 0");
-  const std::size_t want = n.law == FormationLaw::kLPhi ? 1 : 2;
+  const std::size_t want = LeadersOfLaw(n.law);
   if (n.leaders.size() != want)
     throw FormationGraphError(i, "leaders",
-                              std::string(n.law == FormationLaw::kLPhi ? "law l_phi" : "law l_l") +
-                                  " needs exactly " + std::to_string(want) + " leader" +
-                                  (want == 1 ? "" : "s") + ", got " +
-                                  std::to_string(n.leaders.size()));
+                              std::string("law ") + LawName(n.law) + " needs exactly " +
+                                  std::to_string(want) + " leader" + (want == 1 ? "" : "s") +
+                                  ", got " + std::to_string(n.leaders.size()));
   for (std::size_t a = 0; a < n.leaders.size(); ++a) {
     const std::string& ln = n.leaders[a];
     if (ln == n.name)

@@ -15,6 +15,16 @@ namespace formsim::control::formation {
 
 enum class FormationLaw { kRoot, kLPhi, kLL };
 
+/// A follower law's name in scenarios (`follow: {law: ...}`), results, the editor and the
+/// `formation` commands: "l_phi" or "l_l" ("root" for a root leader).
+const char* LawName(FormationLaw law);
+/// The follower laws' names in FormationLaw order (l_phi, l_l): the scenario reader's choices.
+const std::vector<std::string>& FollowerLawNames();
+/// The follower law called `name` (l_phi or l_l). False for any other text (kRoot included).
+bool ParseLaw(const std::string& name, FormationLaw* law);
+/// Leaders a law takes: none (root), one (l-φ) or two (l-l).
+std::size_t LeadersOfLaw(FormationLaw law);
+
 /// One robot of a formation as far as the graph is concerned.
 struct FormationNodeDef {
   std::string name;

@@ -133,15 +133,6 @@ std::string Experiment::Move(const std::string& name, Vec2 p) {
   return "nothing named '" + name + "' to move";
 }
 
-std::string Experiment::RestructuredText(const std::string&, const std::string&) const {
-  throw std::runtime_error("this kind of scenario offers no structural changes");
-}
-
-std::vector<std::pair<std::string, std::string>> Experiment::SlotEdits(const std::string&,
-                                                                       Vec2) const {
-  throw std::runtime_error("this kind of scenario has no desired slots to drag");
-}
-
 void Experiment::Draw(DrawSink& draw) const {
   world_.Draw(draw);
   DrawScene(draw);

@@ -123,20 +123,13 @@ class Experiment {
   virtual std::vector<ActionSpec> Actions() const { return {}; }
   /// Runs action `id` between two steps. Returns "" or why it failed (then nothing changed).
   virtual std::string RunAction(const std::string& id) { return "no action '" + id + "'"; }
-  /// The scenario `text` rewritten by a structural `command` (see Session::Restructure), with
-  /// every robot that stays placed where it is now (so a run started from the result goes on
-  /// from this state); an empty command only places the robots. Throws std::runtime_error with
-  /// the reason when the command is not understood or cannot apply. Default: no structure edits.
-  virtual std::string RestructuredText(const std::string& text, const std::string& command) const;
-  /// True when RestructuredText understands commands (the GUI then offers its editor).
-  virtual bool Restructurable() const { return false; }
-  /// The leaders `robot` follows, in order (none for a root or an unknown robot).
-  virtual std::vector<std::string> LeadersOf(const std::string& /*robot*/) const { return {}; }
-  /// The tunable edits (key, value) that put `robot`'s desired place at world point `p`,
-  /// measured from the state now (a slot dragged in the world view). Throws std::runtime_error
-  /// with the reason (not a follower; no slots in this kind).
-  virtual std::vector<std::pair<std::string, std::string>> SlotEdits(const std::string& robot,
-                                                                     Vec2 p) const;
+  /// An optional capability of this kind (sim::StructureEditing, formation::FormationEditing,
+  /// ...): this experiment seen as `Capability` when its kind offers it, else null. The base
+  /// keeps only what every kind has; what some kinds can do is a capability they derive from.
+  template <class Capability>
+  const Capability* As() const {
+    return dynamic_cast<const Capability*>(this);
+  }
   /// Extra tables for the GUI beyond the results (rules with firing strengths...).
   virtual std::vector<TableSpec> Tables() const { return {}; }
   /// Draws the whole scene: world (patches, obstacles) then the experiment's own layers.

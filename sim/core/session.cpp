@@ -3,10 +3,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <iterator>
+#include <stdexcept>
 
 #include "sim/core/run_output.hpp"
 #include "sim/core/scenario_files.hpp"
 #include "sim/core/scenario_save.hpp"
+#include "sim/core/structure_editing.hpp"
 
 namespace fs = std::filesystem;
 
@@ -166,7 +168,10 @@ std::string Session::Edit(const std::string& key, const std::string& value,
 std::string Session::RestructureTo(const std::string& text, const std::string& origin) {
   std::string placed;
   try {
-    placed = exp_->RestructuredText(text, "");  // the robots stay where they are now
+    const auto* editing = exp_->As<StructureEditing>();
+    if (editing == nullptr)
+      throw std::runtime_error("this kind of scenario offers no structural changes");
+    placed = editing->PlacedText(text);  // the robots stay where they are now
   } catch (const std::exception& e) {
     return origin + " refused: " + e.what();
   }
@@ -427,20 +432,21 @@ std::string Session::BakedText() const {
   return TunedScenarioText(source_, EffectiveOverrides(), disk_file_);
 }
 
-std::string Session::Restructure(const std::string& command, const std::string& origin) {
+std::string Session::Restructure(const std::string& label, const StructureRewrite& rewrite,
+                                 const std::string& origin) {
   std::string before, after;
   try {
     before = BakedText();
-    after = exp_->RestructuredText(before, command);
+    after = rewrite(*exp_, before);
   } catch (const std::exception& e) {
     Reject("formation", e.what());
     return e.what();
   }
-  if (std::string err = AdoptStructure(after, command, origin); !err.empty()) {
+  if (std::string err = AdoptStructure(after, label, origin); !err.empty()) {
     Reject("formation", err);
     return err;
   }
-  undo_.push_back({command, before, after, true});
+  undo_.push_back({label, before, after, true});
   if (undo_.size() > 500) undo_.erase(undo_.begin());
   redo_.clear();
   return "";

@@ -118,14 +118,21 @@ class Session {
   /// Rebuilds from the file and every accepted edit (with `seed` when given). Returns "" or
   /// the reason it failed, in which case the running experiment stays.
   std::string Reset(std::optional<std::uint64_t> seed = std::nullopt);
-  /// Changes the scenario's structure (a formation's robots, leaders, laws, shape) by a command
-  /// the experiment understands (Experiment::RestructuredText, e.g. "add l_phi R1 0.5 -0.3"):
-  /// the scenario with every edit so far written into its text is rewritten by the command, then
-  /// read by the one loader (every check of a load applies: a refused change leaves everything as
-  /// it was) and a new run starts from it, the robots where they are now. The new text is the
-  /// session's scenario from then on: resets, branches, Save and the session record use it, and
-  /// Undo / Redo take structural changes back like edits. Returns "" or why it was refused.
-  std::string Restructure(const std::string& command, const std::string& origin = "GUI edit");
+  /// Rewrites the scenario text for a structural change (`now`: the running experiment).
+  using StructureRewrite =
+      std::function<std::string(const Experiment& now, const std::string& text)>;
+  /// Changes the scenario's structure (a formation's robots, leaders, laws, shape) through the
+  /// kind's capability (e.g. formation::Restructure, which calls this): the scenario with every
+  /// edit so far written into its text is rewritten by `rewrite` (which throws
+  /// std::runtime_error with the reason when the change cannot apply), then read by the one
+  /// loader (every check of a load applies: a refused change leaves everything as it was) and a
+  /// new run starts from it, the robots where they are now. `label` is the change's text form
+  /// ("add l_phi R1 0.5 -0.3"): the record's `restructure` key and the undo text. The new text
+  /// is the session's scenario from then on: resets, branches, Save and the session record use
+  /// it, and Undo / Redo take structural changes back like edits. Returns "" or why it was
+  /// refused.
+  std::string Restructure(const std::string& label, const StructureRewrite& rewrite,
+                          const std::string& origin = "GUI edit");
   /// Adopts `source` as the restructured scenario (a replayed session record).
   std::string RestructureFrom(ScenarioSource source, const std::string& command,
                               const std::string& origin);

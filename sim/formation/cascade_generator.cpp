@@ -10,6 +10,7 @@
 #include "control/common/angle.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/world.hpp"
+#include "sim/formation/formation_follow.hpp"
 
 namespace formsim::sim::formation {
 namespace {
@@ -25,8 +26,10 @@ constexpr double kRamp = 1.0;        // each change of turn rate takes this long
 constexpr double kPaperVariance = 0.9186e-4;  // the paper's angle noise h, rad²
 constexpr double kRangeSigma = 0.003;         // range noise, m (formation_traj2_noisy_raw's)
 
-// A number rounded to 1e-6 as short text (the scenario stays readable and small).
-std::string Num(double v) { return FormatDouble(std::round(v * 1e6) / 1e6 + 0.0); }
+// A number rounded to 1e-6 (1 µm, 1 µrad), and as short text (the scenario stays readable and
+// small).
+double Round(double v) { return std::round(v * 1e6) / 1e6 + 0.0; }
+std::string Num(double v) { return FormatDouble(Round(v)); }
 
 std::string Name(int index) { return "R" + std::to_string(index + 1); }
 
@@ -142,12 +145,15 @@ std::string MakeCascadeScenario(const CascadeOptions& o) {
     const Vec2 m = p + Vec2{kL, 0.0};
     auto distance = [&](int leader) { return (m - place(slots[leader])).Norm(); };
     int a = -1, b = -1;  // l-l leaders (a: first)
+    FollowBlock follow;
+    follow.k1 = follow.k2 = Round(kGain);
     // The one l-φ follower: R3 (or R2 when alone in its row).
     if (s.r == 1 && (s.c == 1 || index_of(1, 1) < 0)) {
       const Vec2 r = m - place(slots[0]);
-      y += "follow: {law: l_phi, leaders: [R1], l_des: " + Num(r.Norm()) +
-           ", phi_des: " + Num(std::atan2(r.y, r.x)) + ", k_l: " + Num(kGain) +
-           ", k_phi: " + Num(kGain);
+      follow.law = cf::FormationLaw::kLPhi;
+      follow.leaders = {Name(0)};
+      follow.l_des = Round(r.Norm());
+      follow.second_des = Round(std::atan2(r.y, r.x));
     } else {
       if (s.r == 1) {
         a = 0, b = index_of(1, 1);
@@ -159,12 +165,16 @@ std::string MakeCascadeScenario(const CascadeOptions& o) {
         a = index_of(s.r - 1, s.c - 1), b = index_of(s.r - 1, s.c);
       }
       if (a < 0 || b < 0) throw std::logic_error("MakeCascadeScenario: a leader slot is empty");
-      y += "follow: {law: l_l, leaders: [" + Name(a) + ", " + Name(b) + "], l_des: " +
-           Num(distance(a)) + ", l2_des: " + Num(distance(b)) + ", k_l: " + Num(kGain) +
-           ", k_l2: " + Num(kGain);
+      follow.law = cf::FormationLaw::kLL;
+      follow.leaders = {Name(a), Name(b)};
+      follow.l_des = Round(distance(a));
+      follow.second_des = Round(distance(b));
     }
-    if (o.ukf) y += ", estimator: ukf, measure: [l, phi, alpha]";
-    y += "}}\n";
+    if (o.ukf) {
+      follow.estimator = "ukf";
+      follow.measure = {"l", "phi", "alpha"};
+    }
+    y += "follow: " + FollowText(follow) + "}\n";
   }
   return y;
 }

@@ -5,6 +5,7 @@
 
 #include "sim/core/multirate.hpp"
 #include "sim/core/number_format.hpp"
+#include "sim/formation/formation_follow.hpp"
 
 namespace formsim::sim::formation {
 namespace {
@@ -121,10 +122,12 @@ cf::MeasurementSet ReadMeasure(YamlReader& m) {
   m.Fail("measure", "must be one of [phi, alpha], [l, phi, alpha], [alpha]");
 }
 
+}  // namespace
+
 void ReadFollow(YamlReader& f, FormationRobotDef& r) {
   cf::FormationNodeDef& n = r.node;
   const std::string gains = "Gains/" + r.body.name;
-  const int law = f.Choice("law", {"l_phi", "l_l"}, -1);
+  const int law = f.Choice("law", cf::FollowerLawNames(), -1);
   if (law < 0) f.Fail("law", "required: l_phi (one leader) or l_l (two leaders)");
   n.law = law == 0 ? FormationLaw::kLPhi : FormationLaw::kLL;
   if (!f.Has("leaders")) f.Fail("leaders", "required list of leader names");
@@ -149,6 +152,8 @@ void ReadFollow(YamlReader& f, FormationRobotDef& r) {
   r.follow.noise = ReadNoise(nm, "Noise/" + r.body.name, true);
   f.Finish();
 }
+
+namespace {
 
 // A shape's slots: `slots: {ROBOT: {l_des, phi_des | l2_des}}`, over the follow: values.
 ShapeDef ReadShape(YamlReader& s, const FormationConfig& cfg, const std::map<std::string, int>& names) {

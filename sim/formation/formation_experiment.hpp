@@ -55,12 +55,14 @@
 #include "sim/core/ring_buffer.hpp"
 #include "sim/core/unicycle_drive.hpp"
 #include "sim/formation/formation_config.hpp"
+#include "sim/formation/formation_edit.hpp"
+#include "sim/formation/formation_editing.hpp"
 #include "sim/formation/obstacle_distance.hpp"
 #include "sim/formation/relative_sensor.hpp"
 
 namespace formsim::sim::formation {
 
-class FormationExperiment : public ExperimentOf<FormationConfig> {
+class FormationExperiment : public ExperimentOf<FormationConfig>, public FormationEditing {
  public:
   /// Figures show at most this many robots' or links' series; a larger formation also records
   /// the largest and median errors over all its links (and plots them).
@@ -73,9 +75,9 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
   std::vector<FigureSpec> Figures() const override;
   void Bounds(Vec2& lo, Vec2& hi) const override;
   Metrics Results() const override;
-  /// Formation commands (add, remove, attach, shape): see sim/formation/formation_edit.hpp.
-  std::string RestructuredText(const std::string& text, const std::string& command) const override;
-  bool Restructurable() const override { return true; }
+  // ---- FormationEditing (formation_editing.hpp; the changes: formation_edit.hpp) ----
+  std::string PlacedText(const std::string& text) const override;
+  std::string Restructured(const std::string& text, const StructureChange& change) const override;
   std::vector<std::string> LeadersOf(const std::string& robot) const override;
   /// l-φ: l_des and φ_des of a control point at `p` seen from the leader now; l-l: the two
   /// distances to the leaders now.
@@ -130,6 +132,8 @@ class FormationExperiment : public ExperimentOf<FormationConfig> {
   void ApplyTunables(const FormationConfig& next) override;
 
  private:
+  /// The robots' poses now, for the structural changes (carried into the text once running).
+  FormationState EditState() const;
   struct Link {
     Link(std::string n, int i, int j) : name(std::move(n)), leader(i), follower(j) {}
     std::string name;

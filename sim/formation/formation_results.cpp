@@ -60,7 +60,7 @@ Metrics FormationExperiment::Results() const {
     const FormationRobotDef& r = cfg_.robots[l.follower];
     const std::string p = "links." + l.name + ".";
     const bool lphi = r.node.law == FormationLaw::kLPhi;
-    m.SetText(p + "law", lphi ? "l_phi" : "l_l");
+    m.SetText(p + "law", cf::LawName(r.node.law));
     m.SetText(p + "estimator", EstimatorModeNames()[static_cast<int>(r.follow.estimator)]);
     auto block = [&](const std::string& name, auto get) {
       m.Set(p + name + ".l", get(l.e_l));

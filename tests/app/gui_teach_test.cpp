@@ -12,6 +12,7 @@
 #include "app/png_writer.hpp"
 #include "app/video_writer.hpp"
 #include "sim/core/session.hpp"
+#include "sim/formation/formation_editing.hpp"
 #include "tests/app/test_util.hpp"
 
 namespace formsim::app {
@@ -66,10 +67,12 @@ TEST(GuiTeach, EveryEditorActionAndRefusalKeepsTheGuiAlive) {
   // The saved formation: five robots, the grid's graph, and it loads alone.
   sim::Session saved(dir + "/edited.yaml", {}, -1);
   EXPECT_EQ(saved.exp().world().robots().size(), 5u);
-  EXPECT_TRUE(saved.exp().LeadersOf("R1").empty());
-  for (const char* f : {"R2", "R3", "R5"}) EXPECT_FALSE(saved.exp().LeadersOf(f).empty()) << f;
+  EXPECT_TRUE(sim::formation::EditingOf(saved.exp())->LeadersOf("R1").empty());
+  for (const char* f : {"R2", "R3", "R5"})
+    EXPECT_FALSE(sim::formation::EditingOf(saved.exp())->LeadersOf(f).empty()) << f;
   // R4 sits behind R1, between R2 and R3 of the front row: l-l to them.
-  EXPECT_EQ(saved.exp().LeadersOf("R4"), (std::vector<std::string>{"R2", "R3"}));
+  EXPECT_EQ(sim::formation::EditingOf(saved.exp())->LeadersOf("R4"),
+            (std::vector<std::string>{"R2", "R3"}));
   // The settings file keeps the last UI scale and the angle unit.
   const std::string settings = ReadText(dir + "/config/formsim/settings.yaml");
   EXPECT_NE(settings.find("ui_scale: 1"), std::string::npos) << settings;

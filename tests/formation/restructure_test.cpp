@@ -11,7 +11,9 @@
 #include "sim/core/session.hpp"
 #include "sim/core/session_record.hpp"
 #include "sim/formation/formation_edit.hpp"
+#include "sim/formation/formation_editing.hpp"
 #include "sim/formation/formation_experiment.hpp"
+#include "sim/formation/formation_follow.hpp"
 
 namespace formsim::sim::formation {
 namespace {
@@ -63,7 +65,7 @@ TEST(Restructure, AddAFollowerWhileRunningKeepsTheRobotsWhereTheyAre) {
   const Pose2 r2 = s.exp().world().robots()[1]->pose();
   // A follower of R2, placed 0.4 m behind-right of it.
   const double x = r2.x - 0.4 * std::cos(r2.theta), y = r2.y - 0.4 * std::sin(r2.theta) - 0.2;
-  ASSERT_EQ(s.Restructure("add l_phi R2 " + std::to_string(x) + " " + std::to_string(y)), "");
+  ASSERT_EQ(Restructure(s, "add l_phi R2 " + std::to_string(x) + " " + std::to_string(y)), "");
   EXPECT_EQ(RobotNames(s.exp()), (std::vector<std::string>{"R1", "R2", "R3", "R4"}));
   EXPECT_EQ(s.exp().steps(), 0);  // a new run from the state of the old one
   const Pose2 r2_now = s.exp().world().robots()[1]->pose();
@@ -82,23 +84,23 @@ TEST(Restructure, RefusedChangesNameTheirReasonAndLeaveTheRun) {
   StepTo(s, 40);
   const Experiment* before = &s.exp();
   // A cycle: the root made a follower of its own follower.
-  std::string err = s.Restructure("attach R1 l_phi R2");
+  std::string err = Restructure(s, "attach R1 l_phi R2");
   EXPECT_NE(err.find("cycle"), std::string::npos) << err;
   // A missing leader: R1 removed while R2 and R3 follow it.
-  err = s.Restructure("remove R1");
+  err = Restructure(s, "remove R1");
   EXPECT_NE(err.find("not a robot of this scenario"), std::string::npos) << err;
   // An impossible triangle: an l-l follower on the line through its leaders, beyond R1.
   const Pose2 p1 = s.exp().world().robots()[0]->pose(), p2 = s.exp().world().robots()[1]->pose();
   const Vec2 out = p1.p() + (p1.p() - p2.p()) * 1.0;
-  err = s.Restructure("add l_l R1,R2 " + std::to_string(out.x - 0.15 * std::cos(p1.theta)) + " " +
-                      std::to_string(out.y - 0.15 * std::sin(p1.theta)));
+  err = Restructure(s, "add l_l R1,R2 " + std::to_string(out.x - 0.15 * std::cos(p1.theta)) + " " +
+                           std::to_string(out.y - 0.15 * std::sin(p1.theta)));
   EXPECT_NE(err.find("triangle"), std::string::npos) << err;
   // Malformed commands.
-  EXPECT_NE(s.Restructure("add l_x R1 0 0").find("law must be"), std::string::npos);
-  EXPECT_NE(s.Restructure("add l_phi R9 0 0").find("R9"), std::string::npos);
-  EXPECT_NE(s.Restructure("shape hexagon").find("shape"), std::string::npos);
-  EXPECT_NE(s.Restructure("fly R2").find("unknown formation command"), std::string::npos);
-  EXPECT_NE(s.Restructure("add l_phi R1 nan 0").find("number"), std::string::npos);
+  EXPECT_NE(Restructure(s, "add l_x R1 0 0").find("law must be"), std::string::npos);
+  EXPECT_NE(Restructure(s, "add l_phi R9 0 0").find("R9"), std::string::npos);
+  EXPECT_NE(Restructure(s, "shape hexagon").find("shape"), std::string::npos);
+  EXPECT_NE(Restructure(s, "fly R2").find("unknown formation command"), std::string::npos);
+  EXPECT_NE(Restructure(s, "add l_phi R1 nan 0").find("number"), std::string::npos);
   // Nothing changed: the same experiment at the same step, and it still runs.
   EXPECT_EQ(&s.exp(), before);
   EXPECT_EQ(s.exp().steps(), 40);
@@ -113,7 +115,7 @@ TEST(Restructure, UndoAndRedoTakeStructuralChangesBack) {
   StepTo(s, 20);
   ASSERT_EQ(s.Edit("robots.R2.follow.k_l", "0.2"), "");
   StepTo(s, 30);
-  ASSERT_EQ(s.Restructure("remove R7"), "");
+  ASSERT_EQ(Restructure(s, "remove R7"), "");
   EXPECT_EQ(s.exp().world().robots().size(), 6u);
   EXPECT_EQ(s.UndoText(), "formation: remove R7");
   // The edit before it is in the new scenario's text.
@@ -127,11 +129,11 @@ TEST(Restructure, UndoAndRedoTakeStructuralChangesBack) {
   ASSERT_EQ(s.Undo(), "");  // the k_l edit
   EXPECT_EQ(s.EffectiveValue("robots.R2.follow.k_l"), "0.15");
   // Switch R4 from l-φ (to R2) to l-l (R2, R5's leader R3) and back.
-  ASSERT_EQ(s.Restructure("attach R4 l_l R2,R3"), "");
+  ASSERT_EQ(Restructure(s, "attach R4 l_l R2,R3"), "");
   EXPECT_EQ(Formation(s).LeadersOf("R4"), (std::vector<std::string>{"R2", "R3"}));
   EXPECT_NE(s.params().Find("robots.R4.follow.l2_des"), nullptr);
   EXPECT_EQ(s.params().Find("robots.R4.follow.phi_des"), nullptr);
-  ASSERT_EQ(s.Restructure("attach R4 l_phi R2"), "");
+  ASSERT_EQ(Restructure(s, "attach R4 l_phi R2"), "");
   EXPECT_EQ(Formation(s).LeadersOf("R4"), (std::vector<std::string>{"R2"}));
 }
 
@@ -140,7 +142,7 @@ TEST(Restructure, EveryShapeHoldsTogetherWithoutCollisions) {
     SCOPED_TRACE(shape);
     Session s(Scenario("formation_cascade7"), {}, -1);
     StepTo(s, 50);
-    ASSERT_EQ(s.Restructure(std::string("shape ") + shape + " 0.6"), "");
+    ASSERT_EQ(Restructure(s, std::string("shape ") + shape + " 0.6"), "");
     StepTo(s, 400);  // 4 s
     EXPECT_EQ(s.exp().events().Count("collision"), 0);
     EXPECT_FALSE(s.exp().finished() && s.exp().status() != "completed");
@@ -151,14 +153,14 @@ TEST(Restructure, EveryShapeHoldsTogetherWithoutCollisions) {
 TEST(Restructure, SaveWritesAScenarioThatReproducesTheRun) {
   Session s(Scenario("formation_traj2_per_sample"), {}, -1);
   StepTo(s, 100);
-  ASSERT_EQ(s.Restructure("shape diamond 0.5"), "");
+  ASSERT_EQ(Restructure(s, "shape diamond 0.5"), "");
   ASSERT_EQ(s.Edit("robots.R3.follow.k_l", "0.1"), "");
   StepTo(s, 30);
   // The diamond's fourth slot, 2 rows (2 · 0.5 · √3/2 m) behind R1: l-l to R2 and R3.
   const Pose2 r1 = s.exp().world().robots()[0]->pose();
   const double back = 0.5 * std::sqrt(3.0);
-  ASSERT_EQ(s.Restructure("add l_l R2,R3 " + std::to_string(r1.x - back * std::cos(r1.theta)) + " " +
-                          std::to_string(r1.y - back * std::sin(r1.theta))),
+  ASSERT_EQ(Restructure(s, "add l_l R2,R3 " + std::to_string(r1.x - back * std::cos(r1.theta)) +
+                               " " + std::to_string(r1.y - back * std::sin(r1.theta))),
             "");
   StepTo(s, 120);
   const std::string path = TempPath("saved_formation.yaml");
@@ -177,9 +179,10 @@ TEST(Restructure, ASessionRecordReplaysStructuralChanges) {
   record.Add(load);
   s.SetObserver([&](const SessionEvent& e) { record.Add(e); });
   StepTo(s, 25);
-  ASSERT_EQ(s.Restructure("shape v 0.6"), "");
+  ASSERT_EQ(Restructure(s, "shape v 0.6"), "");
   StepTo(s, 40);
-  const auto slot = s.exp().SlotEdits("R3", s.exp().world().robots()[0]->pose().p() + Vec2{-0.6, -0.5});
+  const auto slot = EditingOf(s.exp())->SlotEdits(
+      "R3", s.exp().world().robots()[0]->pose().p() + Vec2{-0.6, -0.5});
   for (const auto& [k, v] : slot) ASSERT_EQ(s.Edit(k, v, "slot drag"), "");
   StepTo(s, 70);
   ASSERT_EQ(s.Undo(), "");  // the last slot edit
@@ -199,7 +202,7 @@ TEST(Restructure, DraggingASlotMovesTheFollowerThere) {
   // still closes: their separation stays under 0.6 m).
   const double b = r1.theta + 5 * M_PI / 4;
   const Vec2 target = r1.p() + Vec2{std::cos(b), std::sin(b)} * 0.4;
-  const auto edits = s.exp().SlotEdits("R2", target);
+  const auto edits = EditingOf(s.exp())->SlotEdits("R2", target);
   ASSERT_EQ(edits.size(), 2u);
   EXPECT_EQ(edits[0].first, "robots.R2.follow.l_des");
   EXPECT_EQ(edits[1].first, "robots.R2.follow.phi_des");
@@ -217,17 +220,76 @@ TEST(Restructure, DraggingASlotMovesTheFollowerThere) {
       EXPECT_NEAR(l.truth.l, 0.4, 1e-2);
       EXPECT_NEAR(control::WrapTo2Pi(l.truth.phi), 5 * M_PI / 4, 2e-2);
     }
-  EXPECT_THROW(s.exp().SlotEdits("R1", target), std::runtime_error);  // the root has no slot
+  EXPECT_THROW(EditingOf(s.exp())->SlotEdits("R1", target),
+               std::runtime_error);  // the root has no slot
 }
 
 TEST(Restructure, TheTextKeepsItsHeaderAndLoadsAlone) {
   Session s(Scenario("formation_cascade7"), {}, -1);
   FormationState st;
   for (const auto& r : s.exp().world().robots()) st.poses[r->name()] = r->pose();
-  const std::string text = RestructureFormationText(s.source().text(), "remove R7", st);
+  const std::string text = RestructureFormationText(s.source().text(), {RemoveRobot{"R7"}}, st);
   EXPECT_EQ(text.rfind("# A 7-robot cascade", 0), 0u);
   EXPECT_EQ(text.find("name: R7"), std::string::npos);
   EXPECT_EQ(LoadExperimentFromText(text, "edited")->world().robots().size(), 6u);
+}
+
+TEST(Restructure, TypedChangesAndTheirTextFormAgree) {
+  // The text form is only the edge (script action, record): each typed change prints as it
+  // parses back.
+  const std::vector<std::string> texts = {"add l_phi R1 0.5 -0.3",
+                                          "add l_l R1,R2 -1.25 2 R9",
+                                          "remove R7",
+                                          "attach R4 l_l R2,R3",
+                                          "shape v",
+                                          "shape diamond 0.6"};
+  for (const std::string& t : texts) EXPECT_EQ(StructureChangeText(ParseStructureChange(t)), t);
+  EXPECT_THROW(ParseStructureChange("add l_x R1 0 0"), std::runtime_error);
+  EXPECT_THROW(ParseStructureChange("shape hexagon"), std::runtime_error);
+  EXPECT_THROW(ParseStructureChange("attach R4"), std::runtime_error);
+  // A typed change and its text give the same scenario.
+  Session a(Scenario("formation_cascade7"), {}, -1), b(Scenario("formation_cascade7"), {}, -1);
+  StepTo(a, 20);
+  StepTo(b, 20);
+  ASSERT_EQ(Restructure(a, StructureChange{AttachFollower{"R4", cf::FormationLaw::kLPhi, {"R2"}}}),
+            "");
+  ASSERT_EQ(Restructure(b, "attach R4 l_phi R2"), "");
+  EXPECT_EQ(a.source().text(), b.source().text());
+  EXPECT_EQ(a.UndoText(), b.UndoText());
+}
+
+TEST(Restructure, AFormationOffersItsCapability) {
+  // (A kind without it: tests/sim/test_experiment.cpp.)
+  Session s(Scenario("formation_cascade7"), {}, -1);
+  ASSERT_NE(EditingOf(s.exp()), nullptr);
+  EXPECT_EQ(s.exp().As<StructureEditing>(), EditingOf(s.exp()));
+  EXPECT_EQ(EditingOf(s.exp())->LeadersOf("R4"), Formation(s).LeadersOf("R4"));
+}
+
+TEST(FollowBlock, WrittenTheSameByEveryWriter) {
+  FollowBlock b;
+  b.law = cf::FormationLaw::kLL;
+  b.leaders = {"R1", "R2"};
+  b.l_des = 0.5;
+  b.second_des = 0.25;
+  b.k1 = b.k2 = 0.15;
+  b.estimator = "ukf";
+  b.measure = {"l", "phi", "alpha"};
+  EXPECT_EQ(FollowText(b),
+            "{law: l_l, leaders: [R1, R2], l_des: 0.5, l2_des: 0.25, k_l: 0.15, "
+            "k_l2: 0.15, estimator: ukf, measure: [l, phi, alpha]}");
+  // Over an existing block: the other law's keys go, the rest stays where it was.
+  YAML::Node f =
+      YAML::Load("{law: l_l, leaders: [R1, R2], l_des: 1, l2_des: 1, k_l2: 0.3, k_l: 0.2}");
+  FollowBlock p;
+  p.leaders = {"R1"};
+  p.l_des = 0.4;
+  p.second_des = 3;
+  WriteFollow(f, p);
+  YAML::Emitter out;
+  out << f;
+  EXPECT_EQ(std::string(out.c_str()),
+            "{law: l_phi, leaders: [R1], l_des: 0.4, k_l: 0.2, phi_des: 3}");
 }
 
 }  // namespace

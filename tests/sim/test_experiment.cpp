@@ -8,6 +8,8 @@
 
 #include "sim/core/run_output.hpp"
 #include "sim/core/scenario.hpp"
+#include "sim/core/session.hpp"
+#include "sim/core/structure_editing.hpp"
 #include "tests/sim/test_kind.hpp"
 
 using namespace formsim;
@@ -103,6 +105,22 @@ TEST(Experiment, TunablesAreDeclaredOnceWithTheirValues) {
     EXPECT_EQ(q.Parse(std::to_string(q.slider_min()), &canonical), "") << q.key;
     EXPECT_EQ(q.Parse(std::to_string(q.slider_max()), &canonical), "") << q.key;
   }
+}
+
+TEST(Experiment, AKindWithoutCapabilitiesOffersNone) {
+  auto e = LoadExperimentFromText(kScenario, "a.yaml");
+  EXPECT_EQ(e->As<StructureEditing>(), nullptr);
+  Session s(ScenarioSource::FromText(kScenario, "a.yaml", ""), {});
+  EXPECT_NE(s.Restructure("remove R1",
+                          [](const Experiment& now, const std::string& text) {
+                            const auto* editing = now.As<StructureEditing>();
+                            if (editing == nullptr)
+                              throw std::runtime_error("no structural changes");
+                            return editing->PlacedText(text);
+                          })
+                .find("no structural changes"),
+            std::string::npos);
+  EXPECT_EQ(s.restructures(), 0);
 }
 
 TEST(Experiment, SeedRoundTripsExactlyUpTo64Bits) {
