@@ -6,11 +6,15 @@
 #include <cstdio>
 #include <functional>
 
+#include "app/long_text.hpp"
 #include "app/polyline_simplify.hpp"
 #include "sim/core/number_format.hpp"
 
 namespace formsim::app {
 namespace {
+
+// A legend entry is cut to this many bytes (a name of any length keeps the legend in its corner).
+constexpr std::size_t kLegendBytes = 80;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
@@ -411,7 +415,8 @@ PlotLayout DrawPlot(Canvas& cv, ImVec2 min, ImVec2 max, const PlotData& data, co
   float col_w = 0;
   if (!legend_items.empty()) {
     float wmax = 0;
-    for (int i : legend_items) wmax = std::max(wmax, TextSize(label_font, data.series[i].label).x);
+    for (int i : legend_items)
+      wmax = std::max(wmax, TextSize(label_font, Shorten(data.series[i].label, kLegendBytes)).x);
     col_w = sample_w + 14 + wmax + 8;
     // A tall legend goes to several columns, so it fits in a corner of a short plot.
     const int n = static_cast<int>(legend_items.size());
@@ -695,7 +700,7 @@ PlotLayout DrawPlot(Canvas& cv, ImVec2 min, ImVec2 max, const PlotData& data, co
       } else {
         cv.Line(p0, p1, {look.color, line_w, look.dash});
       }
-      Text(label_font, ImVec2(p1.x + 7, y + 2), th.text, s.label);
+      Text(label_font, ImVec2(p1.x + 7, y + 2), th.text, Shorten(s.label, kLegendBytes));
     }
   }
   return L;

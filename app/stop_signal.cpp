@@ -19,6 +19,7 @@ void InstallStopSignals() {
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
+  sigaction(SIGHUP, &sa, nullptr);  // the terminal closed: written like Ctrl-C (exit 129)
   std::signal(SIGPIPE, SIG_IGN);
 }
 
@@ -27,7 +28,8 @@ int StopSignal() {
 }
 
 std::string StopSignalName(int sig) {
-  return sig == SIGINT ? "SIGINT (Ctrl-C)" : "SIGTERM";
+  if (sig == SIGINT) return "SIGINT (Ctrl-C)";
+  return sig == SIGHUP ? "SIGHUP" : "SIGTERM";
 }
 
 }  // namespace formsim::app

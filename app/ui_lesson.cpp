@@ -3,6 +3,7 @@
 #include <imgui.h>
 
 #include "app/fonts.hpp"
+#include "app/long_text.hpp"
 #include "app/ui.hpp"
 
 namespace formsim::app {
@@ -11,7 +12,7 @@ void AppUi::DrawLessonTab(const Fonts& fonts) {
   const sim::LessonDef& l = session_->lesson();
   ImGui::BeginChild("lesson_text", ImVec2(0, 0), false);
   ImGui::PushFont(fonts.Get(FontRole::kTitle));
-  ImGui::TextWrapped("%s", l.title.c_str());
+  LongTextWrapped("title", l.title, 300);  // any length (app/long_text.hpp)
   ImGui::PopFont();
   ImGui::Spacing();
   // One heading and its wrapped text per part of the lesson.
@@ -19,7 +20,7 @@ void AppUi::DrawLessonTab(const Fonts& fonts) {
     ImGui::PushFont(fonts.Get(FontRole::kLabel));
     ImGui::TextUnformatted(heading);
     ImGui::PopFont();
-    ImGui::TextWrapped("%s", text.c_str());
+    LongTextWrapped(heading, text);
     ImGui::Spacing();
   };
   part("Goal", l.goal);
@@ -29,7 +30,8 @@ void AppUi::DrawLessonTab(const Fonts& fonts) {
     ImGui::PopFont();
     // Indented, one per line, so a formula never runs into the prose.
     ImGui::Indent();
-    for (const std::string& e : l.equations) ImGui::TextWrapped("%s", e.c_str());
+    for (std::size_t i = 0; i < l.equations.size() && i < 200; ++i)
+      LongTextWrapped(("eq" + std::to_string(i)).c_str(), l.equations[i], 400);
     ImGui::Unindent();
     ImGui::Spacing();
   }
@@ -40,8 +42,8 @@ void AppUi::DrawLessonTab(const Fonts& fonts) {
     ImGui::Separator();
     ImGui::TextDisabled("This scenario's buttons (also under Parameters):");
     for (const sim::ActionSpec& a : actions) {
-      if (ImGui::Button(a.label.c_str())) CmdAction(a.id);
-      if (!a.help.empty() && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", a.help.c_str());
+      if (ImGui::Button(Shorten(a.label, 80).c_str())) CmdAction(a.id);
+      if (!a.help.empty() && ImGui::IsItemHovered()) SafeTooltip(a.help);
       ImGui::SameLine();
     }
     ImGui::NewLine();

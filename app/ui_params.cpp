@@ -13,6 +13,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "app/long_text.hpp"
 #include "app/ui.hpp"
 #include "sim/core/number_format.hpp"
 
@@ -52,6 +53,27 @@ struct RowInput {
 bool IsAngle(const sim::Param& p) { return p.tune.unit == "rad" || p.tune.unit == "rad/s"; }
 constexpr double kDegPerRad = 180.0 / 3.14159265358979323846;
 
+// ImGui asserts on slider ranges beyond half the largest value of the type.
+constexpr long long kIntSliderLimit = 1000000000LL;
+
+// A slider over [lo, hi] that ImGui draws without asserting (and that is worth dragging).
+bool SliderFits(double lo, double hi) {
+  return std::isfinite(lo) && std::isfinite(hi) && lo < hi && std::abs(lo) <= sim::kSliderLimit &&
+         std::abs(hi) <= sim::kSliderLimit;
+}
+
+// A text field holding `text`; returns what was typed when Enter is pressed ("" else). The
+// session checks it like any edit.
+std::string ValueField(const std::string& text) {
+  char buf[128];
+  std::snprintf(buf, sizeof(buf), "%s", text.c_str());
+  if (ImGui::InputText("##v", buf, sizeof(buf),
+                       ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_CharsScientific))
+    return buf;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("beyond any slider: type a value and press Enter");
+  return "";
+}
+
 RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks& marks, bool degrees) {
   const bool as_deg = degrees && IsAngle(p) && p.kind == sim::Param::Kind::kDouble;
   RowInput in;
@@ -64,6 +86,7 @@ RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks&
   if (colour)
     ImGui::PushStyleColor(ImGuiCol_Text, !marks.refusal.empty() ? ImVec4(0.75f, 0.1f, 0.1f, 1)
                                                                 : ImVec4(0.15f, 0.45f, 0.9f, 1));
+  label = Shorten(label, 200);
   ImGui::TextUnformatted(label.c_str());
   if (colour) ImGui::PopStyleColor();
   if (ImGui::IsItemHovered()) {
@@ -74,7 +97,7 @@ RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks&
     tip += p.tune.live ? "\napplies on the next step" : "\napplies on reset";
     if (marks.edited) tip += "\nedited: the file has " + marks.loaded + " (↺ reverts)";
     if (!marks.refusal.empty()) tip += "\n\nlast edit refused: " + marks.refusal;
-    ImGui::SetTooltip("%s", tip.c_str());
+    SafeTooltip(tip);  // any length (app/long_text.hpp)
   }
   ImGui::TableSetColumnIndex(1);
   ImGui::SetNextItemWidth(-1.0f);
@@ -89,9 +112,17 @@ RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks&
       // The declared slider range lies inside the validity; a file value outside the slider
       // widens it (still valid: the range between two valid values is valid).
       double lo = std::min(p.slider_min(), v), hi = std::max(p.slider_max(), v);
+      const double k = as_deg ? kDegPerRad : 1.0;
+      if (!SliderFits(lo * k, hi * k)) {
+        // A value beyond any slider (an unbounded tunable edited to 1e308): a text field.
+        const std::string typed = ValueField(sim::FormatDouble(v * k));
+        double t = 0;
+        if (!typed.empty())
+          out = as_deg && sim::ParseFiniteDouble(typed, &t) ? sim::FormatDouble(t / k) : typed;
+        break;
+      }
       ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp;
       if (p.tune.log_scale && lo > 0) flags |= ImGuiSliderFlags_Logarithmic;
-      const double k = as_deg ? kDegPerRad : 1.0;
       double shown_v = v * k, shown_lo = lo * k, shown_hi = hi * k;
       const bool changed = ImGui::SliderScalar("##v", ImGuiDataType_Double, &shown_v, &shown_lo,
                                                &shown_hi, as_deg ? "%.2f°" : "%.4g", flags);
@@ -101,12 +132,20 @@ RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks&
     }
     case sim::Param::Kind::kInt: {
       long long parsed = 0;
-      int v = sim::ParseInteger(shown, -2147483647LL, 2147483647LL, &parsed) ? static_cast<int>(parsed)
-                                                                          : static_cast<int>(p.value);
-      int lo = std::min(static_cast<int>(std::max(p.slider_min(), -1e9)), v);
-      int hi = std::max(static_cast<int>(std::min(p.slider_max(), 1e9)), v);
-      if (ImGui::SliderInt("##v", &v, lo, hi, "%d", ImGuiSliderFlags_AlwaysClamp))
-        out = std::to_string(std::clamp(v, lo, hi));
+      const long long v = sim::ParseInteger(shown, -2147483647LL, 2147483647LL, &parsed)
+                              ? parsed
+                              : static_cast<long long>(p.value);
+      const long long lo = std::min(static_cast<long long>(std::max(p.slider_min(), -1e9)), v);
+      const long long hi = std::max(static_cast<long long>(std::min(p.slider_max(), 1e9)), v);
+      // ImGui's integer slider asserts beyond half the int range: wider ones are a text field.
+      if (lo < -kIntSliderLimit || hi > kIntSliderLimit || lo >= hi) {
+        out = ValueField(std::to_string(v));
+        break;
+      }
+      int iv = static_cast<int>(v);
+      if (ImGui::SliderInt("##v", &iv, static_cast<int>(lo), static_cast<int>(hi), "%d",
+                           ImGuiSliderFlags_AlwaysClamp))
+        out = std::to_string(std::clamp<long long>(iv, lo, hi));
       break;
     }
     case sim::Param::Kind::kBool: {
@@ -130,7 +169,7 @@ RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks&
   if (marks.edited) {
     if (ImGui::SmallButton("↺")) in.revert = true;
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("revert to the file's value %s", marks.loaded.c_str());
+      SafeTooltip("revert to the file's value " + marks.loaded);
   } else {
     ImGui::Dummy(ImVec2(ImGui::GetFontSize() + 4, 1));
   }
@@ -176,7 +215,10 @@ void AppUi::DrawParamSection() {
   std::vector<std::string> run_actions;
   const auto waiting = session_->waiting_for_reset();
   for (const std::string& h : heads) {
-    const std::string header = (h.empty() ? std::string("Parameters") : h) + "###grp_" + h;
+    const std::string header = (h.empty() ? std::string("Parameters") : Shorten(h, 120)) + "###grp_" + h;
+    // The palette asked for a tunable: open the way to its field.
+    const sim::Param* focus = state_.focus_param.empty() ? nullptr : session_->params().Find(state_.focus_param);
+    if (focus != nullptr && Head(focus->tune.group) == h) ImGui::SetNextItemOpen(true);
     if (!ImGui::CollapsingHeader(header.c_str(), ImGuiTreeNodeFlags_DefaultOpen)) continue;
     // Sub-groups start open unless there are many (one per robot of a swarm).
     const auto& subgroups = tails[h];
@@ -185,7 +227,8 @@ void AppUi::DrawParamSection() {
     for (const std::string& t : subgroups) {
       const std::string group = t.empty() ? h : h + "/" + t;
       bool open = true;
-      if (!t.empty()) open = ImGui::TreeNodeEx((t + "##" + group).c_str(), node_flags);
+      if (!t.empty() && focus != nullptr && focus->tune.group == group) ImGui::SetNextItemOpen(true);
+      if (!t.empty()) open = ImGui::TreeNodeEx((Shorten(t, 120) + "##" + group).c_str(), node_flags);
       if (!open) continue;
       const auto in_group = members.find(group);
       if (in_group != members.end() &&
@@ -202,6 +245,11 @@ void AppUi::DrawParamSection() {
           marks.edited = session_->IsEdited(p.key);
           marks.loaded = session_->LoadedValue(p.key);
           marks.refusal = session_->refusal(p.key);
+          if (p.key == state_.focus_param) {
+            ImGui::SetScrollHereY(0.3f);
+            ImGui::SetKeyboardFocusHere();
+            state_.focus_param.clear();
+          }
           const RowInput in =
               ParamRow(p, marks.waiting ? w->second : p.Text(), marks, state_.settings.degrees);
           if (!in.value.empty()) edits.push_back({p.key, in.value, in.held});

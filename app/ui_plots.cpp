@@ -14,6 +14,7 @@
 
 #include "app/figure_data.hpp"
 #include "app/imgui_canvas.hpp"
+#include "app/long_text.hpp"
 #include "app/ui.hpp"
 
 namespace formsim::app {
@@ -238,13 +239,22 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
                 L.x0 + (m.x - L.area_min.x) / (L.area_max.x - L.area_min.x) * (L.x1 - L.x0);
             ImGui::BeginTooltip();
             ImGui::Text("%s = %.4g", data.x_label.c_str(), x);
+            // At most 40 rows of at most 80 bytes each: a tooltip is one draw list of 16-bit
+            // indices (a swarm's thousand series or a 100,000-character name would abort).
+            int rows = 0, more = 0;
             for (const auto& s : data.series) {
               const double y = SampleSeries(s, x);
               if (std::isfinite(y) && !s.label.empty()) {
+                if (rows >= 40) {
+                  ++more;
+                  continue;
+                }
+                ++rows;
                 const sim::Color c = style.theme->Series(s.color, s.style_index, s.dashed).color;
-                ImGui::TextColored(ImVec4(c.r, c.g, c.b, 1), "%s: %.5g", s.label.c_str(), y);
+                ImGui::TextColored(ImVec4(c.r, c.g, c.b, 1), "%s: %.5g", Shorten(s.label, 80).c_str(), y);
               }
             }
+            if (more > 0) ImGui::TextDisabled("... %d more", more);
             ImGui::EndTooltip();
           }
         }

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "app/imgui_canvas.hpp"
+#include "app/long_text.hpp"
 #include "app/ui.hpp"
 #include "app/world_view.hpp"
 
@@ -98,7 +99,7 @@ void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool in
   ImGui::SetNextWindowPos(pos);
   ImGui::SetNextWindowSize(size);
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
-  const std::string title = session_->exp().setup().name + "###world";
+  const std::string title = Shorten(session_->exp().setup().name, 200) + "###world";
   ImGui::Begin(title.c_str(), nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                    ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse |

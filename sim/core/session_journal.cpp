@@ -87,7 +87,9 @@ double Now() {
 }
 
 // Every text an event refers to.
-const ScenarioSource* SourceOf(const SessionEvent& e) { return e.source.get(); }
+const ScenarioSource* SourceOf(const SessionEvent& e) {
+  return e.source.get();
+}
 
 std::string EventPayload(const SessionEvent& e) {
   std::string p;
@@ -130,8 +132,7 @@ bool LooksLikeJournal(const std::string& text) {
 }
 
 RecoveredSession ParseJournal(const std::string& text, const std::string& path) {
-  if (!LooksLikeJournal(text))
-    throw std::runtime_error(path + ": not a formsim session journal");
+  if (!LooksLikeJournal(text)) throw std::runtime_error(path + ": not a formsim session journal");
   RecoveredSession out;
   out.path = path;
   std::map<std::string, std::shared_ptr<const ScenarioSource>> sources;
@@ -216,8 +217,7 @@ RecoveredSession ParseJournal(const std::string& text, const std::string& path) 
       break;
     }
   }
-  if (out.record.empty())
-    throw std::runtime_error(path + ": the journal holds no scenario yet");
+  if (out.record.empty()) throw std::runtime_error(path + ": the journal holds no scenario yet");
   out.record.SetEndStep(step);
   return out;
 }
@@ -284,9 +284,11 @@ SessionJournal::SessionJournal(const std::string& dir, const std::string& scenar
 }
 
 void SessionJournal::Open(bool truncate) {
-  const int fd = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC | (truncate ? O_EXCL : O_APPEND), 0600);
+  const int fd =
+      ::open(path_.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC | (truncate ? O_EXCL : O_APPEND), 0600);
   if (fd < 0)
-    throw std::runtime_error(path_ + ": cannot create the session journal: " + std::strerror(errno));
+    throw std::runtime_error(path_ +
+                             ": cannot create the session journal: " + std::strerror(errno));
   if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
     ::close(fd);
     throw std::runtime_error(path_ + ": the session journal is held by another window");
@@ -318,8 +320,8 @@ void SessionJournal::WriteEntry(const std::string& payload) {
 
 void SessionJournal::Append(const SessionEvent& e) {
   if (const ScenarioSource* s = SourceOf(e);
-      s != nullptr &&
-      std::find(written_sources_.begin(), written_sources_.end(), s->sha256()) == written_sources_.end()) {
+      s != nullptr && std::find(written_sources_.begin(), written_sources_.end(), s->sha256()) ==
+                          written_sources_.end()) {
     std::string p;
     Field(p, "src");
     Field(p, s->sha256());

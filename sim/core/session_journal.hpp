@@ -26,8 +26,8 @@ std::string JournalDir();
 
 /// What a journal held when recovered.
 struct RecoveredSession {
-  std::string path;      ///< the journal file
-  SessionRecord record;  ///< its events, end step = the last step written
+  std::string path;         ///< the journal file
+  SessionRecord record;     ///< its events, end step = the last step written
   std::time_t started = 0;  ///< when the window that wrote it started
   std::string scenario;     ///< the name of the scenario it started with
   long pid = 0;             ///< the window's process

@@ -2,14 +2,13 @@
 // flushed as it happens reads back as the same record; a torn last entry (the process died while
 // writing it) is dropped and the rest kept; a journal whose window holds its lock is not offered
 // for restore, one nobody holds is; `formsim replay` reads a journal like a session file.
-#include "sim/core/session_journal.hpp"
-
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "sim/core/session_journal.hpp"
 #include "tests/sim/test_kind.hpp"
 
 namespace formsim::sim {
@@ -143,7 +142,10 @@ TEST(SessionJournal, JournalDirFollowsTheEnvironment) {
   const std::string saved = xdg ? xdg : "";
   ::setenv("XDG_STATE_HOME", "/tmp/xdg_state", 1);
   EXPECT_EQ(JournalDir(), "/tmp/xdg_state/formsim");
-  if (saved.empty()) ::unsetenv("XDG_STATE_HOME"); else ::setenv("XDG_STATE_HOME", saved.c_str(), 1);
+  if (saved.empty())
+    ::unsetenv("XDG_STATE_HOME");
+  else
+    ::setenv("XDG_STATE_HOME", saved.c_str(), 1);
 }
 
 }  // namespace
