@@ -19,7 +19,9 @@
 
 #include "app/gl_api.hpp"
 #include "app/imgui_layer.hpp"
+#include "app/long_text.hpp"
 #include "app/png_writer.hpp"
+#include "app/stop_signal.hpp"
 #include "app/ui.hpp"
 #include "sim/core/bounded_file.hpp"
 #include "sim/core/number_format.hpp"
@@ -114,6 +116,8 @@ std::vector<ScriptAction> ReadScript(const std::string& file) {
 }
 
 int RunGui(const GuiOptions& opt) {
+  // SIGINT, SIGTERM and SIGHUP end the loop at the next frame; what `run` writes is written.
+  InstallStopSignals();
   std::vector<ScriptAction> scripted = ParseEdits(opt.edits);
   if (!opt.script.empty())
     for (auto& a : ReadScript(opt.script)) scripted.push_back(std::move(a));
@@ -139,7 +143,7 @@ int RunGui(const GuiOptions& opt) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  const std::string title = "formsim — " + session->exp().setup().name;
+  const std::string title = "formsim — " + Shorten(session->exp().setup().name, 200);
   GLFWwindow* window = glfwCreateWindow(opt.width, opt.height, title.c_str(), nullptr, nullptr);
   if (window == nullptr) throw std::runtime_error("cannot create an OpenGL 3.3 core window");
   glfwMakeContextCurrent(window);
@@ -175,6 +179,14 @@ int RunGui(const GuiOptions& opt) {
       if (!warning.empty()) std::fprintf(stderr, "formsim: %s\n", warning.c_str());
     }
     if (opt.overlays_given) ui.state().overlays = opt.overlays;
+    // Crash-safe sessions: an unfinished one (its window gone) is offered, never restored by
+    // itself; this window's record is journaled as it grows (sim/core/session_journal.hpp).
+    {
+      const std::string journal_dir = sim::JournalDir();
+      ui.FindUnfinishedSessions(journal_dir);
+      ui.StartJournal(journal_dir);
+    }
+    std::string shot_where;  // the script line of the screenshot asked for (its failure names it)
     bool f1_down = false;
 
     using Clock = std::chrono::steady_clock;
@@ -189,6 +201,7 @@ int RunGui(const GuiOptions& opt) {
     std::vector<double> frame_ms, sim_ms, ui_ms, gl_ms;  // for --timing
     for (; !glfwWindowShouldClose(window); clock += holding ? 0 : 1) {
       glfwPollEvents();
+      if (StopSignal() != 0) break;
       const auto now = Clock::now();
       const double wall_dt = std::min(0.1, std::chrono::duration<double>(now - last).count());
       last = now;
@@ -201,6 +214,8 @@ int RunGui(const GuiOptions& opt) {
           holding = ui.Busy();
           continue;
         }
+        if (a.action.rfind("screenshot", 0) == 0)
+          shot_where = a.where + " (frame " + std::to_string(a.frame) + "): '" + a.action + "'";
         const std::string err = ui.RunScriptAction(a.action);
         if (!err.empty())
           std::fprintf(stderr, "formsim: %s (frame %ld): '%s' refused: %s\n", a.where.c_str(),
@@ -227,6 +242,7 @@ int RunGui(const GuiOptions& opt) {
       const auto t_ui = Clock::now();
       try {
         ui.Advance(wall_dt);
+        ui.NoteJournalStep();
         ui.Draw(ImGui::GetIO().DisplaySize, layer.fonts(), true);
       } catch (const std::exception& e) {
         // Nothing may close the window but the user: close what the frame left open, pause,
@@ -261,18 +277,28 @@ int RunGui(const GuiOptions& opt) {
           std::snprintf(name, sizeof(name), "formsim_screenshot_%03d.png", shot_counter++);
           path = opt.screenshot.empty() ? name : path;
         }
+        const bool scripted_shot = ui.state().screenshot_requested && !shot_where.empty();
         ui.state().screenshot_path.clear();
         try {
           WritePng(path, fw, fh, GlReadRgba(fw, fh).data());
           ui.state().status = "screenshot " + path;
+          ui.state().status_is_error = false;
         } catch (const std::exception& e) {
+          // Said in the status line, and on stderr for a script or --screenshot; --screenshot
+          // exits with the export-failure status (4), as `run` does.
           ui.state().status = std::string("screenshot failed: ") + e.what();
-          if (last_frame) exit_code = 3;
+          ui.state().status_is_error = true;
+          if (scripted_shot)
+            std::fprintf(stderr, "formsim: %s failed: %s\n", shot_where.c_str(), e.what());
+          else if (!opt.screenshot.empty() && (last_frame || finished_exit))
+            std::fprintf(stderr, "formsim: --screenshot %s failed: %s\n", path.c_str(), e.what());
+          if ((last_frame || finished_exit) && !opt.screenshot.empty() && !scripted_shot) exit_code = 4;
         }
+        shot_where.clear();
         ui.state().screenshot_requested = false;
       }
       glfwSwapBuffers(window);
-      const std::string now_title = "formsim — " + ui.session().exp().setup().name;
+      const std::string now_title = "formsim — " + Shorten(ui.session().exp().setup().name, 200);
       if (now_title != title_shown) {
         glfwSetWindowTitle(window, now_title.c_str());
         title_shown = now_title;
@@ -281,16 +307,36 @@ int RunGui(const GuiOptions& opt) {
       if (opt.timing) frame_ms.push_back(ui.state().frame_ms);
       if (last_frame || finished_exit) break;
     }
+    // A stop signal ends the run as `formsim run` ends it: written, marked interrupted.
+    const int sig = StopSignal();
+    if (sig != 0) {
+      sim::Experiment& exp = ui.session().exp();
+      exp.Interrupt("interrupted by " + StopSignalName(sig) + " at t = " + std::to_string(exp.time()) +
+                    " s (step " + std::to_string(exp.steps()) + ")");
+    }
     if (!opt.out_dir.empty()) {
       sim::WriteRunOutputs(ui.session().exp(), opt.out_dir);
       ui.WriteMonteCarlo(opt.out_dir);
     }
+    bool session_saved = false;
     if (!opt.session_file.empty()) {
       const std::string err = ui.CmdSaveSession(opt.session_file);
+      session_saved = err.empty();
       if (!err.empty()) {
         std::fprintf(stderr, "formsim: %s\n", err.c_str());
         exit_code = 2;
       }
+    }
+    // The journal goes at a clean exit and once the session file is written; after a signal
+    // without a session file, or when the session file could not be written, it stays,
+    // offered for restore at the next start.
+    ui.CloseJournal(session_saved || (sig == 0 && opt.session_file.empty()));
+    if (sig != 0) {
+      std::fprintf(stderr, "formsim: window interrupted by %s; %s%s\n", StopSignalName(sig).c_str(),
+                   opt.out_dir.empty() ? "" : "the results so far were written and marked interrupted",
+                   session_saved ? ", the session was saved"
+                                 : opt.session_file.empty() ? "; the session journal is kept for restore" : "");
+      exit_code = 128 + sig;
     }
     if (opt.timing && frame_ms.size() > 10) {
       // Skip the first frames (font atlas upload, first layout).

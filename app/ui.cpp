@@ -1,4 +1,5 @@
 #include "app/ui.hpp"
+#include "app/long_text.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -541,6 +542,7 @@ void AppUi::Draw(ImVec2 display, const Fonts& fonts, bool interactive) {
 void AppUi::DrawControlPanel(const Fonts& fonts, bool interactive) {
   (void)fonts;
   (void)interactive;
+  DrawRestoreBanner();
   if (ImGui::CollapsingHeader("Scenario", ImGuiTreeNodeFlags_DefaultOpen)) DrawScenarioSection();
   if (ImGui::CollapsingHeader("Run", ImGuiTreeNodeFlags_DefaultOpen)) DrawRunSection();
   if (ImGui::CollapsingHeader("Compare", ImGuiTreeNodeFlags_DefaultOpen)) DrawTuningSection();
@@ -555,10 +557,10 @@ void AppUi::DrawControlPanel(const Fonts& fonts, bool interactive) {
 
 void AppUi::DrawScenarioSection() {
   const sim::ExperimentSetup& setup = session_->exp().setup();
-  ImGui::TextWrapped("%s", setup.name.c_str());
+  LongTextWrapped("name", setup.name, 300);  // texts of any length (app/long_text.hpp)
   if (!setup.description.empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
-    ImGui::TextWrapped("%s", setup.description.c_str());
+    LongTextWrapped("description", setup.description);
     ImGui::PopStyleColor();
   }
   if (!shipped_.empty()) {
@@ -706,19 +708,19 @@ void AppUi::DrawMessagesSection() {
                 rejected.size(), events.size());
   if (!state_.status.empty()) {
     if (state_.status_is_error) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.75f, 0.1f, 0.1f, 1));
-    ImGui::TextWrapped("%s", state_.status.c_str());
+    LongTextWrapped("status", state_.status, 600);  // any length (app/long_text.hpp)
     if (state_.status_is_error) ImGui::PopStyleColor();
   }
   if (!ImGui::CollapsingHeader(title, rejected.empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen))
     return;
   ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.75f, 0.1f, 0.1f, 1));
   for (auto it = rejected.rbegin(); it != rejected.rend() && it - rejected.rbegin() < 8; ++it)
-    ImGui::TextWrapped("%s", it->c_str());
+    ImGui::TextWrapped("%s", Shorten(*it, 600).c_str());
   ImGui::PopStyleColor();
   const std::size_t first = events.size() > 12 ? events.size() - 12 : 0;
   for (std::size_t i = events.size(); i-- > first;)
     ImGui::TextWrapped("%.2f s %s %s: %s", events[i].time, events[i].kind.c_str(),
-                       events[i].robots.c_str(), events[i].message.c_str());
+                       Shorten(events[i].robots, 200).c_str(), Shorten(events[i].message, 400).c_str());
 }
 
 }  // namespace formsim::app

@@ -20,6 +20,7 @@
 #include "app/view.hpp"
 #include "app/world_view.hpp"
 #include "sim/core/session.hpp"
+#include "sim/core/session_journal.hpp"
 #include "sim/core/session_record.hpp"
 
 namespace formsim::app {
@@ -171,6 +172,23 @@ class AppUi {
   std::string CmdAngleUnit(const std::string& unit);
   /// Writes the session record (everything done so far, with steps) to `path`.
   std::string CmdSaveSession(const std::string& path);
+  // ---- Crash-safe sessions (app/ui_journal.cpp): the journal of the record and its restore.
+  /// Journals the record from now on into a new journal in `dir` (sim::JournalDir()), flushed
+  /// at every event, so a crash leaves a session `formsim replay` reproduces.
+  void StartJournal(const std::string& dir);
+  /// Per frame: the journal notes the step reached (at most once a second).
+  void NoteJournalStep();
+  /// Ends the journal; `remove`: deletes it (a clean exit, or the session file was written).
+  void CloseJournal(bool remove);
+  /// Offers the newest unfinished session in `dir` (a journal whose window is gone): a banner
+  /// with Restore and Discard, never restored by itself.
+  void FindUnfinishedSessions(const std::string& dir);
+  /// Replays the offered unfinished session and goes on from it (its journal is then removed).
+  std::string CmdRestoreSession();
+  /// Deletes the offered unfinished session's journal.
+  std::string CmdDiscardSession();
+  /// The unfinished sessions offered (newest first).
+  const std::vector<sim::RecoveredSession>& unfinished_sessions() const { return unfinished_; }
   /// Runs one script action "ACTION [ARGS]" (see `formsim gui --script`). Returns "" or the
   /// reason it was refused.
   std::string RunScriptAction(const std::string& line);
@@ -269,6 +287,11 @@ class AppUi {
   std::vector<int> history_order_;  ///< rows in the order shown (sorted by a column)
   Timeline timeline_;
   MonteCarloState mc_;
+  std::unique_ptr<sim::SessionJournal> journal_;  ///< the window's crash-safe journal
+  std::vector<sim::RecoveredSession> unfinished_;  ///< offered for restore, newest first
+  bool journal_error_shown_ = false;
+  /// The banner offering to restore an unfinished session (top of the control panel).
+  void DrawRestoreBanner();
 };
 
 }  // namespace formsim::app

@@ -20,6 +20,15 @@
 
 namespace formsim::app::testing {
 
+/// The windows the tests start keep their crash-safe session journals (sim/core/session_journal)
+/// under the build tree, never in the user's state folder (whose unfinished sessions would put a
+/// banner into the tests' pictures). Set once, before any test runs; children inherit it.
+inline const bool kStateDirSet = [] {
+  const std::string dir = std::string(FORMSIM_BINARY_DIR) + "/test_tmp/state";
+  ::setenv("FORMSIM_STATE_DIR", dir.c_str(), 0);
+  return true;
+}();
+
 /// Shipped scenarios for the tests that go through every parameter (each edit re-reads the
 /// whole file): all but those over 100 kB, the generated formation_swarm_1000, whose keys are
 /// those of formation_swarm_100 (the same generator).
