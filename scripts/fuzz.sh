@@ -1,14 +1,17 @@
 #!/usr/bin/env bash
 # Runs the libFuzzer harnesses (tests/fuzz) under AddressSanitizer and UndefinedBehaviorSanitizer.
 # Usage: scripts/fuzz.sh [SECONDS per harness, default 300] [BUILD folder, default build-asan]
-# Seeds: the shipped scenarios, the invalid fixtures and tests/fuzz/set_seeds; new inputs go to
-# a temporary corpus. A crash is saved in fuzz-artifacts/ and the script fails: turn it into a
-# fixture in tests/fixtures/invalid/ with its expected message, then fix it.
+# Seeds: the shipped scenarios, the invalid fixtures, the shipped lessons and tests/fuzz/*_seeds
+# (edits, sessions, lesson blocks, sweep specs); new inputs go to a temporary corpus. A crash is
+# saved in fuzz-artifacts/ and the script fails: turn it into a fixture in tests/fixtures/invalid/
+# with its expected message, then fix it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SECONDS_EACH=${1:-300}
 BUILD=${2:-build-asan}
-[ -x "$BUILD/tests/fuzz/fuzz_scenario" ] || bash scripts/sanitize.sh --build-only "$BUILD"
+for h in fuzz_scenario fuzz_set fuzz_session fuzz_lesson fuzz_sweep_spec; do
+  [ -x "$BUILD/tests/fuzz/$h" ] || { bash scripts/sanitize.sh --build-only "$BUILD"; break; }
+done
 export ASAN_OPTIONS=${ASAN_OPTIONS:-halt_on_error=1:detect_leaks=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
 mkdir -p fuzz-artifacts
@@ -29,4 +32,7 @@ run() {
 }
 run fuzz_scenario assets/scenarios tests/fixtures/invalid
 run fuzz_set tests/fuzz/set_seeds
+run fuzz_session tests/fuzz/session_seeds tests/fuzz/session_seeds/invalid
+run fuzz_lesson tests/fuzz/lesson_seeds assets/lessons
+run fuzz_sweep_spec tests/fuzz/sweep_spec_seeds
 echo "fuzz: no crash, hang or sanitizer report"
