@@ -7,10 +7,10 @@
 #include "app/figure_data.hpp"
 #include "app/figure_export.hpp"
 #include "app/progress.hpp"
-#include "app/reproduce_cases.hpp"
 #include "app/stop_signal.hpp"
 #include "app/study_figures.hpp"
 #include "sim/core/reproduction.hpp"
+#include "sim/core/reproduction_registry.hpp"
 #include "sim/core/run_output.hpp"
 #include "sim/core/sweep_spec.hpp"
 
@@ -18,10 +18,23 @@ namespace fs = std::filesystem;
 
 namespace formsim::app {
 
+namespace {
+
+// "formation, agv, inspection or velocity": the registered papers.
+std::string PaperNames() {
+  const auto& papers = sim::ReproPapers();
+  std::string out;
+  for (std::size_t i = 0; i < papers.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == papers.size() ? " or " : ", ") + papers[i].name;
+  return out;
+}
+
+}  // namespace
+
 ReproduceCommand::ReproduceCommand(CLI::App& app) {
   cmd_ = app.add_subcommand("reproduce",
                             "Run a paper's cases over seeds and print the README's tables for it");
-  cmd_->add_option("paper", paper_, "formation, agv, inspection or velocity")->required();
+  cmd_->add_option("paper", paper_, PaperNames())->required();
   cmd_->add_option("--seeds", seeds_, "Seeds: 1..10 (default), 1,2,5 or a mixture");
   cmd_->add_option("--out", out_, "Output folder (default out/reproduce_<paper>)");
   cmd_->add_option("--tables", tables_, "Only these tables (comma-separated ids; default: all)");
@@ -33,7 +46,7 @@ ReproduceCommand::ReproduceCommand(CLI::App& app) {
 }
 
 int ReproduceCommand::Run() {
-  const sim::ReproPaper paper = sim::SelectTables(FindReproPaper(paper_), tables_);
+  const sim::ReproPaper paper = sim::SelectTables(sim::FindReproPaper(paper_), tables_);
   const std::vector<std::uint64_t> seeds = sim::ParseSeeds(seeds_);
   if (jobs_ < 0 || jobs_ > 1024) throw std::runtime_error("--jobs must be in 1 ... 1024");
   const int jobs = jobs_ == 0 ? sim::TaskPool::HardwareThreads() : jobs_;

@@ -1,10 +1,10 @@
 #pragma once
-/// \file `formsim reproduce formation|agv|inspection|velocity [--seeds 1..10] [--out DIR]`: runs a
-/// paper's cases (app/reproduce_cases.cpp) through the sweep engine for every seed and prints
-/// the README's tables for it, every number read from the runs' metrics. Writes into --out one
-/// sweep folder per case (manifest, records, runs.csv, aggregate.csv), tables.md (what it
-/// printed), cells.csv (each cell with the metric and statistics it shows) and the paper's bar
-/// charts (PNG and SVG).
+/// \file `formsim reproduce PAPER [--seeds 1..10] [--out DIR]` (a registered paper: formation,
+/// agv, inspection, velocity): runs a paper's cases (sim/<kind>/<kind>_paper.cpp) through the sweep
+/// engine for every seed and prints the README's tables for it, every number read from the runs'
+/// metrics. Writes into --out one sweep folder per case (manifest, records, runs.csv,
+/// aggregate.csv), tables.md (what it printed), cells.csv (each cell with the metric and statistics
+/// it shows) and the paper's bar charts (PNG and SVG).
 
 #include <CLI/CLI.hpp>
 #include <string>

@@ -3,7 +3,8 @@
 /// each run over the seeds through the sweep engine (one sweep without varied keys per case,
 /// written under OUT/<case> as `formsim sweep` writes it), and its tables and bar charts, every
 /// number read from the runs' metrics (Metrics::Scalars paths) and summarised over the seeds.
-/// A paper is data (app/reproduce_cases.cpp); this file runs and formats any of them.
+/// A paper is data (sim/<kind>/<kind>_paper.cpp, registered in reproduction_registry.hpp); this
+/// file runs and formats any of them.
 ///
 /// Cells show the mean over the completed runs with the sample standard deviation and/or the
 /// range of the per-seed values ("8.6 ± 2.8", "17.8 ± 2.3 [13.0–22.1]", "1.7 [1.2–2.3]"), a count
@@ -99,6 +100,7 @@ struct ReproFigure {
 struct ReproPaper {
   std::string name;   ///< "agv": `formsim reproduce agv`
   std::string title;  ///< "Omnidirectional Mecanum AGV (paper 002)"
+  int number = 0;     ///< the paper's number (2 for paper 002): papers are listed in this order
   std::vector<ReproCase> cases;
   std::vector<ReproTable> tables;
   std::vector<ReproFigure> figures;

@@ -10,6 +10,7 @@
 
 #include "app/png_writer.hpp"
 #include "app/video_writer.hpp"
+#include "sim/core/experiment.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/scenario_files.hpp"
 #include "sim/core/session.hpp"
@@ -139,8 +140,15 @@ TEST_P(GuiSliders, EverySliderAtBothEndsThenResetKeepsTheGuiAliveAndItsEdits) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Kinds, GuiSliders,
-                         ::testing::Values("formation_", "agv_", "inspection_", "velocity_"),
+// Every registered kind, as the prefix of its shipped scenarios' names (`<kind>_*.yaml`). gtest
+// evaluates this when the tests are listed, after every kind has registered itself.
+std::vector<std::string> KindPrefixes() {
+  std::vector<std::string> out;
+  for (const std::string& type : sim::ExperimentRegistry::Types()) out.push_back(type + "_");
+  return out;
+}
+
+INSTANTIATE_TEST_SUITE_P(Kinds, GuiSliders, ::testing::ValuesIn(KindPrefixes()),
                          [](const ::testing::TestParamInfo<std::string>& i) {
                            return i.param.substr(0, i.param.size() - 1);
                          });

@@ -10,10 +10,10 @@
 
 #include "app/figure_data.hpp"
 #include "app/offscreen_renderer.hpp"
-#include "app/reproduce_cases.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/recorder.hpp"
 #include "sim/core/reproduction.hpp"
+#include "sim/core/reproduction_registry.hpp"
 #include "sim/core/sweep_tables.hpp"
 #include "tests/app/test_util.hpp"
 
@@ -128,7 +128,7 @@ TEST(ReproduceCli, TablesAreTheSweepTablesStatistics) {
       if (cell.at("stat") == "count" || cell.at("stat") == "below" || cell.at("n") == "0") continue;
 
       // The column's scale, from the paper's definition.
-      const sim::ReproPaper& paper = FindReproPaper(k.paper);
+      const sim::ReproPaper& paper = sim::FindReproPaper(k.paper);
       double scale = NAN;
       for (const sim::ReproTable& t : paper.tables)
         if (t.id == cell.at("table"))
