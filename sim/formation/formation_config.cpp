@@ -134,8 +134,8 @@ void ReadFollow(YamlReader& f, FormationRobotDef& r) {
   n.leaders = f.Strings("leaders", {});
   const bool lphi = n.law == FormationLaw::kLPhi;
   n.l_des = f.Real("l_des", n.l_des,
-                   Tune(lphi ? "l desired" : "l1 desired", "m").Above(0).AtMost(1000).Slider(0.1, 2.0).Group(gains));
-  r.follow.k1 = f.Real("k_l", r.follow.k1, Tune(lphi ? "k l" : "k l1").Above(0).AtMost(1e4).Slider(1e-3, 1.0, kLog).Group(gains));
+                   Tune(lphi ? "l desired" : "l1 desired", "m").Above(0).Slider(0.1, 2.0).Group(gains));
+  r.follow.k1 = f.Real("k_l", r.follow.k1, Tune(lphi ? "k l" : "k l1").Above(0).Slider(1e-3, 1.0, kLog).Group(gains));
   if (lphi) {
     n.phi_des = f.Real("phi_des", n.phi_des,
                        Tune("φ desired", "rad").In(-2 * control::kPi, 2 * control::kPi)
@@ -178,7 +178,7 @@ ShapeDef ReadShape(YamlReader& s, const FormationConfig& cfg, const std::map<std
     cf::SlotValues& v = shape.slots[static_cast<std::size_t>(at->second)];
     const bool lphi = r.node.law == FormationLaw::kLPhi;
     const std::string g = group + "/" + name;
-    v.l_des = m.Real("l_des", v.l_des, Tune(lphi ? "l desired" : "l1 desired", "m").Above(0).AtMost(1000).Slider(0.1, 2.0).Group(g));
+    v.l_des = m.Real("l_des", v.l_des, Tune(lphi ? "l desired" : "l1 desired", "m").Above(0).Slider(0.1, 2.0).Group(g));
     if (lphi)
       v.phi_des = m.Real("phi_des", v.phi_des,
                          Tune("φ desired", "rad").In(-2 * control::kPi, 2 * control::kPi)
@@ -341,7 +341,7 @@ FormationConfig ReadFormationConfig(YamlReader& root, double dt) {
         f.Pick("bearing", {"das", "printed"}, 0, Tune("bearing convention").Group(g)));
     cfg.singular_threshold = f.Real("singular_threshold", cfg.singular_threshold,
                                     Tune("l-l singular |sin|").Above(0).Below(1).Slider(0.01, 0.5).Group(g));
-    cfg.L = f.Real("L", cfg.L, Tune("control point L", "m").Above(0).AtMost(10).Slider(0.05, 0.5).Group(g));
+    cfg.L = f.Real("L", cfg.L, Tune("control point L", "m").Above(0).Slider(0.05, 0.5).Group(g));
     cfg.settle_time = f.Real("settle_time", cfg.settle_time,
                              Tune("settle time", "s").In(0, 1e7).Slider(0.0, 10.0).Group(g).OnReset());
     cfg.control_period = f.Double("control_period", cfg.control_period);

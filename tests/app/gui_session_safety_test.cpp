@@ -166,13 +166,21 @@ TEST(GuiSafety, ValuesBeyondAnySliderAreATextField) {
     script << frame << " load " << Stem(f) << "\n";
     for (const std::string& e : edits) script << frame + 1 << " edit " << e << "\n";
     script << frame + 3 << " screenshot " << dir << "/" << Stem(f) << ".png\n";
-    if (first_set.empty()) first_set = Stem(f) + " --set " + edits.front();
     found += static_cast<int>(edits.size());
     frame += 5;
   }
   script.close();
   std::printf("%d values beyond any slider\n", found);
   if (found == 0) GTEST_SKIP() << "no shipped tunable reaches beyond a slider";
+  // The reproducer: `formsim gui formation_traj2 --set robots.R2.follow.k_l=1e308`
+  // aborted at start (when k_l is left unbounded).
+  {
+    sim::Session traj2(testing::Scenario("formation_traj2"), {}, -1);
+    const sim::Param* k_l = traj2.params().Find("robots.R2.follow.k_l");
+    first_set = k_l && !std::isfinite(k_l->tune.hi)
+                    ? "formation_traj2 --set robots.R2.follow.k_l=1e308"
+                    : "formation_traj2";
+  }
   const std::string log = dir + "/log.txt";
   const int rc = RunShell(TallXvfb("env FORMSIM_STATE_DIR=" + dir + "/state " + Binary() + " gui " +
                                    first_set + " --paused --size 1280x4000 --exit-after " +
