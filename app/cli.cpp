@@ -1,4 +1,5 @@
 #include "app/cli.hpp"
+#include "app/command_table.hpp"
 
 #include <unistd.h>
 
@@ -303,13 +304,13 @@ int Main(int argc, char** argv) {
       ->add_option("--edit", gui.edits, "Scripted edit FRAME:key=value, as if made with a slider")
       ->take_all();
   gui_cmd->add_option("--script", gui.script,
-                      "Run scripted actions, one per line: FRAME ACTION [ARGS] (edit k=v, reset, "
-                      "reset-seed N, reload, load S, open P, save P, play, pause, step, "
-                      "screenshot P, action ID, undo, redo, revert K, pin, unpin N, unpin-all, "
-                      "restore N, pin-row N, seeds N, cancel-seeds, scrub T, live, branch, "
-                      "save-session P, tab T, switch-formation [NAME], wait, formation add|remove|attach|shape ..., slot NAME X Y, "
-                      "editor MODE, click X Y, overlay LIST, legend on|off, help on|off, "
-                      "present on|off, ui-scale S, angle-unit deg|rad)");
+                      "Run scripted actions, one per line: FRAME ACTION [ARGS]. Actions: " +
+                          CommandUsageList());
+  bool list_commands = false, list_markdown = false;
+  gui_cmd->add_flag("--list-commands", list_commands,
+                    "Print every command of the window (name, keys, menu path, arguments) and exit");
+  gui_cmd->add_flag("--markdown", list_markdown,
+                    "With --list-commands: as the README's Markdown table");
   gui_cmd->add_option("--out", gui.out_dir, "Write timeseries.csv and summary.json here on exit");
   gui_cmd->add_option("--session", gui.session_file,
                       "Record the session (edits with their steps, resets, seeds, loads, pins, "
@@ -348,6 +349,10 @@ int Main(int argc, char** argv) {
     if (reproduce.parsed()) return reproduce.Run();
     if (replay.parsed()) return replay.Run();
     if (figs_cmd->parsed()) return FiguresCommand(figs);
+    if (gui_cmd->parsed() && list_commands) {
+      std::fputs(list_markdown ? CommandTableMarkdown().c_str() : CommandListText().c_str(), stdout);
+      return 0;
+    }
     if (gui_cmd->parsed()) {
       ParseSize(gui_size, &gui.width, &gui.height, "--size");
       gui.theme = ParseTheme(gui_theme, "--theme");

@@ -235,7 +235,7 @@ int RunGui(const GuiOptions& opt) {
         if (io.MousePos.x > -1e30f) io.MousePos = ImVec2(io.MousePos.x / scale, io.MousePos.y / scale);
         // F1 (ImGui 1.86 names no function keys): the help overlay.
         const bool f1 = glfwGetKey(window, GLFW_KEY_F1) == GLFW_PRESS;
-        if (f1 && !f1_down) ui.CmdHelp(!ui.state().help);
+        if (f1 && !f1_down) ui.PressKey("F1");
         f1_down = f1;
       }
       layer.NewFrame();
@@ -305,7 +305,7 @@ int RunGui(const GuiOptions& opt) {
       }
       ui.state().frame_ms = 1e3 * std::chrono::duration<double>(Clock::now() - now).count();
       if (opt.timing) frame_ms.push_back(ui.state().frame_ms);
-      if (last_frame || finished_exit) break;
+      if (last_frame || finished_exit || ui.state().quit_requested) break;
     }
     // A stop signal ends the run as `formsim run` ends it: written, marked interrupted.
     const int sig = StopSignal();

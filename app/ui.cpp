@@ -9,6 +9,7 @@
 
 #include "sim/core/number_format.hpp"
 #include "sim/core/scenario_files.hpp"
+#include "sim/formation/formation_editing.hpp"
 
 namespace fs = std::filesystem;
 
@@ -305,97 +306,56 @@ std::string AppUi::CmdRevert(const std::string& key) {
 }
 
 std::string AppUi::RunScriptAction(const std::string& line) {
-  std::string action = line, args;
-  const auto sp = line.find_first_of(" \t");
-  if (sp != std::string::npos) {
-    action = line.substr(0, sp);
-    args = line.substr(line.find_first_not_of(" \t", sp) == std::string::npos
-                           ? line.size()
-                           : line.find_first_not_of(" \t", sp));
+  std::string action, args;
+  SplitCommandLine(line, &action, &args);
+  const Command* cmd = FindCommand(action);
+  if (cmd == nullptr) {
+    std::string names;
+    for (const std::string& n : ClosestCommands(action)) names += (names.empty() ? "" : ", ") + n;
+    const std::string shown = action.size() > 80 ? action.substr(0, 80) + "…" : action;
+    const std::string why = "unknown action '" + shown + "' (closest: " + names +
+                            "; `formsim gui --list-commands` lists them all)";
+    SetStatus(why, true);
+    return why;
   }
-  while (!args.empty() && (args.back() == ' ' || args.back() == '\t' || args.back() == '\r'))
-    args.pop_back();
-  auto need = [&](const char* what) -> std::string {
-    return args.empty() ? std::string(action) + ": expects " + what : "";
-  };
-  if (action == "play") return CmdPlay();
-  if (action == "pause") return CmdPause();
-  if (action == "step") return CmdStep();
-  if (action == "reset") return CmdReset();
-  if (action == "reload") return CmdReload();
-  if (action == "reset-seed") return need("a seed").empty() ? CmdResetSeed(args) : need("a seed");
-  if (action == "load") return need("a scenario").empty() ? CmdLoad(args) : need("a scenario");
-  if (action == "open") return need("a path").empty() ? CmdOpen(args) : need("a path");
-  if (action == "save") return need("a path").empty() ? CmdSave(args, true) : need("a path");
-  if (action == "screenshot") return need("a path").empty() ? CmdScreenshot(args) : need("a path");
-  if (action == "action") return need("an action id").empty() ? CmdAction(args) : need("an action id");
-  if (action == "edit") {
-    const auto eq = args.find('=');
-    if (eq == std::string::npos || eq == 0) return "edit: expects KEY=VALUE, got '" + args + "'";
-    return CmdEdit(args.substr(0, eq), args.substr(eq + 1));
+  return RunCommand(*cmd, args, CommandSource::kScript);
+}
+
+std::string AppUi::RunCommand(const Command& cmd, const std::string& args, CommandSource source) {
+  if (cmd.disabled) {
+    if (const std::string why = cmd.disabled(*this); !why.empty()) {
+      SetStatus(cmd.name + ": " + why, true);
+      return state_.status;
+    }
   }
-  // Whole numbers (pin and history row numbers, seed counts) and times.
-  auto whole = [&](long long lo, long long hi, int* out) -> std::string {
-    long long v = 0;
-    if (!sim::ParseInteger(args, lo, hi, &v))
-      return action + ": expects a whole number in " + std::to_string(lo) + " ... " +
-             std::to_string(hi) + ", got '" + args + "'";
-    *out = static_cast<int>(v);
-    return "";
-  };
-  int n = 0;
-  if (action == "wait") return "";  // held by the window until Busy() is false
-  if (action == "undo") return CmdUndo();
-  if (action == "redo") return CmdRedo();
-  if (action == "revert") return need("a key").empty() ? CmdRevert(args) : need("a key");
-  if (action == "pin") return CmdPin();
-  if (action == "unpin-all") return CmdUnpinAll();
-  if (action == "unpin") {
-    const std::string err = whole(1, 1000000, &n);
-    return err.empty() ? CmdUnpin(n) : err;
+  CommandArgs parsed;
+  if (std::string err = ParseCommandArgs(cmd, args, this, &parsed); !err.empty()) {
+    SetStatus(err, true);
+    return err;
   }
-  if (action == "restore") {
-    const std::string err = whole(1, 1000000000, &n);
-    return err.empty() ? CmdRestore(n) : err;
+  if (source == CommandSource::kMenu || source == CommandSource::kPalette) {
+    auto& recent = state_.recent_commands;
+    recent.erase(std::remove(recent.begin(), recent.end(), cmd.name), recent.end());
+    recent.insert(recent.begin(), cmd.name);
+    if (recent.size() > 8) recent.resize(8);
   }
-  if (action == "pin-row") {
-    const std::string err = whole(1, 1000000000, &n);
-    return err.empty() ? CmdPinRow(n) : err;
+  const std::string before = state_.status;
+  std::string err;
+  try {
+    err = cmd.run(*this, parsed, source);
+  } catch (const std::exception& e) {
+    err = cmd.name + ": " + e.what();
   }
-  if (action == "seeds") {
-    const std::string err = whole(1, 100000, &n);
-    return err.empty() ? CmdSeeds(n) : err;
-  }
-  if (action == "cancel-seeds") return CmdCancelSeeds();
-  if (action == "scrub") {
-    double t = 0;
-    if (!sim::ParseFiniteDouble(args, &t)) return "scrub: expects a time in s, got '" + args + "'";
-    return CmdScrub(t);
-  }
-  if (action == "live") return CmdLive();
-  if (action == "tab") {
-    static const char* kTabs[] = {"plots", "tables", "history", "summary"};
-    for (const char* t : kTabs)
-      if (args == t) {
-        state_.select_tab = args;
-        return "";
-      }
-    return "tab: expects plots, tables, history or summary, got '" + args + "'";
-  }
-  if (action == "branch") return CmdBranch();
-  // Formation switching: the next shape, or the named one (the experiment's actions).
-  if (action == "switch-formation")
-    return CmdAction(args.empty() ? std::string("switch-formation") : "switch-formation:" + args);
-  if (action == "save-session")
-    return need("a path").empty() ? CmdSaveSession(args) : need("a path");
-  bool known = false;
-  std::string teach = RunTeachAction(action, args, &known);
-  if (known) return teach;
-  return "unknown action '" + action +
-         "' (known: edit, reset, reset-seed, reload, load, open, save, play, pause, step, "
-         "screenshot, action, undo, redo, revert, pin, unpin, unpin-all, restore, pin-row, "
-         "seeds, cancel-seeds, scrub, live, branch, save-session, tab, switch-formation, wait, formation, slot, "
-         "editor, click, overlay, legend, help, present, ui-scale, angle-unit)";
+  // Every refusal reaches the status line, also from commands that do not set it themselves.
+  if (!err.empty() && (state_.status == before || !state_.status_is_error)) SetStatus(err, true);
+  return err;
+}
+
+std::string AppUi::PressKey(const std::string& key) {
+  for (const Command& c : Commands())
+    for (const std::string& k : c.keys)
+      if (k == key) return RunCommand(c, c.key_args, CommandSource::kKey);
+  return "";
 }
 
 void AppUi::Advance(double wall_dt) {
@@ -456,87 +416,57 @@ void AppUi::HandleKeys() {
   // in this very frame, which io.WantTextInput does not know yet) never reaches a shortcut.
   if (io.WantTextInput || io.WantCaptureKeyboard || ImGui::IsAnyItemActive()) return;
   if (io.KeyCtrl) {
-    if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Z), false))
-      io.KeyShift ? CmdRedo() : CmdUndo();
-    else if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Y), false))
-      CmdRedo();
+    // The window's backend (GLFW) indexes letter keys by their upper-case ASCII code.
+    for (int c = 'A'; c <= 'Z'; ++c)
+      if (ImGui::IsKeyPressed(c, false))
+        PressKey(std::string("Ctrl+") + (io.KeyShift ? "Shift+" : "") + static_cast<char>(c));
     return;  // Ctrl+letter is never a plain shortcut
   }
-  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false)) {
-    // Esc closes what is open, one thing at a time.
-    if (state_.help)
-      state_.help = false;
-    else if (state_.edit_mode != UiState::EditMode::kOff)
-      CmdEditor("off");
-    else if (state_.present)
-      CmdPresent(false);
-  }
+  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false)) PressKey("Esc");
   // ImGui 1.86 maps only a few named keys, so shortcuts read the typed characters.
   for (int i = 0; i < io.InputQueueCharacters.Size; ++i) {
-    switch (io.InputQueueCharacters[i]) {
-      case ' ':
-        state_.playing = !state_.playing;
-        break;
-      case '.':
-        CmdStep();
-        break;
-      case 'r':
-        CmdReset();
-        break;
-      case 's':
-        state_.screenshot_requested = true;
-        break;
-      case 'f':
-        state_.fit_now = true;
-        state_.follow = -1;
-        break;
-      case 'n':  // next formation shape (scenarios with switching:)
-        for (const sim::ActionSpec& a : session_->exp().Actions())
-          if (a.id == "switch-formation") CmdAction(a.id);
-        break;
-      case 'p':
-        CmdPresent(!state_.present);
-        break;
-      case 'l':
-        state_.legend = !state_.legend;
-        break;
-      case '?':
-        state_.help = !state_.help;
-        break;
-      default:
-        break;
-    }
+    const ImWchar ch = io.InputQueueCharacters[i];
+    if (ch == ' ') PressKey("space");
+    else if (ch > ' ' && ch < 127) PressKey(std::string(1, static_cast<char>(ch)));
   }
 }
 
 void AppUi::Draw(ImVec2 display, const Fonts& fonts, bool interactive) {
   UpdateBackground();
+  // Over everything else: the palette, a command's argument dialog, the About box.
+  auto overlays = [&] {
+    DrawCommandDialog();
+    DrawAbout();
+    DrawPalette(display);
+    // A slider no longer held ends its drag: its next edit is a new undo step.
+    if (!ImGui::IsAnyItemActive()) state_.gesture_key.clear();
+    if (interactive) HandleKeys();
+  };
   if (state_.present) {
     // Presentation: the world view fills the window; a small bar keeps the essentials.
     DrawWorldWindow(ImVec2(0, 0), display, fonts, interactive);
     DrawPresentationBar(ImVec2(0, 0), display);
     if (state_.help) DrawHelpOverlay(ImVec2(0, 0), display);
-    if (!ImGui::IsAnyItemActive()) state_.gesture_key.clear();
-    if (interactive) HandleKeys();
+    overlays();
     return;
   }
+  const float top = DrawMenuBar();
   const float left_w = std::clamp(display.x * 0.24f, 290.0f, 400.0f);
   const float right_w = std::clamp(display.x * 0.34f, 340.0f, 640.0f);
   const float mid_w = std::max(200.0f, display.x - left_w - right_w);
+  const float h = std::max(1.0f, display.y - top);
 
-  ImGui::SetNextWindowPos(ImVec2(0, 0));
-  ImGui::SetNextWindowSize(ImVec2(left_w, display.y));
+  ImGui::SetNextWindowPos(ImVec2(0, top));
+  ImGui::SetNextWindowSize(ImVec2(left_w, h));
   ImGui::Begin("formsim", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
   DrawControlPanel(fonts, interactive);
   ImGui::End();
 
-  DrawWorldWindow(ImVec2(left_w, 0), ImVec2(mid_w, display.y), fonts, interactive);
-  DrawPlotsWindow(ImVec2(left_w + mid_w, 0), ImVec2(display.x - left_w - mid_w, display.y), fonts);
-  if (state_.help) DrawHelpOverlay(ImVec2(left_w, 0), ImVec2(left_w + mid_w, display.y));
-  // A slider no longer held ends its drag: its next edit is a new undo step.
-  if (!ImGui::IsAnyItemActive()) state_.gesture_key.clear();
-  if (interactive) HandleKeys();
+  DrawWorldWindow(ImVec2(left_w, top), ImVec2(mid_w, h), fonts, interactive);
+  DrawPlotsWindow(ImVec2(left_w + mid_w, top), ImVec2(display.x - left_w - mid_w, h), fonts);
+  if (state_.help) DrawHelpOverlay(ImVec2(left_w, top), ImVec2(left_w + mid_w, display.y));
+  overlays();
 }
 
 void AppUi::DrawControlPanel(const Fonts& fonts, bool interactive) {
@@ -546,7 +476,7 @@ void AppUi::DrawControlPanel(const Fonts& fonts, bool interactive) {
   if (ImGui::CollapsingHeader("Scenario", ImGuiTreeNodeFlags_DefaultOpen)) DrawScenarioSection();
   if (ImGui::CollapsingHeader("Run", ImGuiTreeNodeFlags_DefaultOpen)) DrawRunSection();
   if (ImGui::CollapsingHeader("Compare", ImGuiTreeNodeFlags_DefaultOpen)) DrawTuningSection();
-  if (session_->exp().Restructurable()) {
+  if (sim::formation::EditingOf(session_->exp()) != nullptr) {
     if (state_.edit_mode != UiState::EditMode::kOff) ImGui::SetNextItemOpen(true);
     if (ImGui::CollapsingHeader("Formation")) DrawFormationSection();
   }

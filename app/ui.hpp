@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "app/command_table.hpp"
 #include "app/fonts.hpp"
 #include "app/theme.hpp"
 #include "app/tuning_state.hpp"
@@ -22,6 +23,10 @@
 #include "sim/core/session.hpp"
 #include "sim/core/session_journal.hpp"
 #include "sim/core/session_record.hpp"
+
+namespace formsim::sim::formation {
+struct StructureChange;
+}  // namespace formsim::sim::formation
 
 namespace formsim::app {
 
@@ -73,7 +78,34 @@ struct UiState {
   float shape_spacing = 0.5f;           ///< m
   std::string slot_drag;                ///< follower whose slot is being dragged
   double step_budget = 0;  ///< simulated seconds owed to real time
+
+  // The command table's window parts (app/ui_menu.cpp, app/ui_palette.cpp).
+  bool quit_requested = false;  ///< `quit`: the window closes after this frame
+  bool about = false;           ///< the About box
+  bool palette = false;         ///< the command palette (Ctrl+K)
+  bool palette_focus = false;   ///< give the palette's field the keyboard on its next frame
+  char palette_filter[256] = "";
+  int palette_selected = 0;
+  std::vector<std::string> recent_commands;  ///< newest first, run from the menu or palette
+  std::string open_menu;                     ///< `menu NAME`: a top-level menu to open once
+  std::string focus_param;                   ///< a tunable whose field takes the keyboard once
+  /// The argument dialog of a command run from the menu or palette (none: "").
+  std::string dialog_command;
+  char dialog_args[3][1024] = {};
+  std::string dialog_error;
 };
+
+/// One line of the command palette: a command or a tunable.
+struct PaletteEntry {
+  bool tunable = false;
+  std::string name;    ///< the command or the tunable's key
+  std::string detail;  ///< help, or the tunable's label and value
+  std::string keys;
+  int score = 0;  ///< lower first
+};
+
+/// The About box's text.
+std::string AboutText();
 
 class AppUi {
  public:
@@ -91,6 +123,8 @@ class AppUi {
   /// and scenarios loaded later): bounded history, streaming of the rows to --out.
   void SetRunSetup(std::function<void(sim::Experiment&)> setup);
   UiState& state() { return state_; }
+  const UiState& state() const { return state_; }
+  const sim::Session& session() const { return *session_; }
 
   /// Advances the simulation for `wall_dt` seconds of real time at the chosen speed (GUI loop).
   void Advance(double wall_dt);
@@ -151,6 +185,8 @@ class AppUi {
   /// A structural change of the formation (Session::Restructure): "add LAW LEADERS X Y
   /// [NAME]", "remove NAME", "attach NAME LAW LEADERS", "shape KIND [SPACING]".
   std::string CmdFormation(const std::string& command);
+  /// The same change typed (the editor's clicks); recorded under its text form.
+  std::string CmdFormationChange(const sim::formation::StructureChange& change);
   /// Puts `robot`'s desired slot (its control point) at world point (x, y): live edits of its
   /// l_des and φ_des, or of its two distances. `continues_drag`: one undo step per drag.
   std::string CmdSlot(const std::string& robot, double x, double y, bool continues_drag = false);
@@ -189,9 +225,28 @@ class AppUi {
   std::string CmdDiscardSession();
   /// The unfinished sessions offered (newest first).
   const std::vector<sim::RecoveredSession>& unfinished_sessions() const { return unfinished_; }
-  /// Runs one script action "ACTION [ARGS]" (see `formsim gui --script`). Returns "" or the
-  /// reason it was refused.
+  /// Runs one script action "ACTION [ARGS]" (see `formsim gui --script`) through the command
+  /// table. Returns "" or the reason it was refused.
   std::string RunScriptAction(const std::string& line);
+  /// Runs a row of the command table with its arguments as text: checks that it is enabled,
+  /// parses the arguments, runs it. Returns "" or the reason, also shown in the status line.
+  std::string RunCommand(const Command& cmd, const std::string& args, CommandSource source);
+  /// Runs the command bound to `key` ("space", "F1", "Ctrl+Z"; see Command::keys); "" when
+  /// none is bound.
+  std::string PressKey(const std::string& key);
+  /// Opens the command palette with `filter` typed in.
+  std::string CmdPalette(const std::string& filter);
+  /// What the palette lists for `filter`, best first.
+  std::vector<PaletteEntry> PaletteEntries(const std::string& filter) const;
+  /// Where the menu bar drew each command's item in the last frame its menu was open (tests
+  /// click them).
+  const std::map<std::string, std::pair<ImVec2, ImVec2>>& menu_items() const { return menu_items_; }
+  /// Writes every figure of the current run as SVG and PDF into `dir`.
+  std::string CmdExportFigures(const std::string& dir);
+  /// The timeline shows an earlier time than the live end.
+  bool TimelineActive() const { return timeline_.active; }
+  /// A Monte Carlo ("Run N seeds") is under way.
+  bool SeedsRunning() const;
   /// True while work goes on in the background (pins replaying, a Monte Carlo, the timeline
   /// catching up): the script action `wait` holds the script until it is done.
   bool Busy() const;
@@ -210,6 +265,14 @@ class AppUi {
 
  private:
   void HandleKeys();
+  /// The menu bar, generated from the command table; returns its height.
+  float DrawMenuBar();
+  void DrawMenuItem(const Command& cmd);
+  /// Opens the argument dialog of `cmd` (commands with arguments, from the menu or palette).
+  void OpenCommandDialog(const Command& cmd);
+  void DrawCommandDialog();
+  void DrawPalette(ImVec2 display);
+  void DrawAbout();
   /// Per frame: collects finished pin replays, Monte Carlo results, the timeline's progress.
   void UpdateBackground();
   void StartRecording(const std::vector<sim::Override>& cli, long step);
@@ -244,6 +307,8 @@ class AppUi {
   void DrawViewSection();
   void DrawOverlayToggles();
   void DrawFormationSection();
+  /// Restructures the session by `restructure` (label: the change's text form) and reports.
+  std::string RunRestructure(const std::string& label, const std::function<std::string()>& restructure);
   /// The help overlay (keys and mouse) over the world view.
   void DrawHelpOverlay(ImVec2 min, ImVec2 max);
   /// Presentation mode's small bar of buttons, top right of the world view.
@@ -252,7 +317,6 @@ class AppUi {
   bool EditorMouse(const View& view);
   /// The robot nearest world point `p` within a few pixels of its body ("" none).
   std::string RobotAt(Vec2 p, const View& view) const;
-  std::string RunTeachAction(const std::string& action, const std::string& args, bool* known);
   void SaveSettings();
   void DrawParamSection();
   void DrawMessagesSection();
@@ -266,6 +330,7 @@ class AppUi {
   std::shared_ptr<PlotsCache> plots_cache_;
   void UpdateView(ImVec2 min, ImVec2 max);
 
+  std::map<std::string, std::pair<ImVec2, ImVec2>> menu_items_;
   std::function<void(sim::Experiment&)> run_setup_;
   std::unique_ptr<sim::Session> owned_;
   sim::Session* session_ = nullptr;

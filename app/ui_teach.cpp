@@ -14,32 +14,14 @@
 namespace formsim::app {
 namespace {
 
-// Keys and mouse actions, as the help overlay lists them.
-const char* const kHelp[][2] = {
-    {"space", "play / pause"},
-    {".", "one step"},
-    {"r", "reset"},
-    {"f", "fit everything in view"},
-    {"s", "screenshot"},
-    {"n", "next formation shape (scenarios with switching:)"},
-    {"p", "presentation mode on / off"},
-    {"l", "legend on / off"},
-    {"F1 or ?", "this help"},
-    {"Esc", "close help, leave presentation, stop editing"},
-    {"Ctrl+Z / Ctrl+Y", "undo / redo (edits and formation changes)"},
+// Mouse gestures, which are not commands; the keys come from the command table.
+const char* const kMouseHelp[][2] = {
     {"wheel", "zoom about the mouse"},
     {"right or middle drag", "pan"},
     {"left drag (paused)", "move a robot or obstacle"},
-    {"Formation panel", "add, remove, re-attach, switch law, drag slots, shapes"},
     {"left click (editing)", "pick leaders / follower, place a new follower"},
     {"left drag (Drag slots)", "move a follower's desired slot: it converges live"},
 };
-
-bool OnOff(const std::string& s, bool* out) {
-  if (s == "on" || s == "true" || s == "1") return *out = true, true;
-  if (s == "off" || s == "false" || s == "0") return *out = false, true;
-  return false;
-}
 
 }  // namespace
 
@@ -98,52 +80,6 @@ std::string AppUi::CmdAngleUnit(const std::string& unit) {
   return "";
 }
 
-std::string AppUi::RunTeachAction(const std::string& action, const std::string& args, bool* known) {
-  *known = true;
-  auto flag = [&](const std::function<std::string(bool)>& cmd) -> std::string {
-    bool on = false;
-    if (!OnOff(args, &on)) return action + ": expects on or off, got '" + args + "'";
-    return cmd(on);
-  };
-  auto point = [&](std::string rest, double* x, double* y) {
-    char extra = 0;
-    return std::sscanf(rest.c_str(), "%lf %lf %c", x, y, &extra) == 2 && std::isfinite(*x) &&
-           std::isfinite(*y);
-  };
-  if (action == "formation") {
-    if (args.empty()) return "formation: expects add, remove, attach or shape with arguments";
-    return CmdFormation(args);
-  }
-  if (action == "slot") {
-    const auto sp = args.find(' ');
-    double x = 0, y = 0;
-    if (sp == std::string::npos || !point(args.substr(sp + 1), &x, &y))
-      return "slot: expects NAME X Y, got '" + args + "'";
-    return CmdSlot(args.substr(0, sp), x, y);
-  }
-  if (action == "editor") return CmdEditor(args);
-  if (action == "click") {
-    double x = 0, y = 0;
-    if (!point(args, &x, &y)) return "click: expects X Y (world metres), got '" + args + "'";
-    return EditorClick({x, y});
-  }
-  if (action == "overlay") {
-    if (args.empty()) return "overlay: expects NAME,... (all, none, default, -NAME)";
-    return CmdOverlay(args);
-  }
-  if (action == "legend") return flag([this](bool on) { return CmdLegend(on); });
-  if (action == "help") return flag([this](bool on) { return CmdHelp(on); });
-  if (action == "present") return flag([this](bool on) { return CmdPresent(on); });
-  if (action == "ui-scale") {
-    double s = 0;
-    if (!sim::ParseFiniteDouble(args, &s)) return "ui-scale: expects a number in [1, 3], got '" + args + "'";
-    return CmdUiScale(s);
-  }
-  if (action == "angle-unit") return CmdAngleUnit(args);
-  *known = false;
-  return "";
-}
-
 void AppUi::DrawOverlayToggles() {
   ImGui::TextDisabled("What the law sees");
   for (const sim::OverlayInfo& o : sim::Overlays()) {
@@ -173,12 +109,14 @@ void AppUi::DrawHelpOverlay(ImVec2 min, ImVec2 max) {
   ImDrawList* dl = ImGui::GetForegroundDrawList();
   const Theme& th = GetTheme(state_.theme);
   const float row = ImGui::GetFontSize() + 6;
+  std::vector<std::pair<std::string, std::string>> rows = KeyHelpRows();
+  for (const auto& m : kMouseHelp) rows.emplace_back(m[0], m[1]);
   float key_w = 0, text_w = 0;
-  for (const auto& h : kHelp) {
-    key_w = std::max(key_w, ImGui::CalcTextSize(h[0]).x);
-    text_w = std::max(text_w, ImGui::CalcTextSize(h[1]).x);
+  for (const auto& h : rows) {
+    key_w = std::max(key_w, ImGui::CalcTextSize(h.first.c_str()).x);
+    text_w = std::max(text_w, ImGui::CalcTextSize(h.second.c_str()).x);
   }
-  const int n = static_cast<int>(sizeof(kHelp) / sizeof(kHelp[0]));
+  const int n = static_cast<int>(rows.size());
   const float w = key_w + text_w + 60, h = row * (n + 2) + 20;
   const ImVec2 c(0.5f * (min.x + max.x), 0.5f * (min.y + max.y));
   const ImVec2 lo(std::max(min.x, c.x - w / 2), std::max(min.y, c.y - h / 2));
@@ -186,11 +124,12 @@ void AppUi::DrawHelpOverlay(ImVec2 min, ImVec2 max) {
   dl->AddRectFilled(lo, hi, ToImColor(th.backdrop.WithAlpha(0.96f)), 6.0f);
   dl->AddRect(lo, hi, ToImColor(th.legend_border), 6.0f, 0, 1.5f);
   float y = lo.y + 12;
-  dl->AddText(ImVec2(lo.x + 20, y), ToImColor(th.text), "Keys and mouse (F1 or Esc closes)");
+  dl->AddText(ImVec2(lo.x + 20, y), ToImColor(th.text),
+              "Keys and mouse (F1 or Esc closes; Ctrl+K finds any command)");
   y += 1.5f * row;
-  for (const auto& hrow : kHelp) {
-    dl->AddText(ImVec2(lo.x + 20, y), ToImColor(th.axis), hrow[0]);
-    dl->AddText(ImVec2(lo.x + 40 + key_w, y), ToImColor(th.text), hrow[1]);
+  for (const auto& hrow : rows) {
+    dl->AddText(ImVec2(lo.x + 20, y), ToImColor(th.axis), hrow.first.c_str());
+    dl->AddText(ImVec2(lo.x + 40 + key_w, y), ToImColor(th.text), hrow.second.c_str());
     y += row;
   }
 }

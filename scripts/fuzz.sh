@@ -35,4 +35,10 @@ run fuzz_set tests/fuzz/set_seeds
 run fuzz_session tests/fuzz/session_seeds tests/fuzz/session_seeds/invalid
 run fuzz_lesson tests/fuzz/lesson_seeds assets/lessons
 run fuzz_sweep_spec tests/fuzz/sweep_spec_seeds
+run fuzz_script tests/fuzz/script_seeds
+# The GUI chaos test with more actions than CI's 2000 (tests/app/gui_chaos_test.cpp).
+if [ "$SECONDS_EACH" -gt 60 ] && [ -x "$BUILD/tests/tests_app" ]; then
+  echo "fuzz: GUI chaos, $((SECONDS_EACH * 40)) actions"
+  FORMSIM_CHAOS_ACTIONS=$((SECONDS_EACH * 40)) "$BUILD/tests/tests_app" --gtest_filter='GuiChaos.*'
+fi
 echo "fuzz: no crash, hang or sanitizer report"

@@ -1,0 +1,69 @@
+// libFuzzer harness for `--script` action lines, run against the window's command handlers
+// (app/command_table.hpp) in an in-process window: an OSMesa context and ImGui, no display.
+// The first byte picks a scenario; each following line is one action ("FRAME" left out), run
+// through AppUi::RunScriptAction, then one frame is built (Advance + Draw), so that what an
+// action leaves for the drawing (texts, ranges, modes) meets ImGui's assertions too. A refusal
+// is a message; a crash, a sanitizer report or an ImGui assertion is a find.
+#include <imgui.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <exception>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/imgui_layer.hpp"
+#include "app/offscreen_context.hpp"
+#include "app/ui.hpp"
+#include "sim/core/scenario_files.hpp"
+
+namespace {
+
+constexpr int kW = 800, kH = 500;
+
+// Scenarios with every command's ground covered: formation editing and switching, an AGV.
+std::string ScenarioFor(std::uint8_t b) {
+  static const char* const kNames[] = {"formation_switching", "formation_traj2", "agv_fused"};
+  return formsim::sim::ResolveScenario(kNames[b % 3]);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace formsim;
+  static app::OffscreenContext context(kW, kH);
+  static app::ImGuiLayer layer;
+  if (size < 1) return 0;
+  std::vector<std::string> lines;
+  std::string cur;
+  for (std::size_t i = 1; i < size; ++i) {
+    if (data[i] == '\n') {
+      lines.push_back(cur);
+      cur.clear();
+    } else {
+      cur += static_cast<char>(data[i]);
+    }
+  }
+  if (!cur.empty()) lines.push_back(cur);
+  if (lines.size() > 24) lines.resize(24);
+  std::unique_ptr<app::AppUi> ui;
+  try {
+    ui = std::make_unique<app::AppUi>(
+        std::make_unique<sim::Session>(ScenarioFor(data[0]), std::vector<sim::Override>{}));
+  } catch (const std::exception&) {
+    return 0;
+  }
+  ui->state().playing = false;
+  for (const std::string& line : lines) {
+    if (line.rfind("quit", 0) == 0) continue;  // ends the window by design
+    ui->RunScriptAction(line);
+    layer.NewHeadlessFrame(kW, kH, 1.0f / 60.0f);
+    ui->Advance(1.0 / 60.0);
+    ui->Draw(ImVec2(kW, kH), layer.fonts(), true);
+    ImGui::Render();
+  }
+  // Background work (pins, seeds) stops with the window.
+  ui->CmdCancelSeeds();
+  return 0;
+}
