@@ -98,7 +98,7 @@ TEST(GuiSafety, EveryTunableAtItsDeclaredExtremesDrawsWithoutAnAssertion) {
       edits += 2;
     }
     const std::string shot = dir + "/" + Stem(f) + ".png";
-    script << frame + 2 << " screenshot " << dir << "/" << Stem(f) << "_low.png\n";
+    // frame + 2 draws the low ends (no picture: a 1280x4000 PNG costs more than the frame)
     script << frame + 4 << " screenshot " << shot << "\n";
     shots.push_back(shot);
     frame += 6;
