@@ -11,6 +11,14 @@ namespace formsim::sim {
 
 namespace {
 
+// A path that exists but is no regular file (/dev/zero, a FIFO, a folder) is handed on as it is,
+// so that the reader refuses it by name and kind (bounded_file.hpp), not as "not found".
+bool GivenAsPath(const std::string& name) {
+  std::error_code ec;
+  return fs::is_regular_file(name, ec) ||
+         (name.find('/') != std::string::npos && fs::exists(fs::symlink_status(name, ec)));
+}
+
 // A folder of the shipped assets ($FORMSIM_ASSETS or the source tree's assets/).
 std::string AssetDir(const std::string& sub) {
   if (const char* env = std::getenv("FORMSIM_ASSETS")) return std::string(env) + "/" + sub;
@@ -34,7 +42,7 @@ std::string LessonDir() { return AssetDir("lessons"); }
 std::vector<std::string> ShippedLessons() { return YamlFilesIn(LessonDir()); }
 
 std::string ResolveLesson(const std::string& name) {
-  if (fs::is_regular_file(name)) return name;
+  if (GivenAsPath(name)) return name;
   for (const std::string& candidate : {LessonDir() + "/" + name, LessonDir() + "/" + name + ".yaml"})
     if (fs::is_regular_file(candidate)) return candidate;
   std::string known;
@@ -44,7 +52,7 @@ std::string ResolveLesson(const std::string& name) {
 }
 
 std::string ResolveScenario(const std::string& name) {
-  if (fs::is_regular_file(name)) return name;
+  if (GivenAsPath(name)) return name;
   // Shipped scenarios first, then the lessons (each a scenario too).
   for (const std::string& candidate :
        {ScenarioDir() + "/" + name, ScenarioDir() + "/" + name + ".yaml", LessonDir() + "/" + name,
