@@ -96,15 +96,13 @@ std::vector<std::string> LessonNames(const AppUi&) {
 
 std::vector<std::string> RobotNames(const AppUi& ui) {
   std::vector<std::string> out = {"nobody"};
-  for (const auto& r : ui.session().exp().world().robots())
-    out.push_back(r->name());
+  for (const auto& r : ui.session().exp().world().robots()) out.push_back(r->name());
   return out;
 }
 
 std::vector<std::string> ActionIds(const AppUi& ui) {
   std::vector<std::string> out;
-  for (const sim::ActionSpec& a : ui.session().exp().Actions())
-    out.push_back(a.id);
+  for (const sim::ActionSpec& a : ui.session().exp().Actions()) out.push_back(a.id);
   return out;
 }
 
@@ -158,14 +156,17 @@ std::string NeedsActions(const AppUi& ui) {
 }
 
 std::string NeedsTimeline(const AppUi& ui) {
-  return ui.TimelineActive() ? "" : "move the timeline back first (the world view shows the live run)";
+  return ui.TimelineActive() ? ""
+                             : "move the timeline back first (the world view shows the live run)";
 }
 
 std::string NeedsSeedsRunning(const AppUi& ui) {
   return ui.SeedsRunning() ? "" : "no Monte Carlo is running";
 }
 
-std::string NeedsPins(const AppUi& ui) { return ui.pins().empty() ? "nothing is pinned" : ""; }
+std::string NeedsPins(const AppUi& ui) {
+  return ui.pins().empty() ? "nothing is pinned" : "";
+}
 
 // A folder for figures beside the scenario's name.
 std::string FiguresFolder(const AppUi& ui) {
@@ -195,7 +196,8 @@ std::vector<Command> BuildTable() {
   row({.name = "save",
        .args = {Optional(Text("PATH", "a file to write"))},
        .menu = "File/Save",
-       .help = "Save the tuned scenario (to PATH, else to the Save field's file); a script overwrites",
+       .help =
+           "Save the tuned scenario (to PATH, else to the Save field's file); a script overwrites",
        .run = [](AppUi& ui, const CommandArgs& a, Src s) {
          const std::string path = a.Has(0) ? a.Text(0) : std::string(ui.state().save_path);
          return ui.CmdSave(path, s == Src::kScript);
@@ -218,16 +220,20 @@ std::vector<Command> BuildTable() {
   row({.name = "restore-session",
        .menu = "File/Restore unfinished session",
        .help = "Replay the unfinished session of a window that was killed, and go on from it",
-       .disabled = [](const AppUi& ui) {
-         return ui.unfinished_sessions().empty() ? std::string("no unfinished session") : std::string();
-       },
+       .disabled =
+           [](const AppUi& ui) {
+             return ui.unfinished_sessions().empty() ? std::string("no unfinished session")
+                                                     : std::string();
+           },
        .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdRestoreSession(); }});
   row({.name = "discard-session",
        .menu = "File/Discard unfinished session",
        .help = "Delete the journal of the unfinished session offered at start",
-       .disabled = [](const AppUi& ui) {
-         return ui.unfinished_sessions().empty() ? std::string("no unfinished session") : std::string();
-       },
+       .disabled =
+           [](const AppUi& ui) {
+             return ui.unfinished_sessions().empty() ? std::string("no unfinished session")
+                                                     : std::string();
+           },
        .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdDiscardSession(); }});
   row({.name = "screenshot",
        .args = {Optional(Text("PATH", "a PNG file to write"))},
@@ -246,10 +252,11 @@ std::vector<Command> BuildTable() {
        .keys = {"Ctrl+Q"},
        .menu = "File/Quit",
        .help = "Close the window (with --out and --session, their files are written first)",
-       .run = [](AppUi& ui, const CommandArgs&, Src) {
-         ui.state().quit_requested = true;
-         return std::string();
-       },
+       .run =
+           [](AppUi& ui, const CommandArgs&, Src) {
+             ui.state().quit_requested = true;
+             return std::string();
+           },
        .ends_program = true});
 
   // ---- Run ----
@@ -329,8 +336,9 @@ std::vector<Command> BuildTable() {
        .checked = [](const AppUi& ui) { return ui.state().present; },
        .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdPresent(a.On(0)); }});
   row({.name = "theme",
-       .args = {Initial(Choice("NAME", ThemeList()),
-                        [](const AppUi& ui) { return std::string(GetTheme(ui.state().theme).name); })},
+       .args = {Initial(
+           Choice("NAME", ThemeList()),
+           [](const AppUi& ui) { return std::string(GetTheme(ui.state().theme).name); })},
        .menu = "View/Theme",
        .help = "Colours of the panels, the world view and the plots",
        .run = [](AppUi& ui, const CommandArgs& a, Src) {
@@ -339,11 +347,12 @@ std::vector<Command> BuildTable() {
          return std::string();
        }});
   row({.name = "ui-scale",
-       .args = {Initial(Offer(Real("SCALE", kMinUiScale, kMaxUiScale),
-                              [](const AppUi&) {
-                                return std::vector<std::string>{"1", "1.25", "1.5", "2", "2.5", "3"};
-                              }),
-                        [](const AppUi& ui) { return sim::FormatDouble(ui.state().settings.ui_scale); })},
+       .args = {Initial(
+           Offer(Real("SCALE", kMinUiScale, kMaxUiScale),
+                 [](const AppUi&) {
+                   return std::vector<std::string>{"1", "1.25", "1.5", "2", "2.5", "3"};
+                 }),
+           [](const AppUi& ui) { return sim::FormatDouble(ui.state().settings.ui_scale); })},
        .menu = "View/UI scale",
        .help = "Fonts and line widths, kept between runs",
        .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdUiScale(a.Real(0)); }});
@@ -370,13 +379,13 @@ std::vector<Command> BuildTable() {
        .checked = [](const AppUi& ui) { return ui.state().legend; },
        .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdLegend(a.On(0)); }});
   row({.name = "follow",
-       .args = {Initial(Offer(Text("ROBOT", "a robot's name, or nobody", ArgType::kChoice), RobotNames),
-                        [](const AppUi& ui) {
-                          const auto names = RobotNames(ui);
-                          const int f = ui.state().follow;
-                          return f >= 0 && f + 1 < static_cast<int>(names.size()) ? names[f + 1]
-                                                                                   : names[0];
-                        })},
+       .args = {Initial(
+           Offer(Text("ROBOT", "a robot's name, or nobody", ArgType::kChoice), RobotNames),
+           [](const AppUi& ui) {
+             const auto names = RobotNames(ui);
+             const int f = ui.state().follow;
+             return f >= 0 && f + 1 < static_cast<int>(names.size()) ? names[f + 1] : names[0];
+           })},
        .menu = "View/Follow",
        .help = "Keep a robot in the middle of the world view (nobody: fit)",
        .run = [](AppUi& ui, const CommandArgs& a, Src) {
@@ -410,10 +419,14 @@ std::vector<Command> BuildTable() {
        .help = "Close the palette or help, stop editing, or leave presentation (one at a time)",
        .run = [](AppUi& ui, const CommandArgs&, Src) {
          UiState& s = ui.state();
-         if (s.palette) s.palette = false;
-         else if (s.help) s.help = false;
-         else if (s.edit_mode != UiState::EditMode::kOff) return ui.CmdEditor("off");
-         else if (s.present) return ui.CmdPresent(false);
+         if (s.palette)
+           s.palette = false;
+         else if (s.help)
+           s.help = false;
+         else if (s.edit_mode != UiState::EditMode::kOff)
+           return ui.CmdEditor("off");
+         else if (s.present)
+           return ui.CmdPresent(false);
          return std::string();
        }});
 
@@ -472,17 +485,19 @@ std::vector<Command> BuildTable() {
        .keys = {"Ctrl+Z"},
        .menu = "Compare/Undo",
        .help = "Undo the last edit or formation change",
-       .disabled = [](const AppUi& ui) {
-         return ui.session().can_undo() ? std::string() : std::string("nothing to undo");
-       },
+       .disabled =
+           [](const AppUi& ui) {
+             return ui.session().can_undo() ? std::string() : std::string("nothing to undo");
+           },
        .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdUndo(); }});
   row({.name = "redo",
        .keys = {"Ctrl+Y", "Ctrl+Shift+Z"},
        .menu = "Compare/Redo",
        .help = "Redo what was undone",
-       .disabled = [](const AppUi& ui) {
-         return ui.session().can_redo() ? std::string() : std::string("nothing to redo");
-       },
+       .disabled =
+           [](const AppUi& ui) {
+             return ui.session().can_redo() ? std::string() : std::string("nothing to redo");
+           },
        .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdRedo(); }});
   row({.name = "scrub",
        .args = {Real("T", 0, 1e9, "s")},
@@ -501,10 +516,11 @@ std::vector<Command> BuildTable() {
   row({.name = "menu",
        .args = {Choice("NAME", {"File", "Run", "View", "Compare", "Formation", "Help"})},
        .help = "Open a menu of the menu bar (for scripted pictures and tests)",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         ui.state().open_menu = a.Text(0);
-         return std::string();
-       },
+       .run =
+           [](AppUi& ui, const CommandArgs& a, Src) {
+             ui.state().open_menu = a.Text(0);
+             return std::string();
+           },
        .script_only = true});
   row({.name = "wait",
        .help = "Hold the script until pins, a Monte Carlo or the timeline have finished",
@@ -522,8 +538,9 @@ std::vector<Command> BuildTable() {
          return ui.CmdEditor(a.Has(1) ? a.Text(0) + " " + a.Text(1) : a.Text(0));
        }});
   row({.name = "formation",
-       .args = {Text("CHANGE", "add LAW LEADERS X Y [NAME], remove NAME, attach NAME LAW "
-                               "LEADERS, or shape KIND [SPACING]")},
+       .args = {Text("CHANGE",
+                     "add LAW LEADERS X Y [NAME], remove NAME, attach NAME LAW "
+                     "LEADERS, or shape KIND [SPACING]")},
        .menu = "Formation/Change…",
        .help = "A structural change of the formation; the run goes on from here",
        .disabled = NeedsFormation,

@@ -9,7 +9,9 @@
 namespace formsim::app {
 namespace {
 
-bool IsSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
+bool IsSpace(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\n';
+}
 
 std::string Trimmed(const std::string& s) {
   std::size_t a = 0, b = s.size();
@@ -31,7 +33,9 @@ std::string NumberText(double v) {
   return sim::FormatDouble(v);
 }
 
-std::string RangeText(double lo, double hi) { return NumberText(lo) + " ... " + NumberText(hi); }
+std::string RangeText(double lo, double hi) {
+  return NumberText(lo) + " ... " + NumberText(hi);
+}
 
 // `s` padded with spaces to `width` characters (UTF-8 aware: "…" is one).
 std::string Padded(const std::string& s, std::size_t width) {
@@ -98,7 +102,8 @@ std::string Command::Usage() const {
   std::string u = name;
   for (const CommandArg& a : args) {
     std::string shown = a.name;
-    if (a.type == ArgType::kOnOff) shown = "on|off|toggle";
+    if (a.type == ArgType::kOnOff)
+      shown = "on|off|toggle";
     else if (a.type == ArgType::kChoice && !a.choices.empty() && a.choices.size() <= 6)
       shown = Joined(a.choices, "|");
     u += a.optional ? " [" + shown + "]" : " " + shown;
@@ -106,7 +111,9 @@ std::string Command::Usage() const {
   return u;
 }
 
-std::string Command::KeysText() const { return Joined(keys, ", "); }
+std::string Command::KeysText() const {
+  return Joined(keys, ", ");
+}
 
 void SplitCommandLine(const std::string& line, std::string* action, std::string* rest) {
   const std::string t = Trimmed(line);
@@ -146,8 +153,8 @@ std::string ParseCommandArgs(const Command& cmd, const std::string& text, const 
         break;
       case ArgType::kWhole: {
         long long v = 0;
-        if (!sim::ParseInteger(word, static_cast<long long>(arg.lo),
-                               static_cast<long long>(arg.hi), &v))
+        if (!sim::ParseInteger(word, static_cast<long long>(arg.lo), static_cast<long long>(arg.hi),
+                               &v))
           return head + ", got " + Quoted(word);
         number = static_cast<double>(v);
         break;

@@ -16,20 +16,20 @@ class AppUi;
 
 /// What an argument accepts.
 enum class ArgType {
-  kWord,      ///< one word (a name, a mode)
-  kRest,      ///< the rest of the line, spaces included (a path, a key=value, a sub-command)
-  kWhole,     ///< a whole number in [lo, hi]
-  kReal,      ///< a finite number in [lo, hi]
-  kOnOff,     ///< on|off|toggle (also true|false|1|0)
-  kChoice,    ///< one of `choices` (or of the choices the window offers now)
+  kWord,    ///< one word (a name, a mode)
+  kRest,    ///< the rest of the line, spaces included (a path, a key=value, a sub-command)
+  kWhole,   ///< a whole number in [lo, hi]
+  kReal,    ///< a finite number in [lo, hi]
+  kOnOff,   ///< on|off|toggle (also true|false|1|0)
+  kChoice,  ///< one of `choices` (or of the choices the window offers now)
 };
 
 /// One argument of a command.
 struct CommandArg {
   std::string name;  ///< as the help shows it: "PATH", "N", "T"
   ArgType type = ArgType::kWord;
-  double lo = 0, hi = 0;  ///< kWhole, kReal: the accepted range, inclusive
-  std::string unit;       ///< "s", "m", "" for none
+  double lo = 0, hi = 0;             ///< kWhole, kReal: the accepted range, inclusive
+  std::string unit;                  ///< "s", "m", "" for none
   std::vector<std::string> choices;  ///< kChoice: fixed choices
   /// kChoice with choices that depend on the window (robots, shipped scenarios, pins), and the
   /// menu's and palette's suggestions for a kWord or kRest argument.
@@ -73,8 +73,8 @@ struct Command {
   std::function<bool(const AppUi&)> checked;
   /// Runs it: "" or why it was refused.
   std::function<std::string(AppUi&, const CommandArgs&, CommandSource)> run;
-  bool script_only = false;    ///< meaningful only in a script (wait); no menu entry
-  bool ends_program = false;   ///< quits the window (left out of the chaos test)
+  bool script_only = false;   ///< meaningful only in a script (wait); no menu entry
+  bool ends_program = false;  ///< quits the window (left out of the chaos test)
   /// The usage line: "seeds N", "screenshot [PATH]".
   std::string Usage() const;
   /// The keys as the help shows them: "space", "Ctrl+Z, Ctrl+Shift+Z".

@@ -169,7 +169,8 @@ class AppUi {
   /// Edits the settings of history row `number` back in (seed into the seed field).
   std::string CmdRestore(int number);
   /// History row `number`; null when there is none, with the reason in `why` and the status.
-  const sim::HistoryRow* HistoryRowOrRefuse(const std::string& action, int number, std::string* why);
+  const sim::HistoryRow* HistoryRowOrRefuse(const std::string& action, int number,
+                                            std::string* why);
   /// Pins history row `number` (replayed exactly from its log).
   std::string CmdPinRow(int number);
   /// Runs the current settings over seeds 1..n in the background (as `formsim sweep`).
@@ -308,7 +309,8 @@ class AppUi {
   void DrawOverlayToggles();
   void DrawFormationSection();
   /// Restructures the session by `restructure` (label: the change's text form) and reports.
-  std::string RunRestructure(const std::string& label, const std::function<std::string()>& restructure);
+  std::string RunRestructure(const std::string& label,
+                             const std::function<std::string()>& restructure);
   /// The help overlay (keys and mouse) over the world view.
   void DrawHelpOverlay(ImVec2 min, ImVec2 max);
   /// Presentation mode's small bar of buttons, top right of the world view.

@@ -13,7 +13,9 @@
 namespace formsim::app {
 namespace {
 
-std::string TopOf(const std::string& menu) { return menu.substr(0, menu.find('/')); }
+std::string TopOf(const std::string& menu) {
+  return menu.substr(0, menu.find('/'));
+}
 std::string LabelOf(const std::string& menu) {
   const auto slash = menu.find('/');
   return slash == std::string::npos ? menu : menu.substr(slash + 1);
@@ -36,7 +38,9 @@ bool HasRequiredArgs(const Command& cmd) {
 
 }  // namespace
 
-bool AppUi::SeedsRunning() const { return mc_.run && !mc_.run->finished(); }
+bool AppUi::SeedsRunning() const {
+  return mc_.run && !mc_.run->finished();
+}
 
 float AppUi::DrawMenuBar() {
   if (!ImGui::BeginMainMenuBar()) return 0;
@@ -169,8 +173,9 @@ void AppUi::DrawCommandDialog() {
   if (!state_.dialog_error.empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.85f, 0.15f, 0.1f, 1));
     ImGui::PushTextWrapPos(0);
-    ImGui::TextUnformatted(state_.dialog_error.c_str(),
-                           state_.dialog_error.c_str() + std::min<std::size_t>(state_.dialog_error.size(), 400));
+    ImGui::TextUnformatted(
+        state_.dialog_error.c_str(),
+        state_.dialog_error.c_str() + std::min<std::size_t>(state_.dialog_error.size(), 400));
     ImGui::PopTextWrapPos();
     ImGui::PopStyleColor();
   }

@@ -69,7 +69,8 @@ std::vector<PaletteEntry> AppUi::PaletteEntries(const std::string& filter) const
   // Tunables, only once something is typed (there can be thousands).
   if (!words.empty())
     for (const sim::Param& p : session_->params().all()) {
-      const std::string label = p.tune.label + (p.tune.unit.empty() ? "" : " [" + p.tune.unit + "]");
+      const std::string label =
+          p.tune.label + (p.tune.unit.empty() ? "" : " [" + p.tune.unit + "]");
       int score = 0;
       if (!Matches(words, p.key, label + " " + p.tune.group, &score)) continue;
       entries.push_back({true, p.key, label + " = " + p.Text(), "", score + 1});
@@ -93,15 +94,16 @@ void AppUi::DrawPalette(ImVec2 display) {
   ImGui::Begin("##palette", nullptr,
                ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_AlwaysAutoResize);
-  ImGui::TextDisabled("Command palette: type to filter commands and tunables; Enter runs, Esc closes");
+  ImGui::TextDisabled(
+      "Command palette: type to filter commands and tunables; Enter runs, Esc closes");
   if (state_.palette_focus) {
     ImGui::SetKeyboardFocusHere();
     state_.palette_focus = false;
   }
   ImGui::SetNextItemWidth(-1);
-  const bool enter = ImGui::InputTextWithHint("##filter", "e.g. k_l R2, pin, theme",
-                                              state_.palette_filter, sizeof state_.palette_filter,
-                                              ImGuiInputTextFlags_EnterReturnsTrue);
+  const bool enter =
+      ImGui::InputTextWithHint("##filter", "e.g. k_l R2, pin, theme", state_.palette_filter,
+                               sizeof state_.palette_filter, ImGuiInputTextFlags_EnterReturnsTrue);
   if (ImGui::IsItemEdited()) state_.palette_selected = 0;
   if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_DownArrow)))
     state_.palette_selected = std::min(state_.palette_selected + 1, std::max(0, shown - 1));
@@ -123,7 +125,8 @@ void AppUi::DrawPalette(ImVec2 display) {
     }
     ImGui::PopID();
   }
-  if (entries.empty()) ImGui::TextDisabled("nothing matches");
+  if (entries.empty())
+    ImGui::TextDisabled("nothing matches");
   else if (static_cast<int>(entries.size()) > shown)
     ImGui::TextDisabled("… %zu more: type more to narrow", entries.size() - shown);
   ImGui::End();

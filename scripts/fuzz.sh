@@ -9,7 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 SECONDS_EACH=${1:-300}
 BUILD=${2:-build-asan}
-for h in fuzz_scenario fuzz_set fuzz_session fuzz_lesson fuzz_sweep_spec; do
+for h in fuzz_scenario fuzz_set fuzz_session fuzz_lesson fuzz_sweep_spec fuzz_script; do
   [ -x "$BUILD/tests/fuzz/$h" ] || { bash scripts/sanitize.sh --build-only "$BUILD"; break; }
 done
 export ASAN_OPTIONS=${ASAN_OPTIONS:-halt_on_error=1:detect_leaks=1}

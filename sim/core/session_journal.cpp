@@ -16,6 +16,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "sim/core/bounded_file.hpp"
 #include "sim/core/number_format.hpp"
 
 namespace fs = std::filesystem;
@@ -223,15 +224,9 @@ RecoveredSession ParseJournal(const std::string& text, const std::string& path) 
 }
 
 RecoveredSession RecoverJournal(const std::string& path) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw std::runtime_error(path + ": not a regular file");
-  if (fs::file_size(path, ec) > kMaxJournalBytes)
-    throw std::runtime_error(path + ": larger than 256 MiB, not read");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot open the journal");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ParseJournal(ss.str(), path);
+  // Through the one bounded reader: checked on the opened descriptor, so the file cannot be
+  // swapped for a device between the check and the read.
+  return ParseJournal(ReadBoundedFile(path, kMaxJournalBytes), path);
 }
 
 std::vector<RecoveredSession> UnfinishedSessions(const std::string& dir) {

@@ -2,6 +2,8 @@
 // command is reachable three ways (a click on its menu item, the palette, `--script`), runs in
 // a window (an OSMesa context, in-process; under ASan in the sanitizer suite), refuses bad
 // arguments naming the argument; keys, F1 help and the README's table come from the same rows.
+#include "app/command_table.hpp"
+
 #include <gtest/gtest.h>
 #include <imgui.h>
 #include <imgui_internal.h>
@@ -11,48 +13,25 @@
 #include <map>
 #include <set>
 
-#include "app/command_table.hpp"
 #include "app/imgui_layer.hpp"
 #include "app/offscreen_context.hpp"
 #include "app/ui.hpp"
 #include "tests/app/test_util.hpp"
+#include "tests/app/ui_window.hpp"
 
 namespace formsim::app {
 namespace {
 
-constexpr int kW = 1600, kH = 900;
-
-class Window {
+// Large enough for every menu to open in full.
+class Window : public testing::UiWindow {
  public:
   explicit Window(const std::string& scenario = "formation_switching")
-      : ui_(std::make_unique<sim::Session>(testing::Scenario(scenario),
-                                           std::vector<sim::Override>{})) {
-    ui_.state().playing = false;
-    ImGui::GetIO().KeyMap[ImGuiKey_Z] = 'Z';
-    ImGui::GetIO().KeyMap[ImGuiKey_Y] = 'Y';
-    ImGui::GetIO().KeyMap[ImGuiKey_Enter] = 13;
-    for (int i = 0; i < 3; ++i) Frame();
-  }
-  AppUi& ui() { return ui_; }
-  void Frame(const std::function<void(ImGuiIO&)>& input = {}) {
-    ImGuiIO& io = ImGui::GetIO();
-    if (input) input(io);
-    layer_.NewHeadlessFrame(kW, kH, 1.0f / 60.0f);
-    ui_.Advance(1.0 / 60.0);
-    ui_.Draw(ImVec2(kW, kH), layer_.fonts(), true);
-    ImGui::Render();
-    io.MouseDown[0] = false;
-    io.KeyCtrl = io.KeyShift = false;
-    for (bool& k : io.KeysDown) k = false;
-  }
-
- private:
-  OffscreenContext ctx_{kW, kH};
-  ImGuiLayer layer_;
-  AppUi ui_;
+      : UiWindow(scenario, 1600, 900) {}
 };
 
-std::string TopOf(const std::string& menu) { return menu.substr(0, menu.find('/')); }
+std::string TopOf(const std::string& menu) {
+  return menu.substr(0, menu.find('/'));
+}
 
 // Arguments a command accepts in formation_switching (free-text arguments need real values).
 std::string GoodArgs(const Command& c, AppUi& ui, const std::string& dir) {
@@ -85,11 +64,16 @@ std::string GoodArgs(const Command& c, AppUi& ui, const std::string& dir) {
   for (const CommandArg& a : c.args) {
     if (a.optional) break;
     std::string v;
-    if (a.type == ArgType::kWhole || a.type == ArgType::kReal) v = "1";
-    else if (a.type == ArgType::kOnOff) v = "on";
-    else if (a.initial) v = a.initial(ui);
-    else if (!a.choices.empty()) v = a.choices.front();
-    else if (a.offer && !a.offer(ui).empty()) v = a.offer(ui).back();
+    if (a.type == ArgType::kWhole || a.type == ArgType::kReal)
+      v = "1";
+    else if (a.type == ArgType::kOnOff)
+      v = "on";
+    else if (a.initial)
+      v = a.initial(ui);
+    else if (!a.choices.empty())
+      v = a.choices.front();
+    else if (a.offer && !a.offer(ui).empty())
+      v = a.offer(ui).back();
     args += (args.empty() ? "" : " ") + v;
   }
   return args;
@@ -102,24 +86,36 @@ TEST(CommandTable, RowsAreWellFormed) {
     EXPECT_TRUE(names.insert(c.name).second) << "two rows named " << c.name;
     EXPECT_FALSE(c.help.empty()) << c.name;
     EXPECT_TRUE(c.run) << c.name;
-    for (const std::string& k : c.keys) EXPECT_TRUE(keys.insert(k).second) << "key " << k << " bound twice";
-    if (!c.script_only) EXPECT_EQ(menus.count(TopOf(c.menu)), 1u) << c.name << ": " << c.menu;
+    for (const std::string& k : c.keys)
+      EXPECT_TRUE(keys.insert(k).second) << "key " << k << " bound twice";
+    if (!c.script_only) {
+      EXPECT_EQ(menus.count(TopOf(c.menu)), 1u) << c.name << ": " << c.menu;
+    }
     bool optional = false;
     for (std::size_t i = 0; i < c.args.size(); ++i) {
       const CommandArg& a = c.args[i];
-      EXPECT_FALSE(optional && !a.optional) << c.name << ": a required argument after an optional one";
+      EXPECT_FALSE(optional && !a.optional)
+          << c.name << ": a required argument after an optional one";
       optional |= a.optional;
-      if (a.type == ArgType::kRest) EXPECT_EQ(i + 1, c.args.size()) << c.name << ": REST not last";
-      if (a.type == ArgType::kOnOff) EXPECT_TRUE(c.checked) << c.name << ": toggle needs checked";
+      if (a.type == ArgType::kRest) {
+        EXPECT_EQ(i + 1, c.args.size()) << c.name << ": REST not last";
+      }
+      if (a.type == ArgType::kOnOff) {
+        EXPECT_TRUE(c.checked) << c.name << ": toggle needs checked";
+      }
     }
   }
   // Every action scripts, sessions and lessons used before the table still exists.
-  for (const char* old : {"edit", "reset", "reset-seed", "reload", "load", "open", "save", "play",
-                          "pause", "step", "screenshot", "action", "undo", "redo", "revert", "pin",
-                          "unpin", "unpin-all", "restore", "pin-row", "seeds", "cancel-seeds",
-                          "scrub", "live", "branch", "save-session", "tab", "switch-formation",
-                          "wait", "formation", "slot", "editor", "click", "overlay", "legend",
-                          "help", "present", "ui-scale", "angle-unit"})
+  for (const char* old : {"edit",    "reset",        "reset-seed", "reload",
+                          "load",    "open",         "save",       "play",
+                          "pause",   "step",         "screenshot", "action",
+                          "undo",    "redo",         "revert",     "pin",
+                          "unpin",   "unpin-all",    "restore",    "pin-row",
+                          "seeds",   "cancel-seeds", "scrub",      "live",
+                          "branch",  "save-session", "tab",        "switch-formation",
+                          "wait",    "formation",    "slot",       "editor",
+                          "click",   "overlay",      "legend",     "help",
+                          "present", "ui-scale",     "angle-unit"})
     EXPECT_NE(FindCommand(old), nullptr) << old;
 }
 
@@ -192,12 +188,13 @@ TEST(CommandTable, EveryCommandRunsFromAScript) {
     const std::string why = w.ui().RunScriptAction(c.name + (args.empty() ? "" : " " + args));
     // A few may be refused for the state they find (nothing to undo, no timeline); they must
     // say why, and the window goes on.
-    if (!why.empty())
+    if (!why.empty()) {
       EXPECT_TRUE(c.name == "undo" || c.name == "redo" || c.name == "cancel-seeds" ||
                   c.name == "branch" || c.name == "restore" || c.name == "pin-row" ||
                   c.name == "unpin" || c.name == "click" || c.name == "restore-session" ||
                   c.name == "discard-session")
           << c.name << " " << args << ": " << why;
+    }
     for (int i = 0; i < 3; ++i) w.Frame();
   }
 }

@@ -45,8 +45,9 @@ class Chaos {
   bool Coin(double p) { return std::uniform_real_distribution<double>(0, 1)(rng_) < p; }
 
   std::string Number(double lo, double hi, bool whole) {
-    const std::vector<std::string> extreme = {"nan", "inf", "-inf", "1e308", "-1e308", "-0",
-                                              "4.9e-324", "abc", "", "9223372036854775808"};
+    const std::vector<std::string> extreme = {
+        "nan", "inf",      "-inf", "1e308", "-1e308",
+        "-0",  "4.9e-324", "abc",  "",      "9223372036854775808"};
     if (Coin(0.3)) return Pick(extreme);
     if (Coin(0.3)) return sim::FormatDouble(Coin(0.5) ? lo : hi);
     const double v = std::uniform_real_distribution<double>(lo, std::min(hi, lo + 50))(rng_);
@@ -54,8 +55,8 @@ class Chaos {
   }
 
   std::string Path(const std::string& ext) {
-    const std::vector<std::string> odd = {"/dev/zero", "/dev/full", "/nonexistent/dir/x" + ext,
-                                          "/proc/self/mem", dir_, ""};
+    const std::vector<std::string> odd = {"/dev/zero",      "/dev/full", "/nonexistent/dir/x" + ext,
+                                          "/proc/self/mem", dir_,        ""};
     if (Coin(0.25)) return Pick(odd);
     return dir_ + "/f" + std::to_string(std::uniform_int_distribution<int>(0, 5)(rng_)) + ext;
   }
@@ -63,22 +64,21 @@ class Chaos {
   std::string Free(const Command& c, const CommandArg& a) {
     const std::string huge(Coin(0.5) ? 300 : 30000, 'x');
     if (Coin(0.05)) return huge;
-    if (c.name == "edit" && !keys_.empty())
-      return Pick(keys_) + "=" + Number(-10, 10, false);
+    if (c.name == "edit" && !keys_.empty()) return Pick(keys_) + "=" + Number(-10, 10, false);
     if (c.name == "revert" && !keys_.empty()) return Pick(keys_);
     if (c.name == "load" || c.name == "lesson")
-      return Pick(std::vector<std::string>{"formation_traj2", "formation_switching",
-                                           "agv_fused", "ll_singularity", "no_such", huge});
+      return Pick(std::vector<std::string>{"formation_traj2", "formation_switching", "agv_fused",
+                                           "ll_singularity", "no_such", huge});
     if (c.name == "open") return Coin(0.5) ? testing::Scenario("formation_traj2") : Path(".yaml");
     if (c.name == "formation")
       return Pick(std::vector<std::string>{"shape wedge 0.6", "shape grid 1e308", "remove R5",
-                                           "add l_phi R1 0.5 0.5", "attach R4 l_l R1 R2",
-                                           "shape", "explode"});
+                                           "add l_phi R1 0.5 0.5", "attach R4 l_l R1 R2", "shape",
+                                           "explode"});
     if (c.name == "overlay")
       return Pick(std::vector<std::string>{"all", "none", "default", "-links", "nonsense"});
     if (c.name == "reset-seed")
-      return Pick(std::vector<std::string>{"0", "18446744073709551615", "18446744073709551616", "-1",
-                                           "7"});
+      return Pick(
+          std::vector<std::string>{"0", "18446744073709551615", "18446744073709551616", "-1", "7"});
     if (a.name == "PATH" || a.name == "DIR")
       return Path(c.name == "screenshot" ? ".png" : c.name == "export-figures" ? "" : ".yaml");
     return Pick(std::vector<std::string>{"R2", "R3", "nobody", "switch-formation", "x"});
@@ -136,12 +136,16 @@ TEST(GuiChaos, RandomCommandsNeverEndTheWindowAndTheSessionReplays) {
     script << "# " << n << " random actions, seed " << seed << "\n0 speed max\n";
     for (long i = 0; i < n; ++i) script << i + 1 << " " << chaos.Line(*chaos.Pick(pool)) << "\n";
   }
-  // In its own folder: a save or screenshot without a path writes into the working folder.
-  const int rc = RunShell("cd " + dir + "/files && " + Xvfb(Binary() + " gui formation_switching --size 640x400 --paused "
-                                          "--exit-after " + std::to_string(n + 5) + " --script " +
-                               dir + "/chaos.txt --out " + dir + "/live --session " + dir +
-                               "/session.yaml"),
-                          dir + "/log.txt");
+  // In its own folder (a save or screenshot without a path writes into the working folder),
+  // with a state folder of its own: restore-session finds no other window's journal.
+  const int rc =
+      RunShell("cd " + dir + "/files && FORMSIM_STATE_DIR=" + dir + "/state " +
+                   Xvfb(Binary() +
+                        " gui formation_switching --size 640x400 --paused "
+                        "--exit-after " +
+                        std::to_string(n + 5) + " --script " + dir + "/chaos.txt --out " + dir +
+                        "/live --session " + dir + "/session.yaml"),
+               dir + "/log.txt");
   const std::string log = ReadText(dir + "/log.txt");
   ASSERT_EQ(rc, 0) << log.substr(log.size() > 4000 ? log.size() - 4000 : 0);
   EXPECT_EQ(log.find("AddressSanitizer"), std::string::npos);

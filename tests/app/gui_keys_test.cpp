@@ -13,55 +13,14 @@
 #include "app/offscreen_context.hpp"
 #include "app/ui.hpp"
 #include "tests/app/test_util.hpp"
+#include "tests/app/ui_window.hpp"
 
 namespace formsim::app {
 namespace {
 
 constexpr int kW = 1280, kH = 800;
 
-class Window {
- public:
-  Window()
-      : ui_(std::make_unique<sim::Session>(testing::Scenario("formation_traj2"),
-                                           std::vector<sim::Override>{})) {
-    ui_.state().playing = false;
-    ImGui::GetIO().KeyMap[ImGuiKey_Z] = 'Z';
-    ImGui::GetIO().KeyMap[ImGuiKey_Y] = 'Y';
-    for (int i = 0; i < 3; ++i) Frame();  // windows laid out
-  }
-  AppUi& ui() { return ui_; }
-
-  /// One frame with `input` set before it starts; mouse buttons and keys are released after.
-  void Frame(const std::function<void(ImGuiIO&)>& input = {}) {
-    ImGuiIO& io = ImGui::GetIO();
-    if (input) input(io);
-    layer_.NewHeadlessFrame(kW, kH, 1.0f / 60.0f);
-    ui_.Advance(1.0 / 60.0);
-    ui_.Draw(ImVec2(kW, kH), layer_.fonts(), true);
-    ImGui::Render();
-    io.MouseDown[0] = false;
-    io.KeyCtrl = io.KeyShift = false;
-    for (bool& k : io.KeysDown) k = false;
-  }
-  /// The widget under `p` (0: none).
-  ImGuiID Hover(ImVec2 p) {
-    Frame([&](ImGuiIO& io) { io.MousePos = p; });
-    return ImGui::GetCurrentContext()->HoveredId;
-  }
-  /// Where widget `id` of window `window` is, scanning a column of the panel.
-  ImVec2 Find(const char* window, const char* label, float x) {
-    const ImGuiWindow* w = ImGui::FindWindowByName(window);
-    const ImGuiID id = ImHashStr(label, 0, w->ID);
-    for (float y = 0; y < kH; y += 4)
-      if (Hover(ImVec2(x, y)) == id) return ImVec2(x, y);
-    return ImVec2(-1, -1);
-  }
-
- private:
-  OffscreenContext ctx_{kW, kH};
-  ImGuiLayer layer_;
-  AppUi ui_;
-};
+using Window = testing::UiWindow;
 
 TEST(GuiKeys, TypingIntoAFieldNeverTriggersAShortcut) {
   Window w;
