@@ -145,6 +145,12 @@ std::string NeedsFormation(const AppUi& ui) {
              : "only for a formation scenario (this one has no formation graph to edit)";
 }
 
+// Structural changes: a formation scenario whose structure can change.
+std::string NeedsRestructurable(const AppUi& ui) {
+  const auto* editing = sim::formation::EditingOf(ui.session().exp());
+  return editing == nullptr ? NeedsFormation(ui) : editing->StructureLocked();
+}
+
 std::string NeedsSwitching(const AppUi& ui) {
   for (const sim::ActionSpec& a : ui.session().exp().Actions())
     if (a.id == "switch-formation") return "";
@@ -543,14 +549,14 @@ std::vector<Command> BuildTable() {
                      "LEADERS, or shape KIND [SPACING]")},
        .menu = "Formation/Change…",
        .help = "A structural change of the formation; the run goes on from here",
-       .disabled = NeedsFormation,
+       .disabled = NeedsRestructurable,
        .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdFormation(a.Text(0)); }});
   row({.name = "shape",
        .args = {Choice("KIND", control::formation::ShapeNames()),
                 Optional(Real("SPACING", 0.05, 10, "m"))},
        .menu = "Formation/Shape",
        .help = "Re-attach every follower to make a shape (spacing in m)",
-       .disabled = NeedsFormation,
+       .disabled = NeedsRestructurable,
        .run = [](AppUi& ui, const CommandArgs& a, Src) {
          return ui.CmdFormation("shape " + a.Text(0) + (a.Has(1) ? " " + a.Text(1) : ""));
        }});

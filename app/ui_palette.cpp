@@ -73,7 +73,10 @@ std::vector<PaletteEntry> AppUi::PaletteEntries(const std::string& filter) const
           p.tune.label + (p.tune.unit.empty() ? "" : " [" + p.tune.unit + "]");
       int score = 0;
       if (!Matches(words, p.key, label + " " + p.tune.group, &score)) continue;
-      entries.push_back({true, p.key, label + " = " + p.Text(), "", score + 1});
+      entries.push_back(
+          {true, p.key,
+           (p.tune.group.empty() ? "" : p.tune.group + ": ") + label + " = " + p.Text(), "",
+           score + 1});
     }
   std::stable_sort(entries.begin(), entries.end(),
                    [](const PaletteEntry& a, const PaletteEntry& b) { return a.score < b.score; });

@@ -82,6 +82,18 @@ if command -v xvfb-run >/dev/null; then
   xvfb-run -a -s "-screen 0 1600x900x24" "$BIN" gui formation_cascade7 --size 1600x900 \
     --speed 2 --exit-after 150 --edit 60:robots.R2.follow.k_l=0.4 \
     --screenshot "$OUT/gui_cascade7.png" >/dev/null
+  # The menu bar generated from the command table (View open, keys shown) and the command
+  # palette filtering "k_l" (commands and tunables), at 1920x1080 after a few seconds of run.
+  cat >"$TMP/menu.txt" <<'SCRIPT'
+60 pause
+61 menu View
+64 screenshot screenshots/gui_menu_view.png
+66 dismiss
+67 palette k_l
+70 screenshot screenshots/gui_palette.png
+SCRIPT
+  xvfb-run -a -s "-screen 0 1920x1080x24" "$BIN" gui formation_traj2_ukf --size 1920x1080 \
+    --speed 2 --exit-after 72 --script "$TMP/menu.txt" >/dev/null
   # Tuning in the window, driven by scripts (frames of the script; `wait` holds it while pins
   # replay and the Monte Carlo runs). A pinned run: the shipped gains (k_l 0.15) kept, then both
   # followers' k_l at 0.5 and the run again: dashed in the plots, faded in the world view.

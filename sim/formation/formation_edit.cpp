@@ -215,7 +215,17 @@ FormationState FormationExperiment::EditState() const {
 
 std::string FormationExperiment::Restructured(const std::string& text,
                                               const StructureChange& change) const {
+  if (const std::string why = StructureLocked(); !why.empty()) throw std::runtime_error(why);
   return RestructureFormationText(text, change, EditState());
+}
+
+// The switching: block names every follower's law and slots in each of its shapes; a structural
+// change would leave them naming robots and keys that are no longer there.
+std::string FormationExperiment::StructureLocked() const {
+  if (cfg_.switching.shapes.empty()) return "";
+  return "this scenario switches between the shapes of its switching: block, which give every "
+         "follower's law and slot; switch with switch-formation, drag slots, or edit a copy "
+         "of the file without the block";
 }
 
 std::string FormationExperiment::PlacedText(const std::string& text) const {

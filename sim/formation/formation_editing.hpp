@@ -74,6 +74,9 @@ class FormationEditing : public StructureEditing {
   /// now. Throws std::runtime_error naming what is wrong (unknown robot, bad spacing...).
   virtual std::string Restructured(const std::string& text,
                                    const StructureChange& change) const = 0;
+  /// Why no structural change can apply to this scenario ("" when they can): the window greys
+  /// out its structural commands with it, and Restructured refuses with it.
+  virtual std::string StructureLocked() const { return ""; }
   /// The leaders `robot` follows, in order (none for a root or an unknown robot).
   virtual std::vector<std::string> LeadersOf(const std::string& robot) const = 0;
   /// The tunable edits (key, value) that put `robot`'s desired place at world point `p`,

@@ -78,6 +78,7 @@ class FormationExperiment : public ExperimentOf<FormationConfig>, public Formati
   // ---- FormationEditing (formation_editing.hpp; the changes: formation_edit.hpp) ----
   std::string PlacedText(const std::string& text) const override;
   std::string Restructured(const std::string& text, const StructureChange& change) const override;
+  std::string StructureLocked() const override;
   std::vector<std::string> LeadersOf(const std::string& robot) const override;
   /// l-φ: l_des and φ_des of a control point at `p` seen from the leader now; l-l: the two
   /// distances to the leaders now.

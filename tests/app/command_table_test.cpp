@@ -286,5 +286,17 @@ TEST(CommandTable, FormationCommandsAreDisabledElsewhere) {
   EXPECT_NE(w.ui().RunScriptAction("switch-formation").find("switching"), std::string::npos);
 }
 
+TEST(CommandTable, SwitchingScenariosKeepTheirStructure) {
+  // A scenario with a switching: block names every follower's law and slot in its shapes: its
+  // structure is greyed out with the reason (the editor's clicks are refused with it too), and
+  // switching and slot drags stay.
+  Window sw("formation_switching");
+  for (const char* change : {"formation remove R5", "shape wedge 0.6"})
+    EXPECT_NE(sw.ui().RunScriptAction(change).find("its switching: block"), std::string::npos)
+        << change;
+  EXPECT_EQ(sw.ui().RunScriptAction("step"), "");
+  EXPECT_EQ(sw.ui().RunScriptAction("switch-formation"), "");
+}
+
 }  // namespace
 }  // namespace formsim::app
