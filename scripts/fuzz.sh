@@ -14,6 +14,8 @@ for h in fuzz_scenario fuzz_set fuzz_session fuzz_lesson fuzz_sweep_spec fuzz_sc
 done
 export ASAN_OPTIONS=${ASAN_OPTIONS:-halt_on_error=1:detect_leaks=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
+# The GL driver's own never-freed allocations (fuzz_script draws through OSMesa), as in ctest.
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/tests/sanitizer/lsan.supp}
 mkdir -p fuzz-artifacts
 CORPUS=$(mktemp -d)
 trap 'rm -rf "$CORPUS"' EXIT
