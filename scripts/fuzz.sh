@@ -19,13 +19,21 @@ export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/tests/sanitizer/lsan.supp}
 mkdir -p fuzz-artifacts
 CORPUS=$(mktemp -d)
 trap 'rm -rf "$CORPUS"' EXIT
+ROOT=$PWD
+case "$BUILD" in /*) ;; *) BUILD="$ROOT/$BUILD" ;; esac
 run() {
   local harness=$1; shift
-  mkdir -p "$CORPUS/$harness"
+  local seeds=()
+  for d in "$@"; do seeds+=("$ROOT/$d"); done
+  # Each harness runs in a folder of its own: what a fuzzed action writes to a relative path
+  # (fuzz_script's save, screenshot, export-figures) lands there, not in the checkout.
+  mkdir -p "$CORPUS/$harness" "$CORPUS/work/$harness"
   echo "fuzz: $harness for ${SECONDS_EACH} s"
-  "$BUILD/tests/fuzz/$harness" -max_total_time="$SECONDS_EACH" -timeout=30 -rss_limit_mb=4096 \
-    -max_len=16384 -print_final_stats=1 -artifact_prefix="fuzz-artifacts/$harness-" \
-    "$CORPUS/$harness" "$@" 2>&1 | grep -E "^#[0-9]+.*DONE|stat::number_of_executed_units|ERROR|SUMMARY|Test unit written|deadly" || true
+  (cd "$CORPUS/work/$harness" &&
+    "$BUILD/tests/fuzz/$harness" -max_total_time="$SECONDS_EACH" -timeout=30 -rss_limit_mb=4096 \
+      -max_len=16384 -print_final_stats=1 -artifact_prefix="$ROOT/fuzz-artifacts/$harness-" \
+      "$CORPUS/$harness" "${seeds[@]}" 2>&1) |
+    grep -E "^#[0-9]+.*DONE|stat::number_of_executed_units|ERROR|SUMMARY|Test unit written|deadly" || true
   # libFuzzer exits non-zero and leaves an artifact when it found something.
   if ls fuzz-artifacts/"$harness"-* >/dev/null 2>&1; then
     echo "fuzz: $harness found a failing input: $(ls fuzz-artifacts/"$harness"-*)"
