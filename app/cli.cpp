@@ -307,10 +307,11 @@ int Main(int argc, char** argv) {
                       "Run scripted actions, one per line: FRAME ACTION [ARGS]. Actions: " +
                           CommandUsageList());
   bool list_commands = false, list_markdown = false;
-  gui_cmd->add_flag("--list-commands", list_commands,
+  CLI::Option* list_opt = gui_cmd->add_flag("--list-commands", list_commands,
                     "Print every command of the window (name, keys, menu path, arguments) and exit");
   gui_cmd->add_flag("--markdown", list_markdown,
-                    "With --list-commands: as the README's Markdown table");
+                    "With --list-commands: as the README's Markdown table")
+      ->needs(list_opt);
   gui_cmd->add_option("--out", gui.out_dir, "Write timeseries.csv and summary.json here on exit");
   gui_cmd->add_option("--session", gui.session_file,
                       "Record the session (edits with their steps, resets, seeds, loads, pins, "

@@ -139,6 +139,11 @@ TEST(CommandTable, HelpAndListsComeFromTheTable) {
   std::size_t keyed = 0;
   for (const Command& c : Commands()) keyed += !c.keys.empty();
   EXPECT_EQ(KeyHelpRows().size(), keyed);
+  // --markdown alone would open a window: it is refused.
+  const std::string dir = testing::TempDir("command_table_cli");
+  EXPECT_NE(testing::RunShell(testing::Binary() + " gui --markdown", dir + "/log.txt"), 0);
+  EXPECT_NE(testing::ReadText(dir + "/log.txt").find("requires --list-commands"),
+            std::string::npos);
 }
 
 TEST(CommandTable, UnknownActionsNameTheClosest) {
