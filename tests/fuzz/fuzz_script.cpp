@@ -17,6 +17,7 @@
 #include "app/offscreen_context.hpp"
 #include "app/ui.hpp"
 #include "sim/core/scenario_files.hpp"
+#include "tests/fuzz/fuzz_lines.hpp"
 
 namespace {
 
@@ -35,18 +36,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static app::OffscreenContext context(kW, kH);
   static app::ImGuiLayer layer;
   if (size < 1) return 0;
-  std::vector<std::string> lines;
-  std::string cur;
-  for (std::size_t i = 1; i < size; ++i) {
-    if (data[i] == '\n') {
-      lines.push_back(cur);
-      cur.clear();
-    } else {
-      cur += static_cast<char>(data[i]);
-    }
-  }
-  if (!cur.empty()) lines.push_back(cur);
-  if (lines.size() > 24) lines.resize(24);
+  const std::vector<std::string> lines = formsim::fuzz::InputLines(data, size, 24);
   std::unique_ptr<app::AppUi> ui;
   try {
     ui = std::make_unique<app::AppUi>(

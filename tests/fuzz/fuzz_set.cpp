@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "sim/core/scenario_files.hpp"
+#include "tests/fuzz/fuzz_lines.hpp"
 #include "sim/core/session.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -25,18 +26,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }();
   if (size < 1 || scenarios.empty()) return 0;
   const std::string& file = scenarios[data[0] % scenarios.size()];
-  std::vector<std::string> lines;
-  std::string cur;
-  for (std::size_t i = 1; i < size; ++i) {
-    if (data[i] == '\n') {
-      lines.push_back(cur);
-      cur.clear();
-    } else {
-      cur += static_cast<char>(data[i]);
-    }
-  }
-  if (!cur.empty()) lines.push_back(cur);
-  if (lines.size() > 16) lines.resize(16);
+  const std::vector<std::string> lines = formsim::fuzz::InputLines(data, size, 16);
   try {
     Session s(file, lines, -1);
     for (int k = 0; k < 100 && !s.exp().finished(); ++k) s.Step();
