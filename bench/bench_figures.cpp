@@ -6,12 +6,12 @@
 
 #include <filesystem>
 
-#include "app/figure_data.hpp"
-#include "app/figure_export.hpp"
-#include "app/offscreen_renderer.hpp"
-#include "app/png_writer.hpp"
-#include "app/world_view.hpp"
-#include "sim/core/session.hpp"
+#include "app/export/figure_data.hpp"
+#include "app/export/figure_export.hpp"
+#include "app/gui/offscreen_renderer.hpp"
+#include "app/export/png_writer.hpp"
+#include "app/render/world_view.hpp"
+#include "sim/session/session.hpp"
 
 using namespace formsim;
 using namespace formsim::app;

@@ -5,7 +5,7 @@
 // placed, the whole graph rebuilt) and for the follower added at the back.
 #include <benchmark/benchmark.h>
 
-#include "sim/core/session.hpp"
+#include "sim/session/session.hpp"
 #include "sim/formation/cascade_generator.hpp"
 #include "sim/formation/formation_editing.hpp"
 

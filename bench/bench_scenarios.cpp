@@ -5,7 +5,7 @@
 // by the same cascades with the estimators off (truth), on one thread, and with Box2D alone.
 #include <benchmark/benchmark.h>
 
-#include "sim/core/scenario.hpp"
+#include "sim/scenario/scenario.hpp"
 #include "sim/core/thread_pool.hpp"
 #include "sim/core/unicycle_drive.hpp"
 #include "sim/formation/cascade_generator.hpp"

@@ -5,8 +5,8 @@
 // records on disk (one atomic, synced file per run) are measured by the CLI (BENCHMARKS.md).
 #include <benchmark/benchmark.h>
 
-#include "sim/core/sweep.hpp"
-#include "sim/core/sweep_tables.hpp"
+#include "sim/study/sweep.hpp"
+#include "sim/study/sweep_tables.hpp"
 
 using namespace formsim::sim;
 

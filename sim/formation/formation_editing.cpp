@@ -6,7 +6,7 @@
 
 #include "sim/core/experiment.hpp"
 #include "sim/core/number_format.hpp"
-#include "sim/core/session.hpp"
+#include "sim/session/session.hpp"
 
 namespace formsim::sim::formation {
 namespace {

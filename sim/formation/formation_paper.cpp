@@ -3,8 +3,8 @@
 #include <utility>
 #include <vector>
 
-#include "sim/core/reproduction_builders.hpp"
-#include "sim/core/reproduction_registry.hpp"
+#include "sim/study/reproduction_builders.hpp"
+#include "sim/study/reproduction_registry.hpp"
 
 namespace formsim::sim::formation {
 namespace {

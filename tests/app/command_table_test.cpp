@@ -1,8 +1,8 @@
-// The window's command table (app/command_table.hpp) and everything generated from it: each
+// The window's command table (app/gui/command_table.hpp) and everything generated from it: each
 // command is reachable three ways (a click on its menu item, the palette, `--script`), runs in
 // a window (an OSMesa context, in-process; under ASan in the sanitizer suite), refuses bad
 // arguments naming the argument; keys, F1 help and the README's table come from the same rows.
-#include "app/command_table.hpp"
+#include "app/gui/command_table.hpp"
 
 #include <gtest/gtest.h>
 #include <imgui.h>
@@ -13,9 +13,9 @@
 #include <map>
 #include <set>
 
-#include "app/imgui_layer.hpp"
-#include "app/offscreen_context.hpp"
-#include "app/ui.hpp"
+#include "app/render/imgui_layer.hpp"
+#include "app/render/offscreen_context.hpp"
+#include "app/gui/ui.hpp"
 #include "tests/app/test_util.hpp"
 #include "tests/app/ui_window.hpp"
 

@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "app/png_writer.hpp"
-#include "app/video_writer.hpp"
+#include "app/export/png_writer.hpp"
+#include "app/export/video_writer.hpp"
 #include "tests/app/test_util.hpp"
 
 namespace formsim::app {

@@ -1,7 +1,7 @@
 // Figures for papers and slides: sizes and formats, themes, one drawing path onto raster and
 // vector canvases (same text metrics, same look), SVG that is XML with text and paths, PDFs that
 // poppler reads with the text extractable and the fonts embedded, PNG at a chosen dpi.
-#include "app/figure_export.hpp"
+#include "app/export/figure_export.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,16 +9,16 @@
 #include <filesystem>
 #include <map>
 
-#include "app/export.hpp"
-#include "app/figure_data.hpp"
-#include "app/imgui_canvas.hpp"
-#include "app/offscreen_renderer.hpp"
-#include "app/png_writer.hpp"
-#include "app/progress.hpp"
-#include "app/svg_writer.hpp"
-#include "app/vector_canvas.hpp"
-#include "app/video_writer.hpp"
-#include "sim/core/session.hpp"
+#include "app/export/export.hpp"
+#include "app/export/figure_data.hpp"
+#include "app/render/imgui_canvas.hpp"
+#include "app/gui/offscreen_renderer.hpp"
+#include "app/export/png_writer.hpp"
+#include "app/cli/progress.hpp"
+#include "app/export/svg_writer.hpp"
+#include "app/render/vector_canvas.hpp"
+#include "app/export/video_writer.hpp"
+#include "sim/session/session.hpp"
 #include "tests/app/test_util.hpp"
 
 namespace formsim::app {

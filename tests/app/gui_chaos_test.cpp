@@ -1,5 +1,5 @@
 // The GUI chaos test: a seeded generator draws N random actions from the window's command table
-// (app/command_table.hpp), with random and extreme arguments (out of range, non-finite, huge,
+// (app/gui/command_table.hpp), with random and extreme arguments (out of range, non-finite, huge,
 // wrong words, /dev/zero, missing folders), and runs them in the real window under Xvfb (and
 // under ASan+UBSan in the sanitizer suite). The window must stay up to its last frame and exit
 // 0 with no sanitizer report, and the session it records must replay to the same CSV, byte for
@@ -12,11 +12,11 @@
 #include <fstream>
 #include <random>
 
-#include "app/command_table.hpp"
-#include "app/video_writer.hpp"
+#include "app/gui/command_table.hpp"
+#include "app/export/video_writer.hpp"
 #include "sim/core/number_format.hpp"
-#include "sim/core/scenario_files.hpp"
-#include "sim/core/session.hpp"
+#include "sim/scenario/scenario_files.hpp"
+#include "sim/session/session.hpp"
 #include "tests/app/test_util.hpp"
 
 namespace formsim::app {

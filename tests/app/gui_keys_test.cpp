@@ -9,9 +9,9 @@
 #include <functional>
 #include <map>
 
-#include "app/imgui_layer.hpp"
-#include "app/offscreen_context.hpp"
-#include "app/ui.hpp"
+#include "app/render/imgui_layer.hpp"
+#include "app/render/offscreen_context.hpp"
+#include "app/gui/ui.hpp"
 #include "tests/app/test_util.hpp"
 #include "tests/app/ui_window.hpp"
 

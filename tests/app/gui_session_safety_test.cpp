@@ -15,11 +15,11 @@
 #include <limits>
 #include <thread>
 
-#include "app/png_writer.hpp"
-#include "app/video_writer.hpp"
+#include "app/export/png_writer.hpp"
+#include "app/export/video_writer.hpp"
 #include "sim/core/number_format.hpp"
-#include "sim/core/scenario_files.hpp"
-#include "sim/core/session.hpp"
+#include "sim/scenario/scenario_files.hpp"
+#include "sim/session/session.hpp"
 #include "tests/app/test_util.hpp"
 
 namespace formsim::app {

@@ -9,9 +9,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "app/png_writer.hpp"
-#include "app/video_writer.hpp"
-#include "sim/core/session.hpp"
+#include "app/export/png_writer.hpp"
+#include "app/export/video_writer.hpp"
+#include "sim/session/session.hpp"
 #include "sim/formation/formation_editing.hpp"
 #include "tests/app/test_util.hpp"
 

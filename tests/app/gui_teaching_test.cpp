@@ -7,13 +7,13 @@
 #include <filesystem>
 #include <fstream>
 
-#include "app/fonts.hpp"
-#include "app/imgui_layer.hpp"
-#include "app/offscreen_context.hpp"
-#include "app/png_writer.hpp"
-#include "app/video_writer.hpp"
-#include "app/ui.hpp"
-#include "sim/core/scenario_files.hpp"
+#include "app/render/fonts.hpp"
+#include "app/render/imgui_layer.hpp"
+#include "app/render/offscreen_context.hpp"
+#include "app/export/png_writer.hpp"
+#include "app/export/video_writer.hpp"
+#include "app/gui/ui.hpp"
+#include "sim/scenario/scenario_files.hpp"
 #include "sim/formation/formation_experiment.hpp"
 #include "tests/app/test_util.hpp"
 

@@ -7,10 +7,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "app/video_writer.hpp"
-#include "sim/core/run_history.hpp"
-#include "sim/core/session.hpp"
-#include "sim/core/session_record.hpp"
+#include "app/export/video_writer.hpp"
+#include "sim/session/run_history.hpp"
+#include "sim/session/session.hpp"
+#include "sim/session/session_record.hpp"
 #include "tests/app/test_util.hpp"
 
 namespace formsim::app {

@@ -9,9 +9,9 @@
 #include <fstream>
 #include <string>
 
-#include "app/video_writer.hpp"
-#include "sim/core/session_record.hpp"
-#include "sim/core/sweep_store.hpp"
+#include "app/export/video_writer.hpp"
+#include "sim/session/session_record.hpp"
+#include "sim/study/sweep_store.hpp"
 #include "tests/app/test_util.hpp"
 
 namespace formsim::app {

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "app/video_writer.hpp"
+#include "app/export/video_writer.hpp"
 #include "tests/app/test_util.hpp"
 
 namespace formsim::app {

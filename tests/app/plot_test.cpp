@@ -1,12 +1,12 @@
-#include "app/plot.hpp"
+#include "app/render/plot.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "app/polyline_simplify.hpp"
-#include "app/world_view.hpp"
+#include "app/render/polyline_simplify.hpp"
+#include "app/render/world_view.hpp"
 
 namespace formsim::app {
 namespace {

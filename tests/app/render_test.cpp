@@ -5,11 +5,11 @@
 #include <cmath>
 #include <filesystem>
 
-#include "app/export.hpp"
-#include "app/figure_data.hpp"
-#include "app/offscreen_renderer.hpp"
-#include "app/png_writer.hpp"
-#include "sim/core/session.hpp"
+#include "app/export/export.hpp"
+#include "app/export/figure_data.hpp"
+#include "app/gui/offscreen_renderer.hpp"
+#include "app/export/png_writer.hpp"
+#include "sim/session/session.hpp"
 #include "tests/app/test_util.hpp"
 
 namespace formsim::app {

@@ -8,13 +8,13 @@
 #include <map>
 #include <sstream>
 
-#include "app/figure_data.hpp"
-#include "app/offscreen_renderer.hpp"
+#include "app/export/figure_data.hpp"
+#include "app/gui/offscreen_renderer.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/recorder.hpp"
-#include "sim/core/reproduction.hpp"
-#include "sim/core/reproduction_registry.hpp"
-#include "sim/core/sweep_tables.hpp"
+#include "sim/study/reproduction.hpp"
+#include "sim/study/reproduction_registry.hpp"
+#include "sim/study/sweep_tables.hpp"
 #include "tests/app/test_util.hpp"
 
 namespace formsim::app {

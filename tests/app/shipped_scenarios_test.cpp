@@ -7,8 +7,8 @@
 #include <filesystem>
 
 #include "sim/core/number_format.hpp"
-#include "sim/core/scenario_files.hpp"
-#include "sim/core/session.hpp"
+#include "sim/scenario/scenario_files.hpp"
+#include "sim/session/session.hpp"
 #include "tests/app/test_util.hpp"
 
 namespace formsim::app {

@@ -7,10 +7,10 @@
 #include <filesystem>
 #include <map>
 
-#include "app/offscreen_renderer.hpp"
-#include "app/study_figures.hpp"
+#include "app/gui/offscreen_renderer.hpp"
+#include "app/export/study_figures.hpp"
 #include "sim/core/number_format.hpp"
-#include "sim/core/sweep.hpp"
+#include "sim/study/sweep.hpp"
 #include "tests/app/test_util.hpp"
 
 namespace formsim::app {

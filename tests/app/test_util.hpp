@@ -16,11 +16,11 @@
 
 #include "sim/core/draw.hpp"
 #include "sim/core/param_table.hpp"
-#include "sim/core/scenario_files.hpp"
+#include "sim/scenario/scenario_files.hpp"
 
 namespace formsim::app::testing {
 
-/// The windows the tests start keep their crash-safe session journals (sim/core/session_journal)
+/// The windows the tests start keep their crash-safe session journals (sim/session/session_journal)
 /// under the build tree, never in the user's state folder (whose unfinished sessions would put a
 /// banner into the tests' pictures). Set once, before any test runs; children inherit it.
 inline const bool kStateDirSet = [] {

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "app/imgui_layer.hpp"
-#include "app/offscreen_context.hpp"
-#include "app/ui.hpp"
+#include "app/render/imgui_layer.hpp"
+#include "app/render/offscreen_context.hpp"
+#include "app/gui/ui.hpp"
 #include "tests/app/test_util.hpp"
 
 namespace formsim::app::testing {

@@ -10,7 +10,7 @@
 
 #include "sim/core/event_log.hpp"
 #include "sim/core/run_output.hpp"
-#include "sim/core/scenario.hpp"
+#include "sim/scenario/scenario.hpp"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define FORMSIM_COUNT_ALLOCATIONS 0

@@ -1,7 +1,7 @@
 // The formation experiment end to end: scenarios, closed-loop convergence, estimation, events,
 // determinism and the rejection of invalid scenario files.
-#include "sim/core/scenario.hpp"
-#include "sim/core/session.hpp"
+#include "sim/scenario/scenario.hpp"
+#include "sim/session/session.hpp"
 
 #include <gtest/gtest.h>
 

@@ -9,7 +9,7 @@
 #include <sstream>
 #include <string>
 
-#include "sim/core/scenario.hpp"
+#include "sim/scenario/scenario.hpp"
 
 namespace formsim::sim {
 namespace {

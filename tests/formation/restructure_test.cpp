@@ -7,9 +7,9 @@
 #include <cmath>
 #include <filesystem>
 
-#include "sim/core/scenario.hpp"
-#include "sim/core/session.hpp"
-#include "sim/core/session_record.hpp"
+#include "sim/scenario/scenario.hpp"
+#include "sim/session/session.hpp"
+#include "sim/session/session_record.hpp"
 #include "sim/formation/formation_edit.hpp"
 #include "sim/formation/formation_editing.hpp"
 #include "sim/formation/formation_experiment.hpp"

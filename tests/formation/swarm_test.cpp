@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "sim/core/run_output.hpp"
-#include "sim/core/scenario.hpp"
+#include "sim/scenario/scenario.hpp"
 #include "sim/formation/cascade_generator.hpp"
 #include "sim/formation/formation_experiment.hpp"
 

@@ -9,8 +9,8 @@
 
 #include "control/formation/formation_switch.hpp"
 #include "control/formation/obstacle_avoidance.hpp"
-#include "sim/core/scenario_files.hpp"
-#include "sim/core/scenario.hpp"
+#include "sim/scenario/scenario_files.hpp"
+#include "sim/scenario/scenario.hpp"
 #include "sim/formation/formation_experiment.hpp"
 #include "sim/formation/obstacle_distance.hpp"
 

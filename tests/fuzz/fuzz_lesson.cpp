@@ -8,8 +8,8 @@
 #include <exception>
 #include <string>
 
-#include "sim/core/lesson.hpp"
-#include "sim/core/scenario.hpp"
+#include "sim/scenario/lesson.hpp"
+#include "sim/scenario/scenario.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace formsim::sim;

@@ -7,7 +7,7 @@
 #include <exception>
 #include <string>
 
-#include "sim/core/scenario.hpp"
+#include "sim/scenario/scenario.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace formsim::sim;

@@ -1,5 +1,5 @@
 // libFuzzer harness for `--script` action lines, run against the window's command handlers
-// (app/command_table.hpp) in an in-process window: an OSMesa context and ImGui, no display.
+// (app/gui/command_table.hpp) in an in-process window: an OSMesa context and ImGui, no display.
 // The first byte picks a scenario; each following line is one action ("FRAME" left out), run
 // through AppUi::RunScriptAction, then one frame is built (Advance + Draw), so that what an
 // action leaves for the drawing (texts, ranges, modes) meets ImGui's assertions too. A refusal
@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "app/imgui_layer.hpp"
-#include "app/offscreen_context.hpp"
-#include "app/ui.hpp"
-#include "sim/core/scenario_files.hpp"
+#include "app/render/imgui_layer.hpp"
+#include "app/render/offscreen_context.hpp"
+#include "app/gui/ui.hpp"
+#include "sim/scenario/scenario_files.hpp"
 #include "tests/fuzz/fuzz_lines.hpp"
 
 namespace {

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "sim/core/run_output.hpp"
-#include "sim/core/session_record.hpp"
+#include "sim/session/session_record.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace formsim::sim;

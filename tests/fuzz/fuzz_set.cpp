@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "sim/core/scenario_files.hpp"
+#include "sim/scenario/scenario_files.hpp"
 #include "tests/fuzz/fuzz_lines.hpp"
-#include "sim/core/session.hpp"
+#include "sim/session/session.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace formsim::sim;

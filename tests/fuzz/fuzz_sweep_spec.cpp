@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "sim/core/scenario_files.hpp"
-#include "sim/core/sweep_spec.hpp"
-#include "sim/core/sweep_store.hpp"
+#include "sim/scenario/scenario_files.hpp"
+#include "sim/study/sweep_spec.hpp"
+#include "sim/study/sweep_store.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace formsim::sim;

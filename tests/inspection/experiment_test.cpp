@@ -11,8 +11,8 @@
 #include <sstream>
 #include <string>
 
-#include "sim/core/scenario.hpp"
-#include "sim/core/session.hpp"
+#include "sim/scenario/scenario.hpp"
+#include "sim/session/session.hpp"
 #include "sim/inspection/inspection_experiment.hpp"
 #include "tests/support/invalid_fixtures.hpp"
 

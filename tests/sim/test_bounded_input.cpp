@@ -17,10 +17,10 @@
 #include <string>
 
 #include "sim/core/bounded_file.hpp"
-#include "sim/core/scenario.hpp"
-#include "sim/core/session_record.hpp"
-#include "sim/core/sweep_spec.hpp"
-#include "sim/core/sweep_store.hpp"
+#include "sim/scenario/scenario.hpp"
+#include "sim/session/session_record.hpp"
+#include "sim/study/sweep_spec.hpp"
+#include "sim/study/sweep_store.hpp"
 #include "sim/core/yaml_limits.hpp"
 #include "test_kind.hpp"
 #include "tests/support/invalid_fixtures.hpp"

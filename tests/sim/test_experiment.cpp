@@ -7,8 +7,8 @@
 #include <sstream>
 
 #include "sim/core/run_output.hpp"
-#include "sim/core/scenario.hpp"
-#include "sim/core/session.hpp"
+#include "sim/scenario/scenario.hpp"
+#include "sim/session/session.hpp"
 #include "sim/core/structure_editing.hpp"
 #include "tests/sim/test_kind.hpp"
 

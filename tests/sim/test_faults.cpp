@@ -13,7 +13,7 @@
 #include "sim/core/json.hpp"
 #include "sim/core/recorder.hpp"
 #include "sim/core/run_output.hpp"
-#include "sim/core/scenario.hpp"
+#include "sim/scenario/scenario.hpp"
 #include "tests/sim/test_kind.hpp"
 
 namespace formsim::sim {

@@ -1,4 +1,4 @@
-// A paper's reproduction (sim/core/reproduction.hpp) on made-up records: each kind of cell, the
+// A paper's reproduction (sim/study/reproduction.hpp) on made-up records: each kind of cell, the
 // largest of several metric paths, counts, the check of a definition, --tables, and the bar
 // figure's heights and error bars.
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "sim/core/reproduction.hpp"
+#include "sim/study/reproduction.hpp"
 
 namespace formsim::sim {
 namespace {

@@ -1,7 +1,7 @@
 // The tuning session behind the GUI (sim::Session) on the minimal kind of test_kind.hpp: edits
 // are checked by the loader's own rules at once, live ones apply between steps, OnReset ones
 // wait, failed resets and reloads keep the run, Save keeps the file's text and loads back.
-#include "sim/core/session.hpp"
+#include "sim/session/session.hpp"
 
 #include <gtest/gtest.h>
 

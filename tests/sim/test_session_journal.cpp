@@ -1,4 +1,4 @@
-// The window's crash-safe journal (sim/core/session_journal.hpp): every event appended and
+// The window's crash-safe journal (sim/session/session_journal.hpp): every event appended and
 // flushed as it happens reads back as the same record; a torn last entry (the process died while
 // writing it) is dropped and the rest kept; a journal whose window holds its lock is not offered
 // for restore, one nobody holds is; `formsim replay` reads a journal like a session file.
@@ -8,7 +8,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "sim/core/session_journal.hpp"
+#include "sim/session/session_journal.hpp"
 #include "tests/sim/test_kind.hpp"
 
 namespace formsim::sim {

@@ -13,9 +13,9 @@
 #include <stdexcept>
 #include <thread>
 
-#include "sim/core/sweep.hpp"
-#include "sim/core/sweep_tables.hpp"
-#include "sim/core/tune.hpp"
+#include "sim/study/sweep.hpp"
+#include "sim/study/sweep_tables.hpp"
+#include "sim/study/tune.hpp"
 #include "test_kind.hpp"
 
 namespace formsim::sim {

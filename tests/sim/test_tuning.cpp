@@ -8,12 +8,12 @@
 #include <filesystem>
 #include <fstream>
 
-#include "sim/core/monte_carlo.hpp"
-#include "sim/core/run_history.hpp"
-#include "sim/core/run_log.hpp"
-#include "sim/core/session.hpp"
-#include "sim/core/session_record.hpp"
-#include "sim/core/sweep_tables.hpp"
+#include "sim/study/monte_carlo.hpp"
+#include "sim/session/run_history.hpp"
+#include "sim/session/run_log.hpp"
+#include "sim/session/session.hpp"
+#include "sim/session/session_record.hpp"
+#include "sim/study/sweep_tables.hpp"
 #include "tests/sim/test_kind.hpp"
 
 namespace formsim::sim {

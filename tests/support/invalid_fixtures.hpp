@@ -10,7 +10,7 @@
 #include <fstream>
 #include <string>
 
-#include "sim/core/scenario.hpp"
+#include "sim/scenario/scenario.hpp"
 
 namespace formsim::testing {
 

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "control/common/angle.hpp"
-#include "sim/core/scenario.hpp"
-#include "sim/core/session.hpp"
+#include "sim/scenario/scenario.hpp"
+#include "sim/session/session.hpp"
 #include "tests/support/invalid_fixtures.hpp"
 
 // Built with AddressSanitizer (scripts/sanitize.sh)?

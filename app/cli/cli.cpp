@@ -1,0 +1,381 @@
+#include "app/cli/cli.hpp"
+#include "app/gui/command_table.hpp"
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <stdexcept>
+
+#include "app/export/export.hpp"
+#include "app/cli/figures_command.hpp"
+#include "app/gui/gui.hpp"
+#include "app/cli/progress.hpp"
+#include "app/cli/replay_command.hpp"
+#include "app/cli/reproduce_cli.hpp"
+#include "app/cli/stop_signal.hpp"
+#include "app/cli/study_cli.hpp"
+#include "sim/core/run_output.hpp"
+#include "sim/scenario/scenario.hpp"
+#include "sim/scenario/scenario_files.hpp"
+#include "sim/session/session.hpp"
+#include "sim/core/thread_pool.hpp"
+
+namespace formsim::app {
+namespace {
+
+struct RunOptions {
+  std::string scenario;
+  std::string seed;  ///< empty: the scenario's
+  std::string max_steps;  ///< empty: the scenario's (default 1e8)
+  std::vector<std::string> sets;
+  std::string out_dir;
+  bool quiet = false;
+  ExportOptions exp;  // --frames, --snapshot, --plots, --video, --gif, --fps, --size, --ui
+  std::string size = "1280x720";
+  std::string plot_size = "960x600";
+  std::string plot_format = "png";
+  std::string snapshot;
+  std::string theme = "light";
+  bool timing = false;
+};
+
+
+// Stops `exp` when a stop signal arrived. Returns true when it did.
+bool CheckStopSignal(sim::Experiment& exp) {
+  const int sig = StopSignal();
+  if (sig == 0) return false;
+  exp.Interrupt("interrupted by " + StopSignalName(sig) + " at t = " + std::to_string(exp.time()) +
+                " s");
+  return true;
+}
+
+// The overrides of the command line: every --set in order, then --seed.
+std::vector<sim::Override> Overrides(const std::vector<std::string>& sets, const std::string& seed) {
+  std::vector<sim::Override> out = sim::CliOverrides(sets, -1);
+  if (!seed.empty()) out.push_back({"seed", seed, "--seed", -1});
+  return out;
+}
+
+// `formsim run`: the one load path (sim::Session, as the GUI), then the same steps with or
+// without pictures.
+int RunCommand(RunOptions opt) {
+  const std::string file = sim::ResolveScenario(opt.scenario);
+  const std::string out =
+      opt.out_dir.empty() ? "out/" + std::filesystem::path(file).stem().string() : opt.out_dir;
+  if (!opt.snapshot.empty()) opt.exp.snapshots = {opt.snapshot};
+  ParseSize(opt.size, &opt.exp.width, &opt.exp.height, "--size");
+  opt.exp.plot_size = ParseFigureSize(opt.plot_size, "--plot-size");
+  opt.exp.plot_formats = ParseFigureFormats(opt.plot_format, "--plot-format");
+  opt.exp.dpi = ParseDpi(opt.exp.dpi);
+  opt.exp.theme = ParseTheme(opt.theme, "--theme");
+  std::vector<sim::Override> overrides = Overrides(opt.sets, opt.seed);
+  if (!opt.max_steps.empty()) overrides.push_back({"max_steps", opt.max_steps, "--max-steps", -1});
+  sim::Session session(file, overrides);
+  sim::PrepareOutputDir(out);  // fail before simulating, not after
+  if (opt.exp.any()) PrepareExport(opt.exp);  // a missing ffmpeg fails before simulating too
+  // Rows go to disk as they are recorded; memory keeps a bounded history for the figures.
+  sim::Recorder& rec = session.exp().mutable_recorder();
+  rec.StreamTo(sim::CsvPath(out));
+  rec.SetHistoryLimit(sim::kRunHistoryRows);
+  InstallStopSignals();
+
+  ProgressLine bar(!opt.quiet);
+  const auto t0 = std::chrono::steady_clock::now();
+  ExportStats st;
+  std::string write_error;
+  auto write_results = [&] {
+    try {
+      sim::WriteRunOutputs(session.exp(), out);
+    } catch (const std::exception& e) {
+      write_error = e.what();
+    }
+  };
+  if (opt.exp.any()) {
+    st = RunWithExport(
+        session, opt.exp,
+        [&](const ExportProgress& p) {
+          if (!p.status.empty()) {
+            bar.Status(p.status);
+          } else {
+            char detail[96];
+            std::snprintf(detail, sizeof(detail), "t=%.2f s", p.t);
+            std::string d = detail;
+            if (p.frames_total > 0)
+              d += "  " + std::to_string(p.frames) + "/" + std::to_string(p.frames_total) +
+                   " frames";
+            bar.Update(p.fraction, d);
+          }
+          CheckStopSignal(session.exp());
+        },
+        write_results);
+  } else {
+    sim::Experiment& exp = session.exp();
+    const double duration = exp.setup().duration;
+    while (!exp.finished()) {
+      exp.Step();
+      if ((exp.steps() & 63) == 0) {
+        char detail[48];
+        std::snprintf(detail, sizeof(detail), "t=%.2f s", exp.time());
+        bar.Update(exp.time() / duration, detail);
+        CheckStopSignal(exp);
+      }
+    }
+    write_results();
+  }
+  bar.Done();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const sim::Experiment& exp = session.exp();
+
+  if (!opt.quiet) {
+    std::cout << exp.SummaryText();
+    std::printf("%ld steps, %.2f s simulated in %.3f s wall (%.0fx real time)\n", exp.steps(),
+                exp.time(), wall, wall > 0 ? exp.time() / wall : 0.0);
+    if (write_error.empty()) {
+      std::printf("wrote %s/timeseries.csv and %s/summary.json", out.c_str(), out.c_str());
+      if (!opt.exp.frames_dir.empty())
+        std::printf(", %ld frames in %s", st.frames, opt.exp.frames_dir.c_str());
+      if (!opt.exp.plots_dir.empty())
+        std::printf(", %ld figures (%ld files) in %s", st.figures, st.figure_files,
+                    opt.exp.plots_dir.c_str());
+      if (!opt.exp.video.empty() && st.error.empty()) std::printf(", %s", opt.exp.video.c_str());
+      if (!opt.exp.gif.empty() && st.error.empty())
+        std::printf(", %s (%ld frames)", opt.exp.gif.c_str(), st.gif_frames);
+      if (!opt.snapshot.empty() && st.error.empty()) std::printf(", %s", opt.snapshot.c_str());
+      std::printf("\n");
+    }
+  }
+  if (opt.timing && opt.exp.any()) std::fputs(st.Report().c_str(), stderr);
+  // Exit codes: 2 bad input or unwritable results, 3 the run stopped early (numerical fault),
+  // 4 an export failed (results written), 130 / 143 interrupted (results written).
+  int rc = 0;
+  if (!st.error.empty()) {
+    std::fprintf(stderr, "formsim: error: export failed (the results were written): %s\n",
+                 st.error.c_str());
+    rc = 4;
+  }
+  if (exp.status() == "numerical_fault") {
+    std::fprintf(stderr, "formsim: error: the run stopped at t = %g s: %s; everything up to it was written\n",
+                 exp.time(), exp.stop_reason().c_str());
+    rc = 3;
+  } else if (exp.status() == "interrupted") {
+    std::fprintf(stderr, "formsim: %s; the results so far were written and marked interrupted\n",
+                 exp.stop_reason().c_str());
+    rc = 128 + StopSignal();
+  }
+  if (!write_error.empty()) {
+    std::fprintf(stderr, "formsim: error: %s\n", write_error.c_str());
+    rc = 2;
+  }
+  return rc;
+}
+
+int ListCommand() {
+  for (const auto& file : sim::ShippedScenarios()) {
+    const std::string stem = std::filesystem::path(file).stem().string();
+    std::string type = "?", description;
+    try {
+      YAML::Node root = sim::LoadYamlFile(file);
+      if (root["type"]) type = root["type"].as<std::string>();
+      if (root["description"]) description = root["description"].as<std::string>();
+    } catch (const std::exception& e) {
+      description = std::string("(unreadable: ") + e.what() + ")";
+    }
+    std::printf("%-34s %-11s %s\n", stem.c_str(), type.c_str(), description.c_str());
+  }
+  // Lessons: scenarios with a text (formsim gui --lesson NAME); run and sweep take them by name.
+  const auto lessons = sim::ShippedLessons();
+  if (!lessons.empty()) std::printf("\nlessons (formsim gui --lesson NAME):\n");
+  for (const auto& file : lessons) {
+    const std::string stem = std::filesystem::path(file).stem().string();
+    std::string title;
+    try {
+      YAML::Node root = sim::LoadYamlFile(file);
+      if (root["lesson"] && root["lesson"]["title"]) title = root["lesson"]["title"].as<std::string>();
+    } catch (const std::exception& e) {
+      title = std::string("(unreadable: ") + e.what() + ")";
+    }
+    std::printf("%-34s %s\n", stem.c_str(), title.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+int Main(int argc, char** argv) {
+  CLI::App app{"formsim: multi-robot formation control and navigation simulator"};
+  app.require_subcommand(1);
+
+  RunOptions run;
+  CLI::App* run_cmd = app.add_subcommand("run", "Run a scenario headless and write CSV + summary");
+  run_cmd->add_option("scenario", run.scenario, "Scenario name (see `formsim list`) or YAML path")
+      ->required();
+  run_cmd->add_option("--seed", run.seed, "Random seed 0 ... 2^64-1 (overrides the scenario's)");
+  run_cmd->add_option("--set", run.sets, "Override a scenario value: path.to.key=value")
+      ->take_all();
+  run_cmd->add_option("--out", run.out_dir, "Output folder (default out/<scenario>)");
+  run_cmd->add_option("--max-steps", run.max_steps,
+                      "Allow runs of up to N world steps (default 1e8; longer runs are refused)");
+  run_cmd->add_flag("--quiet,-q", run.quiet, "Print nothing but errors");
+
+  run_cmd->add_option("--frames", run.exp.frames_dir, "Write PNG frames frame_00000.png... here");
+  run_cmd->add_option("--fps", run.exp.fps, "Frames per second of simulated time (default 30)");
+  run_cmd->add_option("--size", run.size, "Frame size WIDTHxHEIGHT (default 1280x720)");
+  run_cmd->add_option("--snapshot", run.snapshot,
+                      "Write the final view: F.png, F.svg or F.pdf (format by extension)");
+  run_cmd->add_option("--plots", run.exp.plots_dir,
+                      "Write every figure into this folder (file = figure id, see --plot-format)");
+  run_cmd->add_option("--plot-format", run.plot_format,
+                      "Figure formats: any of png,svg,pdf, comma-separated (default png)");
+  run_cmd->add_option("--plot-size", run.plot_size,
+                      "Figure size WIDTHxHEIGHT in px, cm, mm or in (default 960x600, e.g. "
+                      "8.5cmx6cm)");
+  run_cmd->add_option("--dpi", run.exp.dpi,
+                      "Pixels per inch of PNG figures and snapshot (default 96: one pixel per "
+                      "px; 300 for print)");
+  run_cmd->add_option(
+      "--theme", run.theme,
+      std::string("Colours of frames, snapshot and figures: ") + ThemeNames() + " (default light)");
+  run_cmd->add_option("--video", run.exp.video,
+                      "Write an MP4 video (.mp4, .mkv or .mov; needs ffmpeg on PATH)");
+  run_cmd->add_option("--gif", run.exp.gif,
+                      "Write a looping animated GIF for slides (needs ffmpeg on PATH)");
+  run_cmd->add_option("--gif-fps", run.exp.gif_fps, "Frames per second of the GIF (default 15)");
+  run_cmd->add_option("--gif-width", run.exp.gif_width,
+                      "Width of the GIF in pixels (default 640; height keeps --size's aspect)");
+  run_cmd->add_flag("--ui", run.exp.ui, "Draw the GUI panels into frames and snapshot");
+  std::string run_overlay;
+  const std::string overlay_help =
+      "Overlays of the world view, comma-separated: slots, control_points, links, measured, "
+      "errors, triangles, velocity, covariance, graph (all, none, default, -NAME removes; "
+      "default: slots,control_points,links,covariance)";
+  run_cmd->add_option("--overlay", run_overlay, overlay_help);
+  run_cmd->add_flag("--legend", run.exp.legend, "Draw a legend of every mark in the world view");
+  run_cmd->add_flag("--whole-run", run.exp.whole_run,
+                    "Camera keeps everything since the start in view (default: tracks the robots)");
+  run_cmd->add_flag("--timing", run.timing, "Print where the export time went (stderr)");
+  int threads = 0;  // 0: all cores
+  const std::string threads_help =
+      "Threads for the work inside a step (default: all cores); results are identical for any N";
+  run_cmd->add_option("--threads", threads, threads_help)->check(CLI::Range(1, 1024));
+
+  app.add_subcommand("list", "List the shipped scenarios and lessons");
+
+  FiguresOptions figs;
+  CLI::App* figs_cmd = app.add_subcommand(
+      "figures", "Render every figure of scenarios (default: all shipped) on all cores");
+  figs_cmd->add_option("scenarios", figs.scenarios, "Scenario names or YAML paths");
+  figs_cmd->add_option("--out", figs.out_dir, "Output folder: DIR/<scenario>/<figure>.<format>")
+      ->required();
+  figs_cmd->add_option("--plot-format", figs.formats,
+                       "Formats: any of png,svg,pdf, comma-separated (default png)");
+  figs_cmd->add_option("--plot-size", figs.plot_size,
+                       "Figure size WIDTHxHEIGHT in px, cm, mm or in (default 960x600)");
+  figs_cmd->add_option("--size", figs.size, "World view size WIDTHxHEIGHT (default 1280x720)");
+  figs_cmd->add_option("--dpi", figs.dpi, "Pixels per inch of PNG files (default 96)");
+  figs_cmd->add_option("--theme", figs.theme,
+                       std::string("Colours: ") + ThemeNames() + " (default light)");
+  figs_cmd->add_option("--jobs,-j", figs.jobs, "Scenarios at once (default: one per core)");
+  figs_cmd->add_flag("--quiet,-q", figs.quiet, "Print nothing but errors");
+
+  GuiOptions gui;
+  std::string gui_size = "1600x900", gui_speed = "1";
+  CLI::App* gui_cmd = app.add_subcommand("gui", "Open the interactive window (live tuning)");
+  gui_cmd->add_option("scenario", gui.scenario,
+                      "Scenario name or YAML path (default: first formation_*)");
+  gui_cmd->add_option("--lesson", gui.lesson,
+                      "Open a lesson (assets/lessons/NAME.yaml, see `formsim list`) on its Lesson tab");
+  gui_cmd->add_option("--seed", gui.seed, "Random seed 0 ... 2^64-1 (overrides the scenario's)");
+  gui_cmd->add_option("--set", gui.sets, "Override a scenario value: path.to.key=value")
+      ->take_all();
+  gui_cmd->add_option("--size", gui_size, "Window size WIDTHxHEIGHT (default 1600x900)");
+  gui_cmd->add_option("--screenshot", gui.screenshot,
+                      "PNG written by 's' and after the last frame");
+  gui_cmd->add_option("--exit-after", gui.exit_after, "Exit after N frames");
+  gui_cmd->add_flag("--exit-when-finished", gui.exit_when_finished,
+                    "Exit when the run reaches its duration");
+  gui_cmd->add_flag("--paused", gui.paused, "Start paused");
+  gui_cmd->add_option("--speed", gui_speed, "Speed: 0.1, 0.25, 0.5, 1, 2, 5, 10 or max");
+  gui_cmd
+      ->add_option("--edit", gui.edits, "Scripted edit FRAME:key=value, as if made with a slider")
+      ->take_all();
+  gui_cmd->add_option("--script", gui.script,
+                      "Run scripted actions, one per line: FRAME ACTION [ARGS]. Actions: " +
+                          CommandUsageList());
+  bool list_commands = false, list_markdown = false;
+  CLI::Option* list_opt = gui_cmd->add_flag("--list-commands", list_commands,
+                    "Print every command of the window (name, keys, menu path, arguments) and exit");
+  gui_cmd->add_flag("--markdown", list_markdown,
+                    "With --list-commands: as the README's Markdown table")
+      ->needs(list_opt);
+  gui_cmd->add_option("--out", gui.out_dir, "Write timeseries.csv and summary.json here on exit");
+  gui_cmd->add_option("--session", gui.session_file,
+                      "Record the session (edits with their steps, resets, seeds, loads, pins, "
+                      "branches) into this file on exit; replay it with `formsim replay`");
+  std::string gui_theme = "light";
+  gui_cmd->add_option("--theme", gui_theme,
+                      std::string("Colours of the panels, world view and plots: ") + ThemeNames() +
+                          " (default light)");
+  std::string gui_overlay;
+  gui_cmd->add_option("--overlay", gui_overlay, overlay_help);
+  gui_cmd->add_flag("--timing", gui.timing, "Print frame-time statistics on exit (stderr)");
+  gui_cmd->add_option("--threads", threads, threads_help)->check(CLI::Range(1, 1024));
+
+  StudyCommands study(app);  // sweep, sweep collect, tune
+  ReproduceCommand reproduce(app);
+  ReplayCommand replay(app);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    if (threads > 0) sim::ThreadPool::SetDefaultThreads(threads);
+    auto overlays = [](const std::string& text, std::set<std::string>* out) {
+      *out = DefaultSceneOverlays();
+      if (const std::string err = ParseSceneOverlays(text, out); !err.empty())
+        throw std::runtime_error("--overlay '" + text + "': " + err);
+    };
+    if (run_cmd->parsed()) {
+      if (!run_overlay.empty()) overlays(run_overlay, &run.exp.overlays);
+      return RunCommand(run);
+    }
+    if (app.got_subcommand("list")) return ListCommand();
+    if (study.parsed()) return study.Run();
+    if (reproduce.parsed()) return reproduce.Run();
+    if (replay.parsed()) return replay.Run();
+    if (figs_cmd->parsed()) return FiguresCommand(figs);
+    if (gui_cmd->parsed() && list_commands) {
+      std::fputs(list_markdown ? CommandTableMarkdown().c_str() : CommandListText().c_str(), stdout);
+      return 0;
+    }
+    if (gui_cmd->parsed()) {
+      ParseSize(gui_size, &gui.width, &gui.height, "--size");
+      gui.theme = ParseTheme(gui_theme, "--theme");
+      if (gui_speed == "max") {
+        gui.speed = 0.0;
+      } else {
+        char* end = nullptr;
+        gui.speed = std::strtod(gui_speed.c_str(), &end);
+        if (end == gui_speed.c_str() || *end != 0 || !(gui.speed > 0 && gui.speed <= 10))
+          throw std::runtime_error("--speed '" + gui_speed + "': expected 0.1 ... 10 or max");
+      }
+      if (!gui_overlay.empty()) {
+        overlays(gui_overlay, &gui.overlays);
+        gui.overlays_given = true;
+      }
+      return RunGui(gui);
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "formsim: error: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}
+
+}  // namespace formsim::app

@@ -1,0 +1,227 @@
+#include "app/cli/figures_command.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <thread>
+
+#include "app/export/export.hpp"
+#include "app/cli/progress.hpp"
+#include "sim/core/run_output.hpp"
+#include "sim/scenario/scenario_files.hpp"
+#include "sim/session/session.hpp"
+
+namespace fs = std::filesystem;
+
+namespace formsim::app {
+namespace {
+
+// Rows kept in memory for the figures, as `formsim run` keeps them: the same figures.
+constexpr std::size_t kHistoryRows = 20000;
+
+struct Job {
+  std::string file, name;
+  pid_t pid = -1;
+  int fd = -1;  ///< the worker's reports
+  std::string buffer;
+  double fraction = 0;
+  bool done = false;
+  long files = 0;
+  int code = 0;
+  std::string errors;
+};
+
+void WriteAll(int fd, const std::string& s) {
+  std::size_t off = 0;
+  while (off < s.size()) {
+    const ssize_t n = write(fd, s.data() + off, s.size() - off);
+    if (n <= 0) return;
+    off += static_cast<std::size_t>(n);
+  }
+}
+
+// The worker: one scenario through the export path of `formsim run`, reporting on `fd` with
+// lines "P <fraction>", "E <message>" and "F <files>". Returns the exit code.
+int Worker(const Job& job, ExportOptions opt, int fd) {
+  try {
+    sim::Session session(job.file, std::vector<sim::Override>{});
+    session.exp().mutable_recorder().SetHistoryLimit(kHistoryRows);
+    int last = -1;
+    const ExportStats st = RunWithExport(session, opt, [&](const ExportProgress& p) {
+      const int pct = static_cast<int>(p.fraction * 1000);
+      if (pct == last) return;
+      last = pct;
+      WriteAll(fd, "P " + std::to_string(p.fraction) + "\n");
+    });
+    int code = 0;
+    if (!st.error.empty()) {
+      WriteAll(fd, "E export failed: " + st.error + "\n");
+      code = 4;
+    }
+    if (session.exp().status() == "numerical_fault") {
+      WriteAll(fd, "E the run stopped at t = " + std::to_string(session.exp().time()) +
+                       " s: " + session.exp().stop_reason() + " (figures show it up to there)\n");
+      code = std::max(code, 3);
+    }
+    WriteAll(fd, "F " + std::to_string(st.figure_files + st.snapshots) + "\n");
+    return code;
+  } catch (const std::exception& e) {
+    std::string msg = e.what();
+    std::replace(msg.begin(), msg.end(), '\n', ' ');
+    WriteAll(fd, "E " + msg + "\n");
+    return 4;
+  }
+}
+
+// Reads what a worker reported so far.
+void Drain(Job& job) {
+  char buf[4096];
+  for (;;) {
+    const ssize_t n = read(job.fd, buf, sizeof(buf));
+    if (n <= 0) break;
+    job.buffer.append(buf, static_cast<std::size_t>(n));
+    if (n < static_cast<ssize_t>(sizeof(buf))) break;
+  }
+  std::size_t nl;
+  while ((nl = job.buffer.find('\n')) != std::string::npos) {
+    const std::string line = job.buffer.substr(0, nl);
+    job.buffer.erase(0, nl + 1);
+    if (line.size() < 2) continue;
+    const std::string rest = line.substr(2);
+    if (line[0] == 'P') job.fraction = std::atof(rest.c_str());
+    if (line[0] == 'F') job.files = std::atol(rest.c_str());
+    if (line[0] == 'E') job.errors += (job.errors.empty() ? "" : "; ") + rest;
+  }
+}
+
+}  // namespace
+
+int FiguresCommand(const FiguresOptions& o) {
+  // Every option is checked before anything runs.
+  if (o.out_dir.empty()) throw std::runtime_error("figures: --out DIR is required");
+  CheckFolderName(o.out_dir, "--out", "figures go into DIR/<scenario>/");
+  ExportOptions opt;
+  opt.plot_formats = ParseFigureFormats(o.formats, "--plot-format");
+  opt.plot_size = ParseFigureSize(o.plot_size, "--plot-size");
+  ParseSize(o.size, &opt.width, &opt.height, "--size");
+  opt.dpi = ParseDpi(o.dpi);
+  opt.theme = ParseTheme(o.theme, "--theme");
+  opt.whole_run = true;  // the world view shows the whole run
+  if (o.jobs < 0) throw std::runtime_error("--jobs must be 0 (one per core) or more");
+
+  std::vector<Job> jobs;
+  const std::vector<std::string> names =
+      o.scenarios.empty() ? sim::ShippedScenarios() : o.scenarios;
+  for (const std::string& name : names) {
+    Job job;
+    job.file = sim::ResolveScenario(name);
+    job.name = fs::path(job.file).stem().string();
+    for (const Job& other : jobs)
+      if (other.name == job.name)
+        throw std::runtime_error("figures: two scenarios are called '" + job.name +
+                                 "' (their figures would overwrite each other)");
+    // Loaded once here, so a bad scenario fails before anything is drawn.
+    sim::Session check(job.file, std::vector<sim::Override>{});
+    jobs.push_back(std::move(job));
+  }
+  if (jobs.empty()) throw std::runtime_error("figures: no scenario to draw");
+  sim::PrepareOutputDir(o.out_dir);
+  // Each scenario's outputs are checked (folders, fonts, ffmpeg...) before the first worker.
+  std::vector<ExportOptions> job_opts;
+  for (const Job& job : jobs) {
+    ExportOptions j = opt;
+    j.plots_dir = (fs::path(o.out_dir) / job.name).string();
+    for (FigureFormat f : opt.plot_formats)
+      j.snapshots.push_back(j.plots_dir + "/world." + FormatExtension(f));
+    PrepareExport(j);
+    job_opts.push_back(std::move(j));
+  }
+
+  const int max_jobs = o.jobs > 0 ? o.jobs : std::max(1u, std::thread::hardware_concurrency());
+  ProgressLine bar(!o.quiet);
+  const auto t0 = std::chrono::steady_clock::now();
+  std::size_t next = 0, finished = 0;
+  std::vector<std::size_t> running;
+  while (finished < jobs.size()) {
+    // Start workers while there are free cores.
+    while (next < jobs.size() && static_cast<int>(running.size()) < max_jobs) {
+      Job& job = jobs[next];
+      int fds[2];
+      if (pipe(fds) != 0) throw std::runtime_error("figures: cannot create a pipe");
+      std::fflush(stdout);
+      std::fflush(stderr);
+      const pid_t pid = fork();
+      if (pid < 0) throw std::runtime_error("figures: cannot start a worker process");
+      if (pid == 0) {
+        close(fds[0]);
+        const int code = Worker(job, job_opts[next], fds[1]);
+        close(fds[1]);
+        std::fflush(stdout);
+        std::fflush(stderr);
+        _exit(code);
+      }
+      close(fds[1]);
+      fcntl(fds[0], F_SETFL, fcntl(fds[0], F_GETFL) | O_NONBLOCK);
+      job.pid = pid;
+      job.fd = fds[0];
+      running.push_back(next++);
+    }
+    // Wait for reports (or a worker's end) for up to 0.2 s.
+    std::vector<pollfd> pfds;
+    for (std::size_t i : running) pfds.push_back({jobs[i].fd, POLLIN, 0});
+    poll(pfds.data(), pfds.size(), 200);
+    for (std::size_t k = 0; k < running.size();) {
+      Job& job = jobs[running[k]];
+      if (pfds.size() > k && (pfds[k].revents & (POLLIN | POLLHUP))) Drain(job);
+      int status = 0;
+      if (waitpid(job.pid, &status, WNOHANG) == job.pid) {
+        Drain(job);
+        close(job.fd);
+        job.done = true;
+        job.fraction = 1;
+        job.code = WIFEXITED(status) ? WEXITSTATUS(status) : 4;
+        if (!WIFEXITED(status))
+          job.errors += (job.errors.empty() ? "" : "; ") + std::string("the worker died (signal ") +
+                        std::to_string(WIFSIGNALED(status) ? WTERMSIG(status) : 0) + ")";
+        ++finished;
+        running.erase(running.begin() + static_cast<long>(k));
+        pfds.erase(pfds.begin() + static_cast<long>(k));
+        continue;
+      }
+      ++k;
+    }
+    // Every scenario counts the same (their costs are not known before they run).
+    double done = 0;
+    long files = 0;
+    for (const Job& j : jobs) done += j.fraction, files += j.files;
+    std::string now;
+    for (std::size_t i : running) now += (now.empty() ? "" : ", ") + jobs[i].name;
+    bar.Update(done / static_cast<double>(jobs.size()),
+               std::to_string(finished) + "/" + std::to_string(jobs.size()) + " scenarios, " +
+                   std::to_string(files) + " files" + (now.empty() ? "" : "  (" + now + ")"));
+  }
+  bar.Done();
+
+  int rc = 0;
+  long files = 0;
+  for (const Job& j : jobs) {
+    files += j.files;
+    if (!j.errors.empty())
+      std::fprintf(stderr, "formsim: error: %s: %s\n", j.name.c_str(), j.errors.c_str());
+    rc = std::max(rc, j.code);
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!o.quiet)
+    std::printf("wrote %ld files for %zu scenarios into %s in %.1f s (%d workers)\n", files,
+                jobs.size(), o.out_dir.c_str(), wall, max_jobs);
+  return rc;
+}
+
+}  // namespace formsim::app

@@ -1,0 +1,490 @@
+#include "app/cli/study_cli.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "app/cli/stop_signal.hpp"
+#include "app/export/study_figures.hpp"
+#include "sim/core/number_format.hpp"
+#include "sim/core/run_output.hpp"
+#include "sim/scenario/scenario_files.hpp"
+#include "sim/scenario/scenario_save.hpp"
+#include "sim/study/sweep.hpp"
+#include "sim/study/sweep_tables.hpp"
+#include "sim/study/tune.hpp"
+
+namespace fs = std::filesystem;
+
+namespace formsim::app {
+namespace {
+
+double Now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+std::string Clock(double s) {
+  const long t = std::lround(std::max(0.0, s));
+  return t >= 3600 ? sim::Sprintf("%ld:%02ld:%02ld", t / 3600, t / 60 % 60, t % 60)
+                   : sim::Sprintf("%ld:%02ld", t / 60, t % 60);
+}
+
+// "[=====>     ] 37/200 runs, 1 failed, 0:42 left" on stderr, only on a terminal and not -q;
+// redrawn at most ten times a second.
+class RunsBar {
+ public:
+  RunsBar(bool enabled, std::size_t total)
+      : enabled_(enabled && isatty(STDERR_FILENO)), total_(total) {}
+  void Update(std::size_t done, std::size_t failed, bool force = false) {
+    if (!enabled_ || total_ == 0) return;
+    const double now = Now();
+    if (!force && done < total_ && now - last_ < 0.1) return;  // the last state always shows
+    last_ = now;
+    const double f = static_cast<double>(done) / static_cast<double>(total_);
+    const int width = 30, filled = static_cast<int>(f * width);
+    std::string left = "…";
+    if (done > 0)
+      left = Clock((now - start_) / static_cast<double>(done) * static_cast<double>(total_ - done));
+    std::fprintf(stderr, "\r[%s%s] %zu/%zu runs, %zu failed, %s left   ",
+                 std::string(filled, '=').c_str(), std::string(width - filled, ' ').c_str(), done,
+                 total_, failed, left.c_str());
+    std::fflush(stderr);
+  }
+  void Done() {
+    if (enabled_) std::fprintf(stderr, "\r%78s\r", "");
+  }
+
+ private:
+  bool enabled_;
+  std::size_t total_;
+  double start_ = Now(), last_ = 0;
+};
+
+// A word for a POSIX shell: as is when it is safe, else single-quoted.
+std::string ShellWord(const std::string& s) {
+  bool plain = !s.empty();
+  for (char c : s)
+    plain = plain && (std::isalnum(static_cast<unsigned char>(c)) ||
+                      std::string("/._-=:,+@%").find(c) != std::string::npos);
+  if (plain) return s;
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+std::string SelfExe() {
+  std::error_code ec;
+  const fs::path p = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string("formsim") : p.string();
+}
+
+int CheckJobs(int jobs, const std::string& flag) {
+  if (jobs == 0) return sim::TaskPool::HardwareThreads();
+  if (jobs < 0 || jobs > 1024) throw std::runtime_error(flag + " must be in 1 ... 1024");
+  return jobs;
+}
+
+std::uint64_t ParseSampleSeed(const std::string& text) {
+  std::uint64_t v = 0;
+  if (!sim::ParseUint64(text, &v))
+    throw std::runtime_error("--sample-seed '" + text + "': expected an integer in 0 ... 2^64-1");
+  return v;
+}
+
+std::string Join(const std::vector<std::string>& v, const std::string& sep) {
+  std::string out;
+  for (const std::string& s : v) out += (out.empty() ? "" : sep) + s;
+  return out;
+}
+
+// Tables, ranking and figure of a sweep from its records (a whole sweep, or one shard's part).
+// Returns the exit code: 2 when --metric names no metric (the tables are written first).
+int WriteSweepOutputs(const sim::SweepDefinition& def, const std::vector<sim::SweepRecord>& records,
+                      const std::string& out, std::string metric, bool figures, bool quiet) {
+  const sim::SweepTables tables = sim::BuildSweepTables(def, records);
+  sim::WriteSweepTables(out, tables);
+  std::vector<std::string> wrote = {"runs.csv", "aggregate.csv"};
+  int rc = 0;
+  if (figures && !tables.metrics.empty()) {
+    if (metric.empty()) metric = tables.metrics[sim::DefaultMetric(tables)];
+    const int m = tables.MetricIndex(metric);
+    if (m < 0) {
+      std::fprintf(stderr,
+                   "formsim: error: --metric '%s': no such metric in the runs (similar: %s); the "
+                   "tables were written\n",
+                   metric.c_str(), sim::SimilarMetrics(tables.metrics, metric).c_str());
+      rc = 2;
+    } else {
+      const std::string ranking = "ranking_" + metric + ".txt";
+      sim::WriteFileAtomic((fs::path(out) / ranking).string(), sim::RankingText(def, tables, m));
+      wrote.push_back(ranking);
+      PlotData fig;
+      if (SweepFigure(def, tables, records, m, &fig)) {
+        const std::string name = "plot_" + metric + ".png";
+        try {
+          WriteFigurePng(fig, (fs::path(out) / name).string());
+          wrote.push_back(name);
+        } catch (const std::exception& e) {
+          std::fprintf(stderr,
+                       "formsim: error: the figure could not be written (the tables were): %s\n",
+                       e.what());
+          rc = 4;
+        }
+      }
+    }
+  }
+  if (!quiet) std::printf("wrote %s in %s\n", Join(wrote, ", ").c_str(), out.c_str());
+  return rc;
+}
+
+// Records a power cut left empty or cut short are removed (and so run again); says so on stderr.
+void RemoveDamaged(const std::string& out, const std::vector<std::size_t>& runs, bool quiet) {
+  for (const std::string& p : sim::RemoveDamagedRecords(out, runs))
+    if (!quiet)
+      std::fprintf(stderr, "formsim: %s was cut short (a power cut?); it runs again\n", p.c_str());
+}
+
+std::vector<sim::SweepRecord> RecordsOf(const std::string& dir, const sim::SweepDefinition& def,
+                                        const std::vector<std::size_t>& runs) {
+  const std::set<std::size_t> want(runs.begin(), runs.end());
+  std::vector<sim::SweepRecord> out;
+  for (sim::SweepRecord& r : sim::ReadRecords(dir, def))
+    if (want.count(r.run)) out.push_back(std::move(r));
+  return out;
+}
+
+}  // namespace
+
+StudyCommands::StudyCommands(CLI::App& app) {
+  sweep_ = app.add_subcommand("sweep",
+                              "Run a scenario for every combination of varied tunables and seeds");
+  sweep_->add_option("scenario", scenario_, "Scenario name (see `formsim list`) or YAML path");
+  sweep_
+      ->add_option("--vary", vary_,
+                   "KEY=SPEC: a list 0.1,0.2,0.4 (names for enums, 'all'), a range LO:HI:N, "
+                   "log:LO:HI:N, or random:N[:LO:HI] (Latin hypercube in the declared bounds)")
+      ->take_all();
+  sweep_->add_option("--seeds", seeds_,
+                     "Seeds: 1..20, 1,2,5 or a mixture (default: the scenario's)");
+  sweep_->add_option("--set", sets_, "Fixed override for every run: path.to.key=value")->take_all();
+  sweep_->add_option("--jobs,-j", jobs_, "Runs at once (default: every core)");
+  sweep_->add_option("--out", out_, "Output folder (default out/sweep_<scenario>)");
+  sweep_->add_option("--metric", metric_,
+                     "Metric the figure and ranking show: a dotted path under results in "
+                     "summary.json, as in the columns of runs.csv (default: the first)");
+  sweep_->add_flag("--resume", resume_,
+                   "Continue the sweep in --out: run only what is not recorded");
+  sweep_->add_option("--shard", shard_, "Run only the K-th of N slices of the runs: K/N");
+  sweep_->add_flag(
+      "--print-jobs", print_jobs_,
+      "Print one self-contained command line per run (GNU parallel, Slurm, HTCondor) and exit");
+  sweep_->add_option("--run", run_, "Run only run I and record it (what --print-jobs lines do)");
+  sweep_->add_option("--max-runs", max_runs_,
+                     "Allow a sweep of up to N runs (default 100000, at most 10000000)");
+  sweep_->add_option("--sample-seed", sample_seed_,
+                     "Seed of the Latin hypercube of random:N (default 1)");
+  sweep_->add_flag("--no-figures", no_figures_, "Write the tables only");
+  sweep_->add_flag("--quiet,-q", quiet_, "Print nothing but errors");
+
+  collect_ =
+      sweep_->add_subcommand("collect", "Merge the results of sweep shards into one set of tables");
+  collect_->add_option("dirs", collect_dirs_, "Output folders of the shards")->required();
+  collect_->add_option("--out", collect_out_, "Folder for the merged sweep")->required();
+  collect_->add_option("--metric", collect_metric_, "Metric the figure and ranking show");
+  collect_->add_flag("--quiet,-q", collect_quiet_, "Print nothing but errors");
+
+  tune_ = app.add_subcommand("tune", "Optimise tunables for a metric averaged over seeds (NLopt)");
+  tune_->add_option("scenario", tune_scenario_, "Scenario name or YAML path")->required();
+  tune_
+      ->add_option("--param", params_,
+                   "KEY or KEY:LO:HI (default bounds: the declared slider range)")
+      ->take_all()
+      ->required();
+  tune_
+      ->add_option("--metric", tune_metric_,
+                   "Metric to minimise: PATH or a weighted sum 'a.b + 10*c.d'")
+      ->required();
+  tune_->add_option("--seeds", tune_seeds_,
+                    "Seeds averaged per evaluation: 1..5 (default: the scenario's)");
+  tune_->add_option("--budget", budget_, "Evaluations at most (default 60)");
+  tune_->add_option("--algorithm", algorithm_, "bobyqa (default), neldermead or cobyla");
+  tune_->add_option("--set", tune_sets_, "Fixed override for every run: path.to.key=value")
+      ->take_all();
+  tune_->add_option("--jobs,-j", tune_jobs_, "Runs at once (default: every core)");
+  tune_->add_option("--out", tune_out_, "Output folder (default out/tune_<scenario>)");
+  tune_->add_flag("--quiet,-q", tune_quiet_, "Print nothing but errors");
+}
+
+bool StudyCommands::parsed() const {
+  return sweep_->parsed() || tune_->parsed();
+}
+
+int StudyCommands::Run() {
+  if (collect_->parsed()) return Collect();
+  if (sweep_->parsed()) return Sweep();
+  return Tune();
+}
+
+int StudyCommands::Sweep() {
+  if (scenario_.empty())
+    throw std::runtime_error(
+        "formsim sweep: give a scenario (or `sweep collect DIR... --out DIR`)");
+  const std::string file = sim::ResolveScenario(scenario_);
+  const sim::ScenarioSource source = sim::ScenarioSource::FromFile(file);
+  // Given but empty (`--seeds ''`) is refused, never read as "the scenario's seed".
+  const std::vector<std::uint64_t> seeds =
+      sweep_->count("--seeds") == 0 ? std::vector<std::uint64_t>{} : sim::ParseSeeds(seeds_);
+  if (max_runs_ < 1 || max_runs_ > static_cast<long long>(sim::kMaxSweepRuns))
+    throw std::runtime_error("--max-runs " + std::to_string(max_runs_) + ": must be in 1 ... " +
+                             std::to_string(sim::kMaxSweepRuns));
+  const bool one_run = sweep_->count("--run") > 0;
+  if (one_run && run_ < 0)
+    throw std::runtime_error("--run " + std::to_string(run_) +
+                             ": a run number is 0 or more (runs are numbered 0 ... N-1)");
+  const sim::SweepDefinition def =
+      sim::DefineSweep(source, sim::CliOverrides(sets_, -1), vary_, seeds,
+                       ParseSampleSeed(sample_seed_), static_cast<std::size_t>(max_runs_));
+  const std::string out = out_.empty() ? "out/sweep_" + fs::path(file).stem().string() : out_;
+  int shard_k = 1, shard_n = 1;
+  if (!shard_.empty()) sim::ParseShard(shard_, &shard_k, &shard_n);
+  const int jobs = CheckJobs(jobs_, "--jobs");
+  const std::vector<std::size_t> mine = sim::ShardRuns(def.runs(), shard_k, shard_n);
+
+  if (one_run) {
+    // One job line: this run only, recorded like any other.
+    if (static_cast<std::size_t>(run_) >= def.runs())
+      throw std::runtime_error("--run " + std::to_string(run_) + ": the sweep has runs 0 ... " +
+                               std::to_string(def.runs() - 1));
+    sim::WriteManifest(out, def);
+    const std::size_t r = static_cast<std::size_t>(run_);
+    RemoveDamaged(out, {r}, quiet_);
+    if (sim::PendingRuns(out, {r}).empty()) {
+      if (!quiet_) std::printf("run %zu is recorded already in %s\n", r, out.c_str());
+      return 0;
+    }
+    InstallStopSignals();
+    const auto rec = sim::RunSweepRun(source, def, r, [] { return StopSignal() != 0; });
+    if (!rec) return 128 + StopSignal();
+    sim::WriteRecord(out, def, *rec);
+    sim::SyncFileSystem(out);
+    if (!quiet_)
+      std::printf("run %zu: %s%s\n", r, rec->status.c_str(),
+                  rec->message.empty() ? "" : (": " + rec->message).c_str());
+    return 0;
+  }
+
+  if (print_jobs_) {
+    sim::WriteManifest(out, def);
+    std::string common = ShellWord(SelfExe()) + " sweep " + ShellWord(fs::absolute(file).string());
+    for (const std::string& v : vary_) common += " --vary " + ShellWord(v);
+    for (const std::string& s : sets_) common += " --set " + ShellWord(s);
+    if (!seeds_.empty()) common += " --seeds " + ShellWord(seeds_);
+    if (def.sample_seed != 1) common += " --sample-seed " + std::to_string(def.sample_seed);
+    if (sweep_->count("--max-runs") > 0) common += " --max-runs " + std::to_string(max_runs_);
+    common += " --out " + ShellWord(fs::absolute(out).string()) + " -q --run ";
+    RemoveDamaged(out, mine, false);
+    for (std::size_t r : sim::PendingRuns(out, mine)) std::printf("%s%zu\n", common.c_str(), r);
+    return 0;
+  }
+
+  if (sim::HasManifest(out) && !resume_) {
+    sim::WriteManifest(out, def);  // throws, saying how, when it is another sweep
+    const std::size_t have =
+        def.runs() - sim::PendingRuns(out, sim::ShardRuns(def.runs(), 1, 1)).size();
+    throw std::runtime_error(
+        "'" + out + "' holds a sweep already (" + std::to_string(have) +
+        " runs recorded); add --resume to continue it, or choose another --out");
+  }
+  sim::WriteManifest(out, def);
+  RemoveDamaged(out, mine, quiet_);
+  const std::vector<std::size_t> pending = sim::PendingRuns(out, mine);
+  if (!quiet_) {
+    std::printf("sweep of %s: %zu point%s x %zu seed%s = %zu runs", file.c_str(), def.points.size(),
+                def.points.size() == 1 ? "" : "s", def.seeds.size(),
+                def.seeds.size() == 1 ? "" : "s", def.runs());
+    if (shard_n > 1) std::printf(", shard %d/%d: %zu runs", shard_k, shard_n, mine.size());
+    if (pending.size() != mine.size())
+      std::printf(", %zu recorded already", mine.size() - pending.size());
+    std::printf(", %d jobs\n", jobs);
+    std::fflush(stdout);
+  }
+  InstallStopSignals();
+  sim::TaskPool pool(jobs);
+  RunsBar bar(!quiet_, pending.size());
+  const double t0 = Now();
+  const sim::SweepProgress progress = sim::RunSweep(
+      source, def, pending, pool,
+      [&](const sim::SweepRecord& rec, const sim::SweepProgress& p) {
+        sim::WriteRecord(out, def, rec);
+        bar.Update(p.done, p.failed);
+      },
+      [] { return StopSignal() != 0; });
+  bar.Done();
+  sim::SyncFileSystem(out);  // the records, synced together
+  const double wall = Now() - t0;
+  if (StopSignal() != 0) {
+    std::fprintf(stderr,
+                 "formsim: sweep interrupted by %s: %zu of %zu runs recorded in %s; add --resume "
+                 "to finish it\n",
+                 StopSignalName(StopSignal()).c_str(), mine.size() - pending.size() + progress.done,
+                 mine.size(), out.c_str());
+    return 128 + StopSignal();
+  }
+  if (!quiet_) {
+    std::printf("%zu runs in %.2f s wall (%.1f ms per run on %d jobs)", progress.done, wall,
+                progress.done ? 1e3 * wall / static_cast<double>(progress.done) : 0.0, jobs);
+    if (progress.failed)
+      std::printf(", %zu failed (status and message in runs.csv)", progress.failed);
+    std::printf("\n");
+  }
+  const bool whole = shard_n == 1;
+  const int rc = WriteSweepOutputs(def, RecordsOf(out, def, mine), out, metric_,
+                                   whole && !no_figures_, quiet_);
+  if (!whole && !quiet_)
+    std::printf("shard %d/%d done; merge the shards with: formsim sweep collect DIR... --out DIR\n",
+                shard_k, shard_n);
+  return rc;
+}
+
+int StudyCommands::Collect() {
+  std::vector<sim::SweepDefinition> defs;
+  for (const std::string& d : collect_dirs_) defs.push_back(sim::ReadManifest(d));
+  const sim::SweepDefinition& def = defs.front();
+  for (std::size_t i = 1; i < defs.size(); ++i)
+    if (defs[i].id != def.id)
+      throw std::runtime_error("'" + collect_dirs_[i] + "' holds another sweep than '" +
+                               collect_dirs_[0] +
+                               "' (a different scenario text, keys, values or seeds)");
+  // Every run exactly once; a run recorded by two shards must say the same.
+  std::map<std::size_t, sim::SweepRecord> all;
+  for (const std::string& d : collect_dirs_)
+    for (sim::SweepRecord& r : sim::ReadRecords(d, def)) {
+      const auto it = all.find(r.run);
+      if (it != all.end() && sim::RecordText(def, it->second) != sim::RecordText(def, r))
+        throw std::runtime_error("run " + std::to_string(r.run) +
+                                 " is recorded differently in two folders (" + d + ")");
+      all.emplace(r.run, std::move(r));
+    }
+  if (all.size() != def.runs()) {
+    std::string missing;
+    int shown = 0;
+    for (std::size_t r = 0; r < def.runs() && shown < 10; ++r)
+      if (!all.count(r)) missing += (shown++ ? ", " : "") + std::to_string(r);
+    throw std::runtime_error("the folders hold " + std::to_string(all.size()) + " of " +
+                             std::to_string(def.runs()) + " runs (missing: " + missing +
+                             (def.runs() - all.size() > 10 ? ", ..." : "") +
+                             "); finish the shards (--resume) before collecting");
+  }
+  sim::WriteManifest(collect_out_, def);
+  std::vector<sim::SweepRecord> records;
+  for (auto& [run, rec] : all) {
+    if (!sim::PendingRuns(collect_out_, {run}).empty()) sim::WriteRecord(collect_out_, def, rec);
+    records.push_back(std::move(rec));
+  }
+  if (!collect_quiet_)
+    std::printf("collected %zu runs from %zu folders\n", records.size(), collect_dirs_.size());
+  return WriteSweepOutputs(def, records, collect_out_, collect_metric_, true, collect_quiet_);
+}
+
+int StudyCommands::Tune() {
+  const std::string file = sim::ResolveScenario(tune_scenario_);
+  const sim::ScenarioSource source = sim::ScenarioSource::FromFile(file);
+  sim::TuneSettings s;
+  s.sets = sim::CliOverrides(tune_sets_, -1);
+  const sim::ParsedScenario base = sim::ParseScenario(source, s.sets);
+  for (const std::string& p : params_) {
+    s.params.push_back(sim::ParseTuneParam(p, base.params));
+    for (std::size_t i = 0; i + 1 < s.params.size(); ++i)
+      if (s.params[i].key == s.params.back().key)
+        throw std::runtime_error("--param " + p + ": tuned twice");
+  }
+  s.objective = sim::ParseMetricExpr(tune_metric_);
+  s.seeds = tune_->count("--seeds") == 0 ? std::vector<std::uint64_t>{base.setup.seed}
+                                         : sim::ParseSeeds(tune_seeds_);
+  s.budget = budget_;
+  s.algorithm = algorithm_;
+  if (budget_ < 1 || budget_ > 100000) throw std::runtime_error("--budget must be in 1 ... 100000");
+  const int jobs = CheckJobs(tune_jobs_, "--jobs");
+  const std::string out =
+      tune_out_.empty() ? "out/tune_" + fs::path(file).stem().string() : tune_out_;
+  sim::PrepareOutputDir(out);
+  InstallStopSignals();
+  sim::TaskPool pool(jobs);
+  const bool tty = !tune_quiet_ && isatty(STDERR_FILENO);
+  if (!tune_quiet_) {
+    std::printf("tune %s: %zu tunables, %s, budget %d evaluations x %zu seeds, %d jobs\n",
+                file.c_str(), s.params.size(), s.algorithm.c_str(), s.budget, s.seeds.size(), jobs);
+    std::fflush(stdout);
+  }
+  const double t0 = Now();
+  const sim::TuneResult r = sim::RunTune(
+      source, s, pool,
+      [&](const sim::TuneEvaluation& e, const sim::TuneEvaluation& best) {
+        if (tty)
+          std::fprintf(stderr, "\revaluation %zu/%d  objective %-12.6g best %-12.6g", e.index,
+                       s.budget, e.objective, best.objective);
+      },
+      [] { return StopSignal() != 0; });
+  if (tty) std::fprintf(stderr, "\r%78s\r", "");
+  const double wall = Now() - t0;
+
+  // history.csv first: whatever happens next, every evaluation is on disk.
+  sim::WriteFileAtomic((fs::path(out) / "history.csv").string(), sim::TuneHistoryCsv(s, r));
+  std::vector<std::string> wrote = {"history.csv"};
+  int rc = 0;
+  if (r.has_best()) {
+    const sim::TuneEvaluation& best = r.history[r.best];
+    const std::string path = (fs::path(out) / "best.yaml").string();
+    std::string note;
+    std::string text =
+        sim::TunedScenarioText(source, sim::TuneOverrides(s, best.values), path, &note);
+    text = "# formsim tune: " + tune_metric_ + " = " + sim::FormatDouble(best.objective) +
+           " (mean over seeds " + (tune_seeds_.empty() ? std::to_string(s.seeds[0]) : tune_seeds_) +
+           "), evaluation " + std::to_string(best.index) + " of " +
+           std::to_string(r.history.size()) + ", " + s.algorithm + "\n" + text;
+    sim::WriteFileAtomic(path, text);
+    wrote.push_back("best.yaml");
+    if (!note.empty() && !tune_quiet_) std::printf("note: %s\n", note.c_str());
+  } else {
+    std::fprintf(stderr,
+                 "formsim: error: no evaluation succeeded; no best.yaml (see history.csv)\n");
+    rc = 2;
+  }
+  try {
+    WriteFigurePng(TuneConvergenceFigure(s, r, tune_metric_),
+                   (fs::path(out) / "convergence.png").string());
+    wrote.push_back("convergence.png");
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "formsim: error: the figure could not be written: %s\n", e.what());
+    rc = rc ? rc : 4;
+  }
+  if (!tune_quiet_ && !r.history.empty()) {
+    const sim::TuneEvaluation& first = r.history.front();
+    const sim::TuneEvaluation& best = r.history[r.best];
+    std::printf("%zu evaluations in %.1f s (%s)\n", r.history.size(), wall, r.stop_reason.c_str());
+    std::printf("%-40s %14s %14s\n", "", "start", "best");
+    for (std::size_t i = 0; i < s.params.size(); ++i)
+      std::printf("%-40s %14.6g %14.6g\n", s.params[i].key.c_str(), first.values[i],
+                  best.values[i]);
+    std::printf("%-40s %14.6g %14.6g\n", "objective", first.objective, best.objective);
+    std::printf("wrote %s in %s\n", Join(wrote, ", ").c_str(), out.c_str());
+  }
+  if (StopSignal() != 0) {
+    std::fprintf(
+        stderr,
+        "formsim: tune interrupted by %s after %zu evaluations; the best so far was written\n",
+        StopSignalName(StopSignal()).c_str(), r.history.size());
+    return 128 + StopSignal();
+  }
+  return rc;
+}
+
+}  // namespace formsim::app

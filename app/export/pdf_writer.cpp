@@ -1,0 +1,148 @@
+#include "app/export/pdf_writer.hpp"
+
+#include <cairo-pdf.h>
+#include <cairo.h>
+
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+
+#include "app/render/vector_fonts.hpp"
+#include "sim/core/run_output.hpp"
+
+namespace formsim::app {
+namespace {
+
+cairo_status_t Append(void* closure, const unsigned char* data, unsigned int length) {
+  static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+  return CAIRO_STATUS_SUCCESS;
+}
+
+void SetColor(cairo_t* cr, sim::Color c) {
+  cairo_set_source_rgba(cr, c.r, c.g, c.b, c.a);
+}
+
+void RectPath(cairo_t* cr, ImVec2 a, ImVec2 b, float r) {
+  const double w = std::fmax(0.f, b.x - a.x), h = std::fmax(0.f, b.y - a.y);
+  r = std::fmin(r, static_cast<float>(0.5 * std::fmin(w, h)));
+  if (r <= 0) {
+    cairo_rectangle(cr, a.x, a.y, w, h);
+    return;
+  }
+  cairo_new_sub_path(cr);
+  cairo_arc(cr, a.x + w - r, a.y + r, r, -M_PI / 2, 0);
+  cairo_arc(cr, a.x + w - r, a.y + h - r, r, 0, M_PI / 2);
+  cairo_arc(cr, a.x + r, a.y + h - r, r, M_PI / 2, M_PI);
+  cairo_arc(cr, a.x + r, a.y + r, r, M_PI, 3 * M_PI / 2);
+  cairo_close_path(cr);
+}
+
+void Draw(cairo_t* cr, const VectorFigure& fig) {
+  const VectorFonts& fonts = VectorFonts::Get();
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
+  for (const VectorOp& op : fig.ops) {
+    switch (op.kind) {
+      case VectorOp::Kind::kFillRect:
+        RectPath(cr, op.pts[0], op.pts[1], op.size);
+        SetColor(cr, op.color);
+        cairo_fill(cr);
+        break;
+      case VectorOp::Kind::kStrokeRect: {
+        const float in = 0.5f * op.width;
+        RectPath(cr, ImVec2(op.pts[0].x + in, op.pts[0].y + in),
+                 ImVec2(op.pts[1].x - in, op.pts[1].y - in), op.size);
+        SetColor(cr, op.color);
+        cairo_set_line_width(cr, op.width);
+        cairo_set_dash(cr, nullptr, 0, 0);
+        cairo_stroke(cr);
+        break;
+      }
+      case VectorOp::Kind::kPath:
+      case VectorOp::Kind::kFillPath: {
+        cairo_new_path(cr);
+        for (std::size_t i = 0; i < op.pts.size(); ++i)
+          (i == 0 ? cairo_move_to : cairo_line_to)(cr, op.pts[i].x, op.pts[i].y);
+        if (op.closed) cairo_close_path(cr);
+        SetColor(cr, op.color);
+        if (op.kind == VectorOp::Kind::kFillPath) {
+          cairo_fill(cr);
+        } else {
+          double dash[4];
+          for (int k = 0; k < op.dash.count; ++k) dash[k] = op.dash.lengths[k];
+          cairo_set_dash(cr, dash, op.dash.count, 0);
+          cairo_set_line_width(cr, op.width);
+          cairo_stroke(cr);
+        }
+        break;
+      }
+      case VectorOp::Kind::kFillCircle:
+      case VectorOp::Kind::kStrokeCircle:
+        cairo_new_path(cr);
+        cairo_arc(cr, op.pts[0].x, op.pts[0].y, op.size, 0, 2 * M_PI);
+        SetColor(cr, op.color);
+        if (op.kind == VectorOp::Kind::kFillCircle) {
+          cairo_fill(cr);
+        } else {
+          cairo_set_dash(cr, nullptr, 0, 0);
+          cairo_set_line_width(cr, op.width);
+          cairo_stroke(cr);
+        }
+        break;
+      case VectorOp::Kind::kText:
+        cairo_save(cr);
+        if (op.vertical) {
+          cairo_translate(cr, op.pts[1].x, op.pts[1].y);
+          cairo_rotate(cr, -M_PI / 2);
+          cairo_translate(cr, -op.pts[1].x, -op.pts[1].y);
+        }
+        cairo_set_font_face(cr, fonts.CairoFace(op.font));
+        cairo_set_font_size(cr, fonts.EmSize(op.font));
+        SetColor(cr, op.color);
+        cairo_move_to(cr, op.pts[0].x, op.pts[0].y);
+        cairo_show_text(cr, op.text.c_str());
+        cairo_restore(cr);
+        break;
+      case VectorOp::Kind::kPushClip:
+        cairo_save(cr);
+        cairo_rectangle(cr, op.pts[0].x, op.pts[0].y, std::fmax(0.f, op.pts[1].x - op.pts[0].x),
+                        std::fmax(0.f, op.pts[1].y - op.pts[0].y));
+        cairo_clip(cr);
+        break;
+      case VectorOp::Kind::kPopClip:
+        cairo_restore(cr);
+        break;
+    }
+  }
+}
+
+}  // namespace
+
+std::string PdfDocument(const VectorFigure& fig, const FigureSize& size, const std::string& title) {
+  std::string bytes;
+  // A PDF point is 1/72 inch, a logical pixel 1/96 inch.
+  const double pt_w = size.width.Pixels() * 0.75, pt_h = size.height.Pixels() * 0.75;
+  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
+      cairo_pdf_surface_create_for_stream(Append, &bytes, pt_w, pt_h), cairo_surface_destroy);
+  if (!title.empty())
+    cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_TITLE, title.c_str());
+  cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATOR, "formsim");
+  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()), cairo_destroy);
+  cairo_scale(cr.get(), pt_w / fig.width, pt_h / fig.height);
+  Draw(cr.get(), fig);
+  const cairo_status_t cs = cairo_status(cr.get());
+  cr.reset();
+  cairo_surface_finish(surface.get());
+  const cairo_status_t ss = cairo_surface_status(surface.get());
+  if (cs != CAIRO_STATUS_SUCCESS || ss != CAIRO_STATUS_SUCCESS)
+    throw std::runtime_error(std::string("cairo could not draw the PDF: ") +
+                             cairo_status_to_string(cs != CAIRO_STATUS_SUCCESS ? cs : ss));
+  return bytes;
+}
+
+void WritePdf(const VectorFigure& fig, const FigureSize& size, const std::string& title,
+              const std::string& path) {
+  sim::WriteFileAtomic(path, PdfDocument(fig, size, title));
+}
+
+}  // namespace formsim::app

@@ -1,0 +1,20 @@
+#pragma once
+/// \file PDF from a recorded figure through Cairo: one page of the figure's physical size, text
+/// as text in embedded (subset) TrueType fonts with Unicode maps, so it can be selected,
+/// searched and extracted; lines as vector paths.
+
+#include <string>
+
+#include "app/export/figure_size.hpp"
+#include "app/render/vector_canvas.hpp"
+
+namespace formsim::app {
+
+/// The PDF bytes of `fig`. Throws std::runtime_error with Cairo's reason on failure.
+std::string PdfDocument(const VectorFigure& fig, const FigureSize& size, const std::string& title);
+
+/// Writes PdfDocument atomically to `path`. Throws std::runtime_error naming the file.
+void WritePdf(const VectorFigure& fig, const FigureSize& size, const std::string& title,
+              const std::string& path);
+
+}  // namespace formsim::app

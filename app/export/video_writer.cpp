@@ -1,0 +1,126 @@
+#include "app/export/video_writer.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+
+namespace fs = std::filesystem;
+
+namespace formsim::app {
+namespace {
+
+std::string Extension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+// ffmpeg's muxer for our extensions (given explicitly: the partial name must not decide).
+const char* Muxer(const std::string& ext) {
+  if (ext == ".mp4") return "mp4";
+  if (ext == ".mov") return "mov";
+  if (ext == ".mkv") return "matroska";
+  return nullptr;
+}
+
+}  // namespace
+
+std::string ShellQuote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string PartialPath(const std::string& path) {
+  const fs::path p(path);
+  return (p.parent_path() / ("." + p.stem().string() + ".partial" + p.extension().string()))
+      .string();
+}
+
+void FinishPartial(int status, const std::string& partial, const std::string& path) {
+  std::error_code ec;
+  if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    fs::remove(partial, ec);
+    throw std::runtime_error("ffmpeg failed writing " + path);
+  }
+  fs::rename(partial, path, ec);
+  if (ec) {
+    const std::string why = ec.message();
+    fs::remove(partial, ec);
+    throw std::runtime_error("cannot move " + path + " into place: " + why);
+  }
+}
+
+std::string FindOnPath(const std::string& program) {
+  const char* path = std::getenv("PATH");
+  if (path == nullptr) return "";
+  std::stringstream ss(path);
+  std::string dir;
+  while (std::getline(ss, dir, ':')) {
+    if (dir.empty()) dir = ".";
+    const std::string full = dir + "/" + program;
+    if (access(full.c_str(), X_OK) == 0) return full;
+  }
+  return "";
+}
+
+void VideoWriter::CheckAvailable(const std::string& path, int width, int height) {
+  const std::string ext = Extension(path);
+  if (ext == ".gif")
+    throw std::runtime_error("--video '" + path + "': for an animated GIF use --gif " + path +
+                             " (palette-optimised, looping); --video writes .mp4, .mkv or .mov");
+  if (Muxer(ext) == nullptr)
+    throw std::runtime_error("--video '" + path +
+                             "': the file name must end in .mp4, .mkv or .mov (H.264 video)");
+  if (FindOnPath("ffmpeg").empty())
+    throw std::runtime_error(
+        "--video needs the program 'ffmpeg', which is not on PATH (Debian: apt-get install "
+        "ffmpeg)");
+  if (width % 2 != 0 || height % 2 != 0)
+    throw std::runtime_error("--video needs an even width and height (H.264 yuv420p), got " +
+                             std::to_string(width) + "x" + std::to_string(height));
+}
+
+VideoWriter::VideoWriter(const std::string& path, int width, int height, double fps)
+    : path_(path),
+      partial_(PartialPath(path)),
+      frame_bytes_(static_cast<std::size_t>(width) * height * 4) {
+  CheckAvailable(path, width, height);
+  std::signal(SIGPIPE, SIG_IGN);  // a dying ffmpeg becomes a write error, not a crash
+  std::ostringstream cmd;
+  cmd << "ffmpeg -y -loglevel error -f rawvideo -pix_fmt rgba -s " << width << "x" << height
+      << " -r " << fps << " -i - -c:v libx264 -preset veryfast -crf 20 -pix_fmt yuv420p "
+      << "-movflags +faststart -f " << Muxer(Extension(path)) << " " << ShellQuote(partial_);
+  pipe_ = popen(cmd.str().c_str(), "w");
+  if (pipe_ == nullptr) throw std::runtime_error("cannot start ffmpeg for " + path);
+}
+
+VideoWriter::~VideoWriter() {
+  if (pipe_ != nullptr) {
+    pclose(pipe_);
+    std::error_code ec;
+    fs::remove(partial_, ec);
+  }
+}
+
+void VideoWriter::Write(const std::vector<std::uint8_t>& rgba) {
+  if (rgba.size() != frame_bytes_) throw std::runtime_error("video frame has the wrong size");
+  if (std::fwrite(rgba.data(), 1, rgba.size(), pipe_) != rgba.size())
+    throw std::runtime_error("ffmpeg stopped accepting frames for " + path_ +
+                             " (see its message above)");
+}
+
+void VideoWriter::Close() {
+  if (pipe_ == nullptr) return;
+  const int status = pclose(pipe_);
+  pipe_ = nullptr;
+  FinishPartial(status, partial_, path_);
+}
+
+}  // namespace formsim::app

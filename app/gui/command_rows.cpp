@@ -1,0 +1,640 @@
+/// \file The rows of the window's command table (app/gui/command_table.hpp): every command the
+/// window has, once, with its arguments, keys, menu path, help, enabling and handler.
+#include <filesystem>
+
+#include "app/gui/command_table.hpp"
+#include "app/export/figure_data.hpp"
+#include "app/export/figure_export.hpp"
+#include "app/gui/ui.hpp"
+#include "control/formation/formation_graph.hpp"
+#include "control/formation/formation_shapes.hpp"
+#include "sim/core/draw.hpp"
+#include "sim/core/number_format.hpp"
+#include "sim/core/provenance.hpp"
+#include "sim/scenario/scenario_files.hpp"
+#include "sim/formation/formation_editing.hpp"
+
+namespace fs = std::filesystem;
+
+// Each row names only the fields it sets; the others keep their defaults on purpose.
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+
+namespace formsim::app {
+namespace {
+
+using Src = CommandSource;
+
+// ---- argument makers: the table's rows read as a list of these ----
+
+CommandArg Whole(std::string name, double lo, double hi, std::string unit = "") {
+  CommandArg a;
+  a.name = std::move(name);
+  a.type = ArgType::kWhole;
+  a.lo = lo;
+  a.hi = hi;
+  a.unit = std::move(unit);
+  return a;
+}
+
+CommandArg Real(std::string name, double lo, double hi, std::string unit = "") {
+  CommandArg a = Whole(std::move(name), lo, hi, std::move(unit));
+  a.type = ArgType::kReal;
+  return a;
+}
+
+CommandArg Text(std::string name, std::string what, ArgType type = ArgType::kRest) {
+  CommandArg a;
+  a.name = std::move(name);
+  a.type = type;
+  a.what = std::move(what);
+  return a;
+}
+
+CommandArg OnOff() {
+  CommandArg a;
+  a.name = "STATE";
+  a.type = ArgType::kOnOff;
+  return a;
+}
+
+CommandArg Choice(std::string name, std::vector<std::string> choices) {
+  CommandArg a;
+  a.name = std::move(name);
+  a.type = ArgType::kChoice;
+  a.choices = std::move(choices);
+  return a;
+}
+
+CommandArg Optional(CommandArg a) {
+  a.optional = true;
+  return a;
+}
+
+CommandArg Offer(CommandArg a, std::function<std::vector<std::string>(const AppUi&)> offer) {
+  a.offer = std::move(offer);
+  return a;
+}
+
+CommandArg Initial(CommandArg a, std::function<std::string(const AppUi&)> initial) {
+  a.initial = std::move(initial);
+  return a;
+}
+
+// ---- what the window offers now ----
+
+std::vector<std::string> ShippedNames(const AppUi&) {
+  std::vector<std::string> out;
+  for (const std::string& f : sim::ShippedScenarios()) out.push_back(fs::path(f).stem().string());
+  return out;
+}
+
+std::vector<std::string> LessonNames(const AppUi&) {
+  std::vector<std::string> out;
+  for (const std::string& f : sim::ShippedLessons()) out.push_back(fs::path(f).stem().string());
+  return out;
+}
+
+std::vector<std::string> RobotNames(const AppUi& ui) {
+  std::vector<std::string> out = {"nobody"};
+  for (const auto& r : ui.session().exp().world().robots()) out.push_back(r->name());
+  return out;
+}
+
+std::vector<std::string> ActionIds(const AppUi& ui) {
+  std::vector<std::string> out;
+  for (const sim::ActionSpec& a : ui.session().exp().Actions()) out.push_back(a.id);
+  return out;
+}
+
+std::vector<std::string> TunableKeys(const AppUi& ui) {
+  std::vector<std::string> out;
+  for (const sim::Param& p : ui.session().params().all()) out.push_back(p.key);
+  return out;
+}
+
+std::vector<std::string> PinIds(const AppUi& ui) {
+  std::vector<std::string> out;
+  for (const auto& p : ui.pins()) out.push_back(std::to_string(p->id));
+  return out;
+}
+
+std::vector<std::string> OverlayNames(const AppUi&) {
+  std::vector<std::string> out = {"all", "none", "default"};
+  for (const sim::OverlayInfo& o : sim::Overlays()) out.push_back(o.name);
+  return out;
+}
+
+std::vector<std::string> SpeedNames() {
+  std::vector<std::string> out;
+  for (double s : SpeedChoices()) out.push_back(s == 0.0 ? "max" : sim::FormatDouble(s));
+  return out;
+}
+
+std::vector<std::string> ThemeList() {
+  std::vector<std::string> out;
+  for (ThemeId id : {ThemeId::kLight, ThemeId::kDark, ThemeId::kPrint, ThemeId::kHighContrast})
+    out.push_back(GetTheme(id).name);
+  return out;
+}
+
+// ---- when a command can run ----
+
+std::string NeedsFormation(const AppUi& ui) {
+  return sim::formation::EditingOf(ui.session().exp()) != nullptr
+             ? ""
+             : "only for a formation scenario (this one has no formation graph to edit)";
+}
+
+// Structural changes: a formation scenario whose structure can change.
+std::string NeedsRestructurable(const AppUi& ui) {
+  const auto* editing = sim::formation::EditingOf(ui.session().exp());
+  return editing == nullptr ? NeedsFormation(ui) : editing->StructureLocked();
+}
+
+std::string NeedsSwitching(const AppUi& ui) {
+  for (const sim::ActionSpec& a : ui.session().exp().Actions())
+    if (a.id == "switch-formation") return "";
+  return "only for a scenario with formation switching (a `switching:` block)";
+}
+
+std::string NeedsActions(const AppUi& ui) {
+  return ActionIds(ui).empty() ? "this scenario offers no actions" : "";
+}
+
+std::string NeedsTimeline(const AppUi& ui) {
+  return ui.TimelineActive() ? ""
+                             : "move the timeline back first (the world view shows the live run)";
+}
+
+std::string NeedsSeedsRunning(const AppUi& ui) {
+  return ui.SeedsRunning() ? "" : "no Monte Carlo is running";
+}
+
+std::string NeedsPins(const AppUi& ui) {
+  return ui.pins().empty() ? "nothing is pinned" : "";
+}
+
+// A folder for figures beside the scenario's name.
+std::string FiguresFolder(const AppUi& ui) {
+  return fs::path(ui.session().file()).stem().string() + "_figures";
+}
+
+std::vector<Command> BuildTable() {
+  std::vector<Command> t;
+  auto row = [&t](Command c) { t.push_back(std::move(c)); };
+
+  // ---- File ----
+  row({.name = "open",
+       .args = {Initial(Text("PATH", "a scenario file's path"),
+                        [](const AppUi& ui) { return std::string(ui.state().open_path); })},
+       .menu = "File/Open…",
+       .help = "Open a scenario file (the current run stays when it cannot be read)",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdOpen(a.Text(0)); }});
+  row({.name = "load",
+       .args = {Offer(Text("SCENARIO", "a shipped scenario's name, or a path"), ShippedNames)},
+       .menu = "File/Load shipped",
+       .help = "Load a shipped scenario by name (or a file by path)",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdLoad(a.Text(0)); }});
+  row({.name = "reload",
+       .menu = "File/Reload from disk",
+       .help = "Read the scenario file again, dropping the tuned values",
+       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdReload(); }});
+  row({.name = "save",
+       .args = {Optional(Text("PATH", "a file to write"))},
+       .menu = "File/Save",
+       .help =
+           "Save the tuned scenario (to PATH, else to the Save field's file); a script overwrites",
+       .run = [](AppUi& ui, const CommandArgs& a, Src s) {
+         const std::string path = a.Has(0) ? a.Text(0) : std::string(ui.state().save_path);
+         return ui.CmdSave(path, s == Src::kScript);
+       }});
+  row({.name = "save-as",
+       .args = {Initial(Text("PATH", "a file to write"),
+                        [](const AppUi& ui) { return std::string(ui.state().save_path); })},
+       .menu = "File/Save as…",
+       .help = "Save the tuned scenario to PATH (asks before overwriting; a script overwrites)",
+       .run = [](AppUi& ui, const CommandArgs& a, Src s) {
+         return ui.CmdSave(a.Text(0), s == Src::kScript);
+       }});
+  row({.name = "save-session",
+       .args = {Initial(Text("PATH", "a session file to write"),
+                        [](const AppUi& ui) { return std::string(ui.state().session_path); })},
+       .menu = "File/Save session…",
+       .help = "Write the session so far (every edit with its step); replay it with formsim replay",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdSaveSession(a.Text(0)); }});
+  // Crash-safe sessions (app/gui/ui_journal.cpp): an unfinished session offered at start.
+  row({.name = "restore-session",
+       .menu = "File/Restore unfinished session",
+       .help = "Replay the unfinished session of a window that was killed, and go on from it",
+       .disabled =
+           [](const AppUi& ui) {
+             return ui.unfinished_sessions().empty() ? std::string("no unfinished session")
+                                                     : std::string();
+           },
+       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdRestoreSession(); }});
+  row({.name = "discard-session",
+       .menu = "File/Discard unfinished session",
+       .help = "Delete the journal of the unfinished session offered at start",
+       .disabled =
+           [](const AppUi& ui) {
+             return ui.unfinished_sessions().empty() ? std::string("no unfinished session")
+                                                     : std::string();
+           },
+       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdDiscardSession(); }});
+  row({.name = "screenshot",
+       .args = {Optional(Text("PATH", "a PNG file to write"))},
+       .keys = {"s"},
+       .menu = "File/Screenshot",
+       .help = "Write the window as a PNG (to PATH, else a numbered name)",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) {
+         return ui.CmdScreenshot(a.Has(0) ? a.Text(0) : "");
+       }});
+  row({.name = "export-figures",
+       .args = {Initial(Text("DIR", "a folder to write into"), FiguresFolder)},
+       .menu = "File/Export figures…",
+       .help = "Write every figure of the current run as SVG and PDF into DIR",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdExportFigures(a.Text(0)); }});
+  row({.name = "quit",
+       .keys = {"Ctrl+Q"},
+       .menu = "File/Quit",
+       .help = "Close the window (with --out and --session, their files are written first)",
+       .run =
+           [](AppUi& ui, const CommandArgs&, Src) {
+             ui.state().quit_requested = true;
+             return std::string();
+           },
+       .ends_program = true});
+
+  // ---- Run ----
+  row({.name = "play-pause",
+       .keys = {"space"},
+       .menu = "Run/Play or pause",
+       .help = "Play when paused, pause when playing",
+       .run = [](AppUi& ui, const CommandArgs&, Src) {
+         return ui.state().playing ? ui.CmdPause() : ui.CmdPlay();
+       }});
+  row({.name = "play",
+       .menu = "Run/Play",
+       .help = "Run (from the live end when the timeline is back)",
+       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdPlay(); }});
+  row({.name = "pause",
+       .menu = "Run/Pause",
+       .help = "Stop stepping",
+       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdPause(); }});
+  row({.name = "step",
+       .keys = {"."},
+       .menu = "Run/Step",
+       .help = "One step, then pause",
+       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdStep(); }});
+  row({.name = "reset",
+       .keys = {"r"},
+       .menu = "Run/Reset",
+       .help = "Start the run again with the current values and seed",
+       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdReset(); }});
+  row({.name = "reset-seed",
+       .args = {Initial(Text("SEED", "a seed 0 ... 18446744073709551615", ArgType::kWord),
+                        [](const AppUi& ui) { return std::string(ui.state().seed_text); })},
+       .menu = "Run/Reset with seed…",
+       .help = "Start the run again with another seed",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdResetSeed(a.Text(0)); }});
+  row({.name = "speed",
+       .args = {Initial(Choice("SPEED", SpeedNames()),
+                        [](const AppUi& ui) { return SpeedNames()[ui.state().speed_index]; })},
+       .menu = "Run/Speed",
+       .help = "Simulated seconds per second of real time (max: as fast as the frame allows)",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) {
+         const auto names = SpeedNames();
+         for (std::size_t i = 0; i < names.size(); ++i)
+           if (names[i] == a.Text(0)) ui.state().speed_index = static_cast<int>(i);
+         return std::string();
+       }});
+  row({.name = "edit",
+       .args = {Offer(Text("KEY=VALUE", "a tunable's key, '=', and its new value"), TunableKeys)},
+       .menu = "Run/Edit a value…",
+       .help = "Change a tunable, checked as the loader would (live, or at the next reset)",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) {
+         const std::string& kv = a.Text(0);
+         const auto eq = kv.find('=');
+         if (eq == std::string::npos || eq == 0)
+           return "edit: KEY=VALUE expects a tunable's key, '=', and its new value, got '" +
+                  kv.substr(0, 80) + "'";
+         return ui.CmdEdit(kv.substr(0, eq), kv.substr(eq + 1));
+       }});
+  row({.name = "revert",
+       .args = {Offer(Text("KEY", "a tunable's key", ArgType::kWord), TunableKeys)},
+       .menu = "Run/Revert a value…",
+       .help = "Edit a tunable back to its value in the file (with --set)",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdRevert(a.Text(0)); }});
+  row({.name = "action",
+       .args = {Offer(Text("ID", "an action of the scenario", ArgType::kWord), ActionIds)},
+       .menu = "Run/Scenario action",
+       .help = "Run an action the scenario offers (e.g. reload_rules), between two steps",
+       .disabled = NeedsActions,
+       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdAction(a.Text(0)); }});
+
+  // ---- View ----
+  row({.name = "present",
+       .args = {OnOff()},
+       .keys = {"p"},
+       .key_args = "toggle",
+       .menu = "View/Presentation mode",
+       .help = "The world view fills the window, for a lecture room (Esc leaves)",
+       .checked = [](const AppUi& ui) { return ui.state().present; },
+       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdPresent(a.On(0)); }});
+  row({.name = "theme",
+       .args = {Initial(
+           Choice("NAME", ThemeList()),
+           [](const AppUi& ui) { return std::string(GetTheme(ui.state().theme).name); })},
+       .menu = "View/Theme",
+       .help = "Colours of the panels, the world view and the plots",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) {
+         ui.state().theme = ParseTheme(a.Text(0));
+         if (ImGui::GetCurrentContext() != nullptr) ApplyImGuiTheme(GetTheme(ui.state().theme));
+         return std::string();
+       }});
+  row({.name = "ui-scale",
+       .args = {Initial(
+           Offer(Real("SCALE", kMinUiScale, kMaxUiScale),
+                 [](const AppUi&) {
+                   return std::vector<std::string>{"1", "1.25", "1.5", "2", "2.5", "3"};
+                 }),
+           [](const AppUi& ui) { return sim::FormatDouble(ui.state().settings.ui_scale); })},
+       .menu = "View/UI scale",
+       .help = "Fonts and line widths, kept between runs",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdUiScale(a.Real(0)); }});
+  row({.name = "angle-unit",
+       .args = {Initial(Choice("UNIT", {"deg", "rad"}),
+                        [](const AppUi& ui) {
+                          return std::string(ui.state().settings.degrees ? "deg" : "rad");
+                        })},
+       .menu = "View/Angle unit",
+       .help = "Show angles in degrees or radians (stored values stay radians)",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdAngleUnit(a.Text(0)); }});
+  row({.name = "overlay",
+       .args = {Offer(Text("LIST", "overlay names, comma-separated (all, none, default, -NAME)"),
+                      OverlayNames)},
+       .menu = "View/Overlays",
+       .help = "What the law sees, drawn over the scene: applied to the overlays shown now",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdOverlay(a.Text(0)); }});
+  row({.name = "legend",
+       .args = {OnOff()},
+       .keys = {"l"},
+       .key_args = "toggle",
+       .menu = "View/Legend",
+       .help = "A legend of every mark in the world view",
+       .checked = [](const AppUi& ui) { return ui.state().legend; },
+       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdLegend(a.On(0)); }});
+  row({.name = "follow",
+       .args = {Initial(
+           Offer(Text("ROBOT", "a robot's name, or nobody", ArgType::kChoice), RobotNames),
+           [](const AppUi& ui) {
+             const auto names = RobotNames(ui);
+             const int f = ui.state().follow;
+             return f >= 0 && f + 1 < static_cast<int>(names.size()) ? names[f + 1] : names[0];
+           })},
+       .menu = "View/Follow",
+       .help = "Keep a robot in the middle of the world view (nobody: fit)",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) {
+         const auto names = RobotNames(ui);
+         for (std::size_t i = 0; i < names.size(); ++i)
+           if (names[i] == a.Text(0)) ui.state().follow = static_cast<int>(i) - 1;
+         ui.state().auto_fit = ui.state().follow < 0;
+         ui.state().fit_now = ui.state().follow < 0;
+         return std::string();
+       }});
+  row({.name = "fit",
+       .keys = {"f"},
+       .menu = "View/Fit everything",
+       .help = "Fit everything in view (and stop following)",
+       .run = [](AppUi& ui, const CommandArgs&, Src) {
+         ui.state().fit_now = true;
+         ui.state().follow = -1;
+         return std::string();
+       }});
+  row({.name = "tab",
+       .args = {Choice("NAME", {"plots", "tables", "history", "summary", "lesson"})},
+       .menu = "View/Show tab",
+       .help = "Bring a tab of the right-hand window to the front",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) {
+         ui.state().select_tab = a.Text(0);
+         return std::string();
+       }});
+  row({.name = "dismiss",
+       .keys = {"Esc"},
+       .menu = "View/Close what is open",
+       .help = "Close the palette or help, stop editing, or leave presentation (one at a time)",
+       .run = [](AppUi& ui, const CommandArgs&, Src) {
+         UiState& s = ui.state();
+         if (s.palette)
+           s.palette = false;
+         else if (s.help)
+           s.help = false;
+         else if (s.edit_mode != UiState::EditMode::kOff)
+           return ui.CmdEditor("off");
+         else if (s.present)
+           return ui.CmdPresent(false);
+         return std::string();
+       }});
+
+  // ---- Compare ----
+  row({.name = "pin",
+       .menu = "Compare/Pin this run",
+       .help = "Keep the run as it stands as a reference, drawn faded and dashed",
+       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdPin(); }});
+  row({.name = "unpin",
+       .args = {Offer(Whole("N", 1, 1000000), PinIds)},
+       .menu = "Compare/Unpin",
+       .help = "Drop pin N",
+       .disabled = NeedsPins,
+       .run = [](AppUi& ui, const CommandArgs& a, Src) {
+         return ui.CmdUnpin(static_cast<int>(a.Whole(0)));
+       }});
+  row({.name = "unpin-all",
+       .menu = "Compare/Unpin all",
+       .help = "Drop every pin",
+       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdUnpinAll(); }});
+  row({.name = "seeds",
+       .args = {Initial(Whole("N", 1, 100000),
+                        [](const AppUi& ui) { return std::to_string(ui.state().mc_seeds); })},
+       .menu = "Compare/Run N seeds…",
+       .help = "Run the current settings over seeds 1..N in the background (as formsim sweep)",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) {
+         return ui.CmdSeeds(static_cast<int>(a.Whole(0)));
+       }});
+  row({.name = "cancel-seeds",
+       .menu = "Compare/Cancel the seeds",
+       .help = "Stop the Monte Carlo under way",
+       .disabled = NeedsSeedsRunning,
+       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdCancelSeeds(); }});
+  row({.name = "history",
+       .menu = "Compare/History",
+       .help = "Show the history of runs (the History tab)",
+       .run = [](AppUi& ui, const CommandArgs&, Src) {
+         ui.state().select_tab = "history";
+         return std::string();
+       }});
+  row({.name = "restore",
+       .args = {Whole("N", 1, 1000000000)},
+       .menu = "Compare/Restore history row…",
+       .help = "Edit the settings of history row N back in (its seed into the seed field)",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) {
+         return ui.CmdRestore(static_cast<int>(a.Whole(0)));
+       }});
+  row({.name = "pin-row",
+       .args = {Whole("N", 1, 1000000000)},
+       .menu = "Compare/Pin history row…",
+       .help = "Replay history row N exactly and pin it",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) {
+         return ui.CmdPinRow(static_cast<int>(a.Whole(0)));
+       }});
+  row({.name = "undo",
+       .keys = {"Ctrl+Z"},
+       .menu = "Compare/Undo",
+       .help = "Undo the last edit or formation change",
+       .disabled =
+           [](const AppUi& ui) {
+             return ui.session().can_undo() ? std::string() : std::string("nothing to undo");
+           },
+       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdUndo(); }});
+  row({.name = "redo",
+       .keys = {"Ctrl+Y", "Ctrl+Shift+Z"},
+       .menu = "Compare/Redo",
+       .help = "Redo what was undone",
+       .disabled =
+           [](const AppUi& ui) {
+             return ui.session().can_redo() ? std::string() : std::string("nothing to redo");
+           },
+       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdRedo(); }});
+  row({.name = "scrub",
+       .args = {Real("T", 0, 1e9, "s")},
+       .menu = "Compare/Timeline: go to time…",
+       .help = "Show the world at time T of the live run (exact, replayed)",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdScrub(a.Real(0)); }});
+  row({.name = "live",
+       .menu = "Compare/Timeline: back to live",
+       .help = "Show the live end of the run again",
+       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdLive(); }});
+  row({.name = "branch",
+       .menu = "Compare/Branch from the timeline",
+       .help = "Restart the run from the time the timeline shows (pins the original first)",
+       .disabled = NeedsTimeline,
+       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdBranch(); }});
+  row({.name = "menu",
+       .args = {Choice("NAME", {"File", "Run", "View", "Compare", "Formation", "Help"})},
+       .help = "Open a menu of the menu bar (for scripted pictures and tests)",
+       .run =
+           [](AppUi& ui, const CommandArgs& a, Src) {
+             ui.state().open_menu = a.Text(0);
+             return std::string();
+           },
+       .script_only = true});
+  row({.name = "wait",
+       .help = "Hold the script until pins, a Monte Carlo or the timeline have finished",
+       .run = [](AppUi&, const CommandArgs&, Src) { return std::string(); },
+       .script_only = true});
+
+  // ---- Formation: the kind's own menu ----
+  row({.name = "editor",
+       .args = {Choice("MODE", {"off", "add", "remove", "attach", "law", "slots"}),
+                Optional(Choice("LAW", control::formation::FollowerLawNames()))},
+       .menu = "Formation/Editor",
+       .help = "What a left click in the world view does (add and attach take a law)",
+       .disabled = NeedsFormation,
+       .run = [](AppUi& ui, const CommandArgs& a, Src) {
+         return ui.CmdEditor(a.Has(1) ? a.Text(0) + " " + a.Text(1) : a.Text(0));
+       }});
+  row({.name = "formation",
+       .args = {Text("CHANGE",
+                     "add LAW LEADERS X Y [NAME], remove NAME, attach NAME LAW "
+                     "LEADERS, or shape KIND [SPACING]")},
+       .menu = "Formation/Change…",
+       .help = "A structural change of the formation; the run goes on from here",
+       .disabled = NeedsRestructurable,
+       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdFormation(a.Text(0)); }});
+  row({.name = "shape",
+       .args = {Choice("KIND", control::formation::ShapeNames()),
+                Optional(Real("SPACING", 0.05, 10, "m"))},
+       .menu = "Formation/Shape",
+       .help = "Re-attach every follower to make a shape (spacing in m)",
+       .disabled = NeedsRestructurable,
+       .run = [](AppUi& ui, const CommandArgs& a, Src) {
+         return ui.CmdFormation("shape " + a.Text(0) + (a.Has(1) ? " " + a.Text(1) : ""));
+       }});
+  row({.name = "slot",
+       .args = {Offer(Text("ROBOT", "a follower's name", ArgType::kWord), RobotNames),
+                Real("X", -1e4, 1e4, "m"), Real("Y", -1e4, 1e4, "m")},
+       .menu = "Formation/Move a slot…",
+       .help = "Put a follower's desired slot at world point (X, Y): it converges live",
+       .disabled = NeedsFormation,
+       .run = [](AppUi& ui, const CommandArgs& a, Src) {
+         return ui.CmdSlot(a.Text(0), a.Real(1), a.Real(2));
+       }});
+  row({.name = "click",
+       .args = {Real("X", -1e4, 1e4, "m"), Real("Y", -1e4, 1e4, "m")},
+       .menu = "Formation/Click at…",
+       .help = "A left click in the world view at (X, Y), as the editor's mode takes it",
+       .disabled = NeedsFormation,
+       .run = [](AppUi& ui, const CommandArgs& a, Src) {
+         return ui.EditorClick({a.Real(0), a.Real(1)});
+       }});
+  row({.name = "switch-formation",
+       .args = {Optional(Text("NAME", "a shape of the switching: block", ArgType::kWord))},
+       .keys = {"n"},
+       .menu = "Formation/Switch formation",
+       .help = "Switch to the next formation shape, or the named one",
+       .disabled = NeedsSwitching,
+       .run = [](AppUi& ui, const CommandArgs& a, Src) {
+         return ui.CmdAction(a.Has(0) ? "switch-formation:" + a.Text(0)
+                                      : std::string("switch-formation"));
+       }});
+
+  // ---- Help ----
+  row({.name = "help",
+       .args = {OnOff()},
+       .keys = {"F1", "?"},
+       .key_args = "toggle",
+       .menu = "Help/Keys and mouse",
+       .help = "The help overlay: every key and mouse gesture",
+       .checked = [](const AppUi& ui) { return ui.state().help; },
+       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdHelp(a.On(0)); }});
+  row({.name = "palette",
+       .args = {Optional(Text("FILTER", "text to filter commands and tunables by"))},
+       .keys = {"Ctrl+K"},
+       .menu = "Help/Command palette",
+       .help = "Find any command or tunable by typing part of its name",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) {
+         return ui.CmdPalette(a.Has(0) ? a.Text(0) : "");
+       }});
+  row({.name = "lesson",
+       .args = {Offer(Text("NAME", "a shipped lesson's name", ArgType::kChoice), LessonNames)},
+       .menu = "Help/Lessons",
+       .help = "Open a lesson: its scenario, with the text in the Lesson tab",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) {
+         const std::string err = ui.CmdOpen(sim::ResolveLesson(a.Text(0)));
+         if (err.empty()) ui.state().select_tab = "lesson";
+         return err;
+       }});
+  row({.name = "about",
+       .menu = "Help/About",
+       .help = "formsim's version and where its papers come from",
+       .run = [](AppUi& ui, const CommandArgs&, Src) {
+         ui.state().about = true;
+         return std::string();
+       }});
+  return t;
+}
+
+}  // namespace
+
+const std::vector<Command>& Commands() {
+  static const std::vector<Command> kTable = BuildTable();
+  return kTable;
+}
+
+std::string AboutText() {
+  return "formsim " + sim::FormsimVersion() +
+         "\nA 2-D simulator for multi-robot formation control and mobile-robot navigation.\n"
+         "Box2D bodies, controllers and estimators from four papers, Dear ImGui + GLFW.";
+}
+
+}  // namespace formsim::app

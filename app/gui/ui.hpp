@@ -1,0 +1,364 @@
+#pragma once
+/// \file The formsim user interface, drawn with ImGui the same way in the GLFW window and in
+/// headless `--ui` frames: panels Scenario, Run, Parameters (generated from the scenario's
+/// ParamTable), View, Plots, Tables and Summary around the world view. Knows nothing of GLFW or
+/// GL. Every user action is a command (Cmd*) called alike by buttons, keys and `--script`.
+
+#include <imgui.h>
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "app/gui/command_table.hpp"
+#include "app/render/fonts.hpp"
+#include "app/render/theme.hpp"
+#include "app/gui/tuning_state.hpp"
+#include "app/gui/ui_settings.hpp"
+#include "app/render/view.hpp"
+#include "app/render/world_view.hpp"
+#include "sim/session/session.hpp"
+#include "sim/session/session_journal.hpp"
+#include "sim/session/session_record.hpp"
+
+namespace formsim::sim::formation {
+struct StructureChange;
+}  // namespace formsim::sim::formation
+
+namespace formsim::app {
+
+/// Speeds offered by the Run panel; 0 means as fast as possible.
+const std::vector<double>& SpeedChoices();
+
+/// State of the interface that is not simulation state.
+struct UiState {
+  bool playing = true;
+  int speed_index = 3;  ///< into SpeedChoices(), 3 = 1x
+  View view;
+  bool auto_fit = true;    ///< keep everything in view until the user pans or zooms
+  bool whole_run = false;  ///< auto-fit shows everything since the start (else: tracks)
+  bool fit_now = true;
+  int follow = -1;  ///< robot index to follow, -1 none
+  bool grid = true;
+  bool coordinates = true;
+  ThemeId theme = ThemeId::kLight;          ///< colours of the panels, the world view and the plots
+  std::map<std::string, bool> plot_closed;  ///< figure id -> hidden by the user
+  bool screenshot_requested = false;
+  std::string screenshot_path;  ///< where the requested screenshot goes ("" = numbered name)
+  std::string status;           ///< last message for the status line
+  bool status_is_error = false;
+  double status_time = 0;  ///< ImGui's clock when the status was set
+  char save_path[512] = "";
+  char open_path[512] = "";
+  char seed_text[32] = "";
+  char session_path[512] = "";
+  int mc_seeds = 20;                 ///< "Run N seeds"
+  bool branch_pins_original = true;  ///< "branch from here" pins the run it leaves first
+  std::string gesture_key;  ///< the slider held since its last edit (its edits make one undo step)
+  std::string select_tab;   ///< a tab of the right-hand window to bring to front once
+  std::string drag_name;  ///< robot or obstacle being dragged
+  double sim_ms = 0, frame_ms = 0;
+  int steps_last_frame = 0;
+
+  // Teaching (app/gui/ui_formation.cpp, app/gui/ui_teach.cpp).
+  std::set<std::string> overlays = DefaultSceneOverlays();  ///< of the scene (View panel)
+  bool legend = true;    ///< a legend of every mark drawn in the world view
+  bool help = false;     ///< the help overlay (F1)
+  bool present = false;  ///< presentation mode: the world view fills the window
+  UiSettings settings;   ///< UI scale and angle unit, kept between runs
+  /// What a left click in the world view does (the formation editor).
+  enum class EditMode { kOff, kAdd, kRemove, kAttach, kSwitchLaw, kSlots };
+  EditMode edit_mode = EditMode::kOff;
+  int edit_law = 0;                     ///< 0 l_phi, 1 l_l (add and attach)
+  std::vector<std::string> edit_picks;  ///< robots picked so far (follower and/or leaders)
+  int shape_index = 2;                  ///< into control::formation::ShapeNames()
+  float shape_spacing = 0.5f;           ///< m
+  std::string slot_drag;                ///< follower whose slot is being dragged
+  double step_budget = 0;  ///< simulated seconds owed to real time
+
+  // The command table's window parts (app/gui/ui_menu.cpp, app/gui/ui_palette.cpp).
+  bool quit_requested = false;  ///< `quit`: the window closes after this frame
+  bool about = false;           ///< the About box
+  bool palette = false;         ///< the command palette (Ctrl+K)
+  bool palette_focus = false;   ///< give the palette's field the keyboard on its next frame
+  char palette_filter[256] = "";
+  int palette_selected = 0;
+  std::vector<std::string> recent_commands;  ///< newest first, run from the menu or palette
+  std::string open_menu;                     ///< `menu NAME`: a top-level menu to open once
+  std::string focus_param;                   ///< a tunable whose field takes the keyboard once
+  /// The argument dialog of a command run from the menu or palette (none: "").
+  std::string dialog_command;
+  char dialog_args[3][1024] = {};
+  std::string dialog_error;
+};
+
+/// One line of the command palette: a command or a tunable.
+struct PaletteEntry {
+  bool tunable = false;
+  std::string name;    ///< the command or the tunable's key
+  std::string detail;  ///< help, or the tunable's label and value
+  std::string keys;
+  int score = 0;  ///< lower first
+};
+
+/// The About box's text.
+std::string AboutText();
+
+class AppUi {
+ public:
+  explicit AppUi(std::unique_ptr<sim::Session> session);
+  /// Borrows a session owned by the caller (headless --ui frames); loading another scenario
+  /// then makes the interface own the new one.
+  explicit AppUi(sim::Session& borrowed);
+  /// Stops recording the session (a borrowed one outlives the interface).
+  ~AppUi();
+  AppUi(const AppUi&) = delete;
+  AppUi& operator=(const AppUi&) = delete;
+
+  sim::Session& session() { return *session_; }
+  /// Applied to every experiment of every session the interface runs (the current one, resets,
+  /// and scenarios loaded later): bounded history, streaming of the rows to --out.
+  void SetRunSetup(std::function<void(sim::Experiment&)> setup);
+  UiState& state() { return state_; }
+  const UiState& state() const { return state_; }
+  const sim::Session& session() const { return *session_; }
+
+  /// Advances the simulation for `wall_dt` seconds of real time at the chosen speed (GUI loop).
+  void Advance(double wall_dt);
+  /// Builds all windows for a display of `display` pixels. `interactive` = false draws the same
+  /// panels without reading mouse or keyboard (headless --ui frames).
+  void Draw(ImVec2 display, const Fonts& fonts, bool interactive);
+  /// With "whole run" on, adds the experiment's current bounds to the camera's union (headless
+  /// runs that draw only a final snapshot call this while stepping).
+  void TrackBounds();
+
+  // ---- Commands: what buttons, keys and scripts do. Each returns "" or why it was refused,
+  // and leaves a message in the status line. None of them can end the program.
+  std::string CmdPlay();
+  std::string CmdPause();
+  std::string CmdStep();
+  std::string CmdReset();
+  /// Reset with a seed given as text (0 ... 2^64 - 1).
+  std::string CmdResetSeed(const std::string& seed_text);
+  /// Re-reads the current file from disk (tuned values are dropped).
+  std::string CmdReload();
+  /// Loads a shipped scenario by name, or a path.
+  std::string CmdLoad(const std::string& name_or_path);
+  /// Opens a scenario file by path.
+  std::string CmdOpen(const std::string& path);
+  /// Saves the tuned scenario; without `overwrite` an existing file asks for confirmation.
+  std::string CmdSave(const std::string& path, bool overwrite);
+  /// `continues_drag`: the same slider is still held since its last edit (one undo step).
+  std::string CmdEdit(const std::string& key, const std::string& value,
+                      bool continues_drag = false);
+  std::string CmdAction(const std::string& id);
+  /// Asks for a screenshot of the next frame (the window writes it).
+  std::string CmdScreenshot(const std::string& path);
+  /// Undo / redo the last edit (Ctrl+Z / Ctrl+Y), through the normal edit path.
+  std::string CmdUndo();
+  std::string CmdRedo();
+  /// Edits `key` back to its value in the file (with the command line's --set).
+  std::string CmdRevert(const std::string& key);
+  /// Pins the current run as it stands: a reference drawn faded (world) and dashed (plots).
+  std::string CmdPin();
+  std::string CmdUnpin(int id);
+  std::string CmdUnpinAll();
+  /// Edits the settings of history row `number` back in (seed into the seed field).
+  std::string CmdRestore(int number);
+  /// History row `number`; null when there is none, with the reason in `why` and the status.
+  const sim::HistoryRow* HistoryRowOrRefuse(const std::string& action, int number,
+                                            std::string* why);
+  /// Pins history row `number` (replayed exactly from its log).
+  std::string CmdPinRow(int number);
+  /// Runs the current settings over seeds 1..n in the background (as `formsim sweep`).
+  std::string CmdSeeds(int n);
+  std::string CmdCancelSeeds();
+  /// Shows the world at simulated time `t` of the live run (the timeline); CmdLive goes back.
+  std::string CmdScrub(double t, bool finish_now = true);
+  std::string CmdLive();
+  /// Restarts the run from the time shown by the timeline (exact), pinning the original first
+  /// when state().branch_pins_original.
+  std::string CmdBranch();
+  // ---- Teaching: the formation editor, overlays, legend, help, presentation.
+  /// A structural change of the formation (Session::Restructure): "add LAW LEADERS X Y
+  /// [NAME]", "remove NAME", "attach NAME LAW LEADERS", "shape KIND [SPACING]".
+  std::string CmdFormation(const std::string& command);
+  /// The same change typed (the editor's clicks); recorded under its text form.
+  std::string CmdFormationChange(const sim::formation::StructureChange& change);
+  /// Puts `robot`'s desired slot (its control point) at world point (x, y): live edits of its
+  /// l_des and φ_des, or of its two distances. `continues_drag`: one undo step per drag.
+  std::string CmdSlot(const std::string& robot, double x, double y, bool continues_drag = false);
+  /// The editor's mode: "off", "add l_phi|l_l", "remove", "attach l_phi|l_l", "law", "slots".
+  std::string CmdEditor(const std::string& mode);
+  /// A left click in the world view at world point `p` as the editor's mode takes it (the
+  /// mouse and the script action `click X Y`).
+  std::string EditorClick(Vec2 p);
+  /// Overlays of the scene: "NAME,..." as --overlay (all, none, default, -NAME), applied to the
+  /// ones shown now.
+  std::string CmdOverlay(const std::string& list);
+  std::string CmdLegend(bool on);
+  std::string CmdHelp(bool on);
+  /// Presentation mode: panels hidden, the world view fills the window.
+  std::string CmdPresent(bool on);
+  /// UI scale (fonts and line widths) 1 ... 3, kept between runs.
+  std::string CmdUiScale(double scale);
+  /// Angles shown in degrees or radians ("deg" / "rad"), kept between runs.
+  std::string CmdAngleUnit(const std::string& unit);
+  /// Writes the session record (everything done so far, with steps) to `path`.
+  std::string CmdSaveSession(const std::string& path);
+  // ---- Crash-safe sessions (app/gui/ui_journal.cpp): the journal of the record and its restore.
+  /// Journals the record from now on into a new journal in `dir` (sim::JournalDir()), flushed
+  /// at every event, so a crash leaves a session `formsim replay` reproduces.
+  void StartJournal(const std::string& dir);
+  /// Per frame: the journal notes the step reached (at most once a second).
+  void NoteJournalStep();
+  /// Ends the journal; `remove`: deletes it (a clean exit, or the session file was written).
+  void CloseJournal(bool remove);
+  /// Offers the newest unfinished session in `dir` (a journal whose window is gone): a banner
+  /// with Restore and Discard, never restored by itself.
+  void FindUnfinishedSessions(const std::string& dir);
+  /// Replays the offered unfinished session and goes on from it (its journal is then removed).
+  std::string CmdRestoreSession();
+  /// Deletes the offered unfinished session's journal.
+  std::string CmdDiscardSession();
+  /// The unfinished sessions offered (newest first).
+  const std::vector<sim::RecoveredSession>& unfinished_sessions() const { return unfinished_; }
+  /// Runs one script action "ACTION [ARGS]" (see `formsim gui --script`) through the command
+  /// table. Returns "" or the reason it was refused.
+  std::string RunScriptAction(const std::string& line);
+  /// Runs a row of the command table with its arguments as text: checks that it is enabled,
+  /// parses the arguments, runs it. Returns "" or the reason, also shown in the status line.
+  std::string RunCommand(const Command& cmd, const std::string& args, CommandSource source);
+  /// Runs the command bound to `key` ("space", "F1", "Ctrl+Z"; see Command::keys); "" when
+  /// none is bound.
+  std::string PressKey(const std::string& key);
+  /// Opens the command palette with `filter` typed in.
+  std::string CmdPalette(const std::string& filter);
+  /// What the palette lists for `filter`, best first.
+  std::vector<PaletteEntry> PaletteEntries(const std::string& filter) const;
+  /// Where the menu bar drew each command's item in the last frame its menu was open (tests
+  /// click them).
+  const std::map<std::string, std::pair<ImVec2, ImVec2>>& menu_items() const { return menu_items_; }
+  /// Writes every figure of the current run as SVG and PDF into `dir`.
+  std::string CmdExportFigures(const std::string& dir);
+  /// The timeline shows an earlier time than the live end.
+  bool TimelineActive() const { return timeline_.active; }
+  /// A Monte Carlo ("Run N seeds") is under way.
+  bool SeedsRunning() const;
+  /// True while work goes on in the background (pins replaying, a Monte Carlo, the timeline
+  /// catching up): the script action `wait` holds the script until it is done.
+  bool Busy() const;
+
+  /// The record of the session so far (written by CmdSaveSession and `--session`).
+  const sim::SessionRecord& record() const { return record_; }
+  /// With `formsim gui --session FILE`: where "Save session" writes by default.
+  void SetSessionFile(const std::string& path);
+  /// Writes the tables of the finished Monte Carlo (runs.csv, aggregate.csv, as `formsim sweep`
+  /// writes them) into `dir`/montecarlo. Returns false when there is none.
+  bool WriteMonteCarlo(const std::string& dir);
+  /// Adds the current run to the history when it has run and has no row yet.
+  void NoteRunInHistory(const std::string& status);
+  const sim::RunHistory& history() const { return history_; }
+  const std::vector<std::unique_ptr<PinnedRun>>& pins() const { return pins_; }
+
+ private:
+  void HandleKeys();
+  /// The menu bar, generated from the command table; returns its height.
+  float DrawMenuBar();
+  void DrawMenuItem(const Command& cmd);
+  /// Opens the argument dialog of `cmd` (commands with arguments, from the menu or palette).
+  void OpenCommandDialog(const Command& cmd);
+  void DrawCommandDialog();
+  void DrawPalette(ImVec2 display);
+  void DrawAbout();
+  /// Per frame: collects finished pin replays, Monte Carlo results, the timeline's progress.
+  void UpdateBackground();
+  void StartRecording(const std::vector<sim::Override>& cli, long step);
+  /// Before the current run is replaced (reset, reload, branch, load): its history row.
+  std::optional<sim::HistoryRow> PendingRow(const std::string& status) const;
+  void LoadHistoryFor(const std::string& file);
+  void DropScenarioState();  ///< pins, Monte Carlo, timeline: on loading another scenario
+  std::string PinReplay(std::shared_ptr<const sim::ScenarioSource> source, sim::RunLog log,
+                        long steps, const std::string& origin);
+  RunValues CurrentValues() const;
+  /// "pin 1: k_l 0.15 -> 0.4" (what differs from the current run).
+  std::string PinLabel(const PinnedRun& pin) const;
+  const sim::ParamTable& TextParams(const sim::ScenarioSource& source);
+  /// Adds the pinned runs and the Monte Carlo bands to a live plot of figure `fig`.
+  void DecoratePlot(const sim::FigureSpec& fig, PlotData& data);
+  /// The time the plots' cursor marks: the timeline's when it is on, else the live time.
+  double CursorTime() const;
+  /// The experiment the world view shows: the timeline's replay, or the live run.
+  const sim::Experiment& ShownExperiment() const;
+  void DrawTimeline(ImVec2 min, ImVec2 max);
+  void DrawTuningSection();
+  void DrawHistoryTab();
+  void DrawCompareTable(const sim::Metrics& now);
+  void AdvanceTimeline(double budget_s);
+  void SetStatus(const std::string& message, bool error = false);
+  /// Replaces the session after a successful load (keeps view options, resets per-run state).
+  void Adopt(std::unique_ptr<sim::Session> session, const std::string& message);
+  void SyncScenarioFields();
+  void DrawControlPanel(const Fonts& fonts, bool interactive);
+  void DrawScenarioSection();
+  void DrawRunSection();
+  void DrawViewSection();
+  void DrawOverlayToggles();
+  void DrawFormationSection();
+  /// Restructures the session by `restructure` (label: the change's text form) and reports.
+  std::string RunRestructure(const std::string& label,
+                             const std::function<std::string()>& restructure);
+  /// The help overlay (keys and mouse) over the world view.
+  void DrawHelpOverlay(ImVec2 min, ImVec2 max);
+  /// Presentation mode's small bar of buttons, top right of the world view.
+  void DrawPresentationBar(ImVec2 min, ImVec2 max);
+  /// The editor's mouse in the world view; true when it took the click.
+  bool EditorMouse(const View& view);
+  /// The robot nearest world point `p` within a few pixels of its body ("" none).
+  std::string RobotAt(Vec2 p, const View& view) const;
+  void SaveSettings();
+  void DrawParamSection();
+  void DrawMessagesSection();
+  void DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool interactive);
+  void DrawWorldMouse(const View& view);
+  void DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts);
+  /// The Lesson tab (ui_lesson.cpp): the lesson's text, wrapped to the panel.
+  void DrawLessonTab(const Fonts& fonts);
+  /// What the plots window shows, refreshed at most ten times a second (app/gui/ui_plots.cpp).
+  struct PlotsCache;
+  std::shared_ptr<PlotsCache> plots_cache_;
+  void UpdateView(ImVec2 min, ImVec2 max);
+
+  std::map<std::string, std::pair<ImVec2, ImVec2>> menu_items_;
+  std::function<void(sim::Experiment&)> run_setup_;
+  std::unique_ptr<sim::Session> owned_;
+  sim::Session* session_ = nullptr;
+  UiState state_;
+  std::vector<std::string> shipped_;
+  int shipped_index_ = 0;
+  bool confirm_overwrite_ = false;
+  AutoFit auto_fit_;
+
+  // Tuning: pins, history, timeline, Monte Carlo, the session record.
+  sim::SessionRecord record_;
+  std::string session_file_;
+  std::vector<std::unique_ptr<PinnedRun>> pins_;
+  int next_pin_ = 1;
+  sim::RunHistory history_;
+  std::map<std::string, sim::RunHistory> histories_;    ///< of scenarios opened before, by file
+  long history_run_ = -1;                               ///< run id that has its history row
+  std::map<std::string, sim::ParamTable> text_params_;  ///< by SHA-256 of a scenario text
+  std::vector<int> history_order_;  ///< rows in the order shown (sorted by a column)
+  Timeline timeline_;
+  MonteCarloState mc_;
+  std::unique_ptr<sim::SessionJournal> journal_;  ///< the window's crash-safe journal
+  std::vector<sim::RecoveredSession> unfinished_;  ///< offered for restore, newest first
+  bool journal_error_shown_ = false;
+  /// The banner offering to restore an unfinished session (top of the control panel).
+  void DrawRestoreBanner();
+};
+
+}  // namespace formsim::app

@@ -1,0 +1,278 @@
+/// \file The generic parameter panel: every tunable of the scenario's ParamTable (declared once,
+/// where the scenario reader reads it), grouped by its group path ("Gains/R2" -> header
+/// "Gains", node "R2"), plus the experiment's action buttons. Widgets never write the
+/// experiment: they ask the session for an edit, which checks it against the whole scenario and
+/// applies it between steps; a refused edit is marked at its widget with the reason. A value
+/// that differs from the file is marked (its label in blue, a ↺ button that reverts it), one
+/// waiting for a reset shows ↻; both live in a column of fixed width and every row has the
+/// height of a widget, so nothing in the panel moves when an edit is made.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "app/render/long_text.hpp"
+#include "app/gui/ui.hpp"
+#include "sim/core/number_format.hpp"
+
+namespace formsim::app {
+namespace {
+
+// Sub-groups of a header start open when there are at most this many.
+constexpr std::size_t kOpenSubgroups = 8;
+
+std::string Head(const std::string& group) {
+  return group.substr(0, group.find('/'));
+}
+std::string Tail(const std::string& group) {
+  const auto slash = group.find('/');
+  return slash == std::string::npos ? "" : group.substr(slash + 1);
+}
+
+// What one row shows besides the value.
+struct RowMarks {
+  bool waiting = false;  ///< edited, waiting for a reset
+  bool edited = false;   ///< differs from the file (with the command line's --set)
+  std::string loaded;    ///< the file's value
+  std::string refusal;   ///< why the last edit was refused
+};
+
+// What the user did in a row.
+struct RowInput {
+  std::string value;  ///< the new value as text when changed
+  bool held = false;  ///< the widget is held (a slider being dragged)
+  bool revert = false;
+};
+
+// One row: label (with unit), widget, and the fixed-width marks column. `shown` is the value to
+// show (the one waiting for a reset, if any).
+// Angles in the unit of the window's setting: a tunable in rad (or rad/s) is shown and dragged
+// in degrees when `degrees`; the value stored and edited stays in radians.
+bool IsAngle(const sim::Param& p) { return p.tune.unit == "rad" || p.tune.unit == "rad/s"; }
+constexpr double kDegPerRad = 180.0 / 3.14159265358979323846;
+
+// ImGui asserts on slider ranges beyond half the largest value of the type.
+constexpr long long kIntSliderLimit = 1000000000LL;
+
+// A slider over [lo, hi] that ImGui draws without asserting (and that is worth dragging).
+bool SliderFits(double lo, double hi) {
+  return std::isfinite(lo) && std::isfinite(hi) && lo < hi && std::abs(lo) <= sim::kSliderLimit &&
+         std::abs(hi) <= sim::kSliderLimit;
+}
+
+// A text field holding `text`; returns what was typed when Enter is pressed ("" else). The
+// session checks it like any edit.
+std::string ValueField(const std::string& text) {
+  char buf[128];
+  std::snprintf(buf, sizeof(buf), "%s", text.c_str());
+  if (ImGui::InputText("##v", buf, sizeof(buf),
+                       ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_CharsScientific))
+    return buf;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("beyond any slider: type a value and press Enter");
+  return "";
+}
+
+RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks& marks, bool degrees) {
+  const bool as_deg = degrees && IsAngle(p) && p.kind == sim::Param::Kind::kDouble;
+  RowInput in;
+  ImGui::TableNextRow();
+  ImGui::TableSetColumnIndex(0);
+  ImGui::AlignTextToFramePadding();
+  std::string label = p.tune.label.empty() ? p.key : p.tune.label;
+  if (!p.tune.unit.empty()) label += " [" + (as_deg ? (p.tune.unit == "rad" ? std::string("°") : std::string("°/s")) : p.tune.unit) + "]";
+  const bool colour = !marks.refusal.empty() || marks.edited;
+  if (colour)
+    ImGui::PushStyleColor(ImGuiCol_Text, !marks.refusal.empty() ? ImVec4(0.75f, 0.1f, 0.1f, 1)
+                                                                : ImVec4(0.15f, 0.45f, 0.9f, 1));
+  label = Shorten(label, 200);
+  ImGui::TextUnformatted(label.c_str());
+  if (colour) ImGui::PopStyleColor();
+  if (ImGui::IsItemHovered()) {
+    std::string tip = p.key;
+    if (!p.tune.help.empty()) tip += "\n" + p.tune.help;
+    if (p.kind == sim::Param::Kind::kDouble || p.kind == sim::Param::Kind::kInt)
+      tip += "\nvalid: " + p.tune.ValidityText();
+    tip += p.tune.live ? "\napplies on the next step" : "\napplies on reset";
+    if (marks.edited) tip += "\nedited: the file has " + marks.loaded + " (↺ reverts)";
+    if (!marks.refusal.empty()) tip += "\n\nlast edit refused: " + marks.refusal;
+    SafeTooltip(tip);  // any length (app/render/long_text.hpp)
+  }
+  ImGui::TableSetColumnIndex(1);
+  ImGui::SetNextItemWidth(-1.0f);
+  ImGui::PushID(p.key.c_str());
+  const std::string& refusal = marks.refusal;
+  std::string out;
+  if (!refusal.empty()) ImGui::PushStyleColor(ImGuiCol_FrameBg, ImVec4(0.95f, 0.75f, 0.75f, 1));
+  switch (p.kind) {
+    case sim::Param::Kind::kDouble: {
+      double v = 0;
+      if (!sim::ParseFiniteDouble(shown, &v)) v = p.value;
+      // The declared slider range lies inside the validity; a file value outside the slider
+      // widens it (still valid: the range between two valid values is valid).
+      double lo = std::min(p.slider_min(), v), hi = std::max(p.slider_max(), v);
+      const double k = as_deg ? kDegPerRad : 1.0;
+      if (!SliderFits(lo * k, hi * k)) {
+        // A value beyond any slider (an unbounded tunable edited to 1e308): a text field.
+        const std::string typed = ValueField(sim::FormatDouble(v * k));
+        double t = 0;
+        if (!typed.empty())
+          out = as_deg && sim::ParseFiniteDouble(typed, &t) ? sim::FormatDouble(t / k) : typed;
+        break;
+      }
+      ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp;
+      if (p.tune.log_scale && lo > 0) flags |= ImGuiSliderFlags_Logarithmic;
+      double shown_v = v * k, shown_lo = lo * k, shown_hi = hi * k;
+      const bool changed = ImGui::SliderScalar("##v", ImGuiDataType_Double, &shown_v, &shown_lo,
+                                               &shown_hi, as_deg ? "%.2f°" : "%.4g", flags);
+      if (changed && std::isfinite(shown_v))
+        out = sim::FormatDouble(std::clamp(shown_v / k, lo, hi));
+      break;
+    }
+    case sim::Param::Kind::kInt: {
+      long long parsed = 0;
+      const long long v = sim::ParseInteger(shown, -2147483647LL, 2147483647LL, &parsed)
+                              ? parsed
+                              : static_cast<long long>(p.value);
+      const long long lo = std::min(static_cast<long long>(std::max(p.slider_min(), -1e9)), v);
+      const long long hi = std::max(static_cast<long long>(std::min(p.slider_max(), 1e9)), v);
+      // ImGui's integer slider asserts beyond half the int range: wider ones are a text field.
+      if (lo < -kIntSliderLimit || hi > kIntSliderLimit || lo >= hi) {
+        out = ValueField(std::to_string(v));
+        break;
+      }
+      int iv = static_cast<int>(v);
+      if (ImGui::SliderInt("##v", &iv, static_cast<int>(lo), static_cast<int>(hi), "%d",
+                           ImGuiSliderFlags_AlwaysClamp))
+        out = std::to_string(std::clamp<long long>(iv, lo, hi));
+      break;
+    }
+    case sim::Param::Kind::kBool: {
+      bool v = shown == "true";
+      if (ImGui::Checkbox("##v", &v)) out = v ? "true" : "false";
+      break;
+    }
+    case sim::Param::Kind::kChoice: {
+      if (ImGui::BeginCombo("##v", shown.c_str())) {
+        for (const auto& c : p.choices)
+          if (ImGui::Selectable(c.c_str(), c == shown) && c != shown) out = c;
+        ImGui::EndCombo();
+      }
+      break;
+    }
+  }
+  in.held = ImGui::IsItemActive();
+  if (!refusal.empty()) ImGui::PopStyleColor();
+  // Marks: always the same width, whatever they show.
+  ImGui::TableSetColumnIndex(2);
+  if (marks.edited) {
+    if (ImGui::SmallButton("↺")) in.revert = true;
+    if (ImGui::IsItemHovered())
+      SafeTooltip("revert to the file's value " + marks.loaded);
+  } else {
+    ImGui::Dummy(ImVec2(ImGui::GetFontSize() + 4, 1));
+  }
+  if (marks.waiting) {
+    ImGui::SameLine(0, 2);
+    ImGui::TextColored(ImVec4(0.8f, 0.45f, 0.0f, 1.0f), "↻");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("changed: applies on reset (r)");
+  }
+  ImGui::PopID();
+  in.value = out;
+  return in;
+}
+
+}  // namespace
+
+void AppUi::DrawParamSection() {
+  const auto& params = session_->params().all();
+  const auto actions = session_->exp().Actions();
+  // Groups in order of first appearance; within a head group, sub-groups likewise. One pass
+  // over the parameters (a thousand robots declare tens of thousands in thousands of groups).
+  std::vector<std::string> heads;
+  std::unordered_map<std::string, std::vector<std::string>> tails;
+  std::unordered_set<std::string> seen;
+  std::unordered_map<std::string, std::vector<const sim::Param*>> members;
+  auto note_group = [&](const std::string& g) {
+    if (!seen.insert(g).second) return;
+    const std::string h = Head(g), t = Tail(g);
+    const auto [it, fresh] = tails.try_emplace(h);
+    if (fresh) heads.push_back(h);
+    if (std::find(it->second.begin(), it->second.end(), t) == it->second.end()) it->second.push_back(t);
+  };
+  for (const auto& p : params) {
+    note_group(p.tune.group);
+    members[p.tune.group].push_back(&p);
+  }
+  for (const auto& a : actions) note_group(a.group);
+  struct Asked {
+    std::string key, value;
+    bool held;
+  };
+  std::vector<Asked> edits;
+  std::vector<std::string> reverts;
+  std::vector<std::string> run_actions;
+  const auto waiting = session_->waiting_for_reset();
+  for (const std::string& h : heads) {
+    const std::string header = (h.empty() ? std::string("Parameters") : Shorten(h, 120)) + "###grp_" + h;
+    // The palette asked for a tunable: open the way to its field.
+    const sim::Param* focus = state_.focus_param.empty() ? nullptr : session_->params().Find(state_.focus_param);
+    if (focus != nullptr && Head(focus->tune.group) == h) ImGui::SetNextItemOpen(true);
+    if (!ImGui::CollapsingHeader(header.c_str(), ImGuiTreeNodeFlags_DefaultOpen)) continue;
+    // Sub-groups start open unless there are many (one per robot of a swarm).
+    const auto& subgroups = tails[h];
+    const ImGuiTreeNodeFlags node_flags =
+        subgroups.size() <= kOpenSubgroups ? ImGuiTreeNodeFlags_DefaultOpen : 0;
+    for (const std::string& t : subgroups) {
+      const std::string group = t.empty() ? h : h + "/" + t;
+      bool open = true;
+      if (!t.empty() && focus != nullptr && focus->tune.group == group) ImGui::SetNextItemOpen(true);
+      if (!t.empty()) open = ImGui::TreeNodeEx((Shorten(t, 120) + "##" + group).c_str(), node_flags);
+      if (!open) continue;
+      const auto in_group = members.find(group);
+      if (in_group != members.end() &&
+          ImGui::BeginTable(("##tbl" + group).c_str(), 3, ImGuiTableFlags_SizingStretchProp)) {
+        ImGui::TableSetupColumn("label", ImGuiTableColumnFlags_WidthStretch, 0.45f);
+        ImGui::TableSetupColumn("value", ImGuiTableColumnFlags_WidthStretch, 0.55f);
+        ImGui::TableSetupColumn("marks", ImGuiTableColumnFlags_WidthFixed,
+                                2 * ImGui::GetFontSize() + 12);
+        for (const sim::Param* pp : in_group->second) {
+          const sim::Param& p = *pp;
+          const auto w = waiting.find(p.key);
+          RowMarks marks;
+          marks.waiting = w != waiting.end();
+          marks.edited = session_->IsEdited(p.key);
+          marks.loaded = session_->LoadedValue(p.key);
+          marks.refusal = session_->refusal(p.key);
+          if (p.key == state_.focus_param) {
+            ImGui::SetScrollHereY(0.3f);
+            ImGui::SetKeyboardFocusHere();
+            state_.focus_param.clear();
+          }
+          const RowInput in =
+              ParamRow(p, marks.waiting ? w->second : p.Text(), marks, state_.settings.degrees);
+          if (!in.value.empty()) edits.push_back({p.key, in.value, in.held});
+          if (in.revert) reverts.push_back(p.key);
+        }
+        ImGui::EndTable();
+      }
+      for (const auto& a : actions) {
+        if (a.group != group) continue;
+        if (ImGui::Button(a.label.c_str())) run_actions.push_back(a.id);
+        if (!a.help.empty() && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", a.help.c_str());
+      }
+      if (!t.empty()) ImGui::TreePop();
+    }
+  }
+  // Asked for after the loop: an edit never changes the table while we iterate over it. The edits
+  // of a slider held since its last edit continue that edit (one undo step).
+  for (const Asked& e : edits) {
+    CmdEdit(e.key, e.value, e.held && state_.gesture_key == e.key);
+    if (e.held) state_.gesture_key = e.key;
+  }
+  for (const auto& key : reverts) CmdRevert(key);
+  for (const auto& id : run_actions) CmdAction(id);
+}
+
+}  // namespace formsim::app

@@ -1,0 +1,163 @@
+/// \file The world-view window of the interface: view updates (auto-fit, follow), drawing, and
+/// the mouse: wheel zoom, right/middle-drag pan, left-drag of robots and obstacles while paused.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "app/render/imgui_canvas.hpp"
+#include "app/render/long_text.hpp"
+#include "app/gui/ui.hpp"
+#include "app/render/world_view.hpp"
+
+namespace formsim::app {
+
+void AppUi::UpdateView(ImVec2 min, ImVec2 max) {
+  View& v = state_.view;
+  v.min = min, v.max = max;
+  const sim::Experiment& exp = ShownExperiment();  // the timeline's time, or the live end
+  Vec2 lo, hi;
+  exp.Bounds(lo, hi);
+  auto_fit_.set_mode(state_.whole_run ? AutoFit::Mode::kGrow : AutoFit::Mode::kTrack);
+  if (state_.fit_now) {
+    if (!state_.whole_run) auto_fit_.Reset();
+    state_.auto_fit = true;
+    state_.fit_now = false;
+    auto_fit_.Update(v, lo, hi, 1.0);
+  } else if (state_.auto_fit) {
+    auto_fit_.Update(v, lo, hi, 0.15);
+  }
+  const auto& robots = exp.world().robots();
+  if (state_.follow >= 0 && state_.follow < static_cast<int>(robots.size()))
+    v.center = robots[state_.follow]->pose().p();
+}
+
+void AppUi::TrackBounds() {
+  if (!state_.whole_run) return;
+  Vec2 lo, hi;
+  session_->exp().Bounds(lo, hi);
+  auto_fit_.Include(lo, hi);
+}
+
+void AppUi::DrawWorldMouse(const View& view) {
+  ImGuiIO& io = ImGui::GetIO();
+  const bool hovered = ImGui::IsItemHovered();
+  sim::Experiment& exp = session_->exp();
+  if (hovered && io.MouseWheel != 0) {
+    state_.view.ZoomAt(io.MousePos, std::pow(1.15, io.MouseWheel));
+    state_.auto_fit = false;
+  }
+  if (ImGui::IsItemActive() && (ImGui::IsMouseDragging(ImGuiMouseButton_Right) ||
+                                ImGui::IsMouseDragging(ImGuiMouseButton_Middle))) {
+    state_.view.Pan(io.MouseDelta);
+    state_.auto_fit = false;
+    state_.follow = -1;
+  }
+  // The formation editor takes left clicks while it is on.
+  if (EditorMouse(view)) {
+    state_.drag_name.clear();
+  } else if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+    // Picking: the nearest robot (or obstacle centre) within a few pixels of its outline.
+    state_.drag_name.clear();
+    const Vec2 m = view.ToWorld(io.MousePos);
+    double best = 1e300;
+    for (const auto& r : exp.world().robots()) {
+      const double reach = std::max(r->def().half_length, r->def().radius) + 8.0 / view.scale;
+      const double d = (r->pose().p() - m).Norm();
+      if (d < reach && d < best) best = d, state_.drag_name = r->name();
+    }
+    if (state_.drag_name.empty()) {
+      for (const auto& o : exp.world().obstacles()) {
+        if (o.shape == sim::ObstacleDef::Shape::kWall) continue;
+        const double reach =
+            (o.shape == sim::ObstacleDef::Shape::kCircle ? o.radius
+                                                         : std::max(o.half_x, o.half_y)) +
+            4.0 / view.scale;
+        const double d = (o.pose.p() - m).Norm();
+        if (d < reach && d < best) best = d, state_.drag_name = o.name;
+      }
+    }
+    if (!state_.drag_name.empty() && state_.playing)
+      SetStatus("pause (space) to drag " + state_.drag_name);
+  }
+  if (!state_.drag_name.empty() && ImGui::IsMouseDown(ImGuiMouseButton_Left) && !state_.playing &&
+      ImGui::IsMouseDragging(ImGuiMouseButton_Left, 2.0f)) {
+    const Vec2 p = view.ToWorld(io.MousePos);
+    session_->Move(state_.drag_name, p.x, p.y);
+    SetStatus("moved " + state_.drag_name);
+  }
+  if (ImGui::IsMouseReleased(ImGuiMouseButton_Left)) state_.drag_name.clear();
+  if (hovered) {
+    const Vec2 m = view.ToWorld(io.MousePos);
+    char buf[64];
+    std::snprintf(buf, sizeof(buf), "x %.3f m, y %.3f m", m.x, m.y);
+    ImGui::GetWindowDrawList()->AddText(ImVec2(view.min.x + 44, view.max.y - 42),
+                                        ToImColor(GetTheme(state_.theme).coordinates), buf);
+  }
+}
+
+void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool interactive) {
+  ImGui::SetNextWindowPos(pos);
+  ImGui::SetNextWindowSize(size);
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
+  const std::string title = Shorten(session_->exp().setup().name, 200) + "###world";
+  ImGui::Begin(title.c_str(), nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse |
+                   ImGuiWindowFlags_NoBackground);  // the world view paints it
+  const ImVec2 min = ImGui::GetCursorScreenPos();
+  const ImVec2 avail = ImGui::GetContentRegionAvail();
+  // The timeline takes a strip at the bottom.
+  const float strip = ImGui::GetFrameHeight() + 8;
+  const ImVec2 max(min.x + std::max(avail.x, 10.0f), min.y + std::max(avail.y - strip, 10.0f));
+  UpdateView(min, max);
+  ImGui::InvisibleButton("world", ImVec2(max.x - min.x, max.y - min.y),
+                         ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
+                             ImGuiButtonFlags_MouseButtonMiddle);
+  WorldViewOptions opt;
+  opt.grid = state_.grid;
+  opt.coordinates = state_.coordinates;
+  opt.scene_overlays = &state_.overlays;
+  opt.legend = state_.legend;
+  opt.degrees = state_.settings.degrees;
+  for (const auto& p : pins_)
+    if (p->ready())
+      opt.overlays.push_back({p->exp.get(), PinLabel(*p), GetTheme(state_.theme).text});
+  const sim::Experiment& shown = ShownExperiment();
+  if (&shown != &session_->exp()) {
+    char note[64];
+    std::snprintf(note, sizeof note, "(timeline; live end %.2f s)", session_->exp().time());
+    opt.time_note = note;
+  }
+  ImGuiCanvas canvas(ImGui::GetWindowDrawList(), fonts);
+  DrawWorldView(canvas, state_.view, shown, GetTheme(state_.theme), opt);
+  // The editor's picks: a ring around each robot picked so far (and the slot being dragged).
+  for (const auto& r : shown.world().robots()) {
+    const bool picked = std::find(state_.edit_picks.begin(), state_.edit_picks.end(), r->name()) !=
+                            state_.edit_picks.end() ||
+                        r->name() == state_.slot_drag;
+    if (!picked) continue;
+    const ImVec2 c = state_.view.ToScreen(r->pose().p());
+    const float rad = static_cast<float>(std::max(r->def().half_length, r->def().radius) * state_.view.scale) + 8;
+    ImGui::GetWindowDrawList()->AddCircle(c, rad, ToImColor({0.15f, 0.45f, 0.9f, 1}), 32, 3.0f);
+  }
+  // A refused change is said over the world view too (presentation mode has no panels).
+  constexpr double kRefusalSeconds = 10.0;
+  if (state_.status_is_error && !state_.status.empty() &&
+      ImGui::GetTime() - state_.status_time < kRefusalSeconds) {
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const float wrap = std::max(100.0f, max.x - min.x - 40);
+    const ImVec2 ext = ImGui::CalcTextSize(state_.status.c_str(), nullptr, false, wrap);
+    const ImVec2 at(min.x + 12, min.y + 60);
+    dl->AddRectFilled(ImVec2(at.x - 6, at.y - 4), ImVec2(at.x + ext.x + 6, at.y + ext.y + 4),
+                      ToImColor({1.0f, 0.93f, 0.93f, 0.95f}), 4.0f);
+    dl->AddText(nullptr, 0.0f, at, ToImColor({0.75f, 0.05f, 0.05f, 1}), state_.status.c_str(),
+                nullptr, wrap);
+  }
+  // Drags move the live run's bodies: not while the timeline shows another time.
+  if (interactive && &shown == &session_->exp()) DrawWorldMouse(state_.view);
+  DrawTimeline(ImVec2(min.x, max.y), ImVec2(max.x, max.y + strip));
+  ImGui::End();
+  ImGui::PopStyleVar();
+}
+
+}  // namespace formsim::app

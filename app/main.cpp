@@ -1,6 +1,0 @@
-/// formsim: command-line entry point (run, list, gui).
-#include "app/cli.hpp"
-
-int main(int argc, char** argv) {
-  return formsim::app::Main(argc, argv);
-}

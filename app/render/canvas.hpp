@@ -1,0 +1,73 @@
+#pragma once
+/// \file The one drawing interface of the world view and the plot widget: lines, polylines,
+/// filled shapes, text and clipping in logical pixels (y down). ImGuiCanvas draws into an ImGui
+/// draw list (the window, OSMesa frames and PNG figures); VectorCanvas records the same calls
+/// for SVG and PDF. Figure code is written once, against this.
+
+#include <imgui.h>
+
+#include <array>
+#include <string>
+
+#include "app/render/fonts.hpp"
+#include "sim/core/draw.hpp"
+
+namespace formsim::app {
+
+/// A dash pattern in pixels: on, off, on, off... (`count` entries; 0 = solid line).
+struct LineDash {
+  std::array<float, 4> lengths{};
+  int count = 0;
+  bool solid() const { return count == 0; }
+  static LineDash Solid() { return {}; }
+  static LineDash Dashes(float on, float off) { return {{on, off, 0, 0}, 2}; }
+  static LineDash DashDot(float on, float gap, float dot) { return {{on, gap, dot, gap}, 4}; }
+};
+
+/// How a line is drawn.
+struct Stroke {
+  Stroke(sim::Color c, float w = 1.0f, LineDash d = LineDash::Solid())
+      : color(c), width(w), dash(d) {}
+  sim::Color color;
+  float width;
+  LineDash dash;
+};
+
+class Canvas {
+ public:
+  virtual ~Canvas() = default;
+
+  /// Axis-aligned rectangle filled, corners rounded by `rounding` pixels.
+  virtual void FillRect(ImVec2 min, ImVec2 max, sim::Color color, float rounding = 0) = 0;
+  /// Rectangle outline drawn inside [min, max].
+  virtual void StrokeRect(ImVec2 min, ImVec2 max, sim::Color color, float width,
+                          float rounding = 0) = 0;
+  /// Open (or `closed`) polyline of `n` points.
+  virtual void Polyline(const ImVec2* pts, int n, const Stroke& stroke, bool closed = false) = 0;
+  /// Simple polygon (convex or not) filled.
+  virtual void FillPolygon(const ImVec2* pts, int n, sim::Color color) = 0;
+  virtual void FillCircle(ImVec2 center, float radius, sim::Color color) = 0;
+  virtual void StrokeCircle(ImVec2 center, float radius, sim::Color color, float width) = 0;
+  /// Text with the top-left corner of its line box at `pos` (ImGui's convention).
+  virtual void Text(ImVec2 pos, FontRole font, sim::Color color, const std::string& text) = 0;
+  /// Text rotated 90° counter-clockwise (reads bottom to top), centred on `center`: the usual
+  /// y-axis label.
+  virtual void TextVertical(ImVec2 center, FontRole font, sim::Color color,
+                            const std::string& text) = 0;
+  /// Width and line height of `text` in `font`, logical pixels.
+  virtual ImVec2 TextSize(FontRole font, const std::string& text) const = 0;
+  /// Restricts drawing to [min, max] (intersected with the current clip) until PopClip.
+  virtual void PushClip(ImVec2 min, ImVec2 max) = 0;
+  virtual void PopClip() = 0;
+  /// The rectangle drawing can currently reach (the innermost clip), logical pixels.
+  virtual void Clip(ImVec2& min, ImVec2& max) const = 0;
+
+  /// The line height of a font (its size in logical pixels).
+  virtual float FontSize(FontRole font) const { return FontSpecOf(font).pixels; }
+  void Line(ImVec2 a, ImVec2 b, const Stroke& stroke) {
+    const ImVec2 p[2] = {a, b};
+    Polyline(p, 2, stroke);
+  }
+};
+
+}  // namespace formsim::app

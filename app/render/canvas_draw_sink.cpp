@@ -1,0 +1,131 @@
+#include "app/render/canvas_draw_sink.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "app/render/polyline_simplify.hpp"
+
+namespace formsim::app {
+
+void CanvasDrawSink::Legend(sim::LegendMark mark, sim::Color color, const std::string& label) {
+  for (const LegendEntry& e : legend_)
+    if (e.label == label) return;
+  legend_.push_back({mark, color, label});
+}
+
+void CanvasDrawSink::Polygon(const std::vector<Vec2>& pts, sim::Color fill, sim::Color outline) {
+  if (pts.size() < 2) return;
+  std::vector<ImVec2> s;
+  s.reserve(pts.size());
+  for (const Vec2& p : pts) s.push_back(view_.ToScreen(p));
+  const int n = static_cast<int>(s.size());
+  if (fill.a > 0) cv_.FillPolygon(s.data(), n, theme_.Ink(fill));
+  if (outline.a > 0) cv_.Polyline(s.data(), n, {theme_.Ink(outline), Width(1.5f)}, true);
+}
+
+void CanvasDrawSink::Circle(Vec2 center, double radius, sim::Color fill, sim::Color outline) {
+  const ImVec2 c = view_.ToScreen(center);
+  const float r = static_cast<float>(radius * view_.scale);
+  if (r < 0.5f) return;
+  if (fill.a > 0) cv_.FillCircle(c, r, theme_.Ink(fill));
+  if (outline.a > 0) cv_.StrokeCircle(c, r, theme_.Ink(outline), Width(1.5f));
+}
+
+void CanvasDrawSink::Segment(Vec2 a, Vec2 b, sim::Color color, float thickness_px) {
+  cv_.Line(view_.ToScreen(a), view_.ToScreen(b), {theme_.Ink(color), Width(thickness_px)});
+}
+
+void CanvasDrawSink::Polyline(const std::vector<Vec2>& pts, sim::Color color, float thickness_px,
+                              bool fade) {
+  if (pts.size() < 2) return;
+  // Drop points closer than a pixel to the previous kept one: long trails stay cheap.
+  std::vector<ImVec2> s;
+  s.reserve(pts.size());
+  for (const Vec2& p : pts) {
+    const ImVec2 q = view_.ToScreen(p);
+    if (!s.empty() && std::abs(q.x - s.back().x) + std::abs(q.y - s.back().y) < 1.0f &&
+        &p != &pts.back())
+      continue;
+    s.push_back(q);
+  }
+  s = SimplifyPolyline(s);
+  const sim::Color ink = theme_.Ink(color);
+  const float th = Width(thickness_px);
+  if (!fade) {
+    cv_.Polyline(s.data(), static_cast<int>(s.size()), {ink, th});
+    return;
+  }
+  // Fading trail: a few chunks of increasing opacity, each one polyline (joins stay smooth).
+  const int chunks = std::min<int>(12, static_cast<int>(s.size()) - 1);
+  for (int k = 0; k < chunks; ++k) {
+    const std::size_t i0 = s.size() * k / chunks,
+                      i1 = std::min(s.size() - 1, s.size() * (k + 1) / chunks);
+    if (i1 <= i0) continue;
+    const float alpha = ink.a * (0.08f + 0.92f * static_cast<float>(k + 1) / chunks);
+    cv_.Polyline(&s[i0], static_cast<int>(i1 - i0 + 1), {ink.WithAlpha(alpha), th});
+  }
+}
+
+void CanvasDrawSink::CovarianceEllipse(Vec2 center, double sxx, double sxy, double syy,
+                                       double n_sigma, sim::Color color) {
+  if (!std::isfinite(sxx) || !std::isfinite(sxy) || !std::isfinite(syy)) return;
+  // Eigen-decomposition of the symmetric 2x2 covariance: axes along the eigenvectors.
+  const double tr = 0.5 * (sxx + syy), det = sxx * syy - sxy * sxy;
+  const double disc = std::sqrt(std::max(0.0, tr * tr - det));
+  const double l1 = std::max(0.0, tr + disc), l2 = std::max(0.0, tr - disc);
+  const double angle = 0.5 * std::atan2(2 * sxy, sxx - syy);
+  const double a = n_sigma * std::sqrt(l1), b = n_sigma * std::sqrt(l2);
+  const double ca = std::cos(angle), sa = std::sin(angle);
+  constexpr int kN = 48;
+  ImVec2 pts[kN];
+  for (int i = 0; i < kN; ++i) {
+    const double t = 2 * M_PI * i / kN, ex = a * std::cos(t), ey = b * std::sin(t);
+    pts[i] = view_.ToScreen({center.x + ca * ex - sa * ey, center.y + sa * ex + ca * ey});
+  }
+  const sim::Color ink = theme_.Ink(color);
+  cv_.FillPolygon(pts, kN, ink.WithAlpha(ink.a * 0.15f));
+  cv_.Polyline(pts, kN, {ink, Width(1.2f)}, true);
+}
+
+void CanvasDrawSink::Cross(Vec2 p, double size, sim::Color color) {
+  const double h = 0.5 * size;
+  const Stroke st{theme_.Ink(color), Width(1.5f)};
+  cv_.Line(view_.ToScreen({p.x - h, p.y - h}), view_.ToScreen({p.x + h, p.y + h}), st);
+  cv_.Line(view_.ToScreen({p.x - h, p.y + h}), view_.ToScreen({p.x + h, p.y - h}), st);
+}
+
+void CanvasDrawSink::Text(Vec2 p, const std::string& text, sim::Color color, float dx_px,
+                          float dy_px) {
+  const ImVec2 s = view_.ToScreen(p);
+  const ImVec2 pos(std::round(s.x + dx_px), std::round(s.y + dy_px));
+  const ImVec2 ext = cv_.TextSize(font_, text);
+  const ImVec4 box(pos.x - 2, pos.y - 1, pos.x + ext.x + 2, pos.y + ext.y + 1);
+  // Off screen: neither drawn nor kept for the overlap test (which then stays short).
+  ImVec2 clip_min, clip_max;
+  cv_.Clip(clip_min, clip_max);
+  if (box.z < clip_min.x || box.x > clip_max.x || box.w < clip_min.y || box.y > clip_max.y) return;
+  for (const ImVec4& o : labels_)
+    if (box.x < o.z && o.x < box.z && box.y < o.w && o.y < box.w) return;
+  labels_.push_back(box);
+  // A translucent backdrop keeps labels readable over grid lines and trails.
+  cv_.FillRect(ImVec2(box.x, box.y), ImVec2(box.z, box.w), theme_.backdrop.WithAlpha(0.67f), 2.0f);
+  cv_.Text(pos, font_, theme_.Ink(color), text);
+}
+
+void CanvasDrawSink::ViewBox(Vec2& lo, Vec2& hi) const {
+  // The part of the view rectangle the canvas can reach, in world coordinates (y up).
+  ImVec2 a, b;
+  cv_.Clip(a, b);
+  const Vec2 p = view_.ToWorld(a), q = view_.ToWorld(b);
+  lo = {std::min(p.x, q.x), std::min(p.y, q.y)};
+  hi = {std::max(p.x, q.x), std::max(p.y, q.y)};
+}
+
+void CanvasDrawSink::Flash(Vec2 p, double radius, sim::Color color, float age) {
+  age = std::clamp(age, 0.0f, 1.0f);
+  const float r = static_cast<float>(radius * view_.scale) * (1.0f + 0.5f * age) + 4.0f;
+  const sim::Color ink = theme_.Ink(color);
+  cv_.StrokeCircle(view_.ToScreen(p), r, ink.WithAlpha(ink.a * (1.0f - age)), Width(3.0f));
+}
+
+}  // namespace formsim::app

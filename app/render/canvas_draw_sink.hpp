@@ -1,0 +1,66 @@
+#pragma once
+/// \file sim::DrawSink implemented on a Canvas through a View: the one drawing path of the world
+/// view, in the GUI window, headless frames, and SVG / PDF snapshots alike. The theme decides
+/// how the experiment's colours are shown.
+
+#include <set>
+#include <string>
+#include <vector>
+
+#include "app/render/canvas.hpp"
+#include "app/render/theme.hpp"
+#include "app/render/view.hpp"
+#include "sim/core/draw.hpp"
+
+namespace formsim::app {
+
+class CanvasDrawSink : public sim::DrawSink {
+ public:
+  /// Text() labels use `label_font`; every line thickness is multiplied by the theme's scale.
+  CanvasDrawSink(Canvas& canvas, const View& view, const Theme& theme,
+                 FontRole label_font = FontRole::kSmall)
+      : cv_(canvas), view_(view), theme_(theme), font_(label_font) {}
+
+  void Polygon(const std::vector<Vec2>& pts, sim::Color fill, sim::Color outline) override;
+  void Circle(Vec2 center, double radius, sim::Color fill, sim::Color outline) override;
+  void Segment(Vec2 a, Vec2 b, sim::Color color, float thickness_px) override;
+  void Polyline(const std::vector<Vec2>& pts, sim::Color color, float thickness_px,
+                bool fade) override;
+  void CovarianceEllipse(Vec2 center, double sxx, double sxy, double syy, double n_sigma,
+                         sim::Color color) override;
+  void Cross(Vec2 p, double size, sim::Color color) override;
+  void Text(Vec2 p, const std::string& text, sim::Color color, float dx_px, float dy_px) override;
+  void Flash(Vec2 p, double radius, sim::Color color, float age) override;
+  bool Shows(const std::string& name) const override {
+    return overlays_ == nullptr ? sim::OverlayOnByDefault(name) : overlays_->count(name) > 0;
+  }
+  void Legend(sim::LegendMark mark, sim::Color color, const std::string& label) override;
+  /// The overlays to draw (nullptr: the defaults); the set must outlive the sink.
+  void SetOverlays(const std::set<std::string>* overlays) { overlays_ = overlays; }
+  bool AnglesInDegrees() const override { return degrees_; }
+  void SetAnglesInDegrees(bool degrees) { degrees_ = degrees; }
+  /// One entry per label the scene named, in the order first named.
+  struct LegendEntry {
+    sim::LegendMark mark;
+    sim::Color color;
+    std::string label;
+  };
+  const std::vector<LegendEntry>& legend() const { return legend_; }
+  double PixelsPerMetre() const override { return view_.scale; }
+  void ViewBox(Vec2& lo, Vec2& hi) const override;
+
+ private:
+  float Width(float px) const { return px * theme_.line_scale; }
+  /// Labels already drawn this frame: a label that would overlap one is skipped (zoomed-out
+  /// views of many robots stay readable instead of turning into a smudge of text).
+  std::vector<ImVec4> labels_;
+  const std::set<std::string>* overlays_ = nullptr;
+  bool degrees_ = true;
+  std::vector<LegendEntry> legend_;
+  Canvas& cv_;
+  const View& view_;
+  const Theme& theme_;
+  FontRole font_;
+};
+
+}  // namespace formsim::app

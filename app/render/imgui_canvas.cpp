@@ -1,0 +1,206 @@
+#include "app/render/imgui_canvas.hpp"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <vector>
+
+namespace formsim::app {
+namespace {
+
+double SignedArea(const ImVec2* p, int n) {
+  double a = 0;
+  for (int i = 0, j = n - 1; i < n; j = i++)
+    a += static_cast<double>(p[j].x) * p[i].y - static_cast<double>(p[i].x) * p[j].y;
+  return 0.5 * a;
+}
+
+bool IsConvex(const ImVec2* p, int n) {
+  int sign = 0;
+  for (int i = 0; i < n; ++i) {
+    const ImVec2 &a = p[i], &b = p[(i + 1) % n], &c = p[(i + 2) % n];
+    const double cross =
+        static_cast<double>(b.x - a.x) * (c.y - b.y) - static_cast<double>(b.y - a.y) * (c.x - b.x);
+    if (std::abs(cross) < 1e-9) continue;
+    const int s = cross > 0 ? 1 : -1;
+    if (sign != 0 && s != sign) return false;
+    sign = s;
+  }
+  return true;
+}
+
+bool PointInTriangle(ImVec2 p, ImVec2 a, ImVec2 b, ImVec2 c) {
+  auto side = [](ImVec2 p1, ImVec2 p2, ImVec2 p3) {
+    return (p1.x - p3.x) * (p2.y - p3.y) - (p2.x - p3.x) * (p1.y - p3.y);
+  };
+  const float d1 = side(p, a, b), d2 = side(p, b, c), d3 = side(p, c, a);
+  const bool neg = d1 < 0 || d2 < 0 || d3<0, pos = d1> 0 || d2 > 0 || d3 > 0;
+  return !(neg && pos);
+}
+
+}  // namespace
+
+ImGuiCanvas::ImGuiCanvas(ImDrawList* list, const Fonts& fonts) : dl_(list), fonts_(fonts) {
+  // Anti-aliasing fringes of one device pixel, however much the atlas (and frame) is scaled.
+  dl_->_FringeScale = 1.0f / fonts_.scale;
+}
+
+void ImGuiCanvas::FillRect(ImVec2 min, ImVec2 max, sim::Color color, float rounding) {
+  dl_->AddRectFilled(min, max, ToImColor(color), rounding);
+}
+
+void ImGuiCanvas::StrokeRect(ImVec2 min, ImVec2 max, sim::Color color, float width,
+                             float rounding) {
+  dl_->AddRect(min, max, ToImColor(color), rounding, 0, width);
+}
+
+// The dash pattern runs on along the whole polyline (it does not restart at each vertex); each
+// dash is one polyline, so dashes that turn a corner keep a smooth join.
+void ImGuiCanvas::DashedPolyline(const ImVec2* pts, int n, ImU32 col, float width,
+                                 const LineDash& dash) {
+  float period = 0;
+  for (int k = 0; k < dash.count; ++k) period += dash.lengths[k];
+  if (!(period > 0.5f)) {
+    dl_->AddPolyline(pts, n, col, ImDrawFlags_None, width);
+    return;
+  }
+  int k = 0;                     // current entry of the pattern (even: drawing)
+  float left = dash.lengths[0];  // length left in it
+  std::vector<ImVec2> run;
+  auto flush = [&]() {
+    if (run.size() > 1) dl_->AddPolyline(run.data(), static_cast<int>(run.size()), col, 0, width);
+    run.clear();
+  };
+  for (int i = 1; i < n; ++i) {
+    ImVec2 a = pts[i - 1];
+    const ImVec2 b = pts[i];
+    float len = std::hypot(b.x - a.x, b.y - a.y);
+    while (len > 0) {
+      const float step = std::min(left, len);
+      const ImVec2 c(a.x + (b.x - a.x) * step / len, a.y + (b.y - a.y) * step / len);
+      const bool drawing = (k % 2) == 0;
+      if (drawing) {
+        if (run.empty()) run.push_back(a);
+        run.push_back(c);
+      }
+      left -= step;
+      len -= step;
+      a = c;
+      if (left <= 1e-4f) {
+        if (drawing) flush();
+        k = (k + 1) % dash.count;
+        left = dash.lengths[k];
+      }
+    }
+  }
+  flush();
+}
+
+void ImGuiCanvas::Polyline(const ImVec2* pts, int n, const Stroke& stroke, bool closed) {
+  if (n < 2) return;
+  const ImU32 col = ToImColor(stroke.color);
+  if (stroke.dash.solid()) {
+    dl_->AddPolyline(pts, n, col, closed ? ImDrawFlags_Closed : ImDrawFlags_None, stroke.width);
+    return;
+  }
+  if (!closed) {
+    DashedPolyline(pts, n, col, stroke.width, stroke.dash);
+    return;
+  }
+  std::vector<ImVec2> loop(pts, pts + n);
+  loop.push_back(pts[0]);
+  DashedPolyline(loop.data(), static_cast<int>(loop.size()), col, stroke.width, stroke.dash);
+}
+
+// Concave polygons (floor patches may be any simple polygon) are ear-clipped into triangles;
+// convex ones go to ImGui's anti-aliased convex fill.
+void ImGuiCanvas::FillPolygon(const ImVec2* pts, int n, sim::Color color) {
+  if (n < 3) return;
+  const ImU32 col = ToImColor(color);
+  if (IsConvex(pts, n)) {
+    dl_->AddConvexPolyFilled(pts, n, col);
+    return;
+  }
+  std::vector<ImVec2> p(pts, pts + n);
+  if (SignedArea(p.data(), n) < 0) std::reverse(p.begin(), p.end());  // counter-clockwise, y up
+  std::vector<int> idx(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) idx[i] = static_cast<int>(i);
+  int guard = 0;
+  while (idx.size() > 3 && guard++ < 10000) {
+    bool clipped = false;
+    for (std::size_t i = 0; i < idx.size(); ++i) {
+      const ImVec2 a = p[idx[(i + idx.size() - 1) % idx.size()]], b = p[idx[i]],
+                   c = p[idx[(i + 1) % idx.size()]];
+      const float cross = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+      if (cross <= 0) continue;  // reflex vertex
+      bool ear = true;
+      for (int k : idx) {
+        const ImVec2 q = p[k];
+        if ((q.x == a.x && q.y == a.y) || (q.x == b.x && q.y == b.y) || (q.x == c.x && q.y == c.y))
+          continue;
+        if (PointInTriangle(q, a, b, c)) {
+          ear = false;
+          break;
+        }
+      }
+      if (!ear) continue;
+      dl_->AddTriangleFilled(a, b, c, col);
+      idx.erase(idx.begin() + static_cast<long>(i));
+      clipped = true;
+      break;
+    }
+    if (!clipped) break;  // degenerate input: draw what is left as a fan
+  }
+  for (std::size_t i = 1; i + 1 < idx.size(); ++i)
+    dl_->AddTriangleFilled(p[idx[0]], p[idx[i]], p[idx[i + 1]], col);
+}
+
+void ImGuiCanvas::FillCircle(ImVec2 center, float radius, sim::Color color) {
+  // num_segments 0: ImGui picks enough segments for a smooth circle at this radius.
+  dl_->AddCircleFilled(center, radius, ToImColor(color), radius < 4.0f ? 8 : 0);
+}
+
+void ImGuiCanvas::StrokeCircle(ImVec2 center, float radius, sim::Color color, float width) {
+  dl_->AddCircle(center, radius, ToImColor(color), 0, width);
+}
+
+float ImGuiCanvas::FontSize(FontRole font) const {
+  return fonts_.Get(font)->FontSize / fonts_.scale;
+}
+
+ImVec2 ImGuiCanvas::TextSize(FontRole font, const std::string& text) const {
+  ImFont* f = fonts_.Get(font);
+  return f->CalcTextSizeA(f->FontSize / fonts_.scale, FLT_MAX, 0.0f, text.c_str());
+}
+
+void ImGuiCanvas::Text(ImVec2 pos, FontRole font, sim::Color color, const std::string& text) {
+  ImFont* f = fonts_.Get(font);
+  // Whole device pixels: glyphs are sharp.
+  const float s = fonts_.scale;
+  dl_->AddText(f, f->FontSize / s, ImVec2(std::round(pos.x * s) / s, std::round(pos.y * s) / s),
+               ToImColor(color), text.c_str());
+}
+
+// ImGui has no rotated text, so the glyph vertices are rotated after AddText.
+void ImGuiCanvas::TextVertical(ImVec2 center, FontRole font, sim::Color color,
+                               const std::string& text) {
+  const ImVec2 ext = TextSize(font, text);
+  dl_->PushClipRect(ImVec2(-1e5f, -1e5f), ImVec2(1e5f, 1e5f), false);  // no culling before rotating
+  const int v0 = dl_->VtxBuffer.Size;
+  Text(ImVec2(center.x - ext.x / 2, center.y - ext.y / 2), font, color, text);
+  for (int i = v0; i < dl_->VtxBuffer.Size; ++i) {
+    const ImVec2 p = dl_->VtxBuffer[i].pos;
+    dl_->VtxBuffer[i].pos = ImVec2(center.x + (p.y - center.y), center.y - (p.x - center.x));
+  }
+  dl_->PopClipRect();
+}
+
+void ImGuiCanvas::PushClip(ImVec2 min, ImVec2 max) {
+  dl_->PushClipRect(min, max, true);
+}
+
+void ImGuiCanvas::PopClip() {
+  dl_->PopClipRect();
+}
+
+}  // namespace formsim::app

@@ -1,0 +1,47 @@
+#pragma once
+/// \file Canvas over an ImGui draw list: what the GUI window, headless frames and PNG figures are
+/// drawn with. Dashes are cut into segments, concave polygons ear-clipped, vertical text rotated
+/// vertex by vertex (ImGui has none of these).
+
+#include <imgui.h>
+
+#include "app/render/canvas.hpp"
+#include "app/render/fonts.hpp"
+
+namespace formsim::app {
+
+inline ImU32 ToImColor(sim::Color c) {
+  return ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, c.a));
+}
+
+class ImGuiCanvas : public Canvas {
+ public:
+  /// Draws into `list` with `fonts` (whose `scale` says how much larger than logical size the
+  /// atlas is; text is drawn at logical size). `list` must outlive the canvas.
+  ImGuiCanvas(ImDrawList* list, const Fonts& fonts);
+
+  void FillRect(ImVec2 min, ImVec2 max, sim::Color color, float rounding) override;
+  void StrokeRect(ImVec2 min, ImVec2 max, sim::Color color, float width, float rounding) override;
+  void Polyline(const ImVec2* pts, int n, const Stroke& stroke, bool closed) override;
+  void FillPolygon(const ImVec2* pts, int n, sim::Color color) override;
+  void FillCircle(ImVec2 center, float radius, sim::Color color) override;
+  void StrokeCircle(ImVec2 center, float radius, sim::Color color, float width) override;
+  void Text(ImVec2 pos, FontRole font, sim::Color color, const std::string& text) override;
+  void TextVertical(ImVec2 center, FontRole font, sim::Color color,
+                    const std::string& text) override;
+  ImVec2 TextSize(FontRole font, const std::string& text) const override;
+  float FontSize(FontRole font) const override;
+  void PushClip(ImVec2 min, ImVec2 max) override;
+  void PopClip() override;
+  void Clip(ImVec2& min, ImVec2& max) const override {
+    min = dl_->GetClipRectMin();
+    max = dl_->GetClipRectMax();
+  }
+
+ private:
+  void DashedPolyline(const ImVec2* pts, int n, ImU32 col, float width, const LineDash& dash);
+  ImDrawList* dl_;
+  const Fonts& fonts_;
+};
+
+}  // namespace formsim::app

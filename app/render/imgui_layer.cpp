@@ -1,0 +1,74 @@
+#include "app/render/imgui_layer.hpp"
+
+#include <imgui.h>
+#include <imgui_impl_opengl3.h>
+
+#include <stdexcept>
+
+#include "app/render/gl_api.hpp"
+
+namespace formsim::app {
+
+ImGuiLayer::ImGuiLayer(const Theme& theme) {
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;  // layout is computed, not remembered: same pictures every run
+  io.LogFilename = nullptr;
+  fonts_ = LoadFonts();
+
+  ImGuiStyle& style = ImGui::GetStyle();
+  style.WindowRounding = 0.0f;
+  style.FrameRounding = 3.0f;
+  style.GrabRounding = 3.0f;
+  style.GrabMinSize = 6.0f;  // thin handles of continuous sliders: they hide no digit
+  style.WindowBorderSize = 1.0f;
+  style.ItemSpacing = ImVec2(8, 5);
+  ApplyImGuiTheme(theme);
+
+  if (!ImGui_ImplOpenGL3_Init("#version 330 core"))
+    throw std::runtime_error("ImGui OpenGL3 backend failed to initialise");
+}
+
+ImGuiLayer::~ImGuiLayer() {
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui::DestroyContext();
+}
+
+void ImGuiLayer::SetFontScale(float scale) {
+  if (scale == fonts_.scale) return;
+  ImGuiIO& io = ImGui::GetIO();
+  io.Fonts->Clear();
+  fonts_ = LoadFonts(scale);
+  io.Fonts->Build();
+  ImGui_ImplOpenGL3_DestroyFontsTexture();
+  if (!ImGui_ImplOpenGL3_CreateFontsTexture())
+    throw std::runtime_error("ImGui: cannot upload the font atlas at scale " +
+                             std::to_string(scale));
+}
+
+void ImGuiLayer::SetTheme(const Theme& theme) {
+  ApplyImGuiTheme(theme);
+}
+
+void ImGuiLayer::NewHeadlessFrame(int width, int height, float dt) {
+  ImGuiIO& io = ImGui::GetIO();
+  io.DisplaySize = ImVec2(static_cast<float>(width), static_cast<float>(height));
+  io.DisplayFramebufferScale = ImVec2(fonts_.scale, fonts_.scale);
+  io.DeltaTime = dt > 0 ? dt : 1.0f / 30.0f;
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui::NewFrame();
+}
+
+void ImGuiLayer::NewFrame() {
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui::NewFrame();
+}
+
+void ImGuiLayer::Render(int fb_width, int fb_height, float r, float g, float b) {
+  ImGui::Render();
+  GlClear(fb_width, fb_height, r, g, b);
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+}  // namespace formsim::app

@@ -1,0 +1,252 @@
+#include "app/render/theme.hpp"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace formsim::app {
+namespace {
+
+constexpr sim::Color Rgb(int r, int g, int b, int a = 255) {
+  return {r / 255.0f, g / 255.0f, b / 255.0f, a / 255.0f};
+}
+
+struct Hsl {
+  float h, s, l;
+};
+
+Hsl ToHsl(sim::Color c) {
+  const float mx = std::max({c.r, c.g, c.b}), mn = std::min({c.r, c.g, c.b});
+  Hsl o{0, 0, 0.5f * (mx + mn)};
+  const float d = mx - mn;
+  if (d < 1e-6f) return o;
+  o.s = o.l > 0.5f ? d / (2 - mx - mn) : d / (mx + mn);
+  if (mx == c.r)
+    o.h = (c.g - c.b) / d + (c.g < c.b ? 6 : 0);
+  else if (mx == c.g)
+    o.h = (c.b - c.r) / d + 2;
+  else
+    o.h = (c.r - c.g) / d + 4;
+  o.h /= 6;
+  return o;
+}
+
+sim::Color FromHsl(Hsl in, float alpha) {
+  auto hue = [](float p, float q, float t) {
+    if (t < 0) t += 1;
+    if (t > 1) t -= 1;
+    if (t < 1.0f / 6) return p + (q - p) * 6 * t;
+    if (t < 0.5f) return q;
+    if (t < 2.0f / 3) return p + (q - p) * (2.0f / 3 - t) * 6;
+    return p;
+  };
+  if (in.s <= 0) return {in.l, in.l, in.l, alpha};
+  const float q = in.l < 0.5f ? in.l * (1 + in.s) : in.l + in.s - in.l * in.s, p = 2 * in.l - q;
+  return {hue(p, q, in.h + 1.0f / 3), hue(p, q, in.h), hue(p, q, in.h - 1.0f / 3), alpha};
+}
+
+Theme MakeLight() {
+  Theme t{};
+  t.id = ThemeId::kLight;
+  t.name = "light";
+  t.background = Rgb(250, 250, 247);
+  t.text = Rgb(20, 20, 20);
+  t.axis = Rgb(40, 40, 40);
+  t.grid = Rgb(222, 222, 218);
+  t.legend_fill = Rgb(255, 255, 255, 235);
+  t.legend_border = Rgb(170, 170, 170);
+  t.reference = Rgb(110, 110, 110);
+  t.marker = Rgb(200, 40, 40);
+  t.cursor = Rgb(60, 60, 60, 160);
+  t.error = Rgb(180, 30, 30);
+  t.world_minor = Rgb(236, 236, 232);
+  t.world_major = Rgb(212, 212, 206);
+  t.world_axis = Rgb(170, 170, 165);
+  t.coordinates = Rgb(120, 120, 120);
+  t.backdrop = Rgb(255, 255, 255);
+  return t;
+}
+
+Theme MakeDark() {
+  Theme t{};
+  t.id = ThemeId::kDark;
+  t.name = "dark";
+  t.dark = true;
+  t.background = Rgb(30, 32, 36);
+  t.text = Rgb(228, 228, 228);
+  t.axis = Rgb(200, 200, 200);
+  t.grid = Rgb(62, 64, 70);
+  t.legend_fill = Rgb(40, 42, 48, 235);
+  t.legend_border = Rgb(110, 110, 115);
+  t.reference = Rgb(160, 160, 160);
+  t.marker = Rgb(245, 100, 100);
+  t.cursor = Rgb(210, 210, 210, 160);
+  t.error = Rgb(255, 120, 120);
+  t.world_minor = Rgb(40, 42, 47);
+  t.world_major = Rgb(60, 62, 68);
+  t.world_axis = Rgb(100, 102, 110);
+  t.coordinates = Rgb(150, 150, 150);
+  t.backdrop = Rgb(30, 32, 36);
+  return t;
+}
+
+Theme MakePrint() {
+  Theme t{};
+  t.id = ThemeId::kPrint;
+  t.name = "print";
+  t.background = Rgb(255, 255, 255);
+  t.text = Rgb(0, 0, 0);
+  t.axis = Rgb(0, 0, 0);
+  t.grid = Rgb(218, 218, 218);
+  t.legend_fill = Rgb(255, 255, 255, 240);
+  t.legend_border = Rgb(100, 100, 100);
+  t.reference = Rgb(150, 150, 150);
+  t.marker = Rgb(0, 0, 0);
+  t.cursor = Rgb(60, 60, 60, 160);
+  t.error = Rgb(0, 0, 0);
+  t.world_minor = Rgb(240, 240, 240);
+  t.world_major = Rgb(210, 210, 210);
+  t.world_axis = Rgb(150, 150, 150);
+  t.coordinates = Rgb(80, 80, 80);
+  t.backdrop = Rgb(255, 255, 255);
+  return t;
+}
+
+Theme MakeHighContrast() {
+  Theme t{};
+  t.id = ThemeId::kHighContrast;
+  t.name = "high-contrast";
+  t.dark = true;
+  t.line_scale = 1.5f;
+  t.background = Rgb(0, 0, 0);
+  t.text = Rgb(255, 255, 255);
+  t.axis = Rgb(255, 255, 255);
+  t.grid = Rgb(85, 85, 85);
+  t.legend_fill = Rgb(0, 0, 0, 235);
+  t.legend_border = Rgb(255, 255, 255);
+  t.reference = Rgb(210, 210, 210);
+  t.marker = Rgb(255, 80, 80);
+  t.cursor = Rgb(255, 255, 255, 200);
+  t.error = Rgb(255, 90, 90);
+  t.world_minor = Rgb(30, 30, 30);
+  t.world_major = Rgb(75, 75, 75);
+  t.world_axis = Rgb(150, 150, 150);
+  t.coordinates = Rgb(230, 230, 230);
+  t.backdrop = Rgb(0, 0, 0);
+  return t;
+}
+
+}  // namespace
+
+// Dark themes keep hues but turn greys around (black outlines and labels become light) and
+// lift dark colours so they stand out on the dark background; print keeps only luminance.
+sim::Color Theme::Ink(sim::Color c) const {
+  switch (id) {
+    case ThemeId::kLight:
+      return c;
+    case ThemeId::kPrint: {
+      const float y = 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
+      const float g = 0.85f * y;  // a little darker: light colours stay visible on paper
+      return {g, g, g, c.a};
+    }
+    case ThemeId::kDark:
+    case ThemeId::kHighContrast: {
+      Hsl h = ToHsl(c);
+      const bool hc = id == ThemeId::kHighContrast;
+      const float grey_l = hc ? 1.0f - h.l : 0.92f - 0.8f * h.l;
+      const float colour_l = hc ? std::max(0.55f, h.l) : 0.25f + 0.75f * h.l;
+      const float w = std::clamp(h.s / 0.25f, 0.0f, 1.0f);
+      h.l = (1 - w) * grey_l + w * colour_l;
+      if (hc && w > 0) h.s = std::max(h.s, 0.9f);
+      return FromHsl(h, c.a);
+    }
+  }
+  return c;
+}
+
+SeriesLook Theme::Series(sim::Color color, int index, bool dashed) const {
+  SeriesLook look;
+  if (id != ThemeId::kPrint) {
+    look.color = Ink(color);
+    if (dashed) look.dash = LineDash::Dashes(8, 5);
+    return look;
+  }
+  // Print: told apart in greyscale by the dash pattern first, then the grey level.
+  static const float kGrey[] = {0.0f, 0.42f, 0.2f, 0.55f, 0.3f};
+  static const LineDash kDash[] = {LineDash::Solid(), LineDash::Dashes(7, 4),
+                                   LineDash::Dashes(2, 3), LineDash::DashDot(9, 3, 2),
+                                   LineDash::Dashes(14, 5)};
+  const int i = ((index % 5) + 5) % 5;
+  const float g = kGrey[i];
+  look.color = {g, g, g, color.a};
+  look.dash = kDash[i];
+  if (dashed && look.dash.solid()) look.dash = LineDash::Dashes(8, 5);
+  look.hollow_markers = (index % 2) != 0;
+  return look;
+}
+
+const Theme& GetTheme(ThemeId id) {
+  static const Theme kLight = MakeLight(), kDark = MakeDark(), kPrint = MakePrint(),
+                     kHighContrast = MakeHighContrast();
+  switch (id) {
+    case ThemeId::kLight:
+      return kLight;
+    case ThemeId::kDark:
+      return kDark;
+    case ThemeId::kPrint:
+      return kPrint;
+    case ThemeId::kHighContrast:
+      return kHighContrast;
+  }
+  return kLight;
+}
+
+const char* ThemeNames() {
+  return "light|dark|print|high-contrast";
+}
+
+ThemeId ParseTheme(const std::string& text, const std::string& flag) {
+  for (ThemeId id : {ThemeId::kLight, ThemeId::kDark, ThemeId::kPrint, ThemeId::kHighContrast})
+    if (text == GetTheme(id).name) return id;
+  throw std::runtime_error(flag + " '" + text + "': expected one of " + ThemeNames());
+}
+
+void ApplyImGuiTheme(const Theme& theme) {
+  ImGuiStyle& style = ImGui::GetStyle();
+  auto c = [](sim::Color k) { return ImVec4(k.r, k.g, k.b, k.a); };
+  if (theme.dark) {
+    ImGui::StyleColorsDark();
+  } else {
+    ImGui::StyleColorsLight();
+  }
+  switch (theme.id) {
+    case ThemeId::kLight:
+      style.Colors[ImGuiCol_WindowBg] = ImVec4(0.96f, 0.96f, 0.95f, 1.0f);
+      break;
+    case ThemeId::kPrint:
+      style.Colors[ImGuiCol_WindowBg] = ImVec4(1, 1, 1, 1);
+      style.Colors[ImGuiCol_Text] = ImVec4(0, 0, 0, 1);
+      break;
+    case ThemeId::kDark:
+      style.Colors[ImGuiCol_WindowBg] = c(theme.background);
+      break;
+    case ThemeId::kHighContrast:
+      style.Colors[ImGuiCol_WindowBg] = ImVec4(0, 0, 0, 1);
+      style.Colors[ImGuiCol_ChildBg] = ImVec4(0, 0, 0, 1);
+      style.Colors[ImGuiCol_Text] = ImVec4(1, 1, 1, 1);
+      style.Colors[ImGuiCol_TextDisabled] = ImVec4(0.8f, 0.8f, 0.8f, 1);
+      style.Colors[ImGuiCol_Border] = ImVec4(1, 1, 1, 0.8f);
+      style.Colors[ImGuiCol_FrameBg] = ImVec4(0.15f, 0.15f, 0.15f, 1);
+      style.Colors[ImGuiCol_Button] = ImVec4(0.1f, 0.3f, 0.75f, 1);
+      style.Colors[ImGuiCol_CheckMark] = ImVec4(1, 0.85f, 0.1f, 1);
+      style.Colors[ImGuiCol_SliderGrab] = ImVec4(1, 0.85f, 0.1f, 1);
+      break;
+  }
+  // Slider handles stay translucent: the value's digits, drawn over the handle, keep their
+  // contrast wherever it sits (sliders of few steps have wide handles).
+  for (ImGuiCol k : {ImGuiCol_SliderGrab, ImGuiCol_SliderGrabActive}) style.Colors[k].w = 0.35f;
+}
+
+}  // namespace formsim::app

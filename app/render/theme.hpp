@@ -1,0 +1,53 @@
+#pragma once
+/// \file Colour themes of frames, figures and the GUI (`--theme light|dark|print|high-contrast`):
+/// the backgrounds and inks of the world view and the plot widget, how an experiment's own
+/// colours are shown, and how plot series are told apart (print: dash patterns and greys).
+
+#include <string>
+
+#include "app/render/canvas.hpp"
+#include "sim/core/draw.hpp"
+
+namespace formsim::app {
+
+enum class ThemeId { kLight, kDark, kPrint, kHighContrast };
+
+/// How one plot series is drawn in a theme.
+struct SeriesLook {
+  sim::Color color;
+  LineDash dash;
+  bool hollow_markers = false;  ///< print: every other scatter has open circles
+};
+
+struct Theme {
+  ThemeId id;
+  const char* name;       ///< "light", "dark", "print", "high-contrast"
+  sim::Color background;  ///< figures and the world view
+  // Plot widget
+  sim::Color text, axis, grid, legend_fill, legend_border, reference, marker, cursor, error;
+  // World view
+  sim::Color world_minor, world_major, world_axis, coordinates, backdrop;
+  /// Multiplies line widths (high-contrast draws thicker lines).
+  float line_scale = 1.0f;
+  /// True for dark backgrounds (the GUI's ImGui style follows).
+  bool dark = false;
+
+  /// An experiment's colour (robot, trail, label) as shown on this theme's background: dark
+  /// inks become light on dark themes, print turns colours to greys.
+  sim::Color Ink(sim::Color c) const;
+  /// Colour and dash of a plot series with palette index `index` (dashed: the figure asks for a
+  /// dashed line, e.g. a reference path).
+  SeriesLook Series(sim::Color color, int index, bool dashed) const;
+};
+
+/// The theme called `id`.
+const Theme& GetTheme(ThemeId id);
+/// Parses "light", "dark", "print" or "high-contrast"; throws std::runtime_error naming `flag`.
+ThemeId ParseTheme(const std::string& text, const std::string& flag = "--theme");
+/// "light|dark|print|high-contrast", for help texts.
+const char* ThemeNames();
+
+/// Sets the current ImGui context's style colours for `theme` (the GUI panels).
+void ApplyImGuiTheme(const Theme& theme);
+
+}  // namespace formsim::app

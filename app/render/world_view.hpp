@@ -1,0 +1,55 @@
+#pragma once
+/// \file The world view: background, metre grid with coordinates, scale bar, simulated time, then
+/// everything the experiment draws through sim::DrawSink, onto any Canvas in any theme.
+
+#include <set>
+#include <string>
+
+#include "app/render/canvas.hpp"
+#include "app/render/theme.hpp"
+#include "app/render/view.hpp"
+#include "sim/core/experiment.hpp"
+
+namespace formsim::app {
+
+/// Another run drawn faded over the one in view (a pinned run), with a legend entry.
+struct WorldOverlay {
+  const sim::Experiment* exp = nullptr;
+  std::string label;  ///< "pin 1: k_l 0.15 -> 0.4"
+  sim::Color color;   ///< of its legend entry
+};
+
+struct WorldViewOptions {
+  bool grid = true;
+  bool scale_bar = true;
+  bool time_label = true;
+  bool coordinates = true;  ///< grid values along the left and bottom edges
+  std::string caption;      ///< drawn under the time (scenario name)
+  std::vector<WorldOverlay> overlays;  ///< drawn faded after the experiment, listed top right
+  std::string time_note;               ///< after the time label, e.g. "(timeline; live at 7.00 s)"
+  /// Overlays of the scene to draw (sim::Overlays() names); nullptr: the defaults.
+  const std::set<std::string>* scene_overlays = nullptr;
+  bool legend = false;  ///< a legend of every kind of mark drawn, bottom left
+  bool degrees = true;  ///< angles in the scene's labels in degrees (else radians)
+};
+
+/// The overlays on by default (sim::Overlays()).
+std::set<std::string> DefaultSceneOverlays();
+/// Applies "name,name,..." to `out` in order: a name adds an overlay, "-name" removes it, "all",
+/// "none" and "default" set them all. Returns "" or why not (an unknown name, with the known
+/// ones); `out` is then unchanged.
+std::string ParseSceneOverlays(const std::string& text, std::set<std::string>* out);
+
+/// Draws the experiment into `view`'s rectangle of `canvas` (clipped to it).
+void DrawWorldView(Canvas& canvas, const View& view, const sim::Experiment& exp, const Theme& theme,
+                   const WorldViewOptions& opt = {});
+
+/// Grid spacing in metres for a zoom: 1-2-5 steps at least `min_px` pixels apart.
+double GridStep(double pixels_per_metre, double min_px);
+
+/// Points `view` at the experiment in a `width` x `height` frame: the camera `fit` moves towards
+/// the experiment's bounds (at once when `jump`, else smoothly, as frames of a video do).
+void FrameWorldView(const sim::Experiment& exp, float width, float height, View& view, AutoFit& fit,
+                    bool jump);
+
+}  // namespace formsim::app

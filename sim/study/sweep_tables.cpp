@@ -1,0 +1,239 @@
+#include "sim/study/sweep_tables.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <stdexcept>
+#include <unordered_map>
+
+#include "sim/core/number_format.hpp"
+#include "sim/core/run_output.hpp"
+
+namespace fs = std::filesystem;
+
+namespace formsim::sim {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+void AppendNumberOrEmpty(std::string& out, double v) {
+  if (!std::isnan(v)) AppendDouble(out, v);
+}
+
+}  // namespace
+
+MetricStats StatsOf(const std::vector<double>& v) {
+  MetricStats s;
+  s.n = v.size();
+  if (v.empty()) {
+    s.mean = s.std = s.min = s.max = kNaN;
+    return s;
+  }
+  double sum = 0;
+  s.min = s.max = v[0];
+  for (double x : v) {
+    sum += x;
+    s.min = std::min(s.min, x);
+    s.max = std::max(s.max, x);
+  }
+  s.mean = sum / static_cast<double>(v.size());
+  if (v.size() < 2) {
+    s.std = kNaN;
+  } else {
+    double ss = 0;
+    for (double x : v) ss += (x - s.mean) * (x - s.mean);
+    s.std = std::sqrt(ss / static_cast<double>(v.size() - 1));
+  }
+  return s;
+}
+
+namespace {
+
+std::string Short(double v) {
+  return std::isnan(v) ? "-" : Sprintf("%.4g", v);
+}
+
+}  // namespace
+
+std::string CsvField(const std::string& s) {
+  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
+
+int SweepTables::MetricIndex(const std::string& metric) const {
+  for (std::size_t i = 0; i < metrics.size(); ++i)
+    if (metrics[i] == metric) return static_cast<int>(i);
+  return -1;
+}
+
+SweepTables BuildSweepTables(const SweepDefinition& def, std::vector<SweepRecord> records) {
+  std::sort(records.begin(), records.end(),
+            [](const SweepRecord& a, const SweepRecord& b) { return a.run < b.run; });
+  for (std::size_t i = 1; i < records.size(); ++i)
+    if (records[i].run == records[i - 1].run)
+      throw std::runtime_error("run " + std::to_string(records[i].run) + " is recorded twice");
+  SweepTables t;
+  std::unordered_map<std::string, std::size_t> column;
+  for (const SweepRecord& r : records)
+    for (const auto& m : r.metrics)
+      if (column.emplace(m.first, t.metrics.size()).second) t.metrics.push_back(m.first);
+
+  // runs.csv
+  std::string& csv = t.runs_csv;
+  csv = "run";
+  for (const SweepAxis& a : def.axes) csv += "," + CsvField(a.key);
+  csv += ",seed";
+  for (const std::string& m : t.metrics) csv += "," + CsvField(m);
+  csv += ",status,message\n";
+  std::vector<double> row(t.metrics.size());
+  for (const SweepRecord& r : records) {
+    const std::size_t p = def.PointOf(r.run);
+    csv += std::to_string(r.run);
+    for (std::size_t a = 0; a < def.axes.size(); ++a) csv += "," + CsvField(def.Value(p, a));
+    csv += "," + std::to_string(def.SeedOf(r.run));
+    std::fill(row.begin(), row.end(), kNaN);
+    std::vector<bool> has(t.metrics.size(), false);
+    for (const auto& m : r.metrics) {
+      row[column[m.first]] = m.second;
+      has[column[m.first]] = true;
+    }
+    for (std::size_t c = 0; c < row.size(); ++c) {
+      csv += ',';
+      if (has[c]) AppendDouble(csv, row[c]);  // a computed NaN stays visible as nan
+    }
+    csv += "," + CsvField(r.status) + "," + CsvField(r.message) + "\n";
+  }
+
+  // Statistics per point over its completed runs, in seed order.
+  std::vector<std::vector<std::vector<double>>> values;  // [entry][metric] -> values
+  for (const SweepRecord& r : records) {
+    const std::size_t p = def.PointOf(r.run);
+    if (t.points.empty() || t.points.back() != p) {
+      t.points.push_back(p);
+      t.runs.push_back(0);
+      t.failed.push_back(0);
+      values.emplace_back(t.metrics.size());
+    }
+    ++t.runs.back();
+    if (r.failed()) {
+      ++t.failed.back();
+      continue;
+    }
+    for (const auto& m : r.metrics)
+      if (std::isfinite(m.second)) values.back()[column[m.first]].push_back(m.second);
+  }
+  std::string& agg = t.aggregate_csv;
+  agg = "point";
+  for (const SweepAxis& a : def.axes) agg += "," + CsvField(a.key);
+  agg += ",runs,failed";
+  for (const std::string& m : t.metrics)
+    for (const char* s : {".n", ".mean", ".std", ".min", ".max"}) agg += "," + CsvField(m + s);
+  agg += "\n";
+  for (std::size_t e = 0; e < t.points.size(); ++e) {
+    const std::size_t p = t.points[e];
+    agg += std::to_string(p);
+    for (std::size_t a = 0; a < def.axes.size(); ++a) agg += "," + CsvField(def.Value(p, a));
+    agg += "," + std::to_string(t.runs[e]) + "," + std::to_string(t.failed[e]);
+    t.stats.emplace_back();
+    for (std::size_t c = 0; c < t.metrics.size(); ++c) {
+      const MetricStats s = StatsOf(values[e][c]);
+      t.stats.back().push_back(s);
+      agg += "," + std::to_string(s.n);
+      for (double v : {s.mean, s.std, s.min, s.max}) {
+        agg += ',';
+        AppendNumberOrEmpty(agg, v);
+      }
+    }
+    agg += "\n";
+  }
+  return t;
+}
+
+std::size_t DefaultMetric(const SweepTables& t) {
+  for (std::size_t m = 0; m < t.metrics.size(); ++m) {
+    double lo = kNaN, hi = kNaN;
+    for (const auto& point : t.stats) {
+      const MetricStats& s = point[m];
+      if (s.n == 0) continue;
+      for (double v :
+           t.stats.size() == 1 ? std::vector<double>{s.min, s.max} : std::vector<double>{s.mean}) {
+        if (!(v >= lo)) lo = v;
+        if (!(v <= hi)) hi = v;
+      }
+    }
+    if (lo < hi) return m;
+  }
+  return 0;
+}
+
+std::string RankingText(const SweepDefinition& def, const SweepTables& t, int m) {
+  std::vector<std::size_t> order(t.points.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  auto mean = [&](std::size_t e) { return m >= 0 ? t.stats[e][m].mean : kNaN; };
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    const double x = mean(a), y = mean(b);
+    if (std::isnan(x) || std::isnan(y)) return !std::isnan(x) && std::isnan(y);
+    return x < y;
+  });
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::string> head = {"rank"};
+  for (const SweepAxis& a : def.axes) head.push_back(a.key);
+  for (const char* h : {"runs", "failed", "n", "mean", "std", "min", "max"}) head.push_back(h);
+  rows.push_back(head);
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const std::size_t e = order[k];
+    std::vector<std::string> r = {std::to_string(k + 1)};
+    for (std::size_t a = 0; a < def.axes.size(); ++a) r.push_back(def.Value(t.points[e], a));
+    r.push_back(std::to_string(t.runs[e]));
+    r.push_back(std::to_string(t.failed[e]));
+    const MetricStats s = m >= 0 ? t.stats[e][m] : MetricStats{0, kNaN, kNaN, kNaN, kNaN};
+    r.push_back(std::to_string(s.n));
+    for (double v : {s.mean, s.std, s.min, s.max}) r.push_back(Short(v));
+    rows.push_back(r);
+  }
+  std::vector<std::size_t> width(head.size(), 0);
+  for (const auto& r : rows)
+    for (std::size_t c = 0; c < r.size(); ++c) width[c] = std::max(width[c], r[c].size());
+  std::string out = "points sorted by the mean of " +
+                    (m >= 0 ? t.metrics[m] : std::string("(no metric)")) +
+                    " over the seeds, smallest first\n";
+  for (const auto& r : rows) {
+    std::string line;
+    for (std::size_t c = 0; c < r.size(); ++c) {
+      if (c) line += "  ";
+      line += r[c] + std::string(width[c] - r[c].size(), ' ');
+    }
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    out += line + "\n";
+  }
+  return out;
+}
+
+void WriteSweepTables(const std::string& dir, const SweepTables& t) {
+  WriteFileAtomic((fs::path(dir) / "runs.csv").string(), t.runs_csv);
+  WriteFileAtomic((fs::path(dir) / "aggregate.csv").string(), t.aggregate_csv);
+}
+
+std::string SimilarMetrics(const std::vector<std::string>& metrics, const std::string& name) {
+  const std::string last = name.substr(name.rfind('.') + 1);
+  std::string out;
+  int shown = 0;
+  for (const std::string& m : metrics) {
+    const std::string mlast = m.substr(m.rfind('.') + 1);
+    if ((mlast == last || m.find(name) != std::string::npos) && shown < 8) {
+      out += (out.empty() ? "" : ", ") + m;
+      ++shown;
+    }
+  }
+  if (out.empty())
+    for (std::size_t i = 0; i < metrics.size() && i < 8; ++i) out += (i ? ", " : "") + metrics[i];
+  return out;
+}
+
+}  // namespace formsim::sim

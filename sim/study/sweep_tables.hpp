@@ -1,0 +1,58 @@
+#pragma once
+/// \file The tables of a sweep, built from its definition and its run records alone (never from
+/// the order or place the runs ran in), so a sweep on one core, on all cores, resumed, or
+/// collected from shards writes the same bytes:
+///   runs.csv       one row per run: run, the varied keys, seed, every metric, status, message
+///   aggregate.csv  one row per point: the varied keys, runs, failed, and for every metric
+///                  n, mean, std, min and max over the completed runs
+/// Metric columns are the dotted paths of summary.json's `results` (Metrics::Scalars), in the
+/// order they first appear in run order. Numbers are shortest round-trip text.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "sim/study/sweep_store.hpp"
+
+namespace formsim::sim {
+
+/// One metric over the completed runs of one point (non-finite values left out).
+struct MetricStats {
+  std::size_t n = 0;
+  double mean = 0, std = 0, min = 0, max = 0;  ///< std: sample (n - 1); NaN when n < 2
+};
+
+/// The statistics of `values` (all of them; the caller leaves out what does not count).
+MetricStats StatsOf(const std::vector<double>& values);
+
+struct SweepTables {
+  std::vector<std::string> metrics;             ///< the metric columns, in order
+  std::vector<std::size_t> points;              ///< the points that have at least one record
+  std::vector<std::size_t> runs, failed;        ///< per entry of `points`
+  std::vector<std::vector<MetricStats>> stats;  ///< [entry of points][metric]
+  std::string runs_csv, aggregate_csv;
+  /// Index of `metric` in `metrics`, or -1.
+  int MetricIndex(const std::string& metric) const;
+};
+
+/// Builds the tables from `records` (any order; each run at most once).
+SweepTables BuildSweepTables(const SweepDefinition& def, std::vector<SweepRecord> records);
+
+/// The metric a sweep shows when none is asked for: the first whose mean differs between
+/// points (or, with one point, whose min and max differ), else the first.
+std::size_t DefaultMetric(const SweepTables& tables);
+
+/// Points sorted by the mean of metric `m` (ascending, points without a value last) as an
+/// aligned text table: the table a sweep of three or more keys shows instead of a figure.
+std::string RankingText(const SweepDefinition& def, const SweepTables& tables, int m);
+
+/// Writes runs.csv and aggregate.csv into `dir` (each atomically).
+void WriteSweepTables(const std::string& dir, const SweepTables& tables);
+
+/// A CSV field (RFC 4180): quoted, with quotes doubled, when it holds a comma, quote or line break.
+std::string CsvField(const std::string& s);
+
+/// `name` suggestions for an unknown metric: the metrics that share its last part or contain it.
+std::string SimilarMetrics(const std::vector<std::string>& metrics, const std::string& name);
+
+}  // namespace formsim::sim
