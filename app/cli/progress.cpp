@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "sim/core/number_format.hpp"
+
 namespace formsim::app {
 namespace {
 
@@ -22,17 +24,6 @@ ProgressLine::ProgressLine(bool enabled)
 
 ProgressLine::~ProgressLine() {
   Done();
-}
-
-std::string ProgressLine::Clock(double s) {
-  if (!std::isfinite(s) || s < 0) s = 0;
-  const long t = std::lround(s);
-  char buf[32];
-  if (t >= 3600)
-    std::snprintf(buf, sizeof(buf), "%ld:%02ld:%02ld", t / 3600, t / 60 % 60, t % 60);
-  else
-    std::snprintf(buf, sizeof(buf), "%ld:%02ld", t / 60, t % 60);
-  return buf;
 }
 
 bool ProgressLine::Due(bool force) {
@@ -64,13 +55,13 @@ void ProgressLine::Update(double fraction, const std::string& detail) {
   const double elapsed = Seconds(std::chrono::steady_clock::now() - start_);
   std::string left = "";
   if (fraction > 0.01 && elapsed > 0.25)  // shown with the first line (after 0.5 s)
-    left = "  " + Clock(elapsed * (1 - fraction) / fraction) + " left";
+    left = "  " + sim::FormatClock(elapsed * (1 - fraction) / fraction) + " left";
   Print(bar + pct + detail + left);
 }
 
 void ProgressLine::Status(const std::string& detail) {
   if (!Due(true)) return;
-  Print(detail + "  (" + Clock(Seconds(std::chrono::steady_clock::now() - start_)) + " so far)");
+  Print(detail + "  (" + sim::FormatClock(Seconds(std::chrono::steady_clock::now() - start_)) + " so far)");
 }
 
 void ProgressLine::Done() {

@@ -23,7 +23,6 @@ class ProgressLine {
   bool enabled() const { return enabled_; }
 
   /// "1:12", "0:05", "1:02:03".
-  static std::string Clock(double seconds);
 
  private:
   bool Due(bool force);

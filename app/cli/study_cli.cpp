@@ -31,12 +31,6 @@ double Now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-std::string Clock(double s) {
-  const long t = std::lround(std::max(0.0, s));
-  return t >= 3600 ? sim::Sprintf("%ld:%02ld:%02ld", t / 3600, t / 60 % 60, t % 60)
-                   : sim::Sprintf("%ld:%02ld", t / 60, t % 60);
-}
-
 // "[=====>     ] 37/200 runs, 1 failed, 0:42 left" on stderr, only on a terminal and not -q;
 // redrawn at most ten times a second.
 class RunsBar {
@@ -52,7 +46,7 @@ class RunsBar {
     const int width = 30, filled = static_cast<int>(f * width);
     std::string left = "…";
     if (done > 0)
-      left = Clock((now - start_) / static_cast<double>(done) * static_cast<double>(total_ - done));
+      left = sim::FormatClock((now - start_) / static_cast<double>(done) * static_cast<double>(total_ - done));
     std::fprintf(stderr, "\r[%s%s] %zu/%zu runs, %zu failed, %s left   ",
                  std::string(filled, '=').c_str(), std::string(width - filled, ' ').c_str(), done,
                  total_, failed, left.c_str());

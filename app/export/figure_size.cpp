@@ -1,4 +1,5 @@
 #include "app/export/figure_size.hpp"
+#include "sim/core/number_format.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -23,12 +24,6 @@ bool ParseLength(const std::string& s, FigureLength* out) {
   return true;
 }
 
-std::string Number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.6g", v);
-  return buf;
-}
-
 }  // namespace
 
 double FigureLength::Pixels() const {
@@ -39,7 +34,7 @@ double FigureLength::Pixels() const {
 }
 
 std::string FigureLength::Text() const {
-  return Number(value) + unit;
+  return sim::FormatSignificant(value) + unit;
 }
 
 double FigureSize::LayoutScale() const {
@@ -84,7 +79,7 @@ FigureSize ParseFigureSize(const std::string& text, const std::string& flag) {
     if (px < kMinLogical - 0.5 || px > kMaxLogical + 0.5) {
       char buf[200];
       const std::string side =
-          l->unit == "px" ? l->Text() : l->Text() + " (" + Number(std::round(px)) + " px)";
+          l->unit == "px" ? l->Text() : l->Text() + " (" + sim::FormatSignificant(std::round(px)) + " px)";
       std::snprintf(buf, sizeof(buf),
                     "': %s is out of range; each side must be %d ... %d px "
                     "(%.2f ... %.1f cm)",
@@ -98,7 +93,7 @@ FigureSize ParseFigureSize(const std::string& text, const std::string& flag) {
 
 double ParseDpi(double dpi) {
   if (!(dpi >= 24 && dpi <= 1200))
-    throw std::runtime_error("--dpi " + Number(dpi) +
+    throw std::runtime_error("--dpi " + sim::FormatSignificant(dpi) +
                              ": expected 24 ... 1200 (96 = one pixel per "
                              "logical pixel, 300 for print)");
   return dpi;
@@ -107,7 +102,7 @@ double ParseDpi(double dpi) {
 void CheckDeviceSize(double width, double height, double dpi, const std::string& what) {
   const long w = std::lround(width * dpi / 96.0), h = std::lround(height * dpi / 96.0);
   if (w > kMaxDevice || h > kMaxDevice)
-    throw std::runtime_error(what + " at --dpi " + Number(dpi) + " gives a " + std::to_string(w) +
+    throw std::runtime_error(what + " at --dpi " + sim::FormatSignificant(dpi) + " gives a " + std::to_string(w) +
                              "x" + std::to_string(h) + " PNG; the limit is " +
                              std::to_string(kMaxDevice) + " pixels a side (lower --dpi)");
 }

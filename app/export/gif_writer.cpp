@@ -11,17 +11,12 @@
 #include <stdexcept>
 
 #include "app/export/video_writer.hpp"
+#include "sim/core/number_format.hpp"
 
 namespace fs = std::filesystem;
 
 namespace formsim::app {
 namespace {
-
-std::string Number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%g", v);
-  return buf;
-}
 
 bool ExitedOk(int status) {
   return status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
@@ -38,7 +33,7 @@ void GifWriter::CheckAvailable(const std::string& path, double fps, int out_widt
     throw std::runtime_error(
         "--gif-fps must be in (0, 50] (GIF frame delays are in 1/100 s), "
         "got " +
-        Number(fps));
+        sim::FormatSignificant(fps));
   if (out_width < 64 || out_width > 4096)
     throw std::runtime_error("--gif-width must be 64 ... 4096 pixels, got " +
                              std::to_string(out_width));

@@ -5,18 +5,14 @@
 
 #include "app/render/vector_fonts.hpp"
 #include "sim/core/run_output.hpp"
+#include "sim/core/number_format.hpp"
 
 namespace formsim::app {
 namespace {
 
 // Coordinates to 1/100 pixel, without trailing zeros.
 std::string Num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.2f", std::abs(v) < 5e-3 ? 0.0 : v);
-  std::string s = buf;
-  while (s.back() == '0') s.pop_back();
-  if (s.back() == '.') s.pop_back();
-  return s;
+  return sim::FormatFixed(v, 2, /*trim=*/true);
 }
 
 std::string Hex(sim::Color c) {

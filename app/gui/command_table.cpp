@@ -28,13 +28,8 @@ std::string Quoted(const std::string& s) {
 }
 
 // Whole numbers as digits (1000000, not 1e+06).
-std::string NumberText(double v) {
-  if (v == std::floor(v) && std::fabs(v) < 1e15) return std::to_string(static_cast<long long>(v));
-  return sim::FormatDouble(v);
-}
-
 std::string RangeText(double lo, double hi) {
-  return NumberText(lo) + " ... " + NumberText(hi);
+  return sim::FormatWholeOrShortest(lo) + " ... " + sim::FormatWholeOrShortest(hi);
 }
 
 // `s` padded with spaces to `width` characters (UTF-8 aware: "…" is one).

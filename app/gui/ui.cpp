@@ -24,9 +24,7 @@ namespace {
 
 std::string SpeedLabel(double s) {
   if (s == 0.0) return "max";
-  char buf[16];
-  std::snprintf(buf, sizeof(buf), "%g×", s);
-  return buf;
+  return sim::FormatSignificant(s) + "×";
 }
 
 void CopyString(char* dst, std::size_t n, const std::string& s) {

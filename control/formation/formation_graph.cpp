@@ -1,4 +1,5 @@
 #include "control/formation/formation_graph.hpp"
+#include "control/common/number_format.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -38,12 +39,6 @@ std::size_t LeadersOfLaw(FormationLaw law) {
 }
 
 namespace {
-
-std::string Fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", v);
-  return buf;
-}
 
 // Checks one node's own numbers and leader list; fills leader indices.
 void CheckNode(const std::vector<FormationNodeDef>& nodes, int i,
@@ -186,9 +181,9 @@ FormationGraph BuildFormationGraph(const std::vector<FormationNodeDef>& nodes,
     if (!TriangleApex(q1, q2, nd.l_des, nd.l2_des, g.side[i], apex))
       throw FormationGraphError(
           i, "l_des",
-          "desired distances " + Fmt(nd.l_des) + " and " + Fmt(nd.l2_des) +
-              " cannot form a triangle with the leaders' desired separation " + Fmt(sep) + " (" +
-              nodes[ls[0]].name + "-" + nodes[ls[1]].name + "): need |l1 - l2| < " + Fmt(sep) +
+          "desired distances " + FormatSignificant(nd.l_des, 4) + " and " + FormatSignificant(nd.l2_des, 4) +
+              " cannot form a triangle with the leaders' desired separation " + FormatSignificant(sep, 4) + " (" +
+              nodes[ls[0]].name + "-" + nodes[ls[1]].name + "): need |l1 - l2| < " + FormatSignificant(sep, 4) +
               " < l1 + l2");
     // sin of the angle at the apex between the two leader directions = det of the l-l law.
     const Vec2 a = q1 - apex, b = q2 - apex;
@@ -196,8 +191,8 @@ FormationGraph BuildFormationGraph(const std::vector<FormationNodeDef>& nodes,
     if (s < singular_threshold)
       throw FormationGraphError(i, "l_des",
                                 "desired triangle with " + nodes[ls[0]].name + " and " +
-                                    nodes[ls[1]].name + " is nearly flat (|sin| = " + Fmt(s) +
-                                    " < singular_threshold " + Fmt(singular_threshold) + ")");
+                                    nodes[ls[1]].name + " is nearly flat (|sin| = " + FormatSignificant(s, 4) +
+                                    " < singular_threshold " + FormatSignificant(singular_threshold, 4) + ")");
     g.shape[i] = apex - Vec2{nd.L, 0.0};
   }
   return g;

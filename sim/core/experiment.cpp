@@ -1,4 +1,5 @@
 #include "sim/core/experiment.hpp"
+#include "sim/core/number_format.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -61,11 +62,6 @@ void Experiment::Step() {
 }
 
 namespace {
-std::string Num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
 }  // namespace
 
 bool Experiment::CheckRobots() {
@@ -76,10 +72,10 @@ bool Experiment::CheckRobots() {
     if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta) && std::isfinite(v.x) &&
         std::isfinite(v.y) && std::isfinite(w))
       continue;
-    NumericalFault(r->name(), r->name() + "'s state became non-finite at t = " + Num(time_) +
-                                  " s (x = " + Num(p.x) + ", y = " + Num(p.y) +
-                                  ", θ = " + Num(p.theta) + ", v = (" + Num(v.x) + ", " + Num(v.y) +
-                                  "), ω = " + Num(w) + ")");
+    NumericalFault(r->name(), r->name() + "'s state became non-finite at t = " + FormatSignificant(time_) +
+                                  " s (x = " + FormatSignificant(p.x) + ", y = " + FormatSignificant(p.y) +
+                                  ", θ = " + FormatSignificant(p.theta) + ", v = (" + FormatSignificant(v.x) + ", " + FormatSignificant(v.y) +
+                                  "), ω = " + FormatSignificant(w) + ")");
     return false;
   }
   return true;
@@ -96,7 +92,7 @@ void Experiment::CheckRow() {
     const std::string& name = recorder_.names()[c];
     std::string robots = name.substr(0, name.find('.'));
     std::replace(robots.begin(), robots.end(), '-', ',');
-    NumericalFault(robots, name + " = " + Num(v) + " at t = " + Num(time_) + " s");
+    NumericalFault(robots, name + " = " + FormatSignificant(v) + " at t = " + FormatSignificant(time_) + " s");
     return;
   }
 }
@@ -201,7 +197,7 @@ Json Experiment::Summary() const {
 std::string Experiment::SummaryText() const {
   std::string out = Results().Text();
   if (!stop_reason_.empty())
-    out += "run stopped at t = " + Num(time_) + " s: " + stop_reason_ + "\n";
+    out += "run stopped at t = " + FormatSignificant(time_) + " s: " + stop_reason_ + "\n";
   if (!events_.counts().empty()) {
     out += "events:";
     for (const auto& [kind, n] : events_.counts()) out += " " + kind + " " + std::to_string(n);

@@ -1,4 +1,5 @@
 #include "sim/core/world.hpp"
+#include "sim/core/number_format.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -38,25 +39,19 @@ bool IsConvex(const std::vector<Vec2>& p) {
   return true;
 }
 
-std::string Num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
 std::string CheckPoint(Vec2 p, const std::string& what) {
   using namespace world_limits;
   if (!std::isfinite(p.x) || !std::isfinite(p.y)) return what + " is not finite";
   if (std::abs(p.x) > kExtent || std::abs(p.y) > kExtent)
-    return what + " (" + Num(p.x) + ", " + Num(p.y) + ") is outside the world (|x|, |y| <= " +
-           Num(kExtent) + " m)";
+    return what + " (" + FormatSignificant(p.x) + ", " + FormatSignificant(p.y) + ") is outside the world (|x|, |y| <= " +
+           FormatSignificant(kExtent) + " m)";
   return "";
 }
 
 std::string CheckSize(double v, const std::string& what) {
   using namespace world_limits;
   if (!(v >= kMinSize && v <= kMaxSize))
-    return what + " " + Num(v) + " m is outside [" + Num(kMinSize) + ", " + Num(kMaxSize) + "] m";
+    return what + " " + FormatSignificant(v) + " m is outside [" + FormatSignificant(kMinSize) + ", " + FormatSignificant(kMaxSize) + "] m";
   return "";
 }
 
@@ -72,7 +67,7 @@ std::string CheckRobotDef(const RobotDef& def) {
   using namespace world_limits;
   std::string e = CheckPoint(def.pose.p(), "pose");
   if (!e.empty()) return e;
-  if (!(std::abs(def.pose.theta) <= kMaxAngle)) return "heading " + Num(def.pose.theta) + " rad is not within ±" + Num(kMaxAngle) + " rad";
+  if (!(std::abs(def.pose.theta) <= kMaxAngle)) return "heading " + FormatSignificant(def.pose.theta) + " rad is not within ±" + FormatSignificant(kMaxAngle) + " rad";
   if (def.shape == RobotDef::Shape::kCircle) {
     if (!(e = CheckSize(2 * def.radius, "diameter")).empty()) return e;
   } else {
@@ -80,7 +75,7 @@ std::string CheckRobotDef(const RobotDef& def) {
     if (!(e = CheckSize(2 * def.half_width, "width")).empty()) return e;
   }
   if (!(def.mass >= kMinMass && def.mass <= kMaxMass))
-    return "mass " + Num(def.mass) + " kg is outside [" + Num(kMinMass) + ", " + Num(kMaxMass) + "] kg";
+    return "mass " + FormatSignificant(def.mass) + " kg is outside [" + FormatSignificant(kMinMass) + ", " + FormatSignificant(kMaxMass) + "] kg";
   return "";
 }
 
@@ -88,10 +83,10 @@ std::string CheckObstacleDef(const ObstacleDef& def) {
   using namespace world_limits;
   std::string e;
   if (!(def.friction >= 0 && def.friction <= kMaxFriction))
-    return "friction " + Num(def.friction) + " is outside [0, " + Num(kMaxFriction) + "]";
+    return "friction " + FormatSignificant(def.friction) + " is outside [0, " + FormatSignificant(kMaxFriction) + "]";
   if (def.shape != ObstacleDef::Shape::kWall) {
     if (!(e = CheckPoint(def.pose.p(), "centre")).empty()) return e;
-    if (!(std::abs(def.pose.theta) <= kMaxAngle)) return "angle is not within ±" + Num(kMaxAngle) + " rad";
+    if (!(std::abs(def.pose.theta) <= kMaxAngle)) return "angle is not within ±" + FormatSignificant(kMaxAngle) + " rad";
   }
   switch (def.shape) {
     case ObstacleDef::Shape::kBox:
@@ -105,10 +100,10 @@ std::string CheckObstacleDef(const ObstacleDef& def) {
       for (std::size_t i = 0; i < v.size(); ++i) {
         if (!(e = CheckPoint(def.pose.ToWorld(v[i]), "vertex " + std::to_string(i))).empty()) return e;
         const double side = (v[(i + 1) % v.size()] - v[i]).Norm();
-        if (!(side >= kMinSize)) return "side " + std::to_string(i) + " is " + Num(side) + " m, shorter than " + Num(kMinSize) + " m";
+        if (!(side >= kMinSize)) return "side " + std::to_string(i) + " is " + FormatSignificant(side) + " m, shorter than " + FormatSignificant(kMinSize) + " m";
       }
       if (!IsConvex(v)) return "the vertices must form a convex polygon (no straight or reflex corner)";
-      if (!(PolygonArea(v) >= kMinArea)) return "area " + Num(PolygonArea(v)) + " m² is below " + Num(kMinArea) + " m²";
+      if (!(PolygonArea(v) >= kMinArea)) return "area " + FormatSignificant(PolygonArea(v)) + " m² is below " + FormatSignificant(kMinArea) + " m²";
       return "";
     }
     case ObstacleDef::Shape::kWall: {
@@ -117,7 +112,7 @@ std::string CheckObstacleDef(const ObstacleDef& def) {
       for (std::size_t i = 0; i < v.size(); ++i) {
         if (!(e = CheckPoint(v[i], "point " + std::to_string(i))).empty()) return e;
         if (i + 1 < v.size() && !((v[i + 1] - v[i]).Norm() >= kMinSize))
-          return "segment " + std::to_string(i) + " is shorter than " + Num(kMinSize) + " m";
+          return "segment " + std::to_string(i) + " is shorter than " + FormatSignificant(kMinSize) + " m";
       }
       return "";
     }

@@ -39,25 +39,8 @@ double RecordValue(const SweepRecord& rec, const std::vector<std::string>& paths
   return best;
 }
 
-// A number with `digits` decimals (no "-0.0").
-std::string Fixed(double v, int digits) {
-  if (std::abs(v) < 0.5 * std::pow(10.0, -digits)) v = 0.0;
-  return Sprintf("%.*f", digits, v);
-}
-
-// 7.2e-2: `digits` significant digits, a power of ten.
-std::string Scientific(double v, int digits) {
-  if (v == 0.0 || !std::isfinite(v)) return v == 0.0 ? "0" : Sprintf("%g", v);
-  int e = static_cast<int>(std::floor(std::log10(std::abs(v))));
-  double m = v / std::pow(10.0, e);
-  const double unit = std::pow(10.0, -(digits - 1));
-  m = std::round(m / unit) * unit;
-  if (std::abs(m) >= 10.0) m /= 10.0, ++e;
-  return Sprintf("%.*f", std::max(0, digits - 1), m) + "e" + std::to_string(e);
-}
-
 std::string Number(double v, const ReproColumn& c) {
-  return c.sci ? Scientific(v, c.digits) : Fixed(v, c.digits);
+  return c.sci ? FormatScientific(v, c.digits) : FormatFixed(v, c.digits);
 }
 
 std::string RowName(const ReproRow& row) {

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "sim/core/number_format.hpp"
 #include "sim/study/reproduction.hpp"
 
 namespace formsim::sim::repro {
@@ -48,10 +49,7 @@ inline ReproRow TextRow(std::vector<std::string> labels, std::vector<std::string
 }
 
 inline std::string Str(double v) {
-  std::string s = std::to_string(v);
-  s.erase(s.find_last_not_of('0') + 1);
-  if (s.back() == '.') s.pop_back();
-  return s;
+  return FormatFixed(v, 6, /*trim=*/true);
 }
 
 }  // namespace formsim::sim::repro

@@ -51,7 +51,7 @@ MetricStats StatsOf(const std::vector<double>& v) {
 namespace {
 
 std::string Short(double v) {
-  return std::isnan(v) ? "-" : Sprintf("%.4g", v);
+  return std::isnan(v) ? "-" : FormatSignificant(v, 4);
 }
 
 }  // namespace

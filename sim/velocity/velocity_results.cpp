@@ -3,17 +3,12 @@
 #include <cmath>
 #include <cstdio>
 
+#include "sim/core/number_format.hpp"
 #include "sim/velocity/velocity_experiment.hpp"
 
 namespace formsim::sim::velocity {
 
 namespace {
-
-std::string Fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
 
 // Speed-estimate RMSEs and the paper's control metrics of one robot on one floor (or overall),
 // under `p` ("robots.R1." or "robots.R1.floors.wet.").
@@ -45,7 +40,7 @@ Metrics VelocityExperiment::Results() const {
   const bool vi = cfg_.estimator.vi_baseline;
   m.Set("settle_time", cfg_.settle_time);
   m.Set("keyframe_period", keyframe_period());
-  m.AddNote("velocity: metrics after t = " + Fmt("%.1f", cfg_.settle_time) +
+  m.AddNote("velocity: metrics after t = " + Sprintf("%.1f", cfg_.settle_time) +
             " s (speed RMSE vs true forward speed)");
   Metrics::Table table;
   table.title = "Speed estimate RMSE and control error, overall and per floor (after settling)";
@@ -115,8 +110,8 @@ std::vector<TableSpec> VelocityExperiment::Tables() const {
   for (const auto& up : units_) {
     const RobotUnit& u = *up;
     timing.rows.push_back({u.spec.name, std::to_string(u.updates),
-                           Fmt("%.2f", u.updates ? u.update_ms_sum / u.updates : 0.0),
-                           Fmt("%.2f", u.update_ms_max), Fmt("%.0f", 1000.0 * keyframe_period()),
+                           Sprintf("%.2f", u.updates ? u.update_ms_sum / u.updates : 0.0),
+                           Sprintf("%.2f", u.update_ms_max), Sprintf("%.0f", 1000.0 * keyframe_period()),
                            std::to_string(u.faults)});
   }
   return {timing};

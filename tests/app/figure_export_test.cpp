@@ -122,13 +122,6 @@ TEST(FigureFormats, ListsExtensionsAndFolderNames) {
   EXPECT_NO_THROW(CheckFolderName("plots", "--plots", ""));
 }
 
-TEST(ProgressLine, TimeLeftReadsAsAClock) {
-  EXPECT_EQ(ProgressLine::Clock(5.4), "0:05");
-  EXPECT_EQ(ProgressLine::Clock(72), "1:12");
-  EXPECT_EQ(ProgressLine::Clock(3723), "1:02:03");
-  EXPECT_EQ(ProgressLine::Clock(NAN), "0:00");
-}
-
 TEST(Themes, ParseAndPrintStylesAreGreyAndDistinct) {
   EXPECT_EQ(ParseTheme("high-contrast"), ThemeId::kHighContrast);
   EXPECT_THROW(ParseTheme("blue"), std::runtime_error);

@@ -1,12 +1,13 @@
-#include "sim/core/number_format.hpp"
+#include "control/common/number_format.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <system_error>
 
-namespace formsim::sim {
+namespace formsim::control {
 
 void AppendDouble(std::string& out, double v) {
   if (std::isnan(v)) {
@@ -26,6 +27,51 @@ std::string FormatDouble(double v) {
   std::string s;
   AppendDouble(s, v);
   return s;
+}
+
+std::string FormatSignificant(double v, int digits) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  return Sprintf("%.*g", std::clamp(digits, 1, 17), v);
+}
+
+std::string FormatFixed(double v, int decimals, bool trim) {
+  if (!std::isfinite(v)) return FormatSignificant(v);
+  decimals = std::clamp(decimals, 0, 17);
+  // Below half a unit of the last digit the text would read "-0.00": write zero.
+  if (std::abs(v) < 0.5 * std::pow(10.0, -decimals)) v = 0.0;
+  std::string s = Sprintf("%.*f", decimals, v);
+  if (trim && s.find('.') != std::string::npos) {
+    while (s.back() == '0') s.pop_back();
+    if (s.back() == '.') s.pop_back();
+  }
+  return s;
+}
+
+std::string FormatScientific(double v, int digits) {
+  if (v == 0.0) return "0";
+  if (!std::isfinite(v)) return FormatSignificant(v);
+  digits = std::clamp(digits, 1, 17);
+  int e = static_cast<int>(std::floor(std::log10(std::abs(v))));
+  double m = v / std::pow(10.0, e);
+  const double unit = std::pow(10.0, -(digits - 1));
+  m = std::round(m / unit) * unit;
+  // Rounding may carry into a new digit (9.96 -> 10.0): renormalise.
+  if (std::abs(m) >= 10.0) m /= 10.0, ++e;
+  return Sprintf("%.*f", digits - 1, m) + "e" + std::to_string(e);
+}
+
+std::string FormatWholeOrShortest(double v) {
+  if (v == std::floor(v) && std::abs(v) < 1e15) return std::to_string(static_cast<long long>(v));
+  return FormatDouble(v);
+}
+
+std::string FormatClock(double seconds) {
+  if (!std::isfinite(seconds) || seconds < 0) seconds = 0;
+  // Beyond a century of seconds a clock says nothing more; cap before converting to an integer.
+  const long t = std::lround(std::min(seconds, 3.2e9));
+  return t >= 3600 ? Sprintf("%ld:%02ld:%02ld", t / 3600, t / 60 % 60, t % 60)
+                   : Sprintf("%ld:%02ld", t / 60, t % 60);
 }
 
 std::string Sprintf(const char* fmt, ...) {
@@ -95,4 +141,4 @@ bool ParseUint64(const std::string& text, std::uint64_t* out) {
   return true;
 }
 
-}  // namespace formsim::sim
+}  // namespace formsim::control
