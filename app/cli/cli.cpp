@@ -9,10 +9,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <stdexcept>
+#include <vector>
 
 #include "app/export/export.hpp"
 #include "app/cli/figures_command.hpp"
+#include "app/cli/lessons_cli.hpp"
 #include "app/gui/gui.hpp"
 #include "app/cli/progress.hpp"
 #include "app/cli/replay_command.hpp"
@@ -188,18 +191,25 @@ int ListCommand() {
     std::printf("%-34s %-11s %s\n", stem.c_str(), type.c_str(), description.c_str());
   }
   // Lessons: scenarios with a text (formsim gui --lesson NAME); run and sweep take them by name.
+  // Grouped by the paper they teach (the scenario's type), in the order of the kinds.
   const auto lessons = sim::ShippedLessons();
-  if (!lessons.empty()) std::printf("\nlessons (formsim gui --lesson NAME):\n");
+  if (!lessons.empty()) std::printf("\nlessons (formsim gui --lesson NAME), by paper:\n");
+  std::map<std::string, std::vector<std::pair<std::string, std::string>>> by_paper;
   for (const auto& file : lessons) {
     const std::string stem = std::filesystem::path(file).stem().string();
-    std::string title;
+    std::string title, type = "?";
     try {
       YAML::Node root = sim::LoadYamlFile(file);
+      if (root["type"]) type = root["type"].as<std::string>();
       if (root["lesson"] && root["lesson"]["title"]) title = root["lesson"]["title"].as<std::string>();
     } catch (const std::exception& e) {
       title = std::string("(unreadable: ") + e.what() + ")";
     }
-    std::printf("%-34s %s\n", stem.c_str(), title.c_str());
+    by_paper[type].emplace_back(stem, title);
+  }
+  for (const auto& [paper, list] : by_paper) {
+    std::printf("  %s:\n", paper.c_str());
+    for (const auto& [stem, title] : list) std::printf("    %-32s %s\n", stem.c_str(), title.c_str());
   }
   return 0;
 }
@@ -328,6 +338,7 @@ int Main(int argc, char** argv) {
   StudyCommands study(app);  // sweep, sweep collect, tune
   ReproduceCommand reproduce(app);
   ReplayCommand replay(app);
+  LessonsCommand lessons(app);
 
   try {
     app.parse(argc, argv);
@@ -349,6 +360,7 @@ int Main(int argc, char** argv) {
     if (study.parsed()) return study.Run();
     if (reproduce.parsed()) return reproduce.Run();
     if (replay.parsed()) return replay.Run();
+    if (lessons.parsed()) return lessons.Run();
     if (figs_cmd->parsed()) return FiguresCommand(figs);
     if (gui_cmd->parsed() && list_commands) {
       std::fputs(list_markdown ? CommandTableMarkdown().c_str() : CommandListText().c_str(), stdout);

@@ -1,0 +1,318 @@
+#include "sim/study/lesson_checks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <tuple>
+
+#include "sim/core/number_format.hpp"
+#include "sim/core/recorder.hpp"
+#include "sim/core/task_pool.hpp"
+#include "sim/scenario/scenario.hpp"
+#include "sim/study/sweep.hpp"
+
+namespace formsim::sim {
+namespace {
+
+using Check = LessonCheck;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string Num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.4g", v);
+  return b;
+}
+
+// A run a check needs: the lesson's scenario with edits, a duration and a seed.
+struct RunKey {
+  std::vector<std::string> sets;
+  double duration = 0.0;
+  std::uint64_t seed = 1;
+  bool operator<(const RunKey& o) const {
+    return std::tie(sets, duration, seed) < std::tie(o.sets, o.duration, o.seed);
+  }
+};
+
+// The raw quantity of one check on one seed.
+struct Slot {
+  double raw = kNaN;
+  std::string error;
+};
+
+std::vector<Override> RunOverrides(const RunKey& k) {
+  std::vector<Override> o = CliOverrides(k.sets, -1);
+  for (Override& x : o) x.origin = "lesson check --set";
+  if (k.duration > 0) o.push_back({"duration", FormatDouble(k.duration), "lesson check", -1});
+  o.push_back({"seed", std::to_string(k.seed), "lesson check seed", -1});
+  return o;
+}
+
+// The check's quantity on a finished run.
+Slot Measure(const Check& c, const Experiment& exp,
+             const std::vector<std::pair<std::string, double>>& metrics) {
+  Slot s;
+  switch (c.source) {
+    case Check::Source::kMetric: {
+      for (const auto& [name, v] : metrics)
+        if (name == c.name) {
+          s.raw = v;
+          return s;
+        }
+      s.error = "the run has no metric '" + c.name + "'";
+      return s;
+    }
+    case Check::Source::kEvents:
+      s.raw = static_cast<double>(c.robot.empty() ? exp.events().Count(c.name)
+                                                  : exp.events().CountForRobot(c.name, c.robot));
+      return s;
+    case Check::Source::kColumn: {
+      const Recorder& rec = exp.recorder();
+      const int col = rec.Column(c.name), tcol = rec.Column("t");
+      if (col < 0) {
+        s.error = "the run has no column '" + c.name + "'";
+        return s;
+      }
+      if (rec.history_stride() > 1) {
+        s.error = "the run is too long to keep every row; give the check a shorter duration";
+        return s;
+      }
+      s.raw = ColumnStat(rec.Series(tcol), rec.Series(col), c);
+      if (std::isnan(s.raw)) s.error = "no value of '" + c.name + "' in the window";
+      return s;
+    }
+  }
+  return s;
+}
+
+std::string RelationText(const Check& c) {
+  const std::string rhs = c.against.empty() ? Num(c.value) : "{" + c.against + "}";
+  std::string q = c.ratio_to.empty() ? "" : " (ratio to {" + c.ratio_to + "})";
+  switch (c.relation) {
+    case Check::Relation::kLess:
+      return "< " + rhs + q;
+    case Check::Relation::kGreater:
+      return "> " + rhs + q;
+    case Check::Relation::kWithin:
+      return "within [" + Num(c.lo) + ", " + Num(c.hi) + "]" + q;
+    case Check::Relation::kEqual:
+      return "= " + rhs + (c.tolerance > 0 ? " ± " + Num(c.tolerance) : "") + q;
+  }
+  return "?";
+}
+
+std::vector<std::uint64_t> OwnSeeds(const Check& c, const LessonCheckOptions& opt) {
+  if (!opt.seeds.empty()) return opt.seeds;
+  std::vector<std::uint64_t> s;
+  const int n = c.all_seeds ? 5 : c.seeds;
+  for (int i = 1; i <= n; ++i) s.push_back(static_cast<std::uint64_t>(i));
+  return s;
+}
+
+}  // namespace
+
+bool LessonCheckResult::ok() const {
+  if (!error.empty() || holds.empty()) return false;
+  return std::all_of(holds.begin(), holds.end(), [](bool b) { return b; });
+}
+
+double ColumnStat(const std::vector<double>& t, const std::vector<double>& x, const Check& c) {
+  std::vector<double> tt, xx;
+  for (std::size_t i = 0; i < t.size() && i < x.size(); ++i) {
+    if (t[i] < c.from - 1e-9 || t[i] > c.to + 1e-9) continue;
+    if (IsNotSampled(x[i]) || std::isnan(x[i])) continue;
+    tt.push_back(t[i]);
+    xx.push_back(x[i]);
+  }
+  if (xx.empty()) return kNaN;
+  const double n = static_cast<double>(xx.size());
+  switch (c.stat) {
+    case Check::Stat::kMaxAbs: {
+      double m = 0;
+      for (double v : xx) m = std::max(m, std::abs(v));
+      return m;
+    }
+    case Check::Stat::kMax:
+      return *std::max_element(xx.begin(), xx.end());
+    case Check::Stat::kMin:
+      return *std::min_element(xx.begin(), xx.end());
+    case Check::Stat::kMean: {
+      double s = 0;
+      for (double v : xx) s += v;
+      return s / n;
+    }
+    case Check::Stat::kRms: {
+      double s = 0;
+      for (double v : xx) s += v * v;
+      return std::sqrt(s / n);
+    }
+    case Check::Stat::kJitter: {
+      // RMS of the change from one recorded row to the next.
+      if (xx.size() < 2) return kNaN;
+      double s = 0;
+      for (std::size_t i = 1; i < xx.size(); ++i) s += (xx[i] - xx[i - 1]) * (xx[i] - xx[i - 1]);
+      return std::sqrt(s / (n - 1));
+    }
+    case Check::Stat::kFirstBelow:
+      for (std::size_t i = 0; i < xx.size(); ++i)
+        if (std::abs(xx[i]) < c.level) return tt[i];
+      return std::numeric_limits<double>::infinity();
+    case Check::Stat::kTau: {
+      // Least-squares line through ln|x| over time: |x| ∝ e^(−t/τ), τ = −1 / slope.
+      double st = 0, sy = 0, stt = 0, sty = 0, m = 0;
+      for (std::size_t i = 0; i < xx.size(); ++i) {
+        if (xx[i] == 0.0) continue;
+        const double y = std::log(std::abs(xx[i]));
+        st += tt[i], sy += y, stt += tt[i] * tt[i], sty += tt[i] * y, m += 1;
+      }
+      if (m < 3) return kNaN;
+      const double den = m * stt - st * st;
+      if (den <= 0) return kNaN;
+      const double slope = (m * sty - st * sy) / den;
+      return slope < 0 ? -1.0 / slope : std::numeric_limits<double>::infinity();
+    }
+    case Check::Stat::kFinal:
+      return xx.back();
+  }
+  return kNaN;
+}
+
+bool RelationHolds(const Check& c, double v, double operand) {
+  if (std::isnan(v)) return false;
+  switch (c.relation) {
+    case Check::Relation::kLess:
+      return v < operand;
+    case Check::Relation::kGreater:
+      return v > operand;
+    case Check::Relation::kWithin:
+      return v >= c.lo && v <= c.hi;
+    case Check::Relation::kEqual:
+      return std::abs(v - operand) <= c.tolerance;
+  }
+  return false;
+}
+
+std::vector<LessonCheckResult> CheckLesson(const std::string& file, const LessonCheckOptions& opt) {
+  const ScenarioSource source = ScenarioSource::FromFile(file);
+  const ParsedScenario parsed = ParseScenario(source, {});
+  const LessonDef& lesson = parsed.lesson;
+  const std::string stem = std::filesystem::path(file).stem().string();
+  if (!lesson.present) throw std::runtime_error(file + ": not a lesson (no lesson: block)");
+  const std::vector<Check>& checks = lesson.checks;
+  auto index = [&](const std::string& id) {
+    for (std::size_t i = 0; i < checks.size(); ++i)
+      if (checks[i].id == id) return static_cast<int>(i);
+    return -1;
+  };
+
+  // The checks asked for and those they compare with, each on its own seeds and on those of
+  // every check that refers to it.
+  std::vector<std::vector<std::uint64_t>> seeds(checks.size());
+  std::vector<bool> wanted(checks.size(), opt.only.empty());
+  for (const std::string& id : opt.only) {
+    const int i = index(id);
+    if (i < 0) throw std::runtime_error(stem + ": no check '" + id + "'");
+    wanted[static_cast<std::size_t>(i)] = true;
+  }
+  std::function<void(int, const std::vector<std::uint64_t>&, int)> need =
+      [&](int i, const std::vector<std::uint64_t>& s, int depth) {
+        if (depth > static_cast<int>(checks.size()))
+          throw std::runtime_error(stem + ": checks refer to each other in a cycle (at '" +
+                                   checks[static_cast<std::size_t>(i)].id + "')");
+        auto& mine = seeds[static_cast<std::size_t>(i)];
+        for (std::uint64_t x : s)
+          if (std::find(mine.begin(), mine.end(), x) == mine.end()) mine.push_back(x);
+        const Check& c = checks[static_cast<std::size_t>(i)];
+        for (const std::string* o : {&c.against, &c.ratio_to})
+          if (!o->empty()) need(index(*o), s, depth + 1);
+      };
+  for (std::size_t i = 0; i < checks.size(); ++i)
+    if (wanted[i]) need(static_cast<int>(i), OwnSeeds(checks[i], opt), 0);
+
+  // Every distinct run once; each knows the checks measured on it.
+  std::map<RunKey, std::vector<std::size_t>> runs;  // run -> checks
+  for (std::size_t i = 0; i < checks.size(); ++i)
+    for (std::uint64_t s : seeds[i]) runs[{checks[i].sets, checks[i].duration, s}].push_back(i);
+  std::vector<std::pair<RunKey, std::vector<std::size_t>>> list(runs.begin(), runs.end());
+  std::vector<std::vector<Slot>> slots(list.size());
+  TaskPool pool(std::max(1, opt.jobs));
+  pool.ForEach(list.size(), [&](std::size_t r) {
+    const auto& [key, on] = list[r];
+    std::vector<Slot>& out = slots[r];
+    out.resize(on.size());
+    std::optional<SweepRecord> rec =
+        RunScenarioOnce(source, RunOverrides(key), {}, [&](const Experiment& exp) {
+          const auto metrics = exp.Results().Scalars();
+          for (std::size_t j = 0; j < on.size(); ++j) out[j] = Measure(checks[on[j]], exp, metrics);
+        });
+    if (!rec || rec->status != "completed")
+      for (Slot& s : out)
+        s = {kNaN, "run " + std::string(rec ? rec->status + ": " + rec->message : "stopped")};
+  });
+  // raw[check][seed]
+  std::vector<std::map<std::uint64_t, Slot>> raw(checks.size());
+  for (std::size_t r = 0; r < list.size(); ++r)
+    for (std::size_t j = 0; j < list[r].second.size(); ++j)
+      raw[list[r].second[j]][list[r].first.seed] = slots[r][j];
+
+  // A check's value on a seed: its quantity, divided by ratio_to's value when it has one.
+  std::function<Slot(std::size_t, std::uint64_t)> value = [&](std::size_t i, std::uint64_t s) {
+    Slot v = raw[i][s];
+    const Check& c = checks[i];
+    if (v.error.empty() && !c.ratio_to.empty()) {
+      const Slot d = value(static_cast<std::size_t>(index(c.ratio_to)), s);
+      if (!d.error.empty()) return Slot{kNaN, "{" + c.ratio_to + "}: " + d.error};
+      v.raw = v.raw / d.raw;
+    }
+    return v;
+  };
+
+  std::vector<LessonCheckResult> out;
+  for (std::size_t i = 0; i < checks.size(); ++i) {
+    if (!wanted[i]) continue;
+    const Check& c = checks[i];
+    LessonCheckResult res;
+    res.lesson = stem;
+    res.id = c.id;
+    res.relation = RelationText(c);
+    res.against_check = !c.against.empty();
+    res.seeds = OwnSeeds(c, opt);
+    for (std::uint64_t s : res.seeds) {
+      const Slot v = value(i, s);
+      Slot rhs{c.value, ""};
+      if (!c.against.empty()) {
+        rhs = value(static_cast<std::size_t>(index(c.against)), s);
+        if (!rhs.error.empty()) rhs.error = "{" + c.against + "}: " + rhs.error;
+      }
+      if (res.error.empty() && !v.error.empty()) res.error = "seed " + std::to_string(s) + ": " + v.error;
+      if (res.error.empty() && !rhs.error.empty()) res.error = "seed " + std::to_string(s) + ": " + rhs.error;
+      res.values.push_back(v.raw);
+      res.operands.push_back(rhs.raw);
+      res.holds.push_back(v.error.empty() && rhs.error.empty() && RelationHolds(c, v.raw, rhs.raw));
+    }
+    out.push_back(std::move(res));
+  }
+  return out;
+}
+
+std::string FormatCheckResult(const LessonCheckResult& r) {
+  std::string values;
+  for (std::size_t i = 0; i < r.values.size(); ++i) values += (i ? " " : "") + Num(r.values[i]);
+  std::string against;
+  if (r.against_check) {
+    for (std::size_t i = 0; i < r.operands.size(); ++i) against += (i ? " " : "") + Num(r.operands[i]);
+    against = "  vs [" + against + "]";
+  }
+  std::string line = r.lesson + "  " + r.id + "  seeds " + std::to_string(r.seeds.size()) + "  [" +
+                     values + "]" + against + "  " + r.relation + "  " +
+                     (r.ok() ? "holds" : "FAILS");
+  if (!r.error.empty()) line += "  (" + r.error + ")";
+  return line;
+}
+
+}  // namespace formsim::sim

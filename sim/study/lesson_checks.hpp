@@ -1,0 +1,55 @@
+#pragma once
+/// \file Evaluating a lesson's checks (lesson.hpp): every run a check needs (the lesson's
+/// scenario with the check's edits, duration and a seed) is run once, through the path sweeps
+/// use (RunScenarioOnce), on a TaskPool; each check's quantity is measured on its runs and its
+/// relation tested seed by seed. Results depend on the lesson and the seeds alone, never on the
+/// number of jobs.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sim/scenario/lesson.hpp"
+
+namespace formsim::sim {
+
+/// One check's outcome over its seeds.
+struct LessonCheckResult {
+  std::string lesson;  ///< the lesson's file stem
+  std::string id;
+  std::vector<std::uint64_t> seeds;
+  std::vector<double> values;    ///< the measured quantity per seed (after ratio_to)
+  std::vector<double> operands;  ///< what it was compared with per seed (a number or a check's value)
+  std::vector<bool> holds;       ///< per seed
+  std::string relation;          ///< "< 0.01", "within [0.9, 1.1]", "< {base}", ...
+  bool against_check = false;    ///< compared with another check's values (operands)
+  std::string error;             ///< a run failed or the quantity does not exist ("" when measured)
+  bool ok() const;               ///< measured and holding on every seed
+};
+
+struct LessonCheckOptions {
+  /// Seeds every check runs on; empty: each check's own (1..seeds, or 1..5 for `all`).
+  std::vector<std::uint64_t> seeds;
+  int jobs = 1;  ///< runs at once
+  /// Only these check ids (empty: all).
+  std::vector<std::string> only;
+};
+
+/// Measures a column over [from, to] (rows whose time lies in it; NotSampled and NaN cells are
+/// skipped). Returns NaN when no value lies in the window (tau: fewer than 3 non-zero values;
+/// first_below: +inf when the level is never crossed).
+double ColumnStat(const std::vector<double>& t, const std::vector<double>& x,
+                  const LessonCheck& check);
+
+/// True when `value` satisfies the check's relation against `operand` (the relation's number
+/// or the other check's value).
+bool RelationHolds(const LessonCheck& check, double value, double operand);
+
+/// Evaluates the checks of the lesson in `file` (a scenario file with a lesson: block). Throws
+/// ScenarioError / std::runtime_error when the file cannot be read.
+std::vector<LessonCheckResult> CheckLesson(const std::string& file, const LessonCheckOptions& opt);
+
+/// One line per result: "lesson  id  values  relation  holds|FAILS".
+std::string FormatCheckResult(const LessonCheckResult& r);
+
+}  // namespace formsim::sim

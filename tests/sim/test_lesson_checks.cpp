@@ -1,0 +1,178 @@
+// Lesson checks: the `checks:` schema of a lesson block, the statistics and relations they
+// measure, the evaluation over seeds (the same values for any number of jobs), and the rule
+// that every paragraph of a shipped lesson stating an effect names the checks backing it.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include "sim/core/recorder.hpp"
+#include "sim/scenario/scenario.hpp"
+#include "sim/scenario/scenario_files.hpp"
+#include "sim/study/lesson_checks.hpp"
+#include "test_kind.hpp"
+
+namespace formsim::sim {
+namespace {
+
+namespace fs = std::filesystem;
+
+LessonCheck ColumnCheck(LessonCheck::Stat stat, double from = 0, double to = 1e9) {
+  LessonCheck c;
+  c.source = LessonCheck::Source::kColumn;
+  c.stat = stat;
+  c.from = from;
+  c.to = to;
+  return c;
+}
+
+TEST(LessonChecks, ColumnStatistics) {
+  std::vector<double> t, x;
+  for (int i = 0; i <= 300; ++i) {
+    t.push_back(0.01 * i);
+    x.push_back(-0.05 * std::exp(-t.back() / 0.7));  // τ = 0.7 s
+  }
+  using S = LessonCheck::Stat;
+  EXPECT_NEAR(ColumnStat(t, x, ColumnCheck(S::kTau, 0.1, 2.5)), 0.7, 1e-9);
+  EXPECT_DOUBLE_EQ(ColumnStat(t, x, ColumnCheck(S::kMaxAbs)), 0.05);
+  EXPECT_DOUBLE_EQ(ColumnStat(t, x, ColumnCheck(S::kMin)), -0.05);
+  EXPECT_DOUBLE_EQ(ColumnStat(t, x, ColumnCheck(S::kFinal)), x.back());
+  // Window [1, 2]: the largest magnitude is at t = 1.
+  EXPECT_NEAR(ColumnStat(t, x, ColumnCheck(S::kMaxAbs, 1, 2)), 0.05 * std::exp(-1 / 0.7), 1e-12);
+  LessonCheck below = ColumnCheck(S::kFirstBelow);
+  below.level = 0.05 * std::exp(-1.0);  // one time constant
+  EXPECT_NEAR(ColumnStat(t, x, below), 0.71, 1e-9);
+  below.level = 1e-9;  // never reached: +inf, so "less than" fails
+  EXPECT_TRUE(std::isinf(ColumnStat(t, x, below)));
+  // Jitter: RMS of the step-to-step change; NotSampled cells are skipped.
+  const std::vector<double> tj = {0, 1, 2, 3, 4}, xj = {0, 1, NotSampled(), 0, 1};
+  EXPECT_DOUBLE_EQ(ColumnStat(tj, xj, ColumnCheck(S::kJitter)), 1.0);
+  EXPECT_DOUBLE_EQ(ColumnStat(tj, xj, ColumnCheck(S::kMean)), 0.5);
+  EXPECT_DOUBLE_EQ(ColumnStat(tj, xj, ColumnCheck(S::kRms)), std::sqrt(0.5));
+  // Nothing in the window: NaN, which no relation accepts.
+  EXPECT_TRUE(std::isnan(ColumnStat(tj, xj, ColumnCheck(S::kMax, 10, 20))));
+}
+
+TEST(LessonChecks, Relations) {
+  LessonCheck c;
+  c.relation = LessonCheck::Relation::kLess;
+  EXPECT_TRUE(RelationHolds(c, 1, 2));
+  EXPECT_FALSE(RelationHolds(c, 2, 2));
+  EXPECT_FALSE(RelationHolds(c, std::nan(""), 2));
+  c.relation = LessonCheck::Relation::kGreater;
+  EXPECT_TRUE(RelationHolds(c, 3, 2));
+  c.relation = LessonCheck::Relation::kWithin;
+  c.lo = 0.9, c.hi = 1.1;
+  EXPECT_TRUE(RelationHolds(c, 1.0, 0));
+  EXPECT_FALSE(RelationHolds(c, 1.2, 0));
+  c.relation = LessonCheck::Relation::kEqual;
+  c.tolerance = 0.01;
+  EXPECT_TRUE(RelationHolds(c, 1.005, 1.0));
+  EXPECT_FALSE(RelationHolds(c, 1.02, 1.0));
+}
+
+TEST(LessonChecks, ReferencesAndEffects) {
+  EXPECT_EQ(CheckReferences("falls to 1 s {tau_l} and {tau_phi}; [phi, alpha] {Not} {}"),
+            (std::vector<std::string>{"tau_l", "tau_phi"}));
+  EXPECT_TRUE(StatesAnEffect("τ doubles to 2 s"));
+  EXPECT_TRUE(StatesAnEffect("the speeds grow larger than before"));
+  EXPECT_FALSE(StatesAnEffect("Watch the plots and the ghost {tau_1}."));
+}
+
+// A lesson on the core test kind: x after 1 s on a circle of v = 1.2, ω = 0.5 is
+// sin(0.5) / 0.5 · 1.2 ≈ 1.15 m whatever the seed (the noise is in the sensor only).
+std::string WriteLesson(const std::string& name, const std::string& checks) {
+  const fs::path dir = fs::temp_directory_path() / "formsim_test_lesson_checks";
+  fs::create_directories(dir);
+  const std::string file = (dir / (name + ".yaml")).string();
+  std::ofstream(file) << testkind::kScenario << "lesson:\n  title: \"Circle\"\n"
+                      << "  goal: \"The robot drives 1.15 m along x {x_end} {x_ratio}.\"\n"
+                      << "  watch: \"the speed\"\n  try_next: \"reset\"\n  checks:\n"
+                      << checks;
+  return file;
+}
+
+TEST(LessonChecks, EvaluatesOverSeedsTheSameForAnyJobs) {
+  const std::string file = WriteLesson(
+      "circle_lesson",
+      "    - {id: x_end, metric: x, within: [1.1, 1.2], seeds: 5}\n"
+      "    - {id: x_slow, set: [\"v=0.6\"], metric: x, greater: 0, seeds: all}\n"
+      "    - {id: x_ratio, set: [\"v=0.6\"], metric: x, ratio_to: x_end, within: [0.49, 0.51], seeds: 5}\n"
+      "    - {id: noisy, column: measured_v, stat: rms, from: 0.5, to: 1, greater: x_slow, seeds: 6}\n"
+      "    - {id: wrong, metric: x, less: 1, seeds: 5}\n"
+      "    - {id: missing, metric: no_such_metric, less: 1, seeds: 5}\n");
+  LessonCheckOptions one;
+  one.jobs = 1;
+  LessonCheckOptions two = one;
+  two.jobs = 2;
+  const auto a = CheckLesson(file, one), b = CheckLesson(file, two);
+  ASSERT_EQ(a.size(), 6u);
+  ASSERT_EQ(b.size(), 6u);
+  std::map<std::string, LessonCheckResult> by;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].values, b[i].values) << a[i].id;  // bit for bit, any number of jobs
+    by[a[i].id] = a[i];
+  }
+  EXPECT_TRUE(by["x_end"].ok()) << FormatCheckResult(by["x_end"]);
+  EXPECT_EQ(by["x_end"].seeds.size(), 5u);
+  EXPECT_EQ(by["x_slow"].seeds.size(), 5u);  // all: every seed asked for, 1..5 by default
+  EXPECT_TRUE(by["x_ratio"].ok()) << FormatCheckResult(by["x_ratio"]);
+  EXPECT_EQ(by["noisy"].seeds.size(), 6u);
+  // The measured speed (about 1.2 m/s) against x of the slower run (about 0.58 m).
+  EXPECT_TRUE(by["noisy"].ok()) << FormatCheckResult(by["noisy"]);
+  EXPECT_FALSE(by["wrong"].ok());
+  EXPECT_NE(FormatCheckResult(by["wrong"]).find("FAILS"), std::string::npos);
+  EXPECT_FALSE(by["missing"].ok());
+  EXPECT_NE(by["missing"].error.find("no metric 'no_such_metric'"), std::string::npos);
+  // --seeds overrides every check's own.
+  LessonCheckOptions seeds = one;
+  seeds.seeds = {7, 8};
+  seeds.only = {"x_end"};
+  const auto c = CheckLesson(file, seeds);
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_EQ(c[0].seeds, (std::vector<std::uint64_t>{7, 8}));
+}
+
+// Every shipped lesson: its block reads strictly, every paragraph that states an effect (a
+// number, a comparison) names a check, every check is named by a paragraph, and there are
+// at least 12 lessons, at least two per paper.
+TEST(LessonChecks, ShippedLessonsBackEveryClaim) {
+  std::map<std::string, int> per_paper;
+  const auto files = ShippedLessons();
+  for (const std::string& file : files) {
+    const YAML::Node root = LoadYamlFile(file);
+    ASSERT_TRUE(root["lesson"]) << file;
+    YamlReader r(root["lesson"], file, "lesson");
+    const LessonDef l = ReadLesson(r);
+    ++per_paper[root["type"].as<std::string>()];
+    EXPECT_FALSE(l.checks.empty()) << file;
+    std::set<std::string> named;
+    for (const auto& [key, text] : {std::pair<std::string, std::string>{"goal", l.goal},
+                                    {"watch", l.watch},
+                                    {"try_next", l.try_next}}) {
+      const auto refs = CheckReferences(text);
+      named.insert(refs.begin(), refs.end());
+      if (StatesAnEffect(text))
+        EXPECT_FALSE(refs.empty()) << file << ": " << key
+                                   << " states an effect but names no check:\n  " << text;
+    }
+    for (const LessonCheck& c : l.checks) {
+      EXPECT_TRUE(named.count(c.id) || std::any_of(l.checks.begin(), l.checks.end(),
+                                                   [&](const LessonCheck& o) {
+                                                     return o.against == c.id || o.ratio_to == c.id;
+                                                   }))
+          << file << ": check " << c.id << " backs no paragraph and no other check";
+      EXPECT_TRUE(c.all_seeds || c.seeds >= 5) << file << ": " << c.id;
+    }
+  }
+  EXPECT_GE(files.size(), 12u);
+  for (const char* paper : {"formation", "agv", "inspection", "velocity"})
+    EXPECT_GE(per_paper[paper], 2) << paper;
+}
+
+}  // namespace
+}  // namespace formsim::sim
