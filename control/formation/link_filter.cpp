@@ -24,6 +24,7 @@ class LinkUkf final : public LinkFilter {
     // Γ(s, U) = s + Tc F(s) U on all sigma points at once. They are s̄ ± columns, so the sines
     // and cosines of φ and γ = φ + α come from those of the mean (one sincos each) and of the
     // small column offsets (SinCosSmall) by angle addition.
+    if (def_.substeps > 1) return PredictSubsteps(leader, follower);
     auto gamma = [&](const typename Filter::SigmaSet& pts, typename Filter::SigmaSet& out) {
       const Eigen::Vector3d& m = pts[0];
       const SinCos phi0 = SinCosOf(m(1)), gamma0 = SinCosOf(m(1) + m(2));
@@ -44,6 +45,25 @@ class LinkUkf final : public LinkFilter {
         const SinCos dphi{sn[j], cs[j]}, dgamma{sn[3 + j], cs[3 + j]};
         out[1 + j] = propagate(pts[1 + j], AddAngles(phi0, dphi), AddAngles(gamma0, dgamma));
         out[4 + j] = propagate(pts[4 + j], SubAngles(phi0, dphi), SubAngles(gamma0, dgamma));
+      }
+    };
+    return ukf_.PredictSigma(gamma, Eigen::Matrix3d(def_.q.asDiagonal()));
+  }
+
+  // The same Γ integrated with `substeps` Euler steps of Tc / substeps; each step takes the
+  // sines and cosines of the point it reached (the inputs are held over the period).
+  UkfStatus PredictSubsteps(const Twist& leader, const Twist& follower) {
+    const int n = def_.substeps;
+    const double h = def_.Tc / n, L = def_.L;
+    auto gamma = [&](const typename Filter::SigmaSet& pts, typename Filter::SigmaSet& out) {
+      for (std::size_t k = 0; k < pts.size(); ++k) {
+        Eigen::Vector3d s = pts[k];
+        for (int i = 0; i < n; ++i) {
+          const LinkRates r =
+              LinkDerivative(s(0), SinCosOf(s(1)), SinCosOf(s(1) + s(2)), leader, follower, L);
+          s += h * Eigen::Vector3d(r.l_dot, r.phi_dot, r.alpha_dot);
+        }
+        out[k] = s;
       }
     };
     return ukf_.PredictSigma(gamma, Eigen::Matrix3d(def_.q.asDiagonal()));

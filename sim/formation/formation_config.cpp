@@ -68,6 +68,9 @@ UkfDef ReadUkf(YamlReader& m) {
   u.p0_alpha =
       m.Real("p0_alpha", u.p0_alpha, Tune("P0 α", "rad²").Above(0).AtMost(1e6).Slider(1e-12, 1.0, kLog).Group(g).OnReset());
   u.l0_error = m.Double("l0_error", u.l0_error);
+  // Ours: Euler substeps of the prediction (1 = the paper's single step per Tc).
+  u.substeps = m.Integer("substeps", u.substeps,
+                         Tune("prediction substeps").In(1, 1000).Slider(1, 50).Group(g));
   m.Finish();
   return u;
 }

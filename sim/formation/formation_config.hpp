@@ -8,7 +8,8 @@
 ///   noise: {l_sigma|l_variance: 0, phi_sigma|phi_variance: 0, alpha_sigma|alpha_variance: 0}
 ///   ukf:   {alpha: 1, beta: 2, kappa: 0, q_l: 1e-8, q_phi: 1e-6, q_alpha: 1e-6,
 ///           r_l, r_phi, r_alpha (default: the sensor variances), p0_l: 1e-4,
-///           p0_phi: 1e-4, p0_alpha: 1e-4, l0_error: 0}
+///           p0_phi: 1e-4, p0_alpha: 1e-4, l0_error: 0, substeps: 1 (ours: Euler steps of
+///           the prediction per Tc; 1 = the paper's single step)}
 ///   draw:  {trail_length: 400, trail_every: 5}
 ///   world, obstacles, patches: the shared blocks
 ///   robots: (required, a list)
@@ -72,6 +73,7 @@ struct UkfDef {
   double r_l = -1, r_phi = -1, r_alpha = -1;  ///< < 0: use the sensor's variance
   double p0_l = 1e-4, p0_phi = 1e-4, p0_alpha = 1e-4;
   double l0_error = 0.0;  ///< initial error of the l estimate when l is not measured, m
+  int substeps = 1;       ///< Euler steps per prediction (ours; 1 = the paper's)
 };
 
 enum class EstimatorMode { kTruth, kRaw, kUkf };

@@ -98,6 +98,7 @@ cf::LinkFilterDef FormationExperiment::FilterDef(int follower) const {
   cf::LinkFilterDef d;
   d.measure = f.measure;
   d.Tc = cfg_.control_period;
+  d.substeps = u.substeps;
   d.L = cfg_.L;
   d.q = {u.q_l, u.q_phi, u.q_alpha};
   // R defaults to the sensor's variance, floored so that a noise-free sensor keeps Pyy > 0.
@@ -364,7 +365,12 @@ void FormationExperiment::Accumulate(Link& l, double t) {
   l.est_l.Add(e(0));
   l.est_phi.Add(e(1));
   l.est_alpha.Add(e(2));
-  if (mode == EstimatorMode::kUkf) l.nees = l.filter->Mahalanobis2(e);
+  if (mode == EstimatorMode::kUkf) {
+    l.nees = l.filter->Mahalanobis2(e);
+    // The l component alone, e_l² / P_ll: 1 on average when the filter is consistent on l.
+    const double p_ll = l.filter->cov()(0, 0);
+    if (p_ll > 0.0 && t >= cfg_.settle_time - 1e-9) l.nees_l.Add(e(0) * e(0) / p_ll);
+  }
 }
 
 Pose2 FormationExperiment::EstimatedPose(const Agent& a) const {

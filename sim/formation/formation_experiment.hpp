@@ -95,6 +95,7 @@ class FormationExperiment : public ExperimentOf<FormationConfig>, public Formati
     bool has_phi_target = false;
     const cf::LinkFilter* filter = nullptr;
     double nees = 0.0;
+    ErrorStats nees_l;  ///< e_l² / P_ll after the settle time, while the filter is on
     int filter_faults = 0;
   };
   std::vector<LinkView> Links() const;
@@ -157,6 +158,7 @@ class FormationExperiment : public ExperimentOf<FormationConfig>, public Formati
     cf::LinkState truth_conv;  ///< under the sensor's convention
     cf::LinkState measured, used;
     double nees = 0.0;
+    ErrorStats nees_l;  ///< e_l² / P_ll after the settle time, while the filter is on
     SettledErrorStats e_l, e_phi, e_alpha;
     ErrorStats est_l, est_phi, est_alpha;
     bool ever_ukf = false;

@@ -78,6 +78,9 @@ Metrics FormationExperiment::Results() const {
       m.Set(p + "estimation_rmse.alpha", l.est_alpha.rms());
     }
     if (l.ever_ukf) m.Set(p + "filter_fault_steps", l.fault_count);
+    // Consistency of the filter on l (e_l² / P_ll averaged after the settle time; 1 when the
+    // filter's variance matches its error).
+    if (l.nees_l.n > 0) m.Set(p + "nees_l_mean", l.nees_l.mean());
     const std::string& f = r.body.name;
     m.Set(p + "events.collision", static_cast<double>(events_.CountForRobot(event::kCollision, f)));
     m.Set(p + "events.saturation", static_cast<double>(events_.CountForRobot(event::kSaturation, f)));
