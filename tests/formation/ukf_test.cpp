@@ -155,5 +155,34 @@ TEST(LinkFilter, AlphaOnlyLeavesLUnobservable) {
   EXPECT_LT(filter->cov()(2, 2), def.p0(2));
 }
 
+// ukf.substeps: 1 is the paper's single Euler step (the same numbers as before the option);
+// more substeps bring the predicted mean closer to the exact flow of the link kinematics.
+TEST(LinkFilter, SubstepsIntegrateTheKinematicsCloser) {
+  const Twist leader{2.5, 1.0}, follower{2.0, -0.5};
+  const LinkState x0{0.3, 3.9, 0.2};
+  auto predicted = [&](int substeps) {
+    LinkFilterDef def;
+    def.Tc = 0.05;  // a long period, so the Euler error shows
+    def.substeps = substeps;
+    auto f = LinkFilter::Make(def);
+    f->Reset(x0, Eigen::Matrix3d(def.p0.asDiagonal()));
+    EXPECT_EQ(f->Predict(leader, follower), UkfStatus::kOk);
+    return f->state().vec();
+  };
+  // The exact flow, by 10^5 Euler steps.
+  Eigen::Vector3d x = x0.vec();
+  for (int i = 0; i < 100000; ++i) {
+    const LinkRates r = LinkDerivative(LinkState::FromVec(x), leader, follower, 0.15);
+    x += 0.05 / 100000 * Eigen::Vector3d(r.l_dot, r.phi_dot, r.alpha_dot);
+  }
+  const double e1 = (predicted(1) - x).norm(), e20 = (predicted(20) - x).norm();
+  EXPECT_LT(e20, e1 / 10) << e1 << " " << e20;
+  // One substep is the single step: the state is x0 + Tc f(x0) (the UKF's mean of the
+  // propagated sigma points differs from it only by their spread).
+  const LinkRates r0 = LinkDerivative(x0, leader, follower, 0.15);
+  const Eigen::Vector3d euler = x0.vec() + 0.05 * Eigen::Vector3d(r0.l_dot, r0.phi_dot, r0.alpha_dot);
+  EXPECT_LT((predicted(1) - euler).norm(), (predicted(20) - euler).norm());
+}
+
 }  // namespace
 }  // namespace formsim::control::formation
