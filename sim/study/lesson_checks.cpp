@@ -23,11 +23,7 @@ namespace {
 using Check = LessonCheck;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-std::string Num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.4g", v);
-  return b;
-}
+std::string Num(double v) { return FormatSignificant(v, 4); }
 
 // A run a check needs: the lesson's scenario with edits, a duration and a seed.
 struct RunKey {
@@ -299,6 +295,39 @@ std::vector<LessonCheckResult> CheckLesson(const std::string& file, const Lesson
   }
   return out;
 }
+
+LiveCheck MeasureOnRun(const LessonDef& lesson, const Check& check, const Experiment& exp) {
+  LiveCheck out;
+  const auto metrics = exp.Results().Scalars();
+  // The value of a check of the lesson's own run, through its ratio_to chain.
+  std::function<Slot(const Check&, int)> value = [&](const Check& c, int depth) -> Slot {
+    if (!c.sets.empty() || c.duration > 0) {
+      std::string edits;
+      for (const std::string& e : c.sets) edits += (edits.empty() ? "" : ", ") + e;
+      return {kNaN, "{" + c.id + "} needs " + (edits.empty() ? "a shorter run" : edits)};
+    }
+    Slot v = Measure(c, exp, metrics);
+    if (!v.error.empty() || c.ratio_to.empty()) return v;
+    const Check* d = lesson.Find(c.ratio_to);
+    if (d == nullptr || depth > 8) return {kNaN, "no check '" + c.ratio_to + "'"};
+    const Slot dv = value(*d, depth + 1);
+    if (!dv.error.empty()) return dv;
+    v.raw /= dv.raw;
+    return v;
+  };
+  Slot v = value(check, 0);
+  Slot rhs{check.value, ""};
+  if (v.error.empty() && !check.against.empty()) {
+    const Check* o = lesson.Find(check.against);
+    rhs = o != nullptr ? value(*o, 1) : Slot{kNaN, "no check '" + check.against + "'"};
+  }
+  out.value = v.raw;
+  out.error = !v.error.empty() ? v.error : rhs.error;
+  out.holds = out.error.empty() && RelationHolds(check, v.raw, rhs.raw);
+  return out;
+}
+
+std::string LessonRelationText(const Check& c) { return RelationText(c); }
 
 std::string FormatCheckResult(const LessonCheckResult& r) {
   std::string values;

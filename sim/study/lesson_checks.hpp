@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/core/experiment.hpp"
 #include "sim/scenario/lesson.hpp"
 
 namespace formsim::sim {
@@ -48,6 +49,22 @@ bool RelationHolds(const LessonCheck& check, double value, double operand);
 /// Evaluates the checks of the lesson in `file` (a scenario file with a lesson: block). Throws
 /// ScenarioError / std::runtime_error when the file cannot be read.
 std::vector<LessonCheckResult> CheckLesson(const std::string& file, const LessonCheckOptions& opt);
+
+/// A check measured on one finished run (the window's current run).
+struct LiveCheck {
+  double value = 0.0;
+  bool holds = false;
+  std::string error;  ///< the run is not the check's (it needs edits or another duration), or
+                      ///< the quantity does not exist; "" when measured
+};
+
+/// Measures `check` of `lesson` on the finished run `exp` with the relation tested. Only a check
+/// of the lesson's own run (no edits, full duration), and comparing only with such checks, can
+/// be measured here; the others report what they need in `error`.
+LiveCheck MeasureOnRun(const LessonDef& lesson, const LessonCheck& check, const Experiment& exp);
+
+/// The relation as printed: "< 0.01", "within [0.9, 1.1] (ratio to {base})", ...
+std::string LessonRelationText(const LessonCheck& check);
 
 /// One line per result: "lesson  id  values  relation  holds|FAILS".
 std::string FormatCheckResult(const LessonCheckResult& r);
