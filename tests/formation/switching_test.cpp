@@ -259,6 +259,9 @@ TEST(Lessons, EveryLessonLoadsAndRuns) {
   const auto files = ShippedLessons();
   ASSERT_GE(files.size(), 6u);
   for (const std::string& file : files) {
+    // The other papers' lessons need their kinds (tests_formation links this one; ctest
+    // lessons.check runs them all).
+    if (LoadYamlFile(file)["type"].as<std::string>() != "formation") continue;
     const ParsedScenario p = ParseScenario(ScenarioSource::FromFile(file), {});
     EXPECT_TRUE(p.lesson.present) << file;
     EXPECT_FALSE(p.lesson.title.empty()) << file;
