@@ -1,18 +1,28 @@
-/// \file The rows of the window's command table (app/gui/command_table.hpp): every command the
-/// window has, once, with its arguments, keys, menu path, help, enabling and handler.
+/// \file The rows of the window's command table (app/gui/command_table.hpp), assembled from the
+/// panels' rows. Each panel registers its own rows: the panel classes (app/gui/panel.hpp) in
+/// their files (FormationEditorPanel::Rows, LessonPanel::Rows, TimelinePanel::Rows); the rows
+/// of the parts still drawn by the window class (AppUi) are the functions below, one per part.
+/// A command's name is written once, in its row.
+///
+/// The table's order, fixed: the parts in the order of kPanelOrder below, then grouped by menu,
+/// File, Run, View, Compare, the script-only rows, the kinds' menus (Formation), Help, keeping
+/// the parts' order inside each group. That is the order of the menu bar, the palette,
+/// `formsim gui --list-commands` and the README's table.
+#include <algorithm>
 #include <filesystem>
 
 #include "app/gui/command_table.hpp"
 #include "app/export/figure_data.hpp"
 #include "app/export/figure_export.hpp"
+#include "app/gui/command_row_makers.hpp"
+#include "app/gui/formation_editor_panel.hpp"
+#include "app/gui/lesson_panel.hpp"
+#include "app/gui/timeline_panel.hpp"
 #include "app/gui/ui.hpp"
-#include "control/formation/formation_graph.hpp"
-#include "control/formation/formation_shapes.hpp"
 #include "sim/core/draw.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/provenance.hpp"
 #include "sim/scenario/scenario_files.hpp"
-#include "sim/formation/formation_editing.hpp"
 
 namespace fs = std::filesystem;
 
@@ -23,80 +33,13 @@ namespace formsim::app {
 namespace {
 
 using Src = CommandSource;
-
-// ---- argument makers: the table's rows read as a list of these ----
-
-CommandArg Whole(std::string name, double lo, double hi, std::string unit = "") {
-  CommandArg a;
-  a.name = std::move(name);
-  a.type = ArgType::kWhole;
-  a.lo = lo;
-  a.hi = hi;
-  a.unit = std::move(unit);
-  return a;
-}
-
-CommandArg Real(std::string name, double lo, double hi, std::string unit = "") {
-  CommandArg a = Whole(std::move(name), lo, hi, std::move(unit));
-  a.type = ArgType::kReal;
-  return a;
-}
-
-CommandArg Text(std::string name, std::string what, ArgType type = ArgType::kRest) {
-  CommandArg a;
-  a.name = std::move(name);
-  a.type = type;
-  a.what = std::move(what);
-  return a;
-}
-
-CommandArg OnOff() {
-  CommandArg a;
-  a.name = "STATE";
-  a.type = ArgType::kOnOff;
-  return a;
-}
-
-CommandArg Choice(std::string name, std::vector<std::string> choices) {
-  CommandArg a;
-  a.name = std::move(name);
-  a.type = ArgType::kChoice;
-  a.choices = std::move(choices);
-  return a;
-}
-
-CommandArg Optional(CommandArg a) {
-  a.optional = true;
-  return a;
-}
-
-CommandArg Offer(CommandArg a, std::function<std::vector<std::string>(const AppUi&)> offer) {
-  a.offer = std::move(offer);
-  return a;
-}
-
-CommandArg Initial(CommandArg a, std::function<std::string(const AppUi&)> initial) {
-  a.initial = std::move(initial);
-  return a;
-}
+using namespace rows;
 
 // ---- what the window offers now ----
 
 std::vector<std::string> ShippedNames(const AppUi&) {
   std::vector<std::string> out;
   for (const std::string& f : sim::ShippedScenarios()) out.push_back(fs::path(f).stem().string());
-  return out;
-}
-
-std::vector<std::string> LessonNames(const AppUi&) {
-  std::vector<std::string> out;
-  for (const std::string& f : sim::ShippedLessons()) out.push_back(fs::path(f).stem().string());
-  return out;
-}
-
-std::vector<std::string> RobotNames(const AppUi& ui) {
-  std::vector<std::string> out = {"nobody"};
-  for (const auto& r : ui.session().exp().world().robots()) out.push_back(r->name());
   return out;
 }
 
@@ -139,31 +82,8 @@ std::vector<std::string> ThemeList() {
 
 // ---- when a command can run ----
 
-std::string NeedsFormation(const AppUi& ui) {
-  return sim::formation::EditingOf(ui.session().exp()) != nullptr
-             ? ""
-             : "only for a formation scenario (this one has no formation graph to edit)";
-}
-
-// Structural changes: a formation scenario whose structure can change.
-std::string NeedsRestructurable(const AppUi& ui) {
-  const auto* editing = sim::formation::EditingOf(ui.session().exp());
-  return editing == nullptr ? NeedsFormation(ui) : editing->StructureLocked();
-}
-
-std::string NeedsSwitching(const AppUi& ui) {
-  for (const sim::ActionSpec& a : ui.session().exp().Actions())
-    if (a.id == "switch-formation") return "";
-  return "only for a scenario with formation switching (a `switching:` block)";
-}
-
 std::string NeedsActions(const AppUi& ui) {
   return ActionIds(ui).empty() ? "this scenario offers no actions" : "";
-}
-
-std::string NeedsTimeline(const AppUi& ui) {
-  return ui.TimelineActive() ? ""
-                             : "move the timeline back first (the world view shows the live run)";
 }
 
 std::string NeedsSeedsRunning(const AppUi& ui) {
@@ -179,11 +99,10 @@ std::string FiguresFolder(const AppUi& ui) {
   return fs::path(ui.session().file()).stem().string() + "_figures";
 }
 
-std::vector<Command> BuildTable() {
+// Scenario: the Scenario section: files in and out, the session and its journal.
+std::vector<Command> ScenarioRows() {
   std::vector<Command> t;
   auto row = [&t](Command c) { t.push_back(std::move(c)); };
-
-  // ---- File ----
   row({.name = "open",
        .args = {Initial(Text("PATH", "a scenario file's path"),
                         [](const AppUi& ui) { return std::string(ui.state().open_path); })},
@@ -241,31 +160,13 @@ std::vector<Command> BuildTable() {
                                                      : std::string();
            },
        .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdDiscardSession(); }});
-  row({.name = "screenshot",
-       .args = {Optional(Text("PATH", "a PNG file to write"))},
-       .keys = {"s"},
-       .menu = "File/Screenshot",
-       .help = "Write the window as a PNG (to PATH, else a numbered name)",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         return ui.CmdScreenshot(a.Has(0) ? a.Text(0) : "");
-       }});
-  row({.name = "export-figures",
-       .args = {Initial(Text("DIR", "a folder to write into"), FiguresFolder)},
-       .menu = "File/Export figures…",
-       .help = "Write every figure of the current run as SVG and PDF into DIR",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdExportFigures(a.Text(0)); }});
-  row({.name = "quit",
-       .keys = {"Ctrl+Q"},
-       .menu = "File/Quit",
-       .help = "Close the window (with --out and --session, their files are written first)",
-       .run =
-           [](AppUi& ui, const CommandArgs&, Src) {
-             ui.state().quit_requested = true;
-             return std::string();
-           },
-       .ends_program = true});
+  return t;
+}
 
-  // ---- Run ----
+// Run: the Run section: play, step, reset, speed.
+std::vector<Command> RunRows() {
+  std::vector<Command> t;
+  auto row = [&t](Command c) { t.push_back(std::move(c)); };
   row({.name = "play-pause",
        .keys = {"space"},
        .menu = "Run/Play or pause",
@@ -308,6 +209,13 @@ std::vector<Command> BuildTable() {
            if (names[i] == a.Text(0)) ui.state().speed_index = static_cast<int>(i);
          return std::string();
        }});
+  return t;
+}
+
+// Parameters: the Parameters section: tunables and the scenario's actions.
+std::vector<Command> ParameterRows() {
+  std::vector<Command> t;
+  auto row = [&t](Command c) { t.push_back(std::move(c)); };
   row({.name = "edit",
        .args = {Offer(Text("KEY=VALUE", "a tunable's key, '=', and its new value"), TunableKeys)},
        .menu = "Run/Edit a value…",
@@ -331,8 +239,21 @@ std::vector<Command> BuildTable() {
        .help = "Run an action the scenario offers (e.g. reload_rules), between two steps",
        .disabled = NeedsActions,
        .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdAction(a.Text(0)); }});
+  return t;
+}
 
-  // ---- View ----
+// View: the View section and the world view: camera, theme, overlays, legend, help, screenshots.
+std::vector<Command> ViewRows() {
+  std::vector<Command> t;
+  auto row = [&t](Command c) { t.push_back(std::move(c)); };
+  row({.name = "screenshot",
+       .args = {Optional(Text("PATH", "a PNG file to write"))},
+       .keys = {"s"},
+       .menu = "File/Screenshot",
+       .help = "Write the window as a PNG (to PATH, else a numbered name)",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) {
+         return ui.CmdScreenshot(a.Has(0) ? a.Text(0) : "");
+       }});
   row({.name = "present",
        .args = {OnOff()},
        .keys = {"p"},
@@ -419,24 +340,33 @@ std::vector<Command> BuildTable() {
          ui.state().select_tab = a.Text(0);
          return std::string();
        }});
-  row({.name = "dismiss",
-       .keys = {"Esc"},
-       .menu = "View/Close what is open",
-       .help = "Close the palette or help, stop editing, or leave presentation (one at a time)",
-       .run = [](AppUi& ui, const CommandArgs&, Src) {
-         UiState& s = ui.state();
-         if (s.palette)
-           s.palette = false;
-         else if (s.help)
-           s.help = false;
-         else if (s.edit_mode != UiState::EditMode::kOff)
-           return ui.CmdEditor("off");
-         else if (s.present)
-           return ui.CmdPresent(false);
-         return std::string();
-       }});
+  row({.name = "help",
+       .args = {OnOff()},
+       .keys = {"F1", "?"},
+       .key_args = "toggle",
+       .menu = "Help/Keys and mouse",
+       .help = "The help overlay: every key and mouse gesture",
+       .checked = [](const AppUi& ui) { return ui.state().help; },
+       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdHelp(a.On(0)); }});
+  return t;
+}
 
-  // ---- Compare ----
+// Plots: the Plots tab: figures.
+std::vector<Command> PlotRows() {
+  std::vector<Command> t;
+  auto row = [&t](Command c) { t.push_back(std::move(c)); };
+  row({.name = "export-figures",
+       .args = {Initial(Text("DIR", "a folder to write into"), FiguresFolder)},
+       .menu = "File/Export figures…",
+       .help = "Write every figure of the current run as SVG and PDF into DIR",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdExportFigures(a.Text(0)); }});
+  return t;
+}
+
+// Compare: the Compare section: pins and Monte Carlo seeds.
+std::vector<Command> CompareRows() {
+  std::vector<Command> t;
+  auto row = [&t](Command c) { t.push_back(std::move(c)); };
   row({.name = "pin",
        .menu = "Compare/Pin this run",
        .help = "Keep the run as it stands as a reference, drawn faded and dashed",
@@ -466,6 +396,13 @@ std::vector<Command> BuildTable() {
        .help = "Stop the Monte Carlo under way",
        .disabled = NeedsSeedsRunning,
        .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdCancelSeeds(); }});
+  return t;
+}
+
+// History: the History tab: runs and undo.
+std::vector<Command> HistoryRows() {
+  std::vector<Command> t;
+  auto row = [&t](Command c) { t.push_back(std::move(c)); };
   row({.name = "history",
        .menu = "Compare/History",
        .help = "Show the history of runs (the History tab)",
@@ -505,20 +442,54 @@ std::vector<Command> BuildTable() {
              return ui.session().can_redo() ? std::string() : std::string("nothing to redo");
            },
        .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdRedo(); }});
-  row({.name = "scrub",
-       .args = {Real("T", 0, 1e9, "s")},
-       .menu = "Compare/Timeline: go to time…",
-       .help = "Show the world at time T of the live run (exact, replayed)",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdScrub(a.Real(0)); }});
-  row({.name = "live",
-       .menu = "Compare/Timeline: back to live",
-       .help = "Show the live end of the run again",
-       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdLive(); }});
-  row({.name = "branch",
-       .menu = "Compare/Branch from the timeline",
-       .help = "Restart the run from the time the timeline shows (pins the original first)",
-       .disabled = NeedsTimeline,
-       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdBranch(); }});
+  return t;
+}
+
+// Palette: the command palette.
+std::vector<Command> PaletteRows() {
+  std::vector<Command> t;
+  auto row = [&t](Command c) { t.push_back(std::move(c)); };
+  row({.name = "palette",
+       .args = {Optional(Text("FILTER", "text to filter commands and tunables by"))},
+       .keys = {"Ctrl+K"},
+       .menu = "Help/Command palette",
+       .help = "Find any command or tunable by typing part of its name",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) {
+         return ui.CmdPalette(a.Has(0) ? a.Text(0) : "");
+       }});
+  return t;
+}
+
+// Window: the window itself: quitting, Esc, menus, scripts, About.
+std::vector<Command> WindowRows() {
+  std::vector<Command> t;
+  auto row = [&t](Command c) { t.push_back(std::move(c)); };
+  row({.name = "quit",
+       .keys = {"Ctrl+Q"},
+       .menu = "File/Quit",
+       .help = "Close the window (with --out and --session, their files are written first)",
+       .run =
+           [](AppUi& ui, const CommandArgs&, Src) {
+             ui.state().quit_requested = true;
+             return std::string();
+           },
+       .ends_program = true});
+  row({.name = "dismiss",
+       .keys = {"Esc"},
+       .menu = "View/Close what is open",
+       .help = "Close the palette or help, stop editing, or leave presentation (one at a time)",
+       .run = [](AppUi& ui, const CommandArgs&, Src) {
+         UiState& s = ui.state();
+         if (s.palette)
+           s.palette = false;
+         else if (s.help)
+           s.help = false;
+         else if (Panel* open = ui.PanelToDismiss())
+           return open->Dismiss();  // the formation editor stops editing
+         else if (s.present)
+           return ui.CmdPresent(false);
+         return std::string();
+       }});
   row({.name = "menu",
        .args = {Choice("NAME", {"File", "Run", "View", "Compare", "Formation", "Help"})},
        .help = "Open a menu of the menu bar (for scripted pictures and tests)",
@@ -532,88 +503,6 @@ std::vector<Command> BuildTable() {
        .help = "Hold the script until pins, a Monte Carlo or the timeline have finished",
        .run = [](AppUi&, const CommandArgs&, Src) { return std::string(); },
        .script_only = true});
-
-  // ---- Formation: the kind's own menu ----
-  row({.name = "editor",
-       .args = {Choice("MODE", {"off", "add", "remove", "attach", "law", "slots"}),
-                Optional(Choice("LAW", control::formation::FollowerLawNames()))},
-       .menu = "Formation/Editor",
-       .help = "What a left click in the world view does (add and attach take a law)",
-       .disabled = NeedsFormation,
-       .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         return ui.CmdEditor(a.Has(1) ? a.Text(0) + " " + a.Text(1) : a.Text(0));
-       }});
-  row({.name = "formation",
-       .args = {Text("CHANGE",
-                     "add LAW LEADERS X Y [NAME], remove NAME, attach NAME LAW "
-                     "LEADERS, or shape KIND [SPACING]")},
-       .menu = "Formation/Change…",
-       .help = "A structural change of the formation; the run goes on from here",
-       .disabled = NeedsRestructurable,
-       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdFormation(a.Text(0)); }});
-  row({.name = "shape",
-       .args = {Choice("KIND", control::formation::ShapeNames()),
-                Optional(Real("SPACING", 0.05, 10, "m"))},
-       .menu = "Formation/Shape",
-       .help = "Re-attach every follower to make a shape (spacing in m)",
-       .disabled = NeedsRestructurable,
-       .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         return ui.CmdFormation("shape " + a.Text(0) + (a.Has(1) ? " " + a.Text(1) : ""));
-       }});
-  row({.name = "slot",
-       .args = {Offer(Text("ROBOT", "a follower's name", ArgType::kWord), RobotNames),
-                Real("X", -1e4, 1e4, "m"), Real("Y", -1e4, 1e4, "m")},
-       .menu = "Formation/Move a slot…",
-       .help = "Put a follower's desired slot at world point (X, Y): it converges live",
-       .disabled = NeedsFormation,
-       .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         return ui.CmdSlot(a.Text(0), a.Real(1), a.Real(2));
-       }});
-  row({.name = "click",
-       .args = {Real("X", -1e4, 1e4, "m"), Real("Y", -1e4, 1e4, "m")},
-       .menu = "Formation/Click at…",
-       .help = "A left click in the world view at (X, Y), as the editor's mode takes it",
-       .disabled = NeedsFormation,
-       .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         return ui.EditorClick({a.Real(0), a.Real(1)});
-       }});
-  row({.name = "switch-formation",
-       .args = {Optional(Text("NAME", "a shape of the switching: block", ArgType::kWord))},
-       .keys = {"n"},
-       .menu = "Formation/Switch formation",
-       .help = "Switch to the next formation shape, or the named one",
-       .disabled = NeedsSwitching,
-       .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         return ui.CmdAction(a.Has(0) ? "switch-formation:" + a.Text(0)
-                                      : std::string("switch-formation"));
-       }});
-
-  // ---- Help ----
-  row({.name = "help",
-       .args = {OnOff()},
-       .keys = {"F1", "?"},
-       .key_args = "toggle",
-       .menu = "Help/Keys and mouse",
-       .help = "The help overlay: every key and mouse gesture",
-       .checked = [](const AppUi& ui) { return ui.state().help; },
-       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdHelp(a.On(0)); }});
-  row({.name = "palette",
-       .args = {Optional(Text("FILTER", "text to filter commands and tunables by"))},
-       .keys = {"Ctrl+K"},
-       .menu = "Help/Command palette",
-       .help = "Find any command or tunable by typing part of its name",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         return ui.CmdPalette(a.Has(0) ? a.Text(0) : "");
-       }});
-  row({.name = "lesson",
-       .args = {Offer(Text("NAME", "a shipped lesson's name", ArgType::kChoice), LessonNames)},
-       .menu = "Help/Lessons",
-       .help = "Open a lesson: its scenario, with the text in the Lesson tab",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         const std::string err = ui.CmdOpen(sim::ResolveLesson(a.Text(0)));
-         if (err.empty()) ui.state().select_tab = "lesson";
-         return err;
-       }});
   row({.name = "about",
        .menu = "Help/About",
        .help = "formsim's version and where its papers come from",
@@ -621,6 +510,34 @@ std::vector<Command> BuildTable() {
          ui.state().about = true;
          return std::string();
        }});
+  return t;
+}
+
+// The parts whose rows make the table, in this order (see the file's comment).
+using RowsOf = std::vector<Command> (*)();
+const RowsOf kPanelOrder[] = {
+    ScenarioRows, RunRows,      ParameterRows,               ViewRows,
+    PlotRows,     CompareRows,  HistoryRows,                 TimelinePanel::Rows,
+    FormationEditorPanel::Rows, PaletteRows,                 LessonPanel::Rows,
+    WindowRows,
+};
+
+// The group of a row in the table: its menu's place; script-only rows after Compare.
+int GroupOf(const Command& c) {
+  static const std::vector<std::string> kGroups = {"File", "Run", "View", "Compare", "",
+                                                   "Formation", "Help"};
+  const std::string top = c.menu.substr(0, c.menu.find('/'));
+  const auto it = std::find(kGroups.begin(), kGroups.end(), top);
+  // A menu of a kind not listed goes with the kinds' menus, before Help.
+  return it == kGroups.end() ? 5 : static_cast<int>(it - kGroups.begin());
+}
+
+std::vector<Command> BuildTable() {
+  std::vector<Command> t;
+  for (RowsOf rows_of : kPanelOrder)
+    for (Command& c : rows_of()) t.push_back(std::move(c));
+  std::stable_sort(t.begin(), t.end(),
+                   [](const Command& a, const Command& b) { return GroupOf(a) < GroupOf(b); });
   return t;
 }
 

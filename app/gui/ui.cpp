@@ -7,9 +7,11 @@
 #include <cstring>
 #include <filesystem>
 
+#include "app/gui/formation_editor_panel.hpp"
+#include "app/gui/lesson_panel.hpp"
+#include "app/gui/timeline_panel.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/scenario/scenario_files.hpp"
-#include "sim/formation/formation_editing.hpp"
 
 namespace fs = std::filesystem;
 
@@ -49,6 +51,7 @@ std::string ListName(const std::string& file) {
 
 AppUi::AppUi(std::unique_ptr<sim::Session> session) : owned_(std::move(session)) {
   session_ = owned_.get();
+  MakePanels();
   shipped_ = ShippedAndLessons();
   SyncScenarioFields();
   StartRecording(session_->cli_overrides(), 0);
@@ -56,6 +59,7 @@ AppUi::AppUi(std::unique_ptr<sim::Session> session) : owned_(std::move(session))
 }
 
 AppUi::AppUi(sim::Session& borrowed) : session_(&borrowed) {
+  MakePanels();
   shipped_ = ShippedAndLessons();
   SyncScenarioFields();
   StartRecording(session_->cli_overrides(), 0);
@@ -69,6 +73,39 @@ AppUi::~AppUi() {
 void AppUi::SetRunSetup(std::function<void(sim::Experiment&)> setup) {
   run_setup_ = std::move(setup);
   session_->SetRunSetup(run_setup_);
+}
+
+void AppUi::MakePanels() {
+  auto timeline = std::make_unique<TimelinePanel>(*this);
+  timeline_ = timeline.get();
+  panels_.push_back(std::move(timeline));
+  panels_.push_back(std::make_unique<LessonPanel>(*this));
+  SyncKindPanel();
+}
+
+void AppUi::SyncKindPanel() {
+  if (!IsKindPanelFor(kind_panel_.get(), session_->exp()))
+    kind_panel_ = MakeKindPanel(*this, session_->exp());
+}
+
+Panel* AppUi::PanelToDismiss() const {
+  if (kind_panel_ && kind_panel_->Dismissable()) return kind_panel_.get();
+  for (const auto& panel : panels_)
+    if (panel->Dismissable()) return panel.get();
+  return nullptr;
+}
+
+std::string AppUi::ReplaceRun(const std::string& status,
+                              const std::function<std::string()>& change) {
+  auto row = PendingRow(status);
+  const std::string err = change();
+  if (!err.empty()) return err;
+  if (row) history_.Add(std::move(*row));
+  return "";
+}
+
+std::string AppUi::CmdLive() {
+  return timeline_->CmdLive();
 }
 
 void AppUi::SetStatus(const std::string& message, bool error) {
@@ -115,6 +152,7 @@ void AppUi::Adopt(std::unique_ptr<sim::Session> session, const std::string& mess
   owned_ = std::move(session);
   session_ = owned_.get();
   SyncScenarioFields();
+  SyncKindPanel();
   StartRecording({}, step);
   LoadHistoryFor(session_->file());
   SetStatus(message);
@@ -197,6 +235,7 @@ std::string AppUi::CmdReload() {
   }
   if (row) history_.Add(std::move(*row));
   SyncScenarioFields();
+  SyncKindPanel();  // the file may now hold another kind
   SetStatus("reloaded " + session_->file());
   return "";
 }
@@ -320,6 +359,7 @@ std::string AppUi::RunScriptAction(const std::string& line) {
 }
 
 std::string AppUi::RunCommand(const Command& cmd, const std::string& args, CommandSource source) {
+  SyncKindPanel();
   if (cmd.disabled) {
     if (const std::string why = cmd.disabled(*this); !why.empty()) {
       SetStatus(cmd.name + ": " + why, true);
@@ -367,7 +407,7 @@ void AppUi::Advance(double wall_dt) {
   } catch (const std::exception& e) {
     SetStatus(std::string("could not apply the edits: ") + e.what(), true);
   }
-  if (state_.playing && timeline_.active) state_.playing = false;  // the timeline pauses
+  if (state_.playing && timeline_->Active()) state_.playing = false;  // the timeline pauses
   if (state_.playing && !exp.finished()) {
     try {
       const double speed = SpeedChoices()[state_.speed_index];
@@ -431,6 +471,7 @@ void AppUi::HandleKeys() {
 
 void AppUi::Draw(ImVec2 display, const Fonts& fonts, bool interactive) {
   UpdateBackground();
+  SyncKindPanel();
   // Over everything else: the palette, a command's argument dialog, the About box.
   auto overlays = [&] {
     DrawCommandDialog();
@@ -468,16 +509,13 @@ void AppUi::Draw(ImVec2 display, const Fonts& fonts, bool interactive) {
 }
 
 void AppUi::DrawControlPanel(const Fonts& fonts, bool interactive) {
-  (void)fonts;
   (void)interactive;
   DrawRestoreBanner();
   if (ImGui::CollapsingHeader("Scenario", ImGuiTreeNodeFlags_DefaultOpen)) DrawScenarioSection();
   if (ImGui::CollapsingHeader("Run", ImGuiTreeNodeFlags_DefaultOpen)) DrawRunSection();
   if (ImGui::CollapsingHeader("Compare", ImGuiTreeNodeFlags_DefaultOpen)) DrawTuningSection();
-  if (sim::formation::EditingOf(session_->exp()) != nullptr) {
-    if (state_.edit_mode != UiState::EditMode::kOff) ImGui::SetNextItemOpen(true);
-    if (ImGui::CollapsingHeader("Formation")) DrawFormationSection();
-  }
+  SyncKindPanel();  // a button above may have loaded another scenario
+  if (kind_panel_) kind_panel_->Draw(fonts);
   DrawParamSection();
   if (ImGui::CollapsingHeader("View")) DrawViewSection();
   DrawMessagesSection();

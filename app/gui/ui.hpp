@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "app/gui/command_table.hpp"
+#include "app/gui/panel.hpp"
 #include "app/render/fonts.hpp"
 #include "app/render/theme.hpp"
 #include "app/gui/tuning_state.hpp"
@@ -24,11 +25,9 @@
 #include "sim/session/session_journal.hpp"
 #include "sim/session/session_record.hpp"
 
-namespace formsim::sim::formation {
-struct StructureChange;
-}  // namespace formsim::sim::formation
-
 namespace formsim::app {
+
+class TimelinePanel;
 
 /// Speeds offered by the Run panel; 0 means as fast as possible.
 const std::vector<double>& SpeedChoices();
@@ -56,27 +55,18 @@ struct UiState {
   char seed_text[32] = "";
   char session_path[512] = "";
   int mc_seeds = 20;                 ///< "Run N seeds"
-  bool branch_pins_original = true;  ///< "branch from here" pins the run it leaves first
   std::string gesture_key;  ///< the slider held since its last edit (its edits make one undo step)
   std::string select_tab;   ///< a tab of the right-hand window to bring to front once
   std::string drag_name;  ///< robot or obstacle being dragged
   double sim_ms = 0, frame_ms = 0;
   int steps_last_frame = 0;
 
-  // Teaching (app/gui/ui_formation.cpp, app/gui/ui_teach.cpp).
+  // Teaching (app/gui/ui_teach.cpp).
   std::set<std::string> overlays = DefaultSceneOverlays();  ///< of the scene (View panel)
   bool legend = true;    ///< a legend of every mark drawn in the world view
   bool help = false;     ///< the help overlay (F1)
   bool present = false;  ///< presentation mode: the world view fills the window
   UiSettings settings;   ///< UI scale and angle unit, kept between runs
-  /// What a left click in the world view does (the formation editor).
-  enum class EditMode { kOff, kAdd, kRemove, kAttach, kSwitchLaw, kSlots };
-  EditMode edit_mode = EditMode::kOff;
-  int edit_law = 0;                     ///< 0 l_phi, 1 l_l (add and attach)
-  std::vector<std::string> edit_picks;  ///< robots picked so far (follower and/or leaders)
-  int shape_index = 2;                  ///< into control::formation::ShapeNames()
-  float shape_spacing = 0.5f;           ///< m
-  std::string slot_drag;                ///< follower whose slot is being dragged
   double step_budget = 0;  ///< simulated seconds owed to real time
 
   // The command table's window parts (app/gui/ui_menu.cpp, app/gui/ui_palette.cpp).
@@ -176,26 +166,10 @@ class AppUi {
   /// Runs the current settings over seeds 1..n in the background (as `formsim sweep`).
   std::string CmdSeeds(int n);
   std::string CmdCancelSeeds();
-  /// Shows the world at simulated time `t` of the live run (the timeline); CmdLive goes back.
-  std::string CmdScrub(double t, bool finish_now = true);
+  /// The world view back at the live end (the Timeline panel's `live`).
   std::string CmdLive();
-  /// Restarts the run from the time shown by the timeline (exact), pinning the original first
-  /// when state().branch_pins_original.
-  std::string CmdBranch();
-  // ---- Teaching: the formation editor, overlays, legend, help, presentation.
-  /// A structural change of the formation (Session::Restructure): "add LAW LEADERS X Y
-  /// [NAME]", "remove NAME", "attach NAME LAW LEADERS", "shape KIND [SPACING]".
-  std::string CmdFormation(const std::string& command);
-  /// The same change typed (the editor's clicks); recorded under its text form.
-  std::string CmdFormationChange(const sim::formation::StructureChange& change);
-  /// Puts `robot`'s desired slot (its control point) at world point (x, y): live edits of its
-  /// l_des and φ_des, or of its two distances. `continues_drag`: one undo step per drag.
-  std::string CmdSlot(const std::string& robot, double x, double y, bool continues_drag = false);
-  /// The editor's mode: "off", "add l_phi|l_l", "remove", "attach l_phi|l_l", "law", "slots".
-  std::string CmdEditor(const std::string& mode);
-  /// A left click in the world view at world point `p` as the editor's mode takes it (the
-  /// mouse and the script action `click X Y`).
-  std::string EditorClick(Vec2 p);
+  // ---- Teaching: overlays, legend, help, presentation (the formation editor is the
+  // formation kind's own panel, app/gui/formation_editor_panel.hpp).
   /// Overlays of the scene: "NAME,..." as --overlay (all, none, default, -NAME), applied to the
   /// ones shown now.
   std::string CmdOverlay(const std::string& list);
@@ -244,8 +218,6 @@ class AppUi {
   const std::map<std::string, std::pair<ImVec2, ImVec2>>& menu_items() const { return menu_items_; }
   /// Writes every figure of the current run as SVG and PDF into `dir`.
   std::string CmdExportFigures(const std::string& dir);
-  /// The timeline shows an earlier time than the live end.
-  bool TimelineActive() const { return timeline_.active; }
   /// A Monte Carlo ("Run N seeds") is under way.
   bool SeedsRunning() const;
   /// True while work goes on in the background (pins replaying, a Monte Carlo, the timeline
@@ -263,6 +235,24 @@ class AppUi {
   void NoteRunInHistory(const std::string& status);
   const sim::RunHistory& history() const { return history_; }
   const std::vector<std::unique_ptr<PinnedRun>>& pins() const { return pins_; }
+
+  // ---- The panels (app/gui/panel.hpp) and what the window shares with them.
+  /// The panel of type P the window has now (the kind's own panel, or one of the window's), or
+  /// null: a formation scenario has a FormationEditorPanel, others none.
+  template <class P>
+  P* Find() const {
+    if (auto* p = dynamic_cast<P*>(kind_panel_.get())) return p;
+    for (const auto& panel : panels_)
+      if (auto* p = dynamic_cast<P*>(panel.get())) return p;
+    return nullptr;
+  }
+  /// The first panel with something open that Esc closes (null: none).
+  Panel* PanelToDismiss() const;
+  /// The status line's message (an error is shown in red, also over the world view).
+  void SetStatus(const std::string& message, bool error = false);
+  /// Replaces the live run by `change` (a structural change, a branch): when `change` succeeds
+  /// ("") the old run's history row is kept with `status`. Returns what `change` returned.
+  std::string ReplaceRun(const std::string& status, const std::function<std::string()>& change);
 
  private:
   void HandleKeys();
@@ -293,12 +283,13 @@ class AppUi {
   double CursorTime() const;
   /// The experiment the world view shows: the timeline's replay, or the live run.
   const sim::Experiment& ShownExperiment() const;
-  void DrawTimeline(ImVec2 min, ImVec2 max);
   void DrawTuningSection();
   void DrawHistoryTab();
   void DrawCompareTable(const sim::Metrics& now);
-  void AdvanceTimeline(double budget_s);
-  void SetStatus(const std::string& message, bool error = false);
+  /// The kind's own panel for the experiment now: made, kept or dropped (MakeKindPanel).
+  void SyncKindPanel();
+  /// The window's own panels, made once.
+  void MakePanels();
   /// Replaces the session after a successful load (keeps view options, resets per-run state).
   void Adopt(std::unique_ptr<sim::Session> session, const std::string& message);
   void SyncScenarioFields();
@@ -307,32 +298,27 @@ class AppUi {
   void DrawRunSection();
   void DrawViewSection();
   void DrawOverlayToggles();
-  void DrawFormationSection();
-  /// Restructures the session by `restructure` (label: the change's text form) and reports.
-  std::string RunRestructure(const std::string& label,
-                             const std::function<std::string()>& restructure);
   /// The help overlay (keys and mouse) over the world view.
   void DrawHelpOverlay(ImVec2 min, ImVec2 max);
   /// Presentation mode's small bar of buttons, top right of the world view.
   void DrawPresentationBar(ImVec2 min, ImVec2 max);
-  /// The editor's mouse in the world view; true when it took the click.
-  bool EditorMouse(const View& view);
-  /// The robot nearest world point `p` within a few pixels of its body ("" none).
-  std::string RobotAt(Vec2 p, const View& view) const;
   void SaveSettings();
   void DrawParamSection();
   void DrawMessagesSection();
   void DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool interactive);
   void DrawWorldMouse(const View& view);
   void DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts);
-  /// The Lesson tab (ui_lesson.cpp): the lesson's text, wrapped to the panel.
-  void DrawLessonTab(const Fonts& fonts);
   /// What the plots window shows, refreshed at most ten times a second (app/gui/ui_plots.cpp).
   struct PlotsCache;
   std::shared_ptr<PlotsCache> plots_cache_;
   void UpdateView(ImVec2 min, ImVec2 max);
 
   std::map<std::string, std::pair<ImVec2, ImVec2>> menu_items_;
+  /// The window's panels (the Lesson), and the experiment kind's own panel (null for a kind
+  /// without one): drawn where the layout puts them.
+  std::vector<std::unique_ptr<Panel>> panels_;
+  std::unique_ptr<Panel> kind_panel_;
+  TimelinePanel* timeline_ = nullptr;  ///< one of panels_: every window has one
   std::function<void(sim::Experiment&)> run_setup_;
   std::unique_ptr<sim::Session> owned_;
   sim::Session* session_ = nullptr;
@@ -352,7 +338,6 @@ class AppUi {
   long history_run_ = -1;                               ///< run id that has its history row
   std::map<std::string, sim::ParamTable> text_params_;  ///< by SHA-256 of a scenario text
   std::vector<int> history_order_;  ///< rows in the order shown (sorted by a column)
-  Timeline timeline_;
   MonteCarloState mc_;
   std::unique_ptr<sim::SessionJournal> journal_;  ///< the window's crash-safe journal
   std::vector<sim::RecoveredSession> unfinished_;  ///< offered for restore, newest first

@@ -15,6 +15,7 @@
 #include "app/export/figure_data.hpp"
 #include "app/render/imgui_canvas.hpp"
 #include "app/render/long_text.hpp"
+#include "app/gui/lesson_panel.hpp"
 #include "app/gui/ui.hpp"
 
 namespace formsim::app {
@@ -161,7 +162,7 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
   if (ImGui::BeginTabBar("tabs")) {
     // A lesson file's text comes first (formsim gui --lesson NAME opens on it).
     if (session_->lesson().present && ImGui::BeginTabItem("Lesson", nullptr, tab("Lesson"))) {
-      DrawLessonTab(fonts);
+      if (auto* lesson = Find<LessonPanel>()) lesson->Draw(fonts);
       ImGui::EndTabItem();
     }
     if (ImGui::BeginTabItem("Plots", nullptr, tab("Plots"))) {

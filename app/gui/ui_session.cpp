@@ -4,6 +4,7 @@
 #include <chrono>
 #include <filesystem>
 
+#include "app/gui/timeline_panel.hpp"
 #include "app/gui/ui.hpp"
 #include "sim/core/run_output.hpp"
 
@@ -53,8 +54,7 @@ bool AppUi::Busy() const {
   for (const auto& p : pins_)
     if (p->job.valid()) return true;
   if (mc_.run && (!mc_.run->finished() || !mc_.tables)) return true;
-  return timeline_.active && (!timeline_.replay || timeline_.replay->step() != timeline_.target) &&
-         !(timeline_.replay && timeline_.replay->exp().finished());
+  return timeline_->CatchingUp();
 }
 
 void AppUi::UpdateBackground() {
@@ -94,7 +94,7 @@ void AppUi::UpdateBackground() {
                   (p.failed ? ", " + std::to_string(p.failed) + " failed" : ""));
     }
   }
-  AdvanceTimeline(0.02);
+  timeline_->Advance(0.02);
 }
 
 RunValues AppUi::CurrentValues() const {
@@ -122,7 +122,7 @@ void AppUi::DropScenarioState() {
   pins_.clear();  // each pin's destructor waits for its replay, which stops at once
   next_pin_ = 1;
   mc_ = MonteCarloState();
-  timeline_ = Timeline();
+  timeline_->Forget();
   history_run_ = -1;
 }
 

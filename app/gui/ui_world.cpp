@@ -6,6 +6,7 @@
 
 #include "app/render/imgui_canvas.hpp"
 #include "app/render/long_text.hpp"
+#include "app/gui/timeline_panel.hpp"
 #include "app/gui/ui.hpp"
 #include "app/render/world_view.hpp"
 
@@ -31,6 +32,15 @@ void AppUi::UpdateView(ImVec2 min, ImVec2 max) {
     v.center = robots[state_.follow]->pose().p();
 }
 
+double AppUi::CursorTime() const {
+  return ShownExperiment().time();
+}
+
+const sim::Experiment& AppUi::ShownExperiment() const {
+  const sim::Experiment* replayed = timeline_->Shown();  // the timeline's time, else live
+  return replayed != nullptr ? *replayed : session_->exp();
+}
+
 void AppUi::TrackBounds() {
   if (!state_.whole_run) return;
   Vec2 lo, hi;
@@ -53,7 +63,7 @@ void AppUi::DrawWorldMouse(const View& view) {
     state_.follow = -1;
   }
   // The formation editor takes left clicks while it is on.
-  if (EditorMouse(view)) {
+  if (kind_panel_ && kind_panel_->WorldMouse(view)) {
     state_.drag_name.clear();
   } else if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
     // Picking: the nearest robot (or obstacle centre) within a few pixels of its outline.
@@ -130,16 +140,8 @@ void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool in
   }
   ImGuiCanvas canvas(ImGui::GetWindowDrawList(), fonts);
   DrawWorldView(canvas, state_.view, shown, GetTheme(state_.theme), opt);
-  // The editor's picks: a ring around each robot picked so far (and the slot being dragged).
-  for (const auto& r : shown.world().robots()) {
-    const bool picked = std::find(state_.edit_picks.begin(), state_.edit_picks.end(), r->name()) !=
-                            state_.edit_picks.end() ||
-                        r->name() == state_.slot_drag;
-    if (!picked) continue;
-    const ImVec2 c = state_.view.ToScreen(r->pose().p());
-    const float rad = static_cast<float>(std::max(r->def().half_length, r->def().radius) * state_.view.scale) + 8;
-    ImGui::GetWindowDrawList()->AddCircle(c, rad, ToImColor({0.15f, 0.45f, 0.9f, 1}), 32, 3.0f);
-  }
+  // The kind panel's marks (the formation editor's picks).
+  if (kind_panel_) kind_panel_->DrawOverWorld(shown, state_.view);
   // A refused change is said over the world view too (presentation mode has no panels).
   constexpr double kRefusalSeconds = 10.0;
   if (state_.status_is_error && !state_.status.empty() &&
@@ -155,7 +157,8 @@ void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool in
   }
   // Drags move the live run's bodies: not while the timeline shows another time.
   if (interactive && &shown == &session_->exp()) DrawWorldMouse(state_.view);
-  DrawTimeline(ImVec2(min.x, max.y), ImVec2(max.x, max.y + strip));
+  timeline_->Place(ImVec2(min.x, max.y), ImVec2(max.x, max.y + strip));
+  timeline_->Draw(fonts);
   ImGui::End();
   ImGui::PopStyleVar();
 }

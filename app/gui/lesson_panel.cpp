@@ -1,32 +1,33 @@
 // The Lesson tab: a lesson file's text (title, goal, what to watch, the equations, what to try
 // next), wrapped to the width of the panel, and what you should see: each check the text names
 // ({id}), measured on the current run once it has ended (sim/study/lesson_checks.hpp).
+#include "app/gui/lesson_panel.hpp"
+
 #include <imgui.h>
 
+#include <filesystem>
 #include <vector>
 
+#include "app/gui/command_row_makers.hpp"
+#include "app/gui/ui.hpp"
 #include "app/render/fonts.hpp"
 #include "app/render/long_text.hpp"
-#include "app/gui/ui.hpp"
 #include "sim/core/number_format.hpp"
+#include "sim/scenario/scenario_files.hpp"
 #include "sim/study/lesson_checks.hpp"
 
-namespace formsim::app {
+// Each row names only the fields it sets; the others keep their defaults on purpose.
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
 
+namespace formsim::app {
 namespace {
 
-// The checks measured on the current run, once per finished run (Results() is not free).
-void DrawLessonChecks(const sim::LessonDef& l, const sim::Experiment& exp) {
+// "What you should see": each check, measured on the current run once it has ended.
+void DrawLessonChecks(const sim::LessonDef& l, const sim::Experiment& exp,
+                      LessonPanel::CheckCache& cache) {
   if (l.checks.empty()) return;
   ImGui::Separator();
   ImGui::TextUnformatted("What you should see (formsim lessons check runs them all on their seeds)");
-  struct Cache {
-    const sim::Experiment* exp = nullptr;
-    long steps = -1;
-    const sim::LessonDef* lesson = nullptr;
-    std::vector<sim::LiveCheck> results;
-  };
-  static Cache cache;  // the window draws on one thread
   const bool done = exp.finished();
   if (done && (cache.exp != &exp || cache.steps != exp.steps() || cache.lesson != &l)) {
     cache = {&exp, exp.steps(), &l, {}};
@@ -48,10 +49,33 @@ void DrawLessonChecks(const sim::LessonDef& l, const sim::Experiment& exp) {
   }
 }
 
+std::vector<std::string> LessonNames(const AppUi&) {
+  std::vector<std::string> out;
+  for (const std::string& f : sim::ShippedLessons())
+    out.push_back(std::filesystem::path(f).stem().string());
+  return out;
+}
+
 }  // namespace
 
-void AppUi::DrawLessonTab(const Fonts& fonts) {
-  const sim::LessonDef& l = session_->lesson();
+std::vector<Command> LessonPanel::Rows() {
+  using namespace rows;
+  std::vector<Command> t;
+  t.push_back(
+      {.name = "lesson",
+       .args = {Offer(Text("NAME", "a shipped lesson's name", ArgType::kChoice), LessonNames)},
+       .menu = "Help/Lessons",
+       .help = "Open a lesson: its scenario, with the text in the Lesson tab",
+       .run = [](AppUi& ui, const CommandArgs& a, CommandSource) {
+         const std::string err = ui.CmdOpen(sim::ResolveLesson(a.Text(0)));
+         if (err.empty()) ui.state().select_tab = "lesson";
+         return err;
+       }});
+  return t;
+}
+
+void LessonPanel::Draw(const Fonts& fonts) {
+  const sim::LessonDef& l = ui_.session().lesson();
   ImGui::BeginChild("lesson_text", ImVec2(0, 0), false);
   ImGui::PushFont(fonts.Get(FontRole::kTitle));
   LongTextWrapped("title", l.title, 300);  // any length (app/render/long_text.hpp)
@@ -79,13 +103,13 @@ void AppUi::DrawLessonTab(const Fonts& fonts) {
   }
   part("What to watch", l.watch);
   part("What to try next", l.try_next);
-  DrawLessonChecks(l, session_->exp());
-  const auto actions = session_->exp().Actions();
+  DrawLessonChecks(l, ui_.session().exp(), checks_);
+  const auto actions = ui_.session().exp().Actions();
   if (!actions.empty()) {
     ImGui::Separator();
     ImGui::TextDisabled("This scenario's buttons (also under Parameters):");
     for (const sim::ActionSpec& a : actions) {
-      if (ImGui::Button(Shorten(a.label, 80).c_str())) CmdAction(a.id);
+      if (ImGui::Button(Shorten(a.label, 80).c_str())) ui_.CmdAction(a.id);
       if (!a.help.empty() && ImGui::IsItemHovered()) SafeTooltip(a.help);
       ImGui::SameLine();
     }
