@@ -209,7 +209,6 @@ std::vector<PlotData> SweepPanels(const sim::SweepDefinition& def, const sim::Sw
   const bool random = !def.IsGrid();
   if (m < 0 || m >= static_cast<int>(t.metrics.size())) return panels;
   if (def.axes.size() < 2 || (!random && def.axes.size() < 3)) return panels;
-  const std::string metric = MetricName(t, m);
   // Colour classes of the metric: five equal steps of viridis over the points' means.
   double lo = kNaN, hi = kNaN;
   for (const auto& point : t.stats) {
@@ -239,7 +238,7 @@ std::vector<PlotData> SweepPanels(const sim::SweepDefinition& def, const sim::Sw
     }
     // For grid keys: the mean over the points sharing each value, with its band.
     PlotSeries marginal;
-    marginal.label = MeanLabel(band, "the other keys and the seeds");
+    marginal.label = MeanLabel(band, "the other keys");
     marginal.color = sim::PaletteColor(0);
     std::vector<std::vector<double>> at_value(a.values.size());
     for (std::size_t e = 0; e < t.points.size(); ++e) {
@@ -276,7 +275,8 @@ std::vector<PlotData> SweepPanels(const sim::SweepDefinition& def, const sim::Sw
       d.x_margin = 0.03;
     d.x_label = AxisTitle(a);
     d.y_label = sim::MetricAxisLabel(t, m);
-    d.title = (random ? "random samples: " : "small multiples: ") + metric + " against " + a.key;
+    // The metric is the y axis' title; the panel's title names the key (long titles are cut).
+    d.title = (random ? "random samples: " : "small multiples: ") + a.key;
     panels.push_back(std::move(d));
   }
   return panels;

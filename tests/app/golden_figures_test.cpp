@@ -1,4 +1,4 @@
-// Golden images: a few study figures rendered small (320 x 200) and compared with the images
+// Golden images: a few study figures rendered small (480 x 300) and compared with the images
 // stored in tests/fixtures/golden/, within a tolerance that absorbs anti-aliasing noise but not
 // a moved legend, axis or band. When a change to the figures is intended, regenerate them:
 //   FORMSIM_UPDATE_GOLDEN=1 build/tests/tests_app --gtest_filter='GoldenFigures.*'
@@ -21,7 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kW = 320, kH = 200;
+constexpr int kW = 480, kH = 300;
 
 std::string GoldenPath(const std::string& name) {
   return std::string(FORMSIM_SOURCE_DIR) + "/tests/fixtures/golden/" + name + ".png";

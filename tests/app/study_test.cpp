@@ -544,7 +544,7 @@ TEST(SweepFigures, ThreeKeysGiveSmallMultiplesAndRandomSamplesAScatter) {
   EXPECT_DOUBLE_EQ(marginal.y[0], 1.55);
   EXPECT_DOUBLE_EQ(marginal.y[1], 5.55);
   EXPECT_EQ(marginal.band_lo.size(), 2u);
-  EXPECT_NE(panels[2].title.find("small multiples"), std::string::npos);
+  EXPECT_EQ(panels[2].title, "small multiples: robots.R3.follow.k_l");
   EXPECT_NE(panels[2].x_label.find("robots.R3.follow.k_l"), std::string::npos);
   // The lowest class is viridis' dark end, the highest its yellow end.
   const sim::Color low = panels[0].series.front().color, dark = Viridis(0.1);

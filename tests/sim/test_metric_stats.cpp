@@ -24,10 +24,10 @@ TEST(MetricStats, QuantilesStandardErrorAndStudentInterval) {
   EXPECT_DOUBLE_EQ(s.q95, 3.85);
   EXPECT_DOUBLE_EQ(s.std, std::sqrt(5.0 / 3.0));
   EXPECT_DOUBLE_EQ(s.sem, s.std / 2.0);
-  // R: t.test(c(4, 1, 3, 2))$conf.int = 0.445655 4.554345.
-  EXPECT_NEAR(s.ci95_lo, 0.445655, 1e-6);
-  EXPECT_NEAR(s.ci95_hi, 4.554345, 1e-6);
-  EXPECT_NEAR(s.ci95_half(), 2.054345, 1e-6);
+  // t(0.975, 3) = 3.182446 (qt in R): half-width 3.182446 · sqrt(5/3) / 2 = 2.054260.
+  EXPECT_NEAR(s.ci95_half(), 2.054260, 1e-6);
+  EXPECT_NEAR(s.ci95_lo, 2.5 - 2.054260, 1e-6);
+  EXPECT_NEAR(s.ci95_hi, 2.5 + 2.054260, 1e-6);
   // Odd count: the median is the middle value; one value: no spread, no interval.
   EXPECT_EQ(StatsOf({5, 1, 9}).median, 5.0);
   const MetricStats one = StatsOf({7});
