@@ -65,7 +65,8 @@ env -u DISPLAY "$BIN" reproduce velocity --tables fig6 --seeds 1..10 --out "$TMP
   >/dev/null
 cp "$TMP/repro_vel/fig6_speed_rmse.png" "$OUT/velocity_fig6_bars.png"
 # Sweeps and tuning: R2's bearing error over k_phi (log range) x estimator, mean of 5 seeds (a
-# heatmap); the AGV's RMS cross-track error against the cross-track kp with a ±1σ band over 5
+# heatmap, each cell mean ± CI half-width); the AGV's RMS cross-track error against the cross-track
+# kp with the 95% confidence interval of the mean over 5
 # seeds; the convergence of tuning the cross-track PID.
 env -u DISPLAY "$BIN" sweep formation_traj2_ukf --vary robots.R2.follow.k_phi=log:0.01:1:9 \
   --vary robots.R2.follow.estimator=all --seeds 1..5 --metric links.R1-R2.max_abs_error_after_settle.phi \

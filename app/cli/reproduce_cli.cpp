@@ -33,7 +33,8 @@ std::string PaperNames() {
 
 ReproduceCommand::ReproduceCommand(CLI::App& app) {
   cmd_ = app.add_subcommand("reproduce",
-                            "Run a paper's cases over seeds and print the README's tables for it");
+                            "Run a paper's cases over seeds, print the README's tables for it and write "
+                            "its figures (PNG, SVG, PDF)");
   cmd_->add_option("paper", paper_, PaperNames())->required();
   cmd_->add_option("--seeds", seeds_, "Seeds: 1..10 (default), 1,2,5 or a mixture");
   cmd_->add_option("--out", out_, "Output folder (default out/reproduce_<paper>)");
@@ -88,10 +89,13 @@ int ReproduceCommand::Run() {
     try {
       const std::string stem = (fs::path(out) / f.id).string();
       WriteFigurePng(data, stem + ".png");
-      WriteVectorFigure(RecordPlot(data, 960, 600, GetTheme(ThemeId::kLight)), FigureFormat::kSvg,
-                        FigureSize{}, f.title, stem + ".svg");
       wrote.push_back(f.id + ".png");
-      wrote.push_back(f.id + ".svg");
+      const VectorFigure vector = RecordPlot(data, 960, 600, GetTheme(ThemeId::kLight));
+      for (const FigureFormat format : {FigureFormat::kSvg, FigureFormat::kPdf}) {
+        const std::string ext = std::string(".") + FormatExtension(format);
+        WriteVectorFigure(vector, format, FigureSize{}, f.title, stem + ext);
+        wrote.push_back(f.id + ext);
+      }
     } catch (const std::exception& e) {
       std::fprintf(stderr, "formsim: error: figure %s not written (the tables were): %s\n",
                    f.id.c_str(), e.what());

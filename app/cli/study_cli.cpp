@@ -102,7 +102,8 @@ std::string Join(const std::vector<std::string>& v, const std::string& sep) {
 // Tables, ranking and figure of a sweep from its records (a whole sweep, or one shard's part).
 // Returns the exit code: 2 when --metric names no metric (the tables are written first).
 int WriteSweepOutputs(const sim::SweepDefinition& def, const std::vector<sim::SweepRecord>& records,
-                      const std::string& out, std::string metric, bool figures, bool quiet) {
+                      const std::string& out, std::string metric, SweepBand band, bool figures,
+                      bool quiet) {
   const sim::SweepTables tables = sim::BuildSweepTables(def, records);
   sim::WriteSweepTables(out, tables);
   std::vector<std::string> wrote = {"runs.csv", "aggregate.csv"};
@@ -121,10 +122,16 @@ int WriteSweepOutputs(const sim::SweepDefinition& def, const std::vector<sim::Sw
       sim::WriteFileAtomic((fs::path(out) / ranking).string(), sim::RankingText(def, tables, m));
       wrote.push_back(ranking);
       PlotData fig;
-      if (SweepFigure(def, tables, records, m, &fig)) {
+      const bool single = SweepFigure(def, tables, records, m, &fig, band);
+      const std::vector<PlotData> panels =
+          single ? std::vector<PlotData>{} : SweepPanels(def, tables, m, band);
+      if (single || !panels.empty()) {
         const std::string name = "plot_" + metric + ".png";
         try {
-          WriteFigurePng(fig, (fs::path(out) / name).string());
+          if (single)
+            WriteFigurePng(fig, (fs::path(out) / name).string());
+          else
+            WritePanelsPng(panels, (fs::path(out) / name).string());
           wrote.push_back(name);
         } catch (const std::exception& e) {
           std::fprintf(stderr,
@@ -174,6 +181,9 @@ StudyCommands::StudyCommands(CLI::App& app) {
   sweep_->add_option("--metric", metric_,
                      "Metric the figure and ranking show: a dotted path under results in "
                      "summary.json, as in the columns of runs.csv (default: the first)");
+  sweep_->add_option("--band", band_,
+                     "Spread shaded around the mean in the figure: sd (± 1σ), ci95 (95% "
+                     "confidence interval of the mean, Student t; default) or minmax");
   sweep_->add_flag("--resume", resume_,
                    "Continue the sweep in --out: run only what is not recorded");
   sweep_->add_option("--shard", shard_, "Run only the K-th of N slices of the runs: K/N");
@@ -193,6 +203,8 @@ StudyCommands::StudyCommands(CLI::App& app) {
   collect_->add_option("dirs", collect_dirs_, "Output folders of the shards")->required();
   collect_->add_option("--out", collect_out_, "Folder for the merged sweep")->required();
   collect_->add_option("--metric", collect_metric_, "Metric the figure and ranking show");
+  collect_->add_option("--band", collect_band_,
+                       "Spread shaded around the mean: sd, ci95 (default) or minmax");
   collect_->add_flag("--quiet,-q", collect_quiet_, "Print nothing but errors");
 
   tune_ = app.add_subcommand("tune", "Optimise tunables for a metric averaged over seeds (NLopt)");
@@ -231,6 +243,7 @@ int StudyCommands::Sweep() {
   if (scenario_.empty())
     throw std::runtime_error(
         "formsim sweep: give a scenario (or `sweep collect DIR... --out DIR`)");
+  const SweepBand band = ParseSweepBand(band_);  // refused before anything runs
   const std::string file = sim::ResolveScenario(scenario_);
   const sim::ScenarioSource source = sim::ScenarioSource::FromFile(file);
   // Given but empty (`--seeds ''`) is refused, never read as "the scenario's seed".
@@ -340,7 +353,7 @@ int StudyCommands::Sweep() {
     std::printf("\n");
   }
   const bool whole = shard_n == 1;
-  const int rc = WriteSweepOutputs(def, RecordsOf(out, def, mine), out, metric_,
+  const int rc = WriteSweepOutputs(def, RecordsOf(out, def, mine), out, metric_, band,
                                    whole && !no_figures_, quiet_);
   if (!whole && !quiet_)
     std::printf("shard %d/%d done; merge the shards with: formsim sweep collect DIR... --out DIR\n",
@@ -349,6 +362,7 @@ int StudyCommands::Sweep() {
 }
 
 int StudyCommands::Collect() {
+  const SweepBand band = ParseSweepBand(collect_band_);
   std::vector<sim::SweepDefinition> defs;
   for (const std::string& d : collect_dirs_) defs.push_back(sim::ReadManifest(d));
   const sim::SweepDefinition& def = defs.front();
@@ -385,7 +399,8 @@ int StudyCommands::Collect() {
   }
   if (!collect_quiet_)
     std::printf("collected %zu runs from %zu folders\n", records.size(), collect_dirs_.size());
-  return WriteSweepOutputs(def, records, collect_out_, collect_metric_, true, collect_quiet_);
+  return WriteSweepOutputs(def, records, collect_out_, collect_metric_, band, true,
+                           collect_quiet_);
 }
 
 int StudyCommands::Tune() {

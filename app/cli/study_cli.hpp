@@ -37,6 +37,7 @@ class StudyCommands {
   int jobs_ = 0;  ///< 0: every hardware thread
   std::string out_;
   std::string metric_;
+  std::string band_ = "ci95";  ///< --band sd|ci95|minmax: the spread shaded around the mean
   std::string shard_;
   bool resume_ = false;
   bool print_jobs_ = false;
@@ -47,6 +48,7 @@ class StudyCommands {
   // collect
   std::vector<std::string> collect_dirs_;
   std::string collect_out_, collect_metric_;
+  std::string collect_band_ = "ci95";
   bool collect_quiet_ = false;
   // tune
   std::string tune_scenario_;

@@ -575,7 +575,11 @@ PlotLayout DrawPlot(Canvas& cv, ImVec2 min, ImVec2 max, const PlotData& data, co
         const sim::Color col = HeatColor(v, heat_lo, heat_hi);
         cv.FillRect(lo, hi, col);
         // The value in the cell when it fits, dark on light colours and light on dark ones.
-        const std::string txt = std::isfinite(v) ? sim::Sprintf("%.3g", v) : "no data";
+        // The cell's own label ("mean ± CI") when given and it fits, else the value alone.
+        const std::string value = std::isfinite(v) ? sim::Sprintf("%.3g", v) : "no data";
+        std::string txt = k < h.cell_labels.size() && !h.cell_labels[k].empty() ? h.cell_labels[k]
+                                                                                : value;
+        if (TextSize(tick_font, txt).x + 6 > hi.x - lo.x) txt = value;
         const ImVec2 ts = TextSize(tick_font, txt);
         if (ts.x + 6 <= hi.x - lo.x && ts.y + 4 <= hi.y - lo.y) {
           const bool light = 0.299f * col.r + 0.587f * col.g + 0.114f * col.b > 0.55f;

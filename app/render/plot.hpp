@@ -42,6 +42,9 @@ struct PlotHeatmap {
   int columns = 0, rows = 0;
   std::vector<double> values;  ///< row-major, row 0 at the bottom; NaN: no data (grey)
   std::string value_label;     ///< the colour bar's label
+  /// Text drawn in each cell where it fits (row-major like `values`), e.g. "0.12 ± 0.03"; where
+  /// it is empty, missing or too wide: the value itself.
+  std::vector<std::string> cell_labels;
   bool empty() const { return columns <= 0 || rows <= 0; }
 };
 

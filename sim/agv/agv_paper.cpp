@@ -68,6 +68,19 @@ ReproPaper AgvPaper() {
       "estimation.r_xy = 10 mm. Jumps: steps of the estimate the controller uses (odometry, "
       "beacon or fused) larger than 5 cm. Loop rate: control iterations per simulated second.";
   p.tables.push_back(loc);
+  ReproFigure loc_fig;
+  loc_fig.id = "localisation_cross_track";
+  loc_fig.table = "localisation";
+  loc_fig.title = "AGV cross-track error by localisation (cf. Fig. 6), mean ± std";
+  loc_fig.y_label = "cross-track error [mm]";
+  loc_fig.categories = {{"odometry", "odometry"},
+                        {"beacon", "beacon"},
+                        {"plain KF (paper)", "plain_kf"},
+                        {"KF + χ² gate (ours)", "gate"},
+                        {"gate + adaptive R (ours)", "gate_adaptive"}};
+  loc_fig.series = {{"RMS", "{}", "cross_track.rms_m"}, {"max", "{}", "cross_track.max_m"}};
+  loc_fig.scale = 1000.0;
+  p.figures.push_back(loc_fig);
 
   ReproTable out;
   out.id = "outliers";
@@ -81,6 +94,16 @@ ReproPaper AgvPaper() {
               Row({"KF + χ² gate (ours)", "1%"}, "gate_outliers_0.01", "fused"),
               Row({"KF + χ² gate (ours)", "5%"}, "gate", "fused")};
   p.tables.push_back(out);
+  ReproFigure out_fig;
+  out_fig.id = "outliers_cross_track";
+  out_fig.table = "outliers";
+  out_fig.title = "AGV fused cross-track RMS against the beacon's outlier rate, mean ± std";
+  out_fig.y_label = "cross-track RMS [mm]";
+  out_fig.categories = {{"0% outliers", "_outliers_0"}, {"1%", "_outliers_0.01"}, {"5%", ""}};
+  out_fig.series = {{"the paper's plain KF", "plain_kf{}", "cross_track.rms_m"},
+                    {"KF + χ² gate (ours)", "gate{}", "cross_track.rms_m"}};
+  out_fig.scale = 1000.0;
+  p.figures.push_back(out_fig);
 
   ReproTable sens;
   sens.id = "sensitivity";

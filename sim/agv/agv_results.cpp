@@ -23,11 +23,11 @@ Metrics AgvExperiment::Results() const {
   Metrics m;
   // Flags are 1 (true) or 0 (false): the results tree holds numbers and texts.
   m.SetText("localisation_mode", ModeName(cfg_.mode));
-  m.Set("path_length_m", cfg_.path.length());
+  m.SetSetting("path_length_m", cfg_.path.length());
   m.SetFlag("tracking_finished", tracking_done_);
   m.Set("tracking_time_s", done_time_);
   m.SetFlag("loop_completed", completed());
-  m.Set("completion_tolerance_m", cfg_.completion_tolerance);
+  m.SetSetting("completion_tolerance_m", cfg_.completion_tolerance);
   m.Set("cross_track.rms_m", cross_track_.rms());
   m.Set("cross_track.max_m", cross_track_.max_abs);
   m.Set("cross_track.final_m", true_cross_);
@@ -53,7 +53,7 @@ Metrics AgvExperiment::Results() const {
   const double T = time();
   m.Set("control.updates", static_cast<double>(control_updates_));
   m.Set("control.rate_hz", T > 0.0 ? static_cast<double>(control_updates_) / T : 0.0);
-  m.Set("control.rate_setting_hz", cfg_.control_rate);
+  m.SetSetting("control.rate_setting_hz", cfg_.control_rate);
   m.Set("beacon.rate_hz", T > 0.0 ? static_cast<double>(counts_.samples) / T : 0.0);
   m.SetFlag("filter.gate", cfg_.filter.gate);
   m.SetFlag("filter.adaptive_r", cfg_.filter.adaptive_r);
@@ -108,6 +108,24 @@ Metrics AgvExperiment::Results() const {
                         "beacon.rejected_good", "beacon.reinitialisations"})
     m.SetBetter(p, Better::kLower);
   for (const char* p : {"tracking_finished", "loop_completed"}) m.SetBetter(p, Better::kHigher);
+  // Labels (markup) and units: axes of sweep figures and tables.
+  m.Describe("path_length_m", "path length", "m");
+  m.Describe("completion_tolerance_m", "completion tolerance", "m");
+  m.Describe("control.rate_setting_hz", "control rate setting", "Hz");
+  m.Describe("tracking_time_s", "tracking time", "s");
+  m.Describe("cross_track.rms_m", "cross-track RMS error", "m");
+  m.Describe("cross_track.max_m", "cross-track max error", "m");
+  m.Describe("cross_track.final_m", "final cross-track error", "m");
+  m.Describe("final_distance_to_goal_m", "final distance to the goal", "m");
+  m.Describe("localisation.*.position_rms_m", "{1} position RMS error", "m");
+  m.Describe("localisation.*.position_max_m", "{1} position max error", "m");
+  m.Describe("localisation.*.position_final_m", "{1} final position error", "m");
+  m.Describe("localisation.*.heading_rms_rad", "{1} heading RMS error", "rad");
+  m.Describe("localisation.*.heading_max_rad", "{1} heading max error", "rad");
+  m.Describe("localisation.*.jumps", "{1} position jumps", "");
+  m.Describe("beacon.*", "beacon {1}", "");
+  m.Describe("beacon.rate_hz", "beacon rate", "Hz");
+  m.Describe("control.rate_hz", "control rate", "Hz");
   using C = Metrics::Combine;
   m.AddHeadline({"cross-track RMS [m]", "cross_track.rms_m", C::kValue, "%.4f"});
   m.AddHeadline({"cross-track max [m]", "cross_track.max_m", C::kValue, "%.4f"});

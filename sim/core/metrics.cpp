@@ -29,6 +29,64 @@ bool PathMatches(const std::string& pattern, const std::string& path) {
   return p == pattern.size();
 }
 
+bool PathCaptures(const std::string& pattern, const std::string& path,
+                  std::vector<std::string>* captures) {
+  // Shortest match for each '*' from the left (patterns are a few segments long): try each
+  // length for the first star and match the rest recursively.
+  const std::size_t star = pattern.find('*');
+  if (star == std::string::npos) return pattern == path;
+  if (path.compare(0, star, pattern, 0, star) != 0 || path.size() < star) return false;
+  const std::string rest = pattern.substr(star + 1);
+  for (std::size_t len = 0; star + len <= path.size(); ++len) {
+    std::vector<std::string> more;
+    if (PathCaptures(rest, path.substr(star + len), &more)) {
+      captures->clear();
+      captures->push_back(path.substr(star, len));
+      captures->insert(captures->end(), more.begin(), more.end());
+      return true;
+    }
+  }
+  return false;
+}
+
+std::string MetricInfo::AxisLabel(const std::string& fallback) const {
+  const std::string base = label.empty() ? fallback : label;
+  return unit.empty() ? base : base + " [" + unit + "]";
+}
+
+void Metrics::Describe(const std::string& pattern, const std::string& label,
+                       const std::string& unit, Better better) {
+  descriptions_.push_back({pattern, label, unit});
+  if (better != Better::kNone) SetBetter(pattern, better);
+}
+
+MetricInfo Metrics::InfoOf(const std::string& path) const {
+  MetricInfo info;
+  info.better = BetterOf(path);
+  const Entry* e = Lookup(path);
+  if (e != nullptr && e->is_setting) info.role = MetricRole::kSetting;
+  for (auto it = descriptions_.rbegin(); it != descriptions_.rend(); ++it) {
+    std::vector<std::string> caps;
+    if (!PathCaptures(it->pattern, path, &caps)) continue;
+    info.label = it->label;
+    for (std::size_t k = 0; k < caps.size(); ++k) {
+      const std::string mark = "{" + std::to_string(k + 1) + "}";
+      for (std::size_t at = info.label.find(mark); at != std::string::npos;
+           at = info.label.find(mark, at + caps[k].size()))
+        info.label.replace(at, mark.size(), caps[k]);
+    }
+    info.unit = it->unit;
+    break;
+  }
+  if (info.role == MetricRole::kResult)
+    for (std::size_t h = 0; h < headlines_.size(); ++h)
+      if (PathMatches(headlines_[h].pattern, path)) {
+        info.headline = static_cast<int>(h) + 1;
+        break;
+      }
+  return info;
+}
+
 Better Metrics::BetterOf(const std::string& path) const {
   for (auto it = better_.rbegin(); it != better_.rend(); ++it)
     if (PathMatches(it->first, path)) return it->second;
@@ -39,7 +97,7 @@ std::vector<Metrics::HeadlineValue> Metrics::Headlines() const {
   std::vector<HeadlineValue> out;
   if (headlines_.empty()) {
     for (const Entry& e : entries_) {
-      if (e.is_text || e.is_flag) continue;
+      if (e.is_text || e.is_flag || e.is_setting) continue;
       out.push_back({e.path, "", e.value, BetterOf(e.path)});
       if (out.size() == 3) break;
     }
@@ -71,7 +129,7 @@ std::vector<Metrics::HeadlineValue> Metrics::Headlines() const {
 
 Metrics::Entry* Metrics::Slot(const std::string& path) {
   const auto [it, added] = index_.emplace(path, entries_.size());
-  if (added) entries_.push_back(Entry{path, false, false, 0.0, ""});
+  if (added) entries_.push_back(Entry{path, false, false, false, 0.0, ""});
   return &entries_[it->second];
 }
 
@@ -84,14 +142,21 @@ void Metrics::Set(const std::string& path, double value) {
   Entry* e = Slot(path);
   e->is_text = false;
   e->is_flag = false;
+  e->is_setting = false;
   e->value = value;
 }
 
 void Metrics::SetFlag(const std::string& path, bool value) {
   Entry* e = Slot(path);
   e->is_text = false;
+  e->is_setting = false;
   e->is_flag = true;
   e->value = value ? 1.0 : 0.0;
+}
+
+void Metrics::SetSetting(const std::string& path, double value) {
+  Set(path, value);
+  Slot(path)->is_setting = true;
 }
 
 void Metrics::SetText(const std::string& path, const std::string& text) {
@@ -123,6 +188,13 @@ std::vector<std::pair<std::string, double>> Metrics::Scalars() const {
   std::vector<std::pair<std::string, double>> out;
   for (const Entry& e : entries_)
     if (!e.is_text) out.emplace_back(e.path, e.value);
+  return out;
+}
+
+std::vector<std::pair<std::string, double>> Metrics::Scalars(MetricRole role) const {
+  std::vector<std::pair<std::string, double>> out;
+  for (const Entry& e : entries_)
+    if (!e.is_text && e.is_setting == (role == MetricRole::kSetting)) out.emplace_back(e.path, e.value);
   return out;
 }
 

@@ -22,12 +22,37 @@ enum class Better { kNone, kLower, kHigher };
 /// "links.*.rmse_after_settle.*" matches "links.R1-R2.rmse_after_settle.l".
 bool PathMatches(const std::string& pattern, const std::string& path);
 
+/// Whether a value is an outcome of the run or a setting it ran with (control_period,
+/// settle_time): settings are kept apart from the metrics of sweeps (runs.csv's `settings.`
+/// columns), are never ranked and are never a sweep's default metric.
+enum class MetricRole { kResult, kSetting };
+
+/// What a metric is, declared by its kind for the paths matching a pattern.
+struct MetricInfo {
+  /// A label with markup (subscripts `e_{l}`, Greek letters by name), without the unit; "{1}",
+  /// "{2}" ... stand for what the pattern's first, second ... '*' matched ("link {1}").
+  std::string label;
+  std::string unit;  ///< "m", "rad", "m/s"; empty: a count or a ratio
+  Better better = Better::kNone;
+  MetricRole role = MetricRole::kResult;
+  int headline = 0;  ///< 1 for the kind's first headline, 2 ...; 0: not a headline
+  /// The label with the unit in brackets ("max|e_{l}| after settling, link R1-R2 [m]"), or
+  /// `fallback` (the dotted path) when nothing is declared.
+  std::string AxisLabel(const std::string& fallback) const;
+};
+
+/// What the '*' of `pattern` matched in `path` (in order), or false when it does not match.
+bool PathCaptures(const std::string& pattern, const std::string& path,
+                  std::vector<std::string>* captures);
+
 class Metrics {
  public:
   /// A number at a dotted path (set again: replaced in place).
   void Set(const std::string& path, double value);
   /// A yes/no value (true/false in summary.json, 1/0 in sweep tables).
   void SetFlag(const std::string& path, bool value);
+  /// A setting the run used (a number, as Set), marked MetricRole::kSetting.
+  void SetSetting(const std::string& path, double value);
   /// A text value (a mode, an estimator name).
   void SetText(const std::string& path, const std::string& text);
   /// A line printed above the tables ("formation: bearing das, gains per sample").
@@ -56,6 +81,14 @@ class Metrics {
   /// Which way the value at `path` is better.
   Better BetterOf(const std::string& path) const;
 
+  /// Declares the label and unit (and, when given, the direction) of the paths matching
+  /// `pattern`; later declarations win. The direction is also declared as by SetBetter.
+  void Describe(const std::string& pattern, const std::string& label, const std::string& unit,
+                Better better = Better::kNone);
+  /// Everything declared about `path`: its label (captures substituted) and unit, direction,
+  /// role and headline rank (the first headline whose pattern matches it).
+  MetricInfo InfoOf(const std::string& path) const;
+
   /// A headline metric: the few numbers a run is judged by at a glance (a row of the GUI's run
   /// history). `pattern` names one path, or several with '*'; `combine` folds the matches.
   enum class Combine { kValue, kMax, kSum };
@@ -83,6 +116,8 @@ class Metrics {
   std::vector<TableSpec> GuiTables() const;
   /// Every number with its dotted path, in the order set.
   std::vector<std::pair<std::string, double>> Scalars() const;
+  /// The numbers of one role (results: what sweeps rank and plot; settings: what they ran with).
+  std::vector<std::pair<std::string, double>> Scalars(MetricRole role) const;
   /// The value at `path` (a number), or nullptr.
   const double* Find(const std::string& path) const;
   /// A cell as text: the number with `format`, the text value, or "-" when absent.
@@ -93,6 +128,7 @@ class Metrics {
     std::string path;
     bool is_text = false;
     bool is_flag = false;
+    bool is_setting = false;
     double value = 0.0;
     std::string text;
   };
@@ -103,6 +139,10 @@ class Metrics {
   std::vector<std::string> notes_;
   std::vector<Table> tables_;
   std::vector<std::pair<std::string, Better>> better_;
+  struct Description {
+    std::string pattern, label, unit;
+  };
+  std::vector<Description> descriptions_;
   std::vector<Headline> headlines_;
 };
 

@@ -1,4 +1,4 @@
-// The formation kind's paper for `formsim reproduce formation`: cases and tables.
+// The formation kind's paper for `formsim reproduce formation`: cases, tables and bar charts.
 #include <string>
 #include <utility>
 #include <vector>
@@ -63,6 +63,21 @@ ReproPaper FormationPaper() {
       "exact link states, no noise (every seed gives the same run). Raw and UKF: the paper's "
       "angle noise; the UKF measures [φ, α] as in the paper.";
   p.tables.push_back(t);
+
+  // The bearing error of the first link per trajectory and estimator, one chart per gain reading.
+  for (const std::string gains : {"printed", "per_sample"}) {
+    ReproFigure fig;
+    fig.id = "errors_phi12_" + gains;
+    fig.table = "errors";
+    fig.title = std::string("max|e_{\\phi}| after settling, link R1-R2, gains ") +
+                (gains == "printed" ? "as printed" : "per sample") + ", mean ± std";
+    fig.y_label = "max|e_{\\phi}| [rad]";
+    fig.categories = {{"trajectory 1", "1"}, {"trajectory 2", "2"}, {"trajectory 3", "3"}};
+    for (const std::string est : {"truth", "raw", "ukf"})
+      fig.series.push_back({est == "ukf" ? "UKF" : est, "traj{}_" + gains + "_" + est,
+                            "links.R1-R2.max_abs_error_after_settle.phi"});
+    p.figures.push_back(fig);
+  }
   return p;
 }
 

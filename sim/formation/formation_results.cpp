@@ -40,8 +40,8 @@ Metrics FormationExperiment::Results() const {
   const bool printed = cfg_.gain_reading == cf::GainReading::kPrinted;
   m.SetText("bearing", das ? "das" : "printed");
   m.SetText("gain_reading", printed ? "printed" : "per_sample");
-  m.Set("control_period", cfg_.control_period);
-  m.Set("settle_time", cfg_.settle_time);
+  m.SetSetting("control_period", cfg_.control_period);
+  m.SetSetting("settle_time", cfg_.settle_time);
   char note[160];
   std::snprintf(note, sizeof note, "formation: bearing %s, gains %s, errors after %.2g s",
                 das ? "das" : "printed", printed ? "as printed" : "per sample", cfg_.settle_time);
@@ -95,7 +95,7 @@ Metrics FormationExperiment::Results() const {
     // formation error after it, and per switch how long the error took to stay below 1e-2.
     m.Set("switches.collisions_after_transient", static_cast<double>(collisions_after_));
     m.Set("switches.max_formation_error_after_settle", max_error_settled_);
-    m.Set("switches.tolerance", kRecoveredError);
+    m.SetSetting("switches.tolerance", kRecoveredError);
     m.Set("switches.avoidance_entries", static_cast<double>(avoid_entries_));
     double worst = 0.0;
     int not_recovered = 0;
@@ -126,6 +126,27 @@ Metrics FormationExperiment::Results() const {
        {"links.*.max_abs_error*", "links.*.rmse_after_settle.*", "links.*.estimation_rmse.*",
         "links.*.filter_fault_steps", "links.*.events.*"})
     m.SetBetter(p, Better::kLower);
+  // Labels (markup) and units: axes of sweep figures and tables.
+  m.Describe("control_period", "control period", "s");
+  m.Describe("settle_time", "settling time", "s");
+  // Per link component: its path name, its symbol (markup) and unit.
+  const char* const parts[][3] = {{"l", "l", "m"}, {"phi", "\\phi", "rad"}, {"alpha", "\\alpha", "rad"}};
+  for (const auto& [q, sym, unit] : parts) {
+    const std::string e = std::string("e_{") + sym + "}", tail = std::string(".") + q;
+    m.Describe("links.*.max_abs_error" + tail, "max|" + e + "| over the run, link {1}", unit);
+    m.Describe("links.*.max_abs_error_after_settle" + tail, "max|" + e + "| after settling, link {1}",
+               unit);
+    m.Describe("links.*.rmse_after_settle" + tail, "RMS " + e + " after settling, link {1}", unit);
+    m.Describe("links.*.estimation_rmse" + tail,
+               std::string("RMS error of the estimated ") + sym + ", link {1}", unit);
+  }
+  m.Describe("links.*.filter_fault_steps", "filter fault steps, link {1}", "");
+  m.Describe("links.*.events.*", "{2} events, link {1}", "");
+  m.Describe("switches.collisions_after_transient", "collisions after the transient", "");
+  m.Describe("switches.max_formation_error_after_settle", "max formation error after settling", "m");
+  m.Describe("switches.tolerance", "recovery tolerance", "m");
+  m.Describe("switches.max_recover_s", "longest recovery", "s");
+  m.Describe("switches.not_recovered", "switches not recovered", "");
   using C = Metrics::Combine;
   // The worst link of each (the table has one row per link).
   m.AddHeadline({"max|e_l| [m]", "links.*.max_abs_error_after_settle.l", C::kMax, "%.3g"});

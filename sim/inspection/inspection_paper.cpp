@@ -1,4 +1,4 @@
-// The inspection kind's paper for `formsim reproduce inspection`: cases and tables.
+// The inspection kind's paper for `formsim reproduce inspection`: cases, tables and bar charts.
 #include <string>
 #include <utility>
 #include <vector>
@@ -38,6 +38,19 @@ ReproPaper InspectionPaper() {
       Row({"the same with limit + mean instead of Kalman (`inspection_no_kalman`)"}, "no_kalman"),
       Row({"+ turn feed-forward (ours; `inspection_u_route_feedforward`)"}, "feedforward")};
   p.tables.push_back(tr);
+  ReproFigure tr_fig;
+  tr_fig.id = "tracking_lateral";
+  tr_fig.table = "tracking";
+  tr_fig.title = "Inspection robot, lateral offset after the first 6 m, mean ± std";
+  tr_fig.y_label = "lateral offset [cm]";
+  tr_fig.categories = {{"Kalman (paper)", "paper"},
+                       {"limit + mean", "no_kalman"},
+                       {"+ feed-forward (ours)", "feedforward"}};
+  tr_fig.series = {{"RMS", "{}", "tracking.lateral_offset_after_transient_m.rms"},
+                   {"max", "{}", "tracking.lateral_offset_after_transient_m.max"},
+                   {"RMS on the turn", "{}", "tracking.lateral_offset_turn_m.rms"}};
+  tr_fig.scale = 100.0;
+  p.figures.push_back(tr_fig);
 
   ReproTable loc;
   loc.id = "localisation";
@@ -51,6 +64,19 @@ ReproPaper InspectionPaper() {
               Row({"dead reckoning alone", "drifts"}, "paper", "dead_reckoning")};
   loc.note = "Our simulated laser is cleaner than the paper's field data.";
   p.tables.push_back(loc);
+  ReproFigure loc_fig;
+  loc_fig.id = "localisation_error";
+  loc_fig.table = "localisation";
+  loc_fig.title = "Inspection robot, position error of each estimate, mean ± std";
+  loc_fig.y_label = "position error [cm]";
+  loc_fig.categories = {{"per-axis Kalman", "kalman"},
+                        {"limit + mean", "classical"},
+                        {"raw trilateration", "raw"},
+                        {"dead reckoning", "dead_reckoning"}};
+  loc_fig.series = {{"RMS", "paper", "localisation.position_error_m.{}.rms"},
+                    {"max", "paper", "localisation.position_error_m.{}.max"}};
+  loc_fig.scale = 100.0;
+  p.figures.push_back(loc_fig);
 
   ReproTable rate;
   rate.id = "rates";

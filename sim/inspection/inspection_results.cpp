@@ -22,7 +22,7 @@ void SetStats(Metrics& m, const std::string& path, const ErrorStats& s) {
 
 Metrics InspectionExperiment::Results() const {
   Metrics m;
-  m.Set("route.length_m", route_.length());
+  m.SetSetting("route.length_m", route_.length());
   m.Set("route.progress_m", progress_);
   m.SetFlag("route.completed", completed_);
   // null in summary.json while the route is not completed
@@ -51,11 +51,11 @@ Metrics InspectionExperiment::Results() const {
   const std::string& source = NavSourceNames()[cfg_.source];
   m.SetText("tracking.controller_source", source);
   SetStats(m, "tracking.lateral_offset_m", lateral_);
-  m.Set("tracking.transient_m", cfg_.transient_m);
+  m.SetSetting("tracking.transient_m", cfg_.transient_m);
   SetStats(m, "tracking.lateral_offset_after_transient_m", lateral_tracking_);
   SetStats(m, "tracking.lateral_offset_turn_m", lateral_turn_);
   SetStats(m, "tracking.heading_error_after_transient_deg", dphi_tracking_);
-  m.Set("tracking.lateral_bound_m", cfg_.lateral_bound);
+  m.SetSetting("tracking.lateral_bound_m", cfg_.lateral_bound);
   const bool within = lateral_tracking_.n > 0 && lateral_tracking_.max_abs <= cfg_.lateral_bound;
   m.SetFlag("tracking.within_bound", within);
 
@@ -122,6 +122,21 @@ Metrics InspectionExperiment::Results() const {
   for (const char* p :
        {"route.progress_m", "route.completed", "localisation.fix_rate", "tracking.within_bound"})
     m.SetBetter(p, Better::kHigher);
+  // Labels (markup) and units: axes of sweep figures and tables.
+  m.Describe("route.length_m", "route length", "m");
+  m.Describe("route.progress_m", "route progress", "m");
+  m.Describe("route.completion_time_s", "route completion time", "s");
+  m.Describe("tracking.transient_m", "start transient left out", "m");
+  m.Describe("tracking.lateral_bound_m", "lateral bound", "m");
+  m.Describe("tracking.lateral_offset_m.*", "lateral offset {1}", "m");
+  m.Describe("tracking.lateral_offset_after_transient_m.*", "lateral offset {1} after the transient", "m");
+  m.Describe("tracking.lateral_offset_turn_m.*", "lateral offset {1} in turns", "m");
+  m.Describe("tracking.heading_error_after_transient_deg.*", "heading error {1} after the transient", "deg");
+  m.Describe("tracking.*.samples", "samples of {1}", "");
+  m.Describe("localisation.position_error_m.*.*", "{1} position error {2}", "m");
+  m.Describe("localisation.position_error_m.*.samples", "{1} position error samples", "");
+  m.Describe("control.rate_hz", "control rate", "Hz");
+  m.Describe("control.laser_rate_hz", "laser rate", "Hz");
   using C = Metrics::Combine;
   m.AddHeadline(
       {"lateral RMS [m]", "tracking.lateral_offset_after_transient_m.rms", C::kValue, "%.3f"});

@@ -135,7 +135,9 @@ void CheckPaper(const ReproPaper& p) {
   for (const ReproFigure& f : p.figures) {
     if (!tables.count(f.table)) fail("figure " + f.id + ": no table '" + f.table + "'");
     for (const auto& s : f.series)
-      if (!p.Case(s.case_id)) fail("figure " + f.id + ": no case '" + s.case_id + "'");
+      for (const auto& c : f.categories)
+        if (!p.Case(Substitute(s.case_id, c.second)))
+          fail("figure " + f.id + ": no case '" + Substitute(s.case_id, c.second) + "'");
   }
 }
 
@@ -165,7 +167,8 @@ ReproPaper SelectTables(const ReproPaper& paper, const std::string& ids) {
   for (const ReproFigure& f : paper.figures)
     if (want.count(f.table)) {
       out.figures.push_back(f);
-      for (const auto& s : f.series) cases.insert(s.case_id);
+      for (const auto& s : f.series)
+        for (const auto& c : f.categories) cases.insert(Substitute(s.case_id, c.second));
     }
   for (const ReproCase& c : paper.cases)
     if (cases.count(c.id)) out.cases.push_back(c);
@@ -353,7 +356,7 @@ FigureSpec ReproBarFigure(const ReproFigure& f, const ReproResults& results) {
     const ReproFigure::Series& s = f.series[k];
     std::vector<double> mid, lo, hi;
     for (const auto& c : f.categories) {
-      const auto it = results.cases.find(s.case_id);
+      const auto it = results.cases.find(Substitute(s.case_id, c.second));
       const MetricStats st =
           StatsOf(it == results.cases.end()
                       ? std::vector<double>{}

@@ -88,8 +88,8 @@ struct ReproFigure {
   std::vector<std::pair<std::string, std::string>> categories;  ///< label, key ("{}" in metrics)
   struct Series {
     std::string label;
-    std::string case_id;
-    std::string metric;  ///< "{}" replaced by the category's key
+    std::string case_id;  ///< "{}" replaced by the category's key (a case per category)
+    std::string metric;   ///< "{}" replaced by the category's key
   };
   std::vector<Series> series;
   double scale = 1.0;

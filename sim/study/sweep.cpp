@@ -21,12 +21,14 @@ std::optional<SweepRecord> RunScenarioOnce(const ScenarioSource& source,
     }
     rec.status = exp->status();
     rec.message = exp->stop_reason();
-    rec.metrics = exp->Results().Scalars();
+    FillRecordMetrics(exp->Results(), &rec);
     if (inspect) inspect(*exp);
   } catch (const std::exception& e) {
     rec.status = "error";
     rec.message = e.what();
     rec.metrics.clear();
+    rec.settings.clear();
+    rec.info.clear();
   }
   return rec;
 }

@@ -149,6 +149,35 @@ std::string Difference(const SweepDefinition& a, const SweepDefinition& b) {
   return "the --set overrides differ";
 }
 
+const char* BetterName(Better b) {
+  return b == Better::kLower ? "lower" : b == Better::kHigher ? "higher" : "none";
+}
+
+}  // namespace
+
+void FillRecordMetrics(const Metrics& results, SweepRecord* rec) {
+  rec->metrics = results.Scalars(MetricRole::kResult);
+  rec->settings = results.Scalars(MetricRole::kSetting);
+  rec->info.clear();
+  for (const auto& m : rec->metrics) {
+    const MetricInfo info = results.InfoOf(m.first);
+    if (!info.label.empty() || !info.unit.empty() || info.better != Better::kNone ||
+        info.headline != 0)
+      rec->info.emplace_back(m.first, info);
+  }
+}
+
+namespace {
+
+// A number of a record, or "-" for one the run could not compute (NaN).
+void AppendRecordNumber(std::string& t, double value) {
+  // "nan" and "inf" are never written, so one found in a run file was put there by hand.
+  if (std::isfinite(value))
+    AppendDouble(t, value);
+  else
+    t += "-";
+}
+
 }  // namespace
 
 std::string ManifestPath(const std::string& dir) {
@@ -294,16 +323,21 @@ std::string RecordText(const SweepDefinition& def, const SweepRecord& rec) {
   t += "run " + std::to_string(rec.run) + "\n";
   t += "status " + Esc(rec.status) + "\n";
   t += "message " + Esc(rec.message) + "\n";
+  // A metric the run could not compute (a route never completed: NaN) is written as "-".
   for (const auto& [name, value] : rec.metrics) {
     t += "m " + Esc(name) + " ";
-    // A metric the run could not compute (a route never completed: NaN) is written as "-";
-    // "nan" and "inf" are never written, so one found in a run file was put there by hand.
-    if (std::isfinite(value))
-      AppendDouble(t, value);
-    else
-      t += "-";
+    AppendRecordNumber(t, value);
     t += "\n";
   }
+  for (const auto& [name, value] : rec.settings) {
+    t += "s " + Esc(name) + " ";
+    AppendRecordNumber(t, value);
+    t += "\n";
+  }
+  // d NAME BETTER HEADLINE UNIT LABEL: what the kind declared about a metric.
+  for (const auto& [name, info] : rec.info)
+    t += "d " + Esc(name) + " " + BetterName(info.better) + " " + std::to_string(info.headline) +
+         " " + Esc(info.unit) + " " + Esc(info.label) + "\n";
   t += "end\n";
   return t;
 }
@@ -328,7 +362,7 @@ SweepRecord ParseRecord(const std::string& text, const SweepDefinition& def,
       rec.status = f[1];
     } else if (k == "message" && f.size() == 2) {
       rec.message = f[1];
-    } else if (k == "m" && f.size() == 3) {
+    } else if ((k == "m" || k == "s") && f.size() == 3) {
       double v = 0;
       // "-": the run computed no value (NaN in the tables). Anything else is a finite number:
       // formsim never writes nan or inf here, so such a value was edited in, and is refused.
@@ -338,7 +372,19 @@ SweepRecord ParseRecord(const std::string& text, const SweepDefinition& def,
         in.Fail("metric '" + f[1] + "': '" + f[2] +
                 "' is not a finite number (a run file holds finite numbers, or '-' for a value "
                 "the run could not compute; was it edited?)");
-      rec.metrics.emplace_back(f[1], v);
+      (k == "m" ? rec.metrics : rec.settings).emplace_back(f[1], v);
+    } else if (k == "d" && f.size() == 6) {
+      MetricInfo info;
+      if (f[2] == "lower")
+        info.better = Better::kLower;
+      else if (f[2] == "higher")
+        info.better = Better::kHigher;
+      else if (f[2] != "none")
+        in.Fail("metric '" + f[1] + "': unknown direction '" + f[2] + "'");
+      info.headline = static_cast<int>(std::min<std::uint64_t>(in.Uint(f[3]), 1000000));
+      info.unit = f[4];
+      info.label = f[5];
+      rec.info.emplace_back(f[1], info);
     } else if (k == "end") {
       ended = true;
       break;

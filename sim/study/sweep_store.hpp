@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "sim/core/metrics.hpp"
 #include "sim/study/sweep_spec.hpp"
 
 namespace formsim::sim {
@@ -23,9 +24,18 @@ struct SweepRecord {
   std::size_t run = 0;
   std::string status;   ///< "completed", "numerical_fault" or "error"
   std::string message;  ///< the fault or error message ("" when completed)
-  std::vector<std::pair<std::string, double>> metrics;  ///< Metrics::Scalars(), in order
+  /// Metrics::Scalars(MetricRole::kResult), in order: what the sweep tables rank and plot.
+  std::vector<std::pair<std::string, double>> metrics;
+  /// Metrics::Scalars(MetricRole::kSetting): what the run ran with (runs.csv's settings.*).
+  std::vector<std::pair<std::string, double>> settings;
+  /// What the kind declared about each metric (label, unit, direction, headline rank), for the
+  /// metrics it declared anything about. Records written before metadata existed have none.
+  std::vector<std::pair<std::string, MetricInfo>> info;
   bool failed() const { return status != "completed"; }
 };
+
+/// `record`'s metrics, settings and their descriptions from a run's `results`.
+void FillRecordMetrics(const Metrics& results, SweepRecord* record);
 
 /// `DIR/sweep.manifest`.
 std::string ManifestPath(const std::string& dir);

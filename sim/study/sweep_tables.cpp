@@ -23,29 +23,10 @@ void AppendNumberOrEmpty(std::string& out, double v) {
 
 }  // namespace
 
-MetricStats StatsOf(const std::vector<double>& v) {
-  MetricStats s;
-  s.n = v.size();
-  if (v.empty()) {
-    s.mean = s.std = s.min = s.max = kNaN;
-    return s;
-  }
-  double sum = 0;
-  s.min = s.max = v[0];
-  for (double x : v) {
-    sum += x;
-    s.min = std::min(s.min, x);
-    s.max = std::max(s.max, x);
-  }
-  s.mean = sum / static_cast<double>(v.size());
-  if (v.size() < 2) {
-    s.std = kNaN;
-  } else {
-    double ss = 0;
-    for (double x : v) ss += (x - s.mean) * (x - s.mean);
-    s.std = std::sqrt(ss / static_cast<double>(v.size() - 1));
-  }
-  return s;
+const std::vector<std::string>& AggregateSuffixes() {
+  static const std::vector<std::string> kSuffixes = {
+      ".n", ".mean", ".std", ".min", ".max", ".median", ".q05", ".q95", ".sem", ".ci95_lo", ".ci95_hi"};
+  return kSuffixes;
 }
 
 namespace {
@@ -80,9 +61,23 @@ SweepTables BuildSweepTables(const SweepDefinition& def, std::vector<SweepRecord
       throw std::runtime_error("run " + std::to_string(records[i].run) + " is recorded twice");
   SweepTables t;
   std::unordered_map<std::string, std::size_t> column;
-  for (const SweepRecord& r : records)
+  std::unordered_map<std::string, std::size_t> setting_column;
+  for (const SweepRecord& r : records) {
     for (const auto& m : r.metrics)
       if (column.emplace(m.first, t.metrics.size()).second) t.metrics.push_back(m.first);
+    for (const auto& m : r.settings)
+      if (setting_column.emplace(m.first, t.settings.size()).second) t.settings.push_back(m.first);
+  }
+  // What the kind declared about each metric: from the first run (in run order) that says.
+  t.info.resize(t.metrics.size());
+  std::vector<bool> described(t.metrics.size(), false);
+  for (const SweepRecord& r : records)
+    for (const auto& [name, info] : r.info) {
+      const auto it = column.find(name);
+      if (it == column.end() || described[it->second]) continue;
+      described[it->second] = true;
+      t.info[it->second] = info;
+    }
 
   // runs.csv
   std::string& csv = t.runs_csv;
@@ -90,6 +85,7 @@ SweepTables BuildSweepTables(const SweepDefinition& def, std::vector<SweepRecord
   for (const SweepAxis& a : def.axes) csv += "," + CsvField(a.key);
   csv += ",seed";
   for (const std::string& m : t.metrics) csv += "," + CsvField(m);
+  for (const std::string& m : t.settings) csv += "," + CsvField("settings." + m);
   csv += ",status,message\n";
   std::vector<double> row(t.metrics.size());
   for (const SweepRecord& r : records) {
@@ -107,11 +103,17 @@ SweepTables BuildSweepTables(const SweepDefinition& def, std::vector<SweepRecord
       csv += ',';
       if (has[c]) AppendDouble(csv, row[c]);  // a computed NaN stays visible as nan
     }
+    std::vector<std::string> setting_cells(t.settings.size());
+    for (const auto& m : r.settings) AppendDouble(setting_cells[setting_column[m.first]], m.second);
+    for (const std::string& cell : setting_cells) csv += "," + cell;
     csv += "," + CsvField(r.status) + "," + CsvField(r.message) + "\n";
   }
 
   // Statistics per point over its completed runs, in seed order.
   std::vector<std::vector<std::vector<double>>> values;  // [entry][metric] -> values
+  // [entry][setting]: the completed runs' common value ("" when they differ or none has it).
+  std::vector<std::vector<std::string>> setting_text;
+  std::vector<std::vector<bool>> setting_seen;
   for (const SweepRecord& r : records) {
     const std::size_t p = def.PointOf(r.run);
     if (t.points.empty() || t.points.back() != p) {
@@ -119,6 +121,8 @@ SweepTables BuildSweepTables(const SweepDefinition& def, std::vector<SweepRecord
       t.runs.push_back(0);
       t.failed.push_back(0);
       values.emplace_back(t.metrics.size());
+      setting_text.emplace_back(t.settings.size());
+      setting_seen.emplace_back(t.settings.size(), false);
     }
     ++t.runs.back();
     if (r.failed()) {
@@ -127,13 +131,24 @@ SweepTables BuildSweepTables(const SweepDefinition& def, std::vector<SweepRecord
     }
     for (const auto& m : r.metrics)
       if (std::isfinite(m.second)) values.back()[column[m.first]].push_back(m.second);
+    for (const auto& m : r.settings) {
+      const std::size_t c = setting_column[m.first];
+      std::string text;
+      AppendDouble(text, m.second);
+      if (!setting_seen.back()[c])
+        setting_text.back()[c] = text;
+      else if (setting_text.back()[c] != text)
+        setting_text.back()[c].clear();
+      setting_seen.back()[c] = true;
+    }
   }
   std::string& agg = t.aggregate_csv;
   agg = "point";
   for (const SweepAxis& a : def.axes) agg += "," + CsvField(a.key);
   agg += ",runs,failed";
   for (const std::string& m : t.metrics)
-    for (const char* s : {".n", ".mean", ".std", ".min", ".max"}) agg += "," + CsvField(m + s);
+    for (const std::string& s : AggregateSuffixes()) agg += "," + CsvField(m + s);
+  for (const std::string& m : t.settings) agg += "," + CsvField("settings." + m);
   agg += "\n";
   for (std::size_t e = 0; e < t.points.size(); ++e) {
     const std::size_t p = t.points[e];
@@ -145,17 +160,27 @@ SweepTables BuildSweepTables(const SweepDefinition& def, std::vector<SweepRecord
       const MetricStats s = StatsOf(values[e][c]);
       t.stats.back().push_back(s);
       agg += "," + std::to_string(s.n);
-      for (double v : {s.mean, s.std, s.min, s.max}) {
+      for (double v : {s.mean, s.std, s.min, s.max, s.median, s.q05, s.q95, s.sem, s.ci95_lo,
+                       s.ci95_hi}) {
         agg += ',';
         AppendNumberOrEmpty(agg, v);
       }
     }
+    for (const std::string& text : setting_text[e]) agg += "," + text;
     agg += "\n";
   }
   return t;
 }
 
 std::size_t DefaultMetric(const SweepTables& t) {
+  int best = 0;
+  std::size_t pick = 0;
+  for (std::size_t m = 0; m < t.info.size(); ++m)
+    if (t.info[m].headline > 0 && (best == 0 || t.info[m].headline < best)) {
+      best = t.info[m].headline;
+      pick = m;
+    }
+  if (best > 0) return pick;
   for (std::size_t m = 0; m < t.metrics.size(); ++m) {
     double lo = kNaN, hi = kNaN;
     for (const auto& point : t.stats) {
@@ -192,7 +217,7 @@ std::string RankingText(const SweepDefinition& def, const SweepTables& t, int m)
     for (std::size_t a = 0; a < def.axes.size(); ++a) r.push_back(def.Value(t.points[e], a));
     r.push_back(std::to_string(t.runs[e]));
     r.push_back(std::to_string(t.failed[e]));
-    const MetricStats s = m >= 0 ? t.stats[e][m] : MetricStats{0, kNaN, kNaN, kNaN, kNaN};
+    const MetricStats s = m >= 0 ? t.stats[e][m] : MetricStats{};
     r.push_back(std::to_string(s.n));
     for (double v : {s.mean, s.std, s.min, s.max}) r.push_back(Short(v));
     rows.push_back(r);
@@ -213,6 +238,11 @@ std::string RankingText(const SweepDefinition& def, const SweepTables& t, int m)
     out += line + "\n";
   }
   return out;
+}
+
+std::string MetricAxisLabel(const SweepTables& t, int m) {
+  if (m < 0 || m >= static_cast<int>(t.metrics.size())) return "";
+  return m < static_cast<int>(t.info.size()) ? t.info[m].AxisLabel(t.metrics[m]) : t.metrics[m];
 }
 
 void WriteSweepTables(const std::string& dir, const SweepTables& t) {

@@ -2,9 +2,13 @@
 /// \file The tables of a sweep, built from its definition and its run records alone (never from
 /// the order or place the runs ran in), so a sweep on one core, on all cores, resumed, or
 /// collected from shards writes the same bytes:
-///   runs.csv       one row per run: run, the varied keys, seed, every metric, status, message
+///   runs.csv       one row per run: run, the varied keys, seed, every metric, the settings the
+///                  run used (columns settings.<name>: control_period, settle_time ...), status,
+///                  message
 ///   aggregate.csv  one row per point: the varied keys, runs, failed, and for every metric
-///                  n, mean, std, min and max over the completed runs
+///                  n, mean, std, min, max, median, q05, q95, sem, ci95_lo and ci95_hi over the
+///                  completed runs (metric_stats.hpp says how each is computed), then each
+///                  setting (settings.<name>) when the point's completed runs agree on it
 /// Metric columns are the dotted paths of summary.json's `results` (Metrics::Scalars), in the
 /// order they first appear in run order. Numbers are shortest round-trip text.
 
@@ -12,21 +16,18 @@
 #include <string>
 #include <vector>
 
+#include "sim/study/metric_stats.hpp"
 #include "sim/study/sweep_store.hpp"
 
 namespace formsim::sim {
 
-/// One metric over the completed runs of one point (non-finite values left out).
-struct MetricStats {
-  std::size_t n = 0;
-  double mean = 0, std = 0, min = 0, max = 0;  ///< std: sample (n - 1); NaN when n < 2
-};
-
-/// The statistics of `values` (all of them; the caller leaves out what does not count).
-MetricStats StatsOf(const std::vector<double>& values);
+/// The statistics after each metric's name in aggregate.csv's header, in order (".n", ...).
+const std::vector<std::string>& AggregateSuffixes();
 
 struct SweepTables {
   std::vector<std::string> metrics;             ///< the metric columns, in order
+  std::vector<MetricInfo> info;                 ///< per metric: what its kind declared
+  std::vector<std::string> settings;            ///< the settings columns (without "settings.")
   std::vector<std::size_t> points;              ///< the points that have at least one record
   std::vector<std::size_t> runs, failed;        ///< per entry of `points`
   std::vector<std::vector<MetricStats>> stats;  ///< [entry of points][metric]
@@ -38,13 +39,17 @@ struct SweepTables {
 /// Builds the tables from `records` (any order; each run at most once).
 SweepTables BuildSweepTables(const SweepDefinition& def, std::vector<SweepRecord> records);
 
-/// The metric a sweep shows when none is asked for: the first whose mean differs between
-/// points (or, with one point, whose min and max differ), else the first.
+/// The metric a sweep shows when none is asked for: the kind's first headline (the first metric
+/// whose declared headline rank is the lowest); for records without metadata, the first whose
+/// mean differs between points (or, with one point, whose min and max differ), else the first.
 std::size_t DefaultMetric(const SweepTables& tables);
 
 /// Points sorted by the mean of metric `m` (ascending, points without a value last) as an
 /// aligned text table: the table a sweep of three or more keys shows instead of a figure.
 std::string RankingText(const SweepDefinition& def, const SweepTables& tables, int m);
+
+/// The axis title of metric `m`: its declared label with the unit in brackets, or its path.
+std::string MetricAxisLabel(const SweepTables& tables, int m);
 
 /// Writes runs.csv and aggregate.csv into `dir` (each atomically).
 void WriteSweepTables(const std::string& dir, const SweepTables& tables);

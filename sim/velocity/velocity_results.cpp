@@ -38,8 +38,8 @@ void SetFloor(Metrics& m, const std::string& p, const FloorStats& s, bool vi) {
 Metrics VelocityExperiment::Results() const {
   Metrics m;
   const bool vi = cfg_.estimator.vi_baseline;
-  m.Set("settle_time", cfg_.settle_time);
-  m.Set("keyframe_period", keyframe_period());
+  m.SetSetting("settle_time", cfg_.settle_time);
+  m.SetSetting("keyframe_period", keyframe_period());
   m.AddNote("velocity: metrics after t = " + Sprintf("%.1f", cfg_.settle_time) +
             " s (speed RMSE vs true forward speed)");
   Metrics::Table table;
@@ -95,6 +95,16 @@ Metrics VelocityExperiment::Results() const {
                         "robots.*.linear_error", "robots.*.angular_error", "robots.*_rms_error",
                         "robots.*.estimator_faults", "robots.*.events.*"})
     m.SetBetter(p, Better::kLower);
+  // Labels (markup) and units: axes of sweep figures and tables.
+  m.Describe("settle_time", "settling time", "s");
+  m.Describe("keyframe_period", "keyframe period", "s");
+  m.Describe("robots.*.speed_rmse.*", "RMS error of the {2} speed, {1}", "m/s");
+  m.Describe("robots.*.yaw_rate_rmse.*", "RMS error of the {2} yaw rate, {1}", "rad/s");
+  m.Describe("robots.*.control.linear_error", "\\Delta v_{c}, {1}", "m/s");
+  m.Describe("robots.*.control.angular_error", "\\Delta \\omega_{c}, {1}", "rad/s");
+  m.Describe("robots.*.control.speed_rms_error", "RMS speed control error, {1}", "m/s");
+  m.Describe("robots.*.control.yaw_rate_rms_error", "RMS yaw-rate control error, {1}", "rad/s");
+  m.Describe("robots.*.estimator_faults", "estimator faults, {1}", "");
   using C = Metrics::Combine;
   m.AddHeadline({"worst fused speed RMSE", "robots.*.speed_rmse.fused", C::kMax, "%.4f"});
   m.AddHeadline({"worst Δv_c", "robots.*.control.linear_error", C::kMax, "%.4f"});

@@ -174,7 +174,7 @@ TEST(ReproduceCli, TablesAreTheSweepTablesStatistics) {
   }
 }
 
-// The velocity bar chart is written (PNG and SVG) from the shortened Fig. 6 cases.
+// The velocity bar chart is written (PNG, SVG and PDF) from the shortened Fig. 6 cases.
 TEST(ReproduceCli, VelocityWritesItsBarChart) {
   const std::string d = TempDir("reproduce_velocity");
   ASSERT_EQ(Reproduce("velocity --seeds 1..2 --tables fig6 --set duration=3 -q -j2 --out " + d, d),
@@ -182,11 +182,70 @@ TEST(ReproduceCli, VelocityWritesItsBarChart) {
       << ReadText(d + ".log");
   EXPECT_GT(fs::file_size(d + "/fig6_speed_rmse.png"), 10000u);
   EXPECT_GT(fs::file_size(d + "/fig6_speed_rmse.svg"), 1000u);
+  EXPECT_GT(fs::file_size(d + "/fig6_speed_rmse.pdf"), 1000u);
   const std::string printed = ReadText(d + ".md");
   EXPECT_NE(printed.find("| the paper's: one inverse depth along the anchor's bearing | R_fused"),
             std::string::npos)
       << printed;
   EXPECT_NE(printed.find("/2 |"), std::string::npos) << "fused < odometry counted over 2 runs";
+}
+
+// Every paper declares figures, each drawn from its own tables' cases.
+TEST(ReproduceFigures, EveryPaperHasFigures) {
+  for (const char* name : {"formation", "agv", "inspection", "velocity"}) {
+    const sim::ReproPaper& paper = sim::FindReproPaper(name);
+    EXPECT_FALSE(paper.figures.empty()) << name;
+    sim::CheckPaper(paper);  // every series' case exists for every category
+  }
+}
+
+// `reproduce formation --out` writes its figures as PNG, SVG (valid XML) and PDF (fonts
+// embedded), beside tables.md and cells.csv; --tables selects the figures of its tables only.
+TEST(ReproduceCli, FormationWritesItsFiguresInThreeFormats) {
+  const std::string d = TempDir("reproduce_formation_figures");
+  ASSERT_EQ(Reproduce("formation --seeds 1..2 --set duration=2 -q -j2 --out " + d, d), 0)
+      << ReadText(d + ".log");
+  for (const std::string stem : {"errors_phi12_printed", "errors_phi12_per_sample"}) {
+    EXPECT_GT(fs::file_size(d + "/" + stem + ".png"), 5000u) << stem;
+    EXPECT_GT(fs::file_size(d + "/" + stem + ".svg"), 1000u) << stem;
+    EXPECT_GT(fs::file_size(d + "/" + stem + ".pdf"), 1000u) << stem;
+    if (std::system("command -v xmllint >/dev/null 2>&1") == 0)
+      EXPECT_EQ(RunShell("xmllint --noout " + d + "/" + stem + ".svg", d + ".xmllint"), 0)
+          << ReadText(d + ".xmllint");
+    else
+      std::fprintf(stderr, "xmllint missing (libxml2-utils): SVG not validated\n");
+    if (std::system("command -v pdffonts >/dev/null 2>&1") == 0) {
+      EXPECT_EQ(RunShell("pdfinfo " + d + "/" + stem + ".pdf", d + ".pdfinfo"), 0)
+          << ReadText(d + ".pdfinfo");
+      const std::string info = ReadText(d + ".pdfinfo");
+      const std::size_t pages = info.find("Pages:");
+      ASSERT_NE(pages, std::string::npos) << info;
+      std::stringstream count(info.substr(pages + 6));
+      int n = 0;
+      count >> n;
+      EXPECT_EQ(n, 1) << info;
+      ASSERT_EQ(RunShell("pdffonts " + d + "/" + stem + ".pdf", d + ".pdffonts"), 0);
+      // Header, rule, then one line per font; its "emb" column says yes for each.
+      const std::vector<std::string> fonts = Lines(ReadText(d + ".pdffonts"));
+      ASSERT_GT(fonts.size(), 2u) << "the figure has text";
+      for (std::size_t i = 2; i < fonts.size(); ++i) {
+        std::stringstream ss(fonts[i].substr(fonts[0].find("emb")));
+        std::string emb;
+        ss >> emb;
+        EXPECT_EQ(emb, "yes") << fonts[i];
+      }
+    } else {
+      std::fprintf(stderr, "pdffonts missing (poppler-utils): PDF not checked\n");
+    }
+  }
+  const std::string inspection = TempDir("reproduce_inspection_figures");
+  ASSERT_EQ(Reproduce("inspection --seeds 1 --tables localisation --set duration=20 -q -j2 --out " +
+                          inspection,
+                      inspection),
+            0)
+      << ReadText(inspection + ".log");
+  EXPECT_TRUE(fs::exists(inspection + "/localisation_error.png"));
+  EXPECT_FALSE(fs::exists(inspection + "/tracking_lateral.png")) << "not a selected table's";
 }
 
 TEST(ReproduceCli, BadInputNamesTheFlag) {

@@ -143,9 +143,12 @@ TEST(SweepCli, JobsOneAndTwoWriteTheSameBytesAndEveryRunIsFormsimRun) {
   const std::vector<std::string> head = SplitCsvLine(lines[0]), row = SplitCsvLine(lines[8]);
   ASSERT_EQ(row[0], "7");
   EXPECT_EQ(row[1] + " " + row[2] + " " + row[3], "0.1 ukf 2");
-  int compared = 0;
+  int compared = 0, settings = 0;
   for (std::size_t c = 4; c + 2 < head.size(); ++c) {
-    const auto it = results.find(head[c]);
+    // Settings (control_period ...) are summary.json results under the name after "settings.".
+    const bool setting = head[c].rfind("settings.", 0) == 0;
+    if (setting) ++settings;
+    const auto it = results.find(setting ? head[c].substr(9) : head[c]);
     ASSERT_NE(it, results.end()) << head[c];
     // summary.json writes true/false for flags, the tables 1/0.
     const std::string want = it->second == "true" ? "1" : it->second == "false" ? "0" : it->second;
@@ -153,6 +156,7 @@ TEST(SweepCli, JobsOneAndTwoWriteTheSameBytesAndEveryRunIsFormsimRun) {
     ++compared;
   }
   EXPECT_GT(compared, 40);
+  EXPECT_EQ(settings, 2) << "control_period and settle_time";
   EXPECT_EQ(row[head.size() - 2], "completed");
 }
 
@@ -307,6 +311,16 @@ TEST(SweepCli, BadInputNamesTheFlag) {
             std::string::npos);
   EXPECT_FALSE(ReadText(d + "/m/runs.csv").empty())
       << "the tables are written before the metric is looked up";
+  // --band: refused before anything runs, naming the flag and what it accepts.
+  for (const std::string& cmd : {"sweep formation_traj2_ukf --band 2sigma --out " + d + "/b",
+                                "sweep collect " + d + "/m --band 2sigma --out " + d + "/b"}) {
+    EXPECT_EQ(Formsim(cmd, d + ".log"), 2) << cmd;
+    EXPECT_NE(ReadText(d + ".log").find("--band '2sigma': expected sd"), std::string::npos)
+        << ReadText(d + ".log");
+    EXPECT_NE(ReadText(d + ".log").find("ci95"), std::string::npos);
+    EXPECT_NE(ReadText(d + ".log").find("minmax"), std::string::npos);
+    EXPECT_FALSE(fs::exists(d + "/b")) << cmd << ": nothing is written before --band is checked";
+  }
 }
 
 double Number(const std::string& s) {
@@ -426,6 +440,10 @@ TEST(SweepFigures, HeatmapCellsAndColourBarFollowTheMeans) {
   const sim::SweepTables t = sim::BuildSweepTables(d, recs);
   PlotData fig;
   ASSERT_TRUE(SweepFigure(d, t, recs, 0, &fig));
+  // Each cell: mean ± the half-width of its 95% interval (seeds ±0.5: std 0.707, t(1) 12.71).
+  ASSERT_EQ(fig.heatmap.cell_labels.size(), 12u);
+  EXPECT_EQ(fig.heatmap.cell_labels[0], "0 ± 6.4");
+  EXPECT_EQ(fig.heatmap.cell_labels[1 * 4 + 2], "7 ± 6.4");  // k_phi index 2, estimator raw
   ASSERT_EQ(fig.heatmap.columns, 4);
   ASSERT_EQ(fig.heatmap.rows, 3);
   EXPECT_EQ(fig.x_tick_labels, (std::vector<std::string>{"0.01", "0.04642", "0.2154", "1"}));
@@ -463,12 +481,23 @@ TEST(SweepFigures, OneKeyGivesMeanBandAndSeeds) {
   });
   const sim::SweepTables t = sim::BuildSweepTables(d, recs);
   PlotData fig;
+  // --band: ± 1σ, min-max, and the default, the 95% interval of the mean; the legend says which.
+  ASSERT_TRUE(SweepFigure(d, t, recs, 0, &fig, SweepBand::kSd));
+  EXPECT_EQ(fig.series[0].band_hi[0], 12.0);  // mean + sample std (1)
+  EXPECT_EQ(fig.series[0].label, "mean ± 1σ over 3 seeds");
+  ASSERT_TRUE(SweepFigure(d, t, recs, 0, &fig, SweepBand::kMinMax));
+  EXPECT_EQ(fig.series[0].band_lo[0], 10.0);
+  EXPECT_EQ(fig.series[0].band_hi[0], 12.0);
+  EXPECT_EQ(fig.series[0].label, "mean, band min–max over 3 seeds");
   ASSERT_TRUE(SweepFigure(d, t, recs, 0, &fig));
+  EXPECT_EQ(fig.series[0].label, "mean ± 95% CI of the mean over 3 seeds");
+  EXPECT_NEAR(fig.series[0].band_hi[0], 11.0 + 4.302653 / std::sqrt(3.0), 1e-6);
+  EXPECT_NEAR(fig.series[0].band_lo[0], 11.0 - 4.302653 / std::sqrt(3.0), 1e-6);
   ASSERT_EQ(fig.series.size(), 2u);
   // Sorted by the key: 0.1 (point 1), 0.2 (point 2), 0.4 (point 0).
   EXPECT_EQ(fig.series[0].x, (std::vector<double>{0.1, 0.2, 0.4}));
   EXPECT_EQ(fig.series[0].y, (std::vector<double>{11, 21, 1}));
-  EXPECT_EQ(fig.series[0].band_hi[0], 12.0);  // mean + sample std (1)
+  ASSERT_TRUE(SweepFigure(d, t, recs, 0, &fig, SweepBand::kSd));  // the pixels below: ± 1σ
   EXPECT_EQ(fig.series[1].x.size(), 9u);
   EXPECT_TRUE(fig.series[1].markers_only);
   OffscreenRenderer r(800, 500);
@@ -483,15 +512,67 @@ TEST(SweepFigures, OneKeyGivesMeanBandAndSeeds) {
   const sim::Color c = sim::PaletteColor(0);
   const sim::Color faded{1 - 0.22f * (1 - c.r), 1 - 0.22f * (1 - c.g), 1 - 0.22f * (1 - c.b), 1};
   EXPECT_LT(Distance(band, faded), 20.0) << band.r << "," << band.g << "," << band.b;
-  // Three keys: no figure (the ranking stands for it).
+  EXPECT_TRUE(SweepPanels(d, t, 0).empty()) << "one key: the single figure";
+}
+
+TEST(SweepFigures, ThreeKeysGiveSmallMultiplesAndRandomSamplesAScatter) {
+  const sim::ScenarioSource src =
+      sim::ScenarioSource::FromFile(testing::Scenario("formation_traj2_ukf"));
+  // Three grid keys: no single figure; one panel per key, each point's mean coloured by its
+  // class, and the mean over the other keys (with its band) at each value.
   const sim::SweepDefinition d3 =
       sim::DefineSweep(src, {},
                        {"robots.R2.follow.k_l=0.1,0.2", "robots.R2.follow.k_phi=0.1,0.2",
                         "robots.R3.follow.k_l=0.1,0.2"},
-                       {1});
-  const auto recs3 =
-      FakeRecords(d3, [](std::size_t p, std::size_t) { return static_cast<double>(p); });
-  EXPECT_FALSE(SweepFigure(d3, sim::BuildSweepTables(d3, recs3), recs3, 0, &fig));
+                       {1, 2});
+  const auto recs3 = FakeRecords(
+      d3, [](std::size_t p, std::size_t s) { return static_cast<double>(p) + 0.1 * s; });
+  const sim::SweepTables t3 = sim::BuildSweepTables(d3, recs3);
+  PlotData fig;
+  EXPECT_FALSE(SweepFigure(d3, t3, recs3, 0, &fig));
+  const std::vector<PlotData> panels = SweepPanels(d3, t3, 0);
+  ASSERT_EQ(panels.size(), 3u);
+  std::size_t points = 0;
+  for (std::size_t k = 0; k + 1 < panels[0].series.size(); ++k) {
+    EXPECT_TRUE(panels[0].series[k].markers_only);
+    points += panels[0].series[k].x.size();
+  }
+  EXPECT_EQ(points, 8u) << "every point once per panel";
+  const PlotSeries& marginal = panels[0].series.back();
+  EXPECT_EQ(marginal.x, (std::vector<double>{0.1, 0.2}));
+  // The first key is the slowest index: points 0-3 at k_l 0.1 (means 0.05 ... 3.05).
+  EXPECT_DOUBLE_EQ(marginal.y[0], 1.55);
+  EXPECT_DOUBLE_EQ(marginal.y[1], 5.55);
+  EXPECT_EQ(marginal.band_lo.size(), 2u);
+  EXPECT_EQ(panels[2].title, "small multiples: robots.R3.follow.k_l");
+  EXPECT_NE(panels[2].x_label.find("robots.R3.follow.k_l"), std::string::npos);
+  // The lowest class is viridis' dark end, the highest its yellow end.
+  const sim::Color low = panels[0].series.front().color, dark = Viridis(0.1);
+  EXPECT_EQ(low.r, dark.r);
+  EXPECT_EQ(low.g, dark.g);
+  EXPECT_EQ(low.b, dark.b);
+
+  // Random samples of two keys: a scatter against each key, no marginal line.
+  const sim::SweepDefinition dr = sim::DefineSweep(
+      src, {}, {"robots.R2.follow.k_l=random:12", "robots.R2.follow.k_phi=random:12"}, {1});
+  const auto recr = FakeRecords(dr, [](std::size_t p, std::size_t) { return p * p * 0.5; });
+  const sim::SweepTables tr = sim::BuildSweepTables(dr, recr);
+  EXPECT_FALSE(SweepFigure(dr, tr, recr, 0, &fig));
+  const std::vector<PlotData> scatter = SweepPanels(dr, tr, 0);
+  ASSERT_EQ(scatter.size(), 2u);
+  std::size_t dots = 0;
+  for (const PlotSeries& s : scatter[1].series) {
+    EXPECT_TRUE(s.markers_only);
+    EXPECT_TRUE(s.band_lo.empty());
+    dots += s.x.size();
+  }
+  EXPECT_EQ(dots, 12u);
+  EXPECT_EQ(scatter[1].series.size(), 5u) << "five colour classes of the metric";
+  EXPECT_NE(scatter[0].title.find("random samples"), std::string::npos);
+  // Written side by side into one PNG.
+  const std::string png = TempDir("sweep_panels") + ".png";
+  WritePanelsPng(scatter, png, 320, 220, 2);
+  EXPECT_GT(fs::file_size(png), 5000u);
 }
 
 }  // namespace

@@ -271,8 +271,10 @@ TEST(RunSweep, TablesDoNotDependOnThreadsOrOrder) {
   EXPECT_NE(a.runs_csv.find("\n0,0.5,0.2,1,"), std::string::npos);
   // aggregate: the failed point has runs 2, failed 2, n 0 and empty statistics.
   EXPECT_EQ(a.aggregate_csv.substr(0, a.aggregate_csv.find('\n')),
-            "point,v,omega,runs,failed,x.n,x.mean,x.std,x.min,x.max");
-  EXPECT_NE(a.aggregate_csv.find("\n5,1.5,3.5,2,2,0,,,,\n"), std::string::npos) << a.aggregate_csv;
+            "point,v,omega,runs,failed,x.n,x.mean,x.std,x.min,x.max,x.median,x.q05,x.q95,x.sem,"
+            "x.ci95_lo,x.ci95_hi");
+  EXPECT_NE(a.aggregate_csv.find("\n5,1.5,3.5,2,2,0,,,,,,,,,,\n"), std::string::npos)
+      << a.aggregate_csv;
   // The kind's x does not depend on the seed: std 0 over two seeds, min = mean = max.
   ASSERT_EQ(a.stats.size(), 6u);
   EXPECT_EQ(a.stats[0][0].n, 2u);
