@@ -1,0 +1,200 @@
+// The data stage: heatmap cells, bands, reference lines, bars, lines and markers, the marker
+// line and time cursor, clipped to the data area; then the frame around it.
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+#include "app/render/plot_frame.hpp"
+#include "app/render/polyline_simplify.hpp"
+#include "sim/core/number_format.hpp"
+
+namespace formsim::app::plot_detail {
+namespace {
+
+// Screen points of a series. For x-sorted data with more points than pixels, each pixel column
+// keeps its first, min, max and last point (the shape is exact at screen resolution); otherwise
+// points closer than ~0.7 px are merged. Non-finite values split the line into runs.
+std::vector<std::vector<ImVec2>> ScreenRuns(const PlotSeries& s, double x0, double x1, double y0,
+                                            double y1, ImVec2 a, ImVec2 b) {
+  std::vector<std::vector<ImVec2>> runs;
+  const std::size_t n = std::min(s.x.size(), s.y.size());
+  const double sx = (b.x - a.x) / (x1 - x0), sy = (b.y - a.y) / (y1 - y0);
+  auto to_screen = [&](std::size_t i) {
+    return ImVec2(static_cast<float>(a.x + (s.x[i] - x0) * sx),
+                  static_cast<float>(b.y - (s.y[i] - y0) * sy));
+  };
+  bool sorted = true;
+  for (std::size_t i = 1; i < n && sorted; ++i) sorted = !(s.x[i] < s.x[i - 1]);
+  // A plot squeezed to nothing (a tiny window) has a negative width: no bucketing then.
+  const double width_px = std::max(0.0, static_cast<double>(b.x - a.x));
+  const bool bucket = sorted && static_cast<double>(n) > 2.0 * width_px;
+  std::vector<ImVec2> run;
+  int col = INT32_MIN;
+  ImVec2 first, mn, mx, last;
+  std::size_t i_mn = 0, i_mx = 0;
+  // Emits the column's first, min, max and last points in the order they occurred, so the line
+  // never steps backwards (a 180° turn makes anti-aliased polyline joins blow up).
+  auto flush_col = [&]() {
+    if (col == INT32_MIN) return;
+    auto push = [&](ImVec2 p) {
+      if (run.empty() || run.back().x != p.x || run.back().y != p.y) run.push_back(p);
+    };
+    push(first);
+    if (i_mn < i_mx)
+      push(mn), push(mx);
+    else
+      push(mx), push(mn);
+    push(last);
+    col = INT32_MIN;
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) {
+      flush_col();
+      if (run.size() > 0) runs.push_back(std::move(run));
+      run.clear();
+      continue;
+    }
+    const ImVec2 p = to_screen(i);
+    if (bucket) {
+      // Clamped before the conversion: a point far off screen must not overflow an int.
+      const int c = static_cast<int>(std::floor(std::clamp(p.x, -1e9f, 1e9f)));
+      if (c != col) {
+        flush_col();
+        col = c;
+        first = mn = mx = last = p;
+        i_mn = i_mx = i;
+      } else {
+        if (p.y < mn.y) mn = p, i_mn = i;
+        if (p.y > mx.y) mx = p, i_mx = i;
+        last = p;
+      }
+    } else if (run.empty() || std::abs(p.x - run.back().x) + std::abs(p.y - run.back().y) > 0.7f ||
+               i + 1 == n) {
+      run.push_back(p);
+    }
+  }
+  flush_col();
+  if (!run.empty()) runs.push_back(std::move(run));
+  if (!s.markers_only)
+    for (auto& r : runs) r = SimplifyPolyline(r);
+  return runs;
+}
+
+sim::Color HeatColor(double v, double lo, double hi) {
+  if (!std::isfinite(v)) return sim::Color{0.84f, 0.84f, 0.84f, 1};
+  return Viridis(hi > lo ? (v - lo) / (hi - lo) : 0.5);
+}
+
+// Shades the band of a series (between band_lo and band_hi): each finite run of points as one
+// polygon (upper edge forward, lower edge back), in chunks so no polygon gets large.
+void DrawBand(Canvas& cv, const PlotSeries& s, sim::Color col,
+              const std::function<ImVec2(double, double)>& to_screen) {
+  const std::size_t n = std::min({s.x.size(), s.band_lo.size(), s.band_hi.size()});
+  auto finite = [&](std::size_t i) {
+    return std::isfinite(s.x[i]) && std::isfinite(s.band_lo[i]) && std::isfinite(s.band_hi[i]);
+  };
+  constexpr std::size_t kChunk = 64;
+  std::size_t i = 0;
+  while (i < n) {
+    while (i < n && !finite(i)) ++i;
+    std::size_t j = i;
+    while (j < n && finite(j) && j - i < kChunk) ++j;
+    if (j - i >= 2) {
+      std::vector<ImVec2> poly;
+      for (std::size_t k = i; k < j; ++k) poly.push_back(to_screen(s.x[k], s.band_hi[k]));
+      for (std::size_t k = j; k-- > i;) poly.push_back(to_screen(s.x[k], s.band_lo[k]));
+      cv.FillPolygon(poly.data(), static_cast<int>(poly.size()), col);
+    }
+    // The next chunk starts at this chunk's last point, so they join.
+    i = (j < n && finite(j) && j - i >= kChunk) ? j - 1 : j;
+  }
+}
+
+}  // namespace
+
+void PlotFrame::DrawSeries(double cursor_x) {
+  const FontRole label_font = st.label_font, tick_font = st.tick_font;
+  cv.PushClip(a, b);
+  if (heat) {
+    const PlotHeatmap& h = data.heatmap;
+    for (int r = 0; r < h.rows; ++r)
+      for (int c = 0; c < h.columns; ++c) {
+        const std::size_t k = static_cast<std::size_t>(r) * h.columns + c;
+        const double v = k < h.values.size() ? h.values[k] : kNaN;
+        const ImVec2 lo(std::round(X(c - 0.5)), std::round(Y(r + 0.5)));
+        const ImVec2 hi(std::round(X(c + 0.5)), std::round(Y(r - 0.5)));
+        const sim::Color col = HeatColor(v, heat_lo, heat_hi);
+        cv.FillRect(lo, hi, col);
+        // The value in the cell when it fits, dark on light colours and light on dark ones.
+        const std::string txt = std::isfinite(v) ? sim::Sprintf("%.3g", v) : "no data";
+        const ImVec2 ts = cv.TextSize(tick_font, txt);
+        if (ts.x + 6 <= hi.x - lo.x && ts.y + 4 <= hi.y - lo.y) {
+          const bool light = 0.299f * col.r + 0.587f * col.g + 0.114f * col.b > 0.55f;
+          cv.Text(ImVec2(0.5f * (lo.x + hi.x) - ts.x / 2, 0.5f * (lo.y + hi.y) - ts.y / 2),
+                  tick_font, light ? sim::Color{0.08f, 0.08f, 0.08f, 1} : sim::Color{1, 1, 1, 1},
+                  txt);
+        }
+      }
+  }
+  for (const auto& s : data.series)
+    if (!s.band_lo.empty())
+      DrawBand(cv, s, th.Series(s.color, s.style_index, false).color.WithAlpha(s.band_alpha),
+               [&](double x, double y) { return ImVec2(X(x), Y(y)); });
+  for (double r : data.reference_lines)
+    cv.Line(ImVec2(a.x, Y(r)), ImVec2(b.x, Y(r)), {th.reference, 1.2f, LineDash::Dashes(6, 4)});
+  if (!data.error.empty()) cv.Text(ImVec2(a.x + 8, a.y + 8), label_font, th.error, data.error);
+  // Bars from zero in their slot of each category, outlined, with their error bars.
+  int bar_j = 0;
+  for (const auto& s : data.series) {
+    if (!s.bars) continue;
+    const SeriesLook look = th.Series(s.color, s.style_index, false);
+    const BarSlot slot = BarSlotOf(bar_j++, bar_series);
+    for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
+      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+      const double c = s.x[i] + slot.offset, hw = 0.5 * slot.width;
+      const ImVec2 lo(std::round(X(c - hw)), std::round(Y(std::max(0.0, s.y[i]))));
+      const ImVec2 hi(std::round(X(c + hw)), std::round(Y(std::min(0.0, s.y[i]))));
+      cv.FillRect(lo, hi, look.color.WithAlpha(0.75f));
+      cv.StrokeRect(lo, hi, look.color, 1.0f);
+      const double e0 = At(s.err_lo, i), e1 = At(s.err_hi, i);
+      if (std::isfinite(e0) && std::isfinite(e1)) {
+        const float xc = X(c),
+                    cap = static_cast<float>(0.25 * slot.width * (b.x - a.x) / (x1 - x0));
+        const Stroke err{th.text, 1.5f};
+        cv.Line(ImVec2(xc, Y(e0)), ImVec2(xc, Y(e1)), err);
+        for (double e : {e0, e1}) cv.Line(ImVec2(xc - cap, Y(e)), ImVec2(xc + cap, Y(e)), err);
+      }
+    }
+  }
+  for (const auto& s : data.series) {
+    if (s.bars) continue;
+    SeriesLook look = th.Series(s.color, s.style_index, s.dashed);
+    if (s.dash_style > 0) look.dash = DashStyle(s.dash_style);
+    const Stroke stroke{look.color, line_w, look.dash};
+    for (const auto& run : ScreenRuns(s, x0, x1, y0, y1, a, b)) {
+      if (s.markers_only) {
+        for (const ImVec2& p : run) {
+          if (look.hollow_markers)
+            cv.StrokeCircle(p, 2.6f, look.color, 1.2f);
+          else
+            cv.FillCircle(p, 2.6f, look.color);
+        }
+      } else if (run.size() > 1) {
+        cv.Polyline(run.data(), static_cast<int>(run.size()), stroke);
+      } else {
+        cv.FillCircle(run[0], line_w, look.color);
+      }
+    }
+  }
+  if (std::isfinite(data.marker_x))
+    cv.Line(ImVec2(X(data.marker_x), a.y), ImVec2(X(data.marker_x), b.y),
+            {th.marker, 1.5f, LineDash::Dashes(5, 3)});
+  if (std::isfinite(cursor_x) && cursor_x >= x0 && cursor_x <= x1)
+    cv.Line(ImVec2(X(cursor_x), a.y), ImVec2(X(cursor_x), b.y), {th.cursor, 1.0f});
+  cv.PopClip();
+  // The frame: 1-px lines on the pixel column/row just outside the data area on the left and
+  // top, and on the last column/row of it on the right and bottom.
+  cv.StrokeRect(ImVec2(a.x - 1, a.y - 1), ImVec2(b.x + 1, b.y + 1), th.axis, 1.0f);
+}
+
+}  // namespace formsim::app::plot_detail
