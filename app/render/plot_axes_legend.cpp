@@ -5,6 +5,7 @@
 
 #include "app/render/long_text.hpp"
 #include "app/render/plot_frame.hpp"
+#include "app/render/plot_marker.hpp"
 
 namespace formsim::app::plot_detail {
 void PlotFrame::DrawAxes() {
@@ -58,8 +59,8 @@ void PlotFrame::DrawAxes() {
   }
   if (!data.x_label.empty()) {
     const ImVec2 ts = cv.TextSize(label_font, data.x_label);
-    cv.Text(ImVec2(0.5f * (a.x + b.x) - ts.x / 2, max.y - pad - ts.y), label_font, th.text,
-            data.x_label);
+    cv.Text(ImVec2(0.5f * (a.x + b.x) - ts.x / 2, max.y - pad - ts.y - bottom_reserve), label_font,
+            th.text, data.x_label);
   }
   if (!data.y_label.empty())
     cv.TextVertical(ImVec2(min.x + pad + cv.FontSize(label_font) / 2, 0.5f * (a.y + b.y)),
@@ -117,13 +118,15 @@ void PlotFrame::DrawLegend() {
       cv.FillRect(blo, bhi, look.color.WithAlpha(0.75f));
       cv.StrokeRect(blo, bhi, look.color, 1.0f);
     } else if (s.markers_only) {
-      const ImVec2 c(0.5f * (p0.x + p1.x), cy);
-      if (look.hollow_markers)
-        cv.StrokeCircle(c, 3.0f, look.color, 1.2f);
-      else
-        cv.FillCircle(c, 3.0f, look.color);
+      const MarkerShape shape =
+          look.marker == MarkerShape::kNone ? MarkerShape::kCircle : look.marker;
+      DrawMarker(cv, ImVec2(0.5f * (p0.x + p1.x), cy), 3.0f, shape, look.color,
+                 look.hollow_markers);
     } else {
       cv.Line(p0, p1, {look.color, line_w, look.dash});
+      if (look.marker != MarkerShape::kNone)
+        DrawMarker(cv, ImVec2(0.5f * (p0.x + p1.x), cy), 3.2f, look.marker, look.color,
+                   look.hollow_markers);
     }
     cv.Text(ImVec2(p1.x + 7, y + 2), st.label_font, th.text, Shorten(s.label, kLegendBytes));
   }

@@ -161,7 +161,7 @@ void PlotFrame::Layout() {
 void PlotFrame::LayOutOnce() {
   const FontRole tick_font = st.tick_font;
   const float top = min.y + pad + title_h + tick_h * 0.6f;
-  b.y = max.y - pad - xlabel_h - tick_h - 8;
+  b.y = max.y - pad - xlabel_h - tick_h - 8 - bottom_reserve;
   a.y = top + (AxisExponent(y0, y1) != 0 ? tick_h + 2 : 0);
   const int ny = std::max(2, static_cast<int>((b.y - a.y) / 45));
   if (cat_y) {
@@ -206,8 +206,8 @@ void PlotFrame::Equalize() {
 
 void PlotFrame::CornerBox(int c, ImVec2& lo, ImVec2& hi) const {
   const float m = 6;
-  if (c < 0) {  // outside, right of the axes
-    lo = ImVec2(b.x + 10, a.y);
+  if (c < 0) {  // below the axes and their x label, left-aligned with the axes
+    lo = ImVec2(a.x, max.y - pad - leg_size.y);
     hi = ImVec2(lo.x + leg_size.x, lo.y + leg_size.y);
     return;
   }
@@ -283,21 +283,17 @@ void PlotFrame::PlaceLegend() {
         if (best2 < 0 || n < best2) best2 = n, corner = c;
       }
     } else if (best > 0) {
-      // No free corner and no room above the data: the legend goes outside, right of the axes,
-      // in as many columns as its height needs.
+      // No free corner and no room above the data: the legend goes below the axes, in as many
+      // columns as fit their width (the axes keep the figure's whole width).
       const int n = static_cast<int>(legend_items.size());
-      const float avail_h = std::max(row_h, b.y - a.y - 8);
-      const int rows = std::max(1, static_cast<int>(avail_h / row_h));
-      const int cols = (n + rows - 1) / rows;
-      const float w = cols * col_w;
-      if (w < 0.4f * (max.x - min.x)) {
-        leg_cols = cols;
-        leg_size = ImVec2(w, row_h * ((n + cols - 1) / cols) + 8);
-        right_reserve = w + 4;
-        LayOutOnce();
-        if (data.equal_aspect) Equalize();
-        corner = -1;
-      }
+      const int cols = std::clamp(static_cast<int>((b.x - a.x) / col_w), 1, n);
+      const int rows = (n + cols - 1) / cols;
+      leg_cols = cols;
+      leg_size = ImVec2(cols * col_w, row_h * rows + 8);
+      bottom_reserve = leg_size.y + 6;
+      LayOutOnce();
+      if (data.equal_aspect) Equalize();
+      corner = -1;
     }
   }
   L.area_min = a, L.area_max = b;

@@ -74,7 +74,8 @@ struct PlotFrame {
   ImVec2 a, b;         ///< the data area: top-left, bottom-right
   int ex = 0, ey = 0;  ///< shared powers of ten of the tick labels
   double xstep = 1, ystep = 1;
-  float right_reserve = 0;  ///< room for a legend or colour bar outside the axes, on the right
+  float right_reserve = 0;   ///< room for a colour bar outside the axes, on the right
+  float bottom_reserve = 0;  ///< room for a legend below the axes (and their x label)
   double heat_lo = kNaN, heat_hi = kNaN, cstep = 1;  ///< the heatmap's colour bar
   int ce = 0;
   std::vector<double> cticks;
@@ -84,7 +85,7 @@ struct PlotFrame {
   ImVec2 leg_size{0, 0};
   float row_h = 0, sample_w = 26, col_w = 0;
   int leg_cols = 1;
-  int corner = 1;  ///< 0..3: top-left, top-right, bottom-left, bottom-right; -1: right outside
+  int corner = 1;  ///< 0..3: top-left, top-right, bottom-left, bottom-right; -1: below the axes
 
   PlotLayout L;  ///< what DrawPlot returns
 
@@ -92,8 +93,9 @@ struct PlotFrame {
   void Ranges();
   /// Stage 2: the data area and the ticks (and an equal-aspect plot's widened range).
   void Layout();
-  /// Stage 3: the legend's size and corner (raising the y range or moving it outside if no
-  /// corner is free); then fixes L's area and ranges.
+  /// Stage 3: the legend's size and corner (raising the y range if no corner is free, or else
+  /// moving it below the axes in as many columns as fit their width); then fixes L's area and
+  /// ranges.
   void PlaceLegend();
   /// Stage 4: title, grid, ticks and axis labels.
   void DrawAxes();

@@ -5,11 +5,15 @@
 #include <functional>
 
 #include "app/render/plot_frame.hpp"
+#include "app/render/plot_marker.hpp"
 #include "app/render/polyline_simplify.hpp"
 #include "sim/core/number_format.hpp"
 
 namespace formsim::app::plot_detail {
 namespace {
+
+// Pixels between the markers along a line (print theme).
+constexpr float kMarkerSpacing = 60.0f;
 
 // Screen points of a series. For x-sorted data with more points than pixels, each pixel column
 // keeps its first, min, max and last point (the shape is exact at screen resolution); otherwise
@@ -85,28 +89,89 @@ sim::Color HeatColor(double v, double lo, double hi) {
   return Viridis(hi > lo ? (v - lo) / (hi - lo) : 0.5);
 }
 
-// Shades the band of a series (between band_lo and band_hi): each finite run of points as one
-// polygon (upper edge forward, lower edge back), in chunks so no polygon gets large.
+// Shades the band of a series: the area between the curves band_lo and band_hi, for points in
+// any x order (sorted here; a sweep's points may come in any order). A point whose band is not
+// finite leaves a gap. Points closer than a pixel share one column (the envelope of their
+// bands), so a dense time series gives at most one column per pixel.
 void DrawBand(Canvas& cv, const PlotSeries& s, sim::Color col,
               const std::function<ImVec2(double, double)>& to_screen) {
   const std::size_t n = std::min({s.x.size(), s.band_lo.size(), s.band_hi.size()});
-  auto finite = [&](std::size_t i) {
-    return std::isfinite(s.x[i]) && std::isfinite(s.band_lo[i]) && std::isfinite(s.band_hi[i]);
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < n; ++i)
+    if (std::isfinite(s.x[i])) order.push_back(i);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t i, std::size_t j) { return s.x[i] < s.x[j]; });
+  std::vector<ImVec2> upper, lower;
+  auto flush = [&]() {
+    if (upper.size() >= 2)
+      cv.FillBetween(upper.data(), lower.data(), static_cast<int>(upper.size()), col);
+    upper.clear();
+    lower.clear();
   };
-  constexpr std::size_t kChunk = 64;
-  std::size_t i = 0;
-  while (i < n) {
-    while (i < n && !finite(i)) ++i;
-    std::size_t j = i;
-    while (j < n && finite(j) && j - i < kChunk) ++j;
-    if (j - i >= 2) {
-      std::vector<ImVec2> poly;
-      for (std::size_t k = i; k < j; ++k) poly.push_back(to_screen(s.x[k], s.band_hi[k]));
-      for (std::size_t k = j; k-- > i;) poly.push_back(to_screen(s.x[k], s.band_lo[k]));
-      cv.FillPolygon(poly.data(), static_cast<int>(poly.size()), col);
+  float column_x = 0;  // where the last column started
+  for (std::size_t i : order) {
+    if (!std::isfinite(s.band_lo[i]) || !std::isfinite(s.band_hi[i])) {
+      flush();
+      continue;
     }
-    // The next chunk starts at this chunk's last point, so they join.
-    i = (j < n && finite(j) && j - i >= kChunk) ? j - 1 : j;
+    const ImVec2 hi = to_screen(s.x[i], s.band_hi[i]), lo = to_screen(s.x[i], s.band_lo[i]);
+    if (!upper.empty() && hi.x - column_x < 1.0f) {
+      // Same pixel column: the envelope of its points (upper keeps the top on screen).
+      ImVec2 &u = upper.back(), &l = lower.back();
+      const float top = std::min({u.y, l.y, hi.y, lo.y}), bottom = std::max({u.y, l.y, hi.y, lo.y});
+      u.y = top, l.y = bottom;
+      continue;
+    }
+    column_x = hi.x;
+    upper.push_back(hi);
+    lower.push_back(lo);
+  }
+  flush();
+}
+
+// Markers along a screen polyline (the print theme's way to tell lines apart): the first after
+// `offset` pixels of the line (staggered per series so markers of overlapping lines do not sit
+// on each other), then each `spacing` pixels (straight-line distance) from the one before, so a
+// noisy signal that zigzags in place does not get a marker at every sample.
+void MarkersAlong(Canvas& cv, const std::vector<ImVec2>& run, float offset, float spacing,
+                  const SeriesLook& look, float radius) {
+  if (run.empty()) return;
+  if (run.size() == 1) {
+    DrawMarker(cv, run[0], radius, look.marker, look.color, look.hollow_markers);
+    return;
+  }
+  bool placed = false;
+  ImVec2 last(0, 0);
+  float walked = 0;
+  for (std::size_t k = 1; k < run.size(); ++k) {
+    ImVec2 p = run[k - 1];
+    const ImVec2 q = run[k];
+    if (!placed) {
+      const float len = std::hypot(q.x - p.x, q.y - p.y);
+      if (walked + len < offset) {
+        walked += len;
+        continue;
+      }
+      const float t = len > 0 ? (offset - walked) / len : 0.0f;
+      last = ImVec2(p.x + t * (q.x - p.x), p.y + t * (q.y - p.y));
+      DrawMarker(cv, last, radius, look.marker, look.color, look.hollow_markers);
+      placed = true;
+      p = last;
+    }
+    // Points on p->q at `spacing` from the last marker: |p + t (q - p) - last| = spacing.
+    for (int guard = 0; guard < 1000; ++guard) {
+      const float dx = q.x - p.x, dy = q.y - p.y, fx = p.x - last.x, fy = p.y - last.y;
+      const float A = dx * dx + dy * dy, B = 2 * (fx * dx + fy * dy),
+                  C = fx * fx + fy * fy - spacing * spacing;
+      if (!(A > 0)) break;
+      const float disc = B * B - 4 * A * C;
+      if (disc < 0) break;
+      const float t = (-B + std::sqrt(disc)) / (2 * A);
+      if (!(t >= 0 && t <= 1)) break;
+      last = ImVec2(p.x + t * dx, p.y + t * dy);
+      DrawMarker(cv, last, radius, look.marker, look.color, look.hollow_markers);
+      p = last;
+    }
   }
 }
 
@@ -171,16 +236,17 @@ void PlotFrame::DrawSeries(double cursor_x) {
     SeriesLook look = th.Series(s.color, s.style_index, s.dashed);
     if (s.dash_style > 0) look.dash = DashStyle(s.dash_style);
     const Stroke stroke{look.color, line_w, look.dash};
+    // Markers along a line (print): staggered per series, one each kMarkerSpacing pixels.
+    const float marker_offset = 8.0f + static_cast<float>((std::max(0, s.style_index) * 17) % 60);
     for (const auto& run : ScreenRuns(s, x0, x1, y0, y1, a, b)) {
       if (s.markers_only) {
-        for (const ImVec2& p : run) {
-          if (look.hollow_markers)
-            cv.StrokeCircle(p, 2.6f, look.color, 1.2f);
-          else
-            cv.FillCircle(p, 2.6f, look.color);
-        }
+        const MarkerShape shape =
+            look.marker == MarkerShape::kNone ? MarkerShape::kCircle : look.marker;
+        for (const ImVec2& p : run) DrawMarker(cv, p, 2.6f, shape, look.color, look.hollow_markers);
       } else if (run.size() > 1) {
         cv.Polyline(run.data(), static_cast<int>(run.size()), stroke);
+        if (look.marker != MarkerShape::kNone)
+          MarkersAlong(cv, run, marker_offset, kMarkerSpacing, look, 3.2f);
       } else {
         cv.FillCircle(run[0], line_w, look.color);
       }
