@@ -206,8 +206,10 @@ void PlotFrame::Equalize() {
 
 void PlotFrame::CornerBox(int c, ImVec2& lo, ImVec2& hi) const {
   const float m = 6;
-  if (c < 0) {  // below the axes and their x label, left-aligned with the axes
-    lo = ImVec2(a.x, max.y - pad - leg_size.y);
+  if (c < 0) {  // below the axes and their x label, centred under the axes, inside the figure
+    lo.x = std::max(min.x + pad,
+                    std::min(0.5f * (a.x + b.x) - 0.5f * leg_size.x, max.x - pad - leg_size.x));
+    lo.y = max.y - pad - leg_size.y;
     hi = ImVec2(lo.x + leg_size.x, lo.y + leg_size.y);
     return;
   }
@@ -284,9 +286,9 @@ void PlotFrame::PlaceLegend() {
       }
     } else if (best > 0) {
       // No free corner and no room above the data: the legend goes below the axes, in as many
-      // columns as fit their width (the axes keep the figure's whole width).
+      // columns as fit the figure's width (the axes keep their width).
       const int n = static_cast<int>(legend_items.size());
-      const int cols = std::clamp(static_cast<int>((b.x - a.x) / col_w), 1, n);
+      const int cols = std::clamp(static_cast<int>((max.x - min.x - 2 * pad) / col_w), 1, n);
       const int rows = (n + cols - 1) / cols;
       leg_cols = cols;
       leg_size = ImVec2(cols * col_w, row_h * rows + 8);
