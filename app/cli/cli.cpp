@@ -44,6 +44,7 @@ struct RunOptions {
   std::string plot_format = "png";
   std::string snapshot;
   std::string theme = "light";
+  std::string titles = "full";
   bool timing = false;
 };
 
@@ -76,6 +77,7 @@ int RunCommand(RunOptions opt) {
   opt.exp.plot_formats = ParseFigureFormats(opt.plot_format, "--plot-format");
   opt.exp.dpi = ParseDpi(opt.exp.dpi);
   opt.exp.theme = ParseTheme(opt.theme, "--theme");
+  opt.exp.titles = ParseTitleMode(opt.titles, "--titles");
   std::vector<sim::Override> overrides = Overrides(opt.sets, opt.seed);
   if (!opt.max_steps.empty()) overrides.push_back({"max_steps", opt.max_steps, "--max-steps", -1});
   sim::Session session(file, overrides);
@@ -250,6 +252,7 @@ int Main(int argc, char** argv) {
   run_cmd->add_option(
       "--theme", run.theme,
       std::string("Colours of frames, snapshot and figures: ") + ThemeNames() + " (default light)");
+  run_cmd->add_option("--titles", run.titles, std::string("Figure titles: ") + TitleModeNames() + " (default full; short drops the panel letter and a closing (detail), none has no title)");
   run_cmd->add_option("--video", run.exp.video,
                       "Write an MP4 video (.mp4, .mkv or .mov; needs ffmpeg on PATH)");
   run_cmd->add_option("--gif", run.exp.gif,
@@ -289,6 +292,7 @@ int Main(int argc, char** argv) {
   figs_cmd->add_option("--dpi", figs.dpi, "Pixels per inch of PNG files (default 96)");
   figs_cmd->add_option("--theme", figs.theme,
                        std::string("Colours: ") + ThemeNames() + " (default light)");
+  figs_cmd->add_option("--titles", figs.titles, std::string("Figure titles: ") + TitleModeNames() + " (default full; short drops the panel letter and a closing (detail), none has no title)");
   figs_cmd->add_option("--jobs,-j", figs.jobs, "Scenarios at once (default: one per core)");
   figs_cmd->add_flag("--quiet,-q", figs.quiet, "Print nothing but errors");
 

@@ -113,6 +113,7 @@ int FiguresCommand(const FiguresOptions& o) {
   ParseSize(o.size, &opt.width, &opt.height, "--size");
   opt.dpi = ParseDpi(o.dpi);
   opt.theme = ParseTheme(o.theme, "--theme");
+  opt.titles = ParseTitleMode(o.titles, "--titles");
   opt.whole_run = true;  // the world view shows the whole run
   if (o.jobs < 0) throw std::runtime_error("--jobs must be 0 (one per core) or more");
 

@@ -18,6 +18,7 @@ struct FiguresOptions {
   std::string size = "1280x720";       ///< --size: the world view
   double dpi = 96;
   std::string theme = "light";
+  std::string titles = "full";  ///< --titles full|short|none
   int jobs = 0;  ///< worker processes; 0: one per core
   bool quiet = false;
 };

@@ -376,8 +376,9 @@ ExportStats RunWithExport(sim::Session& session, const ExportOptions& opt,
       const sim::FigureSpec& fig = figures[i];
       try {
         report("figure " + std::to_string(i + 1) + "/" + std::to_string(figures.size()));
-        const PlotData data = ResolveFigure(fig, exp.recorder());
+        PlotData data = ResolveFigure(fig, exp.recorder());
         if (!data.error.empty()) throw std::runtime_error("figure '" + fig.id + "': " + data.error);
+        data.title = TitleFor(data.title, opt.titles);
         const std::string stem = opt.plots_dir + "/" + fig.id + ".";
         for (FigureFormat f : opt.plot_formats) {
           if (f == FigureFormat::kPng) {

@@ -11,6 +11,7 @@
 
 #include "app/export/figure_export.hpp"
 #include "app/export/figure_size.hpp"
+#include "app/export/figure_titles.hpp"
 #include "app/render/theme.hpp"
 #include "app/render/world_view.hpp"
 #include "sim/session/session.hpp"
@@ -29,6 +30,7 @@ struct ExportOptions {
   std::vector<FigureFormat> plot_formats = {FigureFormat::kPng};
   double dpi = 96;  ///< PNG figures and PNG snapshot: dpi / 96 pixels per logical pixel
   ThemeId theme = ThemeId::kLight;
+  TitleMode titles = TitleMode::kFull;  ///< --titles: how much of each figure's title is shown
   double gif_fps = 15;
   int gif_width = 640;
   bool ui = false;         ///< draw the GUI panels around the world view

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <string>
+#include <vector>
 
 #include "app/render/fonts.hpp"
 #include "sim/core/draw.hpp"
@@ -46,6 +47,15 @@ class Canvas {
   virtual void Polyline(const ImVec2* pts, int n, const Stroke& stroke, bool closed = false) = 0;
   /// Simple polygon (convex or not) filled.
   virtual void FillPolygon(const ImVec2* pts, int n, sim::Color color) = 0;
+  /// The area between two curves sampled at the same x (upper[i].x == lower[i].x, ascending):
+  /// a plot's band. The curves may touch or cross. By default the outline (upper forward, lower
+  /// back) filled with the non-zero rule, which fills every lobe of a crossing band.
+  virtual void FillBetween(const ImVec2* upper, const ImVec2* lower, int n, sim::Color color) {
+    if (n < 2) return;
+    std::vector<ImVec2> outline(upper, upper + n);
+    for (int i = n; i-- > 0;) outline.push_back(lower[i]);
+    FillPolygon(outline.data(), static_cast<int>(outline.size()), color);
+  }
   virtual void FillCircle(ImVec2 center, float radius, sim::Color color) = 0;
   virtual void StrokeCircle(ImVec2 center, float radius, sim::Color color, float width) = 0;
   /// Text with the top-left corner of its line box at `pos` (ImGui's convention).

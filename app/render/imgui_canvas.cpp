@@ -155,6 +155,38 @@ void ImGuiCanvas::FillPolygon(const ImVec2* pts, int n, sim::Color color) {
     dl_->AddTriangleFilled(p[idx[0]], p[idx[i]], p[idx[i + 1]], col);
 }
 
+// ImGui fills convex polygons only, and an ear-clipped band outline showed the triangles' anti-
+// aliased edges as streaks (or, when clipping failed on a band of zero width, a wedge across the
+// plot). So a band is filled as one convex piece per pair of neighbouring x, a trapezoid (its
+// sides are vertical) or two triangles meeting where the curves cross, without anti-aliasing so
+// the pieces meet without seams. Each piece is clockwise on screen (top-left first).
+void ImGuiCanvas::FillBetween(const ImVec2* upper, const ImVec2* lower, int n, sim::Color color) {
+  const ImU32 col = ToImColor(color);
+  const ImDrawListFlags flags = dl_->Flags;
+  dl_->Flags &= ~ImDrawListFlags_AntiAliasedFill;
+  for (int i = 0; i + 1 < n; ++i) {
+    const ImVec2 u0 = upper[i], l0 = lower[i], u1 = upper[i + 1], l1 = lower[i + 1];
+    if (!(u1.x > u0.x)) continue;  // no width
+    const float d0 = l0.y - u0.y, d1 = l1.y - u1.y;
+    if (d0 * d1 < 0) {
+      const float t = d0 / (d0 - d1);
+      const ImVec2 cross(u0.x + t * (u1.x - u0.x), u0.y + t * (u1.y - u0.y));
+      const ImVec2 left[3] = {ImVec2(u0.x, std::min(u0.y, l0.y)), cross,
+                              ImVec2(u0.x, std::max(u0.y, l0.y))};
+      const ImVec2 right[3] = {cross, ImVec2(u1.x, std::min(u1.y, l1.y)),
+                               ImVec2(u1.x, std::max(u1.y, l1.y))};
+      dl_->AddConvexPolyFilled(left, 3, col);
+      dl_->AddConvexPolyFilled(right, 3, col);
+      continue;
+    }
+    if (d0 == 0 && d1 == 0) continue;  // no height
+    const ImVec2 quad[4] = {ImVec2(u0.x, std::min(u0.y, l0.y)), ImVec2(u1.x, std::min(u1.y, l1.y)),
+                            ImVec2(u1.x, std::max(u1.y, l1.y)), ImVec2(u0.x, std::max(u0.y, l0.y))};
+    dl_->AddConvexPolyFilled(quad, 4, col);
+  }
+  dl_->Flags = flags;
+}
+
 void ImGuiCanvas::FillCircle(ImVec2 center, float radius, sim::Color color) {
   // num_segments 0: ImGui picks enough segments for a smooth circle at this radius.
   dl_->AddCircleFilled(center, radius, ToImColor(color), radius < 4.0f ? 8 : 0);

@@ -168,22 +168,33 @@ sim::Color Theme::Ink(sim::Color c) const {
 
 SeriesLook Theme::Series(sim::Color color, int index, bool dashed) const {
   SeriesLook look;
+  const int i = std::max(0, index);
   if (id != ThemeId::kPrint) {
     look.color = Ink(color);
     if (dashed) look.dash = LineDash::Dashes(8, 5);
+    // Past the colour cycle colours repeat: a dash pattern per lap tells the series apart.
+    static const LineDash kLapDash[] = {LineDash::Dashes(7, 4), LineDash::Dashes(2, 3),
+                                        LineDash::DashDot(9, 3, 2), LineDash::Dashes(14, 5)};
+    const int lap = i / kPaletteSize;
+    if (lap > 0 && look.dash.solid()) look.dash = kLapDash[(lap - 1) % 4];
     return look;
   }
-  // Print: told apart in greyscale by the dash pattern first, then the grey level.
+  // Print: told apart in greyscale by the dash pattern, the marker and the grey level. The
+  // cycles have coprime lengths (6, 7, 5), so the (dash, marker) pair first repeats at 42.
   static const float kGrey[] = {0.0f, 0.42f, 0.2f, 0.55f, 0.3f};
-  static const LineDash kDash[] = {LineDash::Solid(), LineDash::Dashes(7, 4),
-                                   LineDash::Dashes(2, 3), LineDash::DashDot(9, 3, 2),
-                                   LineDash::Dashes(14, 5)};
-  const int i = ((index % 5) + 5) % 5;
-  const float g = kGrey[i];
+  static const LineDash kDash[] = {LineDash::Solid(),       LineDash::Dashes(7, 4),
+                                   LineDash::Dashes(2, 3),  LineDash::DashDot(9, 3, 2),
+                                   LineDash::Dashes(14, 5), LineDash::DashDot(4, 2, 1)};
+  static const MarkerShape kMarker[] = {MarkerShape::kCircle,       MarkerShape::kSquare,
+                                        MarkerShape::kTriangle,     MarkerShape::kDiamond,
+                                        MarkerShape::kTriangleDown, MarkerShape::kPlus,
+                                        MarkerShape::kCross};
+  const float g = kGrey[i % 5];
   look.color = {g, g, g, color.a};
-  look.dash = kDash[i];
+  look.dash = kDash[i % 6];
+  look.marker = kMarker[i % 7];
   if (dashed && look.dash.solid()) look.dash = LineDash::Dashes(8, 5);
-  look.hollow_markers = (index % 2) != 0;
+  look.hollow_markers = (i % 2) != 0;
   return look;
 }
 

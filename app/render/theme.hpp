@@ -12,11 +12,30 @@ namespace formsim::app {
 
 enum class ThemeId { kLight, kDark, kPrint, kHighContrast };
 
+/// Colours of sim::PaletteColor before it repeats: the series colour cycle (Okabe-Ito without
+/// its black and yellow, then Tol's muted; colour-blind safe, pairwise ΔE*ab above 20).
+constexpr int kPaletteSize = 12;
+
+/// Marks along a line or of a scatter (the print theme tells series apart by them).
+enum class MarkerShape {
+  kNone,
+  kCircle,
+  kSquare,
+  kTriangle,
+  kDiamond,
+  kTriangleDown,
+  kPlus,
+  kCross
+};
+
 /// How one plot series is drawn in a theme.
 struct SeriesLook {
   sim::Color color;
   LineDash dash;
-  bool hollow_markers = false;  ///< print: every other scatter has open circles
+  /// Print: a marker of its own on every series (spaced along lines); other themes: none (a
+  /// scatter draws circles).
+  MarkerShape marker = MarkerShape::kNone;
+  bool hollow_markers = false;  ///< print: every other series has open markers
 };
 
 struct Theme {
@@ -35,8 +54,11 @@ struct Theme {
   /// An experiment's colour (robot, trail, label) as shown on this theme's background: dark
   /// inks become light on dark themes, print turns colours to greys.
   sim::Color Ink(sim::Color c) const;
-  /// Colour and dash of a plot series with palette index `index` (dashed: the figure asks for a
-  /// dashed line, e.g. a reference path).
+  /// Colour, dash and marker of a plot series with palette index `index` (dashed: the figure
+  /// asks for a dashed line, e.g. a reference path). Colour themes: past the palette's
+  /// kPaletteSize colours, series repeat colours and differ by dash pattern. Print: series
+  /// differ by dash pattern (6), marker (7) and grey; the (dash, marker) pair repeats only after
+  /// 42 series.
   SeriesLook Series(sim::Color color, int index, bool dashed) const;
 };
 

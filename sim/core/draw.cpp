@@ -7,12 +7,15 @@
 namespace formsim::sim {
 
 Color PaletteColor(int index) {
-  // Okabe-Ito, reordered so the first colours contrast most on a light background.
-  static const Color kPalette[] = {
-      {0.000f, 0.447f, 0.698f, 1}, {0.835f, 0.369f, 0.000f, 1}, {0.000f, 0.620f, 0.451f, 1},
-      {0.800f, 0.475f, 0.655f, 1}, {0.902f, 0.624f, 0.000f, 1}, {0.337f, 0.706f, 0.914f, 1},
-      {0.400f, 0.400f, 0.400f, 1}, {0.600f, 0.300f, 0.100f, 1}, {0.100f, 0.100f, 0.100f, 1},
-      {0.550f, 0.600f, 0.100f, 1}};
+  auto hex = [](unsigned v) {
+    return Color{((v >> 16) & 0xFF) / 255.0f, ((v >> 8) & 0xFF) / 255.0f, (v & 0xFF) / 255.0f, 1};
+  };
+  // Okabe-Ito, ordered so the first colours contrast most on a light background; then Tol's
+  // muted scheme (its colours farthest from those: at least ΔE*ab 20 between any two).
+  static const Color kPalette[] = {hex(0x0072B2), hex(0xD55E00), hex(0x009E73), hex(0xCC79A7),
+                                   hex(0xE69F00), hex(0x56B4E9), hex(0x332288), hex(0x882255),
+                                   hex(0x117733), hex(0x999933), hex(0xCC6677), hex(0xAA4499)};
+  // Twelve colours: app::kPaletteSize, which a test ties to this table.
   constexpr int n = sizeof(kPalette) / sizeof(kPalette[0]);
   return kPalette[((index % n) + n) % n];
 }

@@ -46,8 +46,8 @@ std::vector<FigureSpec> FormationExperiment::Figures() const {
   FigureSpec dist = TimeFigure("distance_error", "(c) Distance errors e_l = l_des − l", "e_l [m]", {});
   FigureSpec alpha =
       TimeFigure("alpha_error", "(d) Heading differences e_α = θ_i − θ_j", "e_α [rad]", {});
-  FigureSpec est =
-      TimeFigure("estimation_error", "(f) Estimation error φ_est − φ with ±2σ (UKF)", "[rad]", {});
+  FigureSpec est = TimeFigure("estimation_error", "(f) Estimation error φ_est − φ with ±2σ (UKF)",
+                              "φ_est − φ [rad]", {});
   for (FigureSpec* f : {&phi, &dist, &alpha, &est}) f->reference_lines = {0.0};
   int color = 0;
   const int c_t = recorder_.Column("t");

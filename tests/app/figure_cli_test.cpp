@@ -42,6 +42,7 @@ TEST(FigureCli, BadOutputNamesAreClearErrorsThatCreateNothing) {
       {"--plots " + dir + "/p --plot-format png,jpeg", "--plot-format", "png, svg, pdf",
        dir + "/p"},
       {"--plots " + dir + "/p --theme sepia", "--theme", "high-contrast", dir + "/p"},
+      {"--plots " + dir + "/p --titles long", "--titles", "full|short|none", dir + "/p"},
       {"--plots " + dir + "/p --dpi 1200 --plot-size 30cmx20cm", "--plot-size", "--dpi 1200",
        dir + "/p"},
   };

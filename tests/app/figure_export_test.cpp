@@ -164,6 +164,17 @@ class FigureRun : public ::testing::Test {
 };
 sim::Session* FigureRun::session_ = nullptr;
 
+// An axis label names its quantity, not just a unit ("[rad]" alone said nothing).
+TEST_F(FigureRun, AxisLabelsNameTheirQuantity) {
+  int figures = 0;
+  for (const auto& f : session_->exp().Figures()) {
+    for (const std::string& label : {f.x_label, f.y_label})
+      EXPECT_FALSE(!label.empty() && label[0] == '[') << f.id << ": label '" << label << "'";
+    ++figures;
+  }
+  EXPECT_GT(figures, 5);
+}
+
 TEST_F(FigureRun, VectorTextIsMeasuredExactlyAsTheRasterText) {
   OffscreenRenderer r(320, 240);
   r.RenderFigure(Figure("phi_error"), 320, 240);  // builds the font atlas

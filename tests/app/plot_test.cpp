@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "app/render/polyline_simplify.hpp"
+#include "app/render/vector_canvas.hpp"
 #include "app/render/world_view.hpp"
 
 namespace formsim::app {
@@ -118,6 +119,29 @@ TEST(SimplifyPolyline, StraightLineBecomesOneSegmentCurveStaysClose) {
     }
     ASSERT_LT(best, 0.5);
   }
+}
+
+// With data in every corner and no headroom to make (an equal-aspect plot keeps its scale), the
+// legend goes below the axes, and the axes keep well over 60% of the figure's width.
+TEST(PlotLegend, NoFreeCornerPutsItBelowTheAxes) {
+  PlotData d;
+  d.equal_aspect = true;
+  for (int i = 0; i < 6; ++i) {
+    PlotSeries s;
+    s.label = "a long legend entry number " + std::to_string(i);
+    for (int k = 0; k <= 200; ++k) {  // a dense zigzag over the whole square
+      s.x.push_back(k / 200.0);
+      s.y.push_back(((k * 7 + i * 13) % 50) / 49.0);
+    }
+    d.series.push_back(s);
+  }
+  const float w = 321, h = 227;  // 8.5 cm x 6 cm
+  VectorCanvas cv(w, h);
+  const PlotLayout L =
+      DrawPlot(cv, ImVec2(0, 0), ImVec2(w, h), d, FigureStyle(GetTheme(ThemeId::kLight)));
+  EXPECT_GE(L.legend_min.y, L.area_max.y) << "the legend overlaps the axes";
+  EXPECT_LE(L.legend_max.y, h + 0.5f) << "the legend leaves the figure";
+  EXPECT_GE(L.area_max.x - L.area_min.x, 0.6f * w) << "the legend took the axes' width";
 }
 
 }  // namespace
