@@ -14,10 +14,12 @@
 #include <vector>
 
 #include "app/gui/command_table.hpp"
+#include "app/gui/speed_meter.hpp"
 #include "app/render/fonts.hpp"
 #include "app/render/theme.hpp"
 #include "app/gui/tuning_state.hpp"
 #include "app/gui/ui_settings.hpp"
+#include "app/render/camera.hpp"
 #include "app/render/view.hpp"
 #include "app/render/world_view.hpp"
 #include "sim/session/session.hpp"
@@ -61,6 +63,7 @@ struct UiState {
   std::string select_tab;   ///< a tab of the right-hand window to bring to front once
   std::string drag_name;  ///< robot or obstacle being dragged
   double sim_ms = 0, frame_ms = 0;
+  SpeedMeter speed_meter;  ///< the achieved speed and whether the run is behind the chosen one
   int steps_last_frame = 0;
 
   // Teaching (app/gui/ui_formation.cpp, app/gui/ui_teach.cpp).
@@ -68,6 +71,10 @@ struct UiState {
   bool legend = true;    ///< a legend of every mark drawn in the world view
   bool help = false;     ///< the help overlay (F1)
   bool present = false;  ///< presentation mode: the world view fills the window
+  /// The presentation camera frames the formation outside presentation mode too.
+  bool frame_formation = false;
+  PresentationCamera camera;  ///< view-only: frames and follows the formation (app/render/camera)
+  LegendState legend_state;   ///< the world legend's corner and whether it is collapsed
   UiSettings settings;   ///< UI scale and angle unit, kept between runs
   /// What a left click in the world view does (the formation editor).
   enum class EditMode { kOff, kAdd, kRemove, kAttach, kSwitchLaw, kSlots };
@@ -315,6 +322,8 @@ class AppUi {
   void DrawHelpOverlay(ImVec2 min, ImVec2 max);
   /// Presentation mode's small bar of buttons, top right of the world view.
   void DrawPresentationBar(ImVec2 min, ImVec2 max);
+  /// The achieved speed beside the speed field (red and "behind" when it cannot keep up).
+  void DrawAchievedSpeed();
   /// The editor's mouse in the world view; true when it took the click.
   bool EditorMouse(const View& view);
   /// The robot nearest world point `p` within a few pixels of its body ("" none).
