@@ -262,6 +262,18 @@ std::vector<Command> ViewRows() {
        .help = "The world view fills the window, for a lecture room (Esc leaves)",
        .checked = [](const AppUi& ui) { return ui.state().present; },
        .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdPresent(a.On(0)); }});
+  row({.name = "frame-formation",
+       .args = {OnOff()},
+       .key_args = "toggle",
+       .menu = "View/Frame the formation",
+       .help = "The camera frames the robots and their recent trails and follows them (always on "
+               "in presentation mode; zooming by hand pauses it until fit)",
+       .checked = [](const AppUi& ui) { return ui.state().frame_formation; },
+       .run = [](AppUi& ui, const CommandArgs& a, Src) {
+         ui.state().frame_formation = a.On(0);
+         ui.state().camera.Fit();
+         return std::string();
+       }});
   row({.name = "theme",
        .args = {Initial(
            Choice("NAME", ThemeList()),
@@ -329,6 +341,7 @@ std::vector<Command> ViewRows() {
        .help = "Fit everything in view (and stop following)",
        .run = [](AppUi& ui, const CommandArgs&, Src) {
          ui.state().fit_now = true;
+         ui.state().camera.Fit();
          ui.state().follow = -1;
          return std::string();
        }});

@@ -72,6 +72,8 @@ const std::vector<std::uint8_t>& OffscreenRenderer::RenderWorldAs(const sim::Exp
   opt.caption = caption;
   opt.scene_overlays = overlays_;
   opt.legend = legend_;
+  opt.legend_state = &legend_state_;
+  opt.clock = exp.time();  // frames of a run: the corner moves at most once a simulated second
   ImGuiCanvas canvas(ImGui::GetBackgroundDrawList(), layer_.fonts());
   DrawWorldView(canvas, view, exp, theme_, opt);
   return End(theme_.background);

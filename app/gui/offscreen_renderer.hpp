@@ -14,6 +14,7 @@
 #include "app/render/plot.hpp"
 #include "app/render/theme.hpp"
 #include "app/render/view.hpp"
+#include "app/render/world_legend.hpp"
 #include "sim/core/experiment.hpp"
 
 namespace formsim::app {
@@ -73,6 +74,7 @@ class OffscreenRenderer {
   const Theme& theme_;
   const std::set<std::string>* overlays_ = nullptr;
   bool legend_ = false;
+  LegendState legend_state_;  ///< the legend's corner, kept a second of simulated time
   ImGuiLayer layer_;
   int logical_w_, logical_h_;
   RenderTimes times_;

@@ -1,4 +1,5 @@
 #include "app/gui/ui.hpp"
+#include "app/render/imgui_canvas.hpp"
 #include "app/render/long_text.hpp"
 
 #include <algorithm>
@@ -445,6 +446,8 @@ void AppUi::Advance(double wall_dt) {
     }
   }
   state_.steps_last_frame = steps;
+  state_.speed_meter.Add(wall_dt, steps * session_->exp().dt(), SpeedChoices()[state_.speed_index],
+                         state_.playing && !session_->exp().finished());
   state_.sim_ms = 1e3 * std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
@@ -595,6 +598,7 @@ void AppUi::DrawRunSection() {
   if (ImGui::SliderInt("speed", &si, 0, static_cast<int>(speeds.size()) - 1,
                        SpeedLabel(speeds[si]).c_str(), ImGuiSliderFlags_AlwaysClamp))
     state_.speed_index = std::clamp(si, 0, static_cast<int>(speeds.size()) - 1);
+  DrawAchievedSpeed();
 
   ImGui::SetNextItemWidth(120);
   ImGui::InputText("seed", state_.seed_text, sizeof(state_.seed_text),
@@ -614,6 +618,20 @@ void AppUi::DrawRunSection() {
                      exp.steps(), exp.dt(), state_.steps_last_frame, state_.sim_ms,
                      state_.frame_ms);
   ImGui::PopStyleColor();
+}
+
+void AppUi::DrawAchievedSpeed() {
+  const std::string label = state_.speed_meter.Label();
+  if (label.empty()) return;
+  ImGui::SameLine();
+  if (state_.speed_meter.behind())
+    ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(ToImColor(GetTheme(state_.theme).error)), "%s",
+                       label.c_str());
+  else
+    ImGui::TextDisabled("%s", label.c_str());
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Simulated seconds per wall second over the last second; \"behind\": the "
+                      "simulation cannot keep up with the chosen speed");
 }
 
 void AppUi::DrawViewSection() {

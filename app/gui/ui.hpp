@@ -15,10 +15,12 @@
 
 #include "app/gui/command_table.hpp"
 #include "app/gui/panel.hpp"
+#include "app/gui/speed_meter.hpp"
 #include "app/render/fonts.hpp"
 #include "app/render/theme.hpp"
 #include "app/gui/tuning_state.hpp"
 #include "app/gui/ui_settings.hpp"
+#include "app/render/camera.hpp"
 #include "app/render/view.hpp"
 #include "app/render/world_view.hpp"
 #include "sim/session/session.hpp"
@@ -59,6 +61,7 @@ struct UiState {
   std::string select_tab;   ///< a tab of the right-hand window to bring to front once
   std::string drag_name;  ///< robot or obstacle being dragged
   double sim_ms = 0, frame_ms = 0;
+  SpeedMeter speed_meter;  ///< the achieved speed and whether the run is behind the chosen one
   int steps_last_frame = 0;
 
   // Teaching (app/gui/ui_teach.cpp).
@@ -66,6 +69,10 @@ struct UiState {
   bool legend = true;    ///< a legend of every mark drawn in the world view
   bool help = false;     ///< the help overlay (F1)
   bool present = false;  ///< presentation mode: the world view fills the window
+  /// The presentation camera frames the formation outside presentation mode too.
+  bool frame_formation = false;
+  PresentationCamera camera;  ///< view-only: frames and follows the formation (app/render/camera)
+  LegendState legend_state;   ///< the world legend's corner and whether it is collapsed
   UiSettings settings;   ///< UI scale and angle unit, kept between runs
   double step_budget = 0;  ///< simulated seconds owed to real time
 
@@ -302,6 +309,8 @@ class AppUi {
   void DrawHelpOverlay(ImVec2 min, ImVec2 max);
   /// Presentation mode's small bar of buttons, top right of the world view.
   void DrawPresentationBar(ImVec2 min, ImVec2 max);
+  /// The achieved speed beside the speed field (red and "behind" when it cannot keep up).
+  void DrawAchievedSpeed();
   void SaveSettings();
   void DrawParamSection();
   void DrawMessagesSection();

@@ -150,6 +150,7 @@ void AppUi::DrawPresentationBar(ImVec2 min, ImVec2 max) {
   if (ImGui::Button("Help")) state_.help = !state_.help;
   ImGui::SameLine();
   if (ImGui::Button("Exit presentation")) CmdPresent(false);
+  DrawAchievedSpeed();
   ImGui::End();
 }
 

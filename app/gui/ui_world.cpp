@@ -19,7 +19,12 @@ void AppUi::UpdateView(ImVec2 min, ImVec2 max) {
   Vec2 lo, hi;
   exp.Bounds(lo, hi);
   auto_fit_.set_mode(state_.whole_run ? AutoFit::Mode::kGrow : AutoFit::Mode::kTrack);
-  if (state_.fit_now) {
+  if ((state_.present || state_.frame_formation) && state_.follow < 0) {
+    // Presentation (or "frame the formation"): the camera frames the robots and recent trails.
+    if (state_.fit_now) state_.camera.Fit();
+    state_.fit_now = false;
+    state_.camera.Update(v, FocusOf(exp, state_.camera.options().trail_seconds), 0.15);
+  } else if (state_.fit_now) {
     if (!state_.whole_run) auto_fit_.Reset();
     state_.auto_fit = true;
     state_.fit_now = false;
@@ -55,15 +60,25 @@ void AppUi::DrawWorldMouse(const View& view) {
   if (hovered && io.MouseWheel != 0) {
     state_.view.ZoomAt(io.MousePos, std::pow(1.15, io.MouseWheel));
     state_.auto_fit = false;
+    state_.camera.Suspend();  // until fit
   }
   if (ImGui::IsItemActive() && (ImGui::IsMouseDragging(ImGuiMouseButton_Right) ||
                                 ImGui::IsMouseDragging(ImGuiMouseButton_Middle))) {
     state_.view.Pan(io.MouseDelta);
     state_.auto_fit = false;
+    state_.camera.Suspend();
     state_.follow = -1;
   }
-  // The formation editor takes left clicks while it is on.
-  if (kind_panel_ && kind_panel_->WorldMouse(view)) {
+  // The formation editor takes left clicks while it is on (after the legend toggle).
+  // A click on the legend's title collapses or opens it (a view setting, not an edit).
+  const LegendState& ls = state_.legend_state;
+  const bool on_legend = hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) &&
+                         io.MousePos.x >= ls.toggle_min.x && io.MousePos.x <= ls.toggle_max.x &&
+                         io.MousePos.y >= ls.toggle_min.y && io.MousePos.y <= ls.toggle_max.y;
+  if (on_legend) {
+    state_.legend_state.collapsed = !state_.legend_state.collapsed;
+    state_.drag_name.clear();
+  } else if (kind_panel_ && kind_panel_->WorldMouse(view)) {
     state_.drag_name.clear();
   } else if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
     // Picking: the nearest robot (or obstacle centre) within a few pixels of its outline.
@@ -128,6 +143,8 @@ void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool in
   opt.coordinates = state_.coordinates;
   opt.scene_overlays = &state_.overlays;
   opt.legend = state_.legend;
+  opt.legend_state = &state_.legend_state;
+  opt.clock = ImGui::GetTime();
   opt.degrees = state_.settings.degrees;
   for (const auto& p : pins_)
     if (p->ready())

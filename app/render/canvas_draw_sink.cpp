@@ -19,7 +19,7 @@ void CanvasDrawSink::Polygon(const std::vector<Vec2>& pts, sim::Color fill, sim:
   s.reserve(pts.size());
   for (const Vec2& p : pts) s.push_back(view_.ToScreen(p));
   const int n = static_cast<int>(s.size());
-  if (fill.a > 0) cv_.FillPolygon(s.data(), n, theme_.Ink(fill));
+  if (fill.a > 0) cv_.FillPolygon(s.data(), n, theme_.Fill(fill));
   if (outline.a > 0) cv_.Polyline(s.data(), n, {theme_.Ink(outline), Width(1.5f)}, true);
 }
 
@@ -27,7 +27,7 @@ void CanvasDrawSink::Circle(Vec2 center, double radius, sim::Color fill, sim::Co
   const ImVec2 c = view_.ToScreen(center);
   const float r = static_cast<float>(radius * view_.scale);
   if (r < 0.5f) return;
-  if (fill.a > 0) cv_.FillCircle(c, r, theme_.Ink(fill));
+  if (fill.a > 0) cv_.FillCircle(c, r, theme_.Fill(fill));
   if (outline.a > 0) cv_.StrokeCircle(c, r, theme_.Ink(outline), Width(1.5f));
 }
 
@@ -82,8 +82,8 @@ void CanvasDrawSink::CovarianceEllipse(Vec2 center, double sxx, double sxy, doub
     const double t = 2 * M_PI * i / kN, ex = a * std::cos(t), ey = b * std::sin(t);
     pts[i] = view_.ToScreen({center.x + ca * ex - sa * ey, center.y + sa * ex + ca * ey});
   }
-  const sim::Color ink = theme_.Ink(color);
-  cv_.FillPolygon(pts, kN, ink.WithAlpha(ink.a * 0.15f));
+  const sim::Color ink = theme_.Ink(color), fill = theme_.Fill(color);
+  cv_.FillPolygon(pts, kN, fill.WithAlpha(fill.a * 0.15f));
   cv_.Polyline(pts, kN, {ink, Width(1.2f)}, true);
 }
 
@@ -96,20 +96,122 @@ void CanvasDrawSink::Cross(Vec2 p, double size, sim::Color color) {
 
 void CanvasDrawSink::Text(Vec2 p, const std::string& text, sim::Color color, float dx_px,
                           float dy_px) {
+  Label(p, text, color, sim::LabelRole::kValue, dx_px, dy_px);
+}
+
+void CanvasDrawSink::Label(Vec2 p, const std::string& text, sim::Color color, sim::LabelRole role,
+                           float dx_px, float dy_px) {
   const ImVec2 s = view_.ToScreen(p);
-  const ImVec2 pos(std::round(s.x + dx_px), std::round(s.y + dy_px));
-  const ImVec2 ext = cv_.TextSize(font_, text);
-  const ImVec4 box(pos.x - 2, pos.y - 1, pos.x + ext.x + 2, pos.y + ext.y + 1);
-  // Off screen: neither drawn nor kept for the overlap test (which then stays short).
+  // Far off screen: not even queued (a scene of thousands of robots names them all).
   ImVec2 clip_min, clip_max;
   cv_.Clip(clip_min, clip_max);
-  if (box.z < clip_min.x || box.x > clip_max.x || box.w < clip_min.y || box.y > clip_max.y) return;
-  for (const ImVec4& o : labels_)
-    if (box.x < o.z && o.x < box.z && box.y < o.w && o.y < box.w) return;
-  labels_.push_back(box);
-  // A translucent backdrop keeps labels readable over grid lines and trails.
-  cv_.FillRect(ImVec2(box.x, box.y), ImVec2(box.z, box.w), theme_.backdrop.WithAlpha(0.67f), 2.0f);
-  cv_.Text(pos, font_, theme_.Ink(color), text);
+  constexpr float kReach = 80.0f;  // a label may move this far towards the view
+  if (s.x < clip_min.x - kReach - 400 || s.x > clip_max.x + kReach ||
+      s.y < clip_min.y - kReach || s.y > clip_max.y + kReach)
+    return;
+  queued_.push_back({s, ImVec2(std::round(s.x + dx_px), std::round(s.y + dy_px)), text, color, role});
+}
+
+namespace {
+
+bool Overlaps(const ImVec4& a, const ImVec4& b) {
+  return a.x < b.z && b.x < a.z && a.y < b.w && b.y < a.w;
+}
+
+// Boxes bucketed by 64-pixel cells of the view, so that a thousand robots and their labels cost
+// a few tests per candidate spot, not a thousand.
+class BoxGrid {
+ public:
+  BoxGrid(ImVec2 min, ImVec2 max) : min_(min) {
+    nx_ = std::max(1, static_cast<int>((max.x - min.x) / kCell) + 1);
+    ny_ = std::max(1, static_cast<int>((max.y - min.y) / kCell) + 1);
+    cells_.resize(static_cast<std::size_t>(nx_) * ny_);
+  }
+  void Add(const ImVec4& b) {
+    boxes_.push_back(b);
+    ForCells(b, [&](std::vector<int>& c) { c.push_back(static_cast<int>(boxes_.size()) - 1); return false; });
+  }
+  bool Hits(const ImVec4& b) const {
+    return const_cast<BoxGrid*>(this)->ForCells(b, [&](std::vector<int>& c) {
+      for (int i : c)
+        if (Overlaps(b, boxes_[static_cast<std::size_t>(i)])) return true;
+      return false;
+    });
+  }
+
+ private:
+  static constexpr float kCell = 64.0f;
+  template <class F>
+  bool ForCells(const ImVec4& b, F&& f) {
+    const int x0 = std::clamp(static_cast<int>((b.x - min_.x) / kCell), 0, nx_ - 1);
+    const int x1 = std::clamp(static_cast<int>((b.z - min_.x) / kCell), 0, nx_ - 1);
+    const int y0 = std::clamp(static_cast<int>((b.y - min_.y) / kCell), 0, ny_ - 1);
+    const int y1 = std::clamp(static_cast<int>((b.w - min_.y) / kCell), 0, ny_ - 1);
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x)
+        if (f(cells_[static_cast<std::size_t>(y) * nx_ + x])) return true;
+    return false;
+  }
+  ImVec2 min_;
+  int nx_ = 1, ny_ = 1;
+  std::vector<std::vector<int>> cells_;
+  std::vector<ImVec4> boxes_;
+};
+
+}  // namespace
+
+void CanvasDrawSink::FlushLabels() {
+  std::stable_sort(queued_.begin(), queued_.end(),
+                   [](const Queued& a, const Queued& b) { return a.role < b.role; });
+  ImVec2 clip_min, clip_max;
+  cv_.Clip(clip_min, clip_max);
+  const float fs = cv_.FontSize(font_);
+  BoxGrid taken(clip_min, clip_max);
+  for (const ImVec4& o : keep_clear_)
+    if (o.z >= clip_min.x && o.x <= clip_max.x && o.w >= clip_min.y && o.y <= clip_max.y) taken.Add(o);
+  for (const Queued& q : queued_) {
+    const ImVec2 ext = cv_.TextSize(font_, q.text);
+    auto box_at = [&](ImVec2 pos) { return ImVec4(pos.x - 2, pos.y - 1, pos.x + ext.x + 2, pos.y + ext.y + 1); };
+    auto free = [&](const ImVec4& b) {
+      if (b.x < clip_min.x || b.z > clip_max.x || b.y < clip_min.y || b.w > clip_max.y) return false;
+      return !taken.Hits(b);
+    };
+    // The scene's own spot, then spots around the anchor: above, below, right, left, the
+    // corners, at one and two line heights.
+    ImVec2 pos = q.pos;
+    bool found = free(box_at(pos)), moved = false;
+    for (int ring = 1; ring <= 2 && !found; ++ring) {
+      const float d = fs * (0.6f + 1.1f * static_cast<float>(ring));
+      const ImVec2 offsets[8] = {
+          ImVec2(-ext.x / 2, -d - ext.y), ImVec2(-ext.x / 2, d),     ImVec2(d, -ext.y / 2),
+          ImVec2(-d - ext.x, -ext.y / 2), ImVec2(d, -d - ext.y),     ImVec2(-d - ext.x, -d - ext.y),
+          ImVec2(d, d),                   ImVec2(-d - ext.x, d)};
+      for (const ImVec2& o : offsets) {
+        const ImVec2 c(std::round(q.anchor.x + o.x), std::round(q.anchor.y + o.y));
+        if (free(box_at(c))) {
+          pos = c, found = true, moved = true;
+          break;
+        }
+      }
+    }
+    if (!found) {
+      ++dropped_;
+      continue;
+    }
+    const ImVec4 box = box_at(pos);
+    placed_.push_back(box);
+    taken.Add(box);
+    const sim::Color ink = theme_.TextInk(q.color);
+    if (moved) {
+      // A thin leader from the anchor to the nearest point of the label's box.
+      const ImVec2 to(std::clamp(q.anchor.x, box.x, box.z), std::clamp(q.anchor.y, box.y, box.w));
+      cv_.Line(q.anchor, to, {ink.WithAlpha(0.7f), 1.0f});
+    }
+    // A translucent backdrop keeps labels readable over grid lines and trails.
+    cv_.FillRect(ImVec2(box.x, box.y), ImVec2(box.z, box.w), theme_.backdrop.WithAlpha(0.67f), 2.0f);
+    cv_.Text(pos, font_, ink, q.text);
+  }
+  queued_.clear();
 }
 
 void CanvasDrawSink::ViewBox(Vec2& lo, Vec2& hi) const {

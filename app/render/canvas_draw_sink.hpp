@@ -29,7 +29,10 @@ class CanvasDrawSink : public sim::DrawSink {
   void CovarianceEllipse(Vec2 center, double sxx, double sxy, double syy, double n_sigma,
                          sim::Color color) override;
   void Cross(Vec2 p, double size, sim::Color color) override;
+  /// Labels are queued and drawn by FlushLabels(), names first, then links, then values.
   void Text(Vec2 p, const std::string& text, sim::Color color, float dx_px, float dy_px) override;
+  void Label(Vec2 p, const std::string& text, sim::Color color, sim::LabelRole role, float dx_px,
+             float dy_px) override;
   void Flash(Vec2 p, double radius, sim::Color color, float age) override;
   bool Shows(const std::string& name) const override {
     return overlays_ == nullptr ? sim::OverlayOnByDefault(name) : overlays_->count(name) > 0;
@@ -49,11 +52,29 @@ class CanvasDrawSink : public sim::DrawSink {
   double PixelsPerMetre() const override { return view_.scale; }
   void ViewBox(Vec2& lo, Vec2& hi) const override;
 
+  /// Screen boxes (x0, y0, x1, y1) no label may cover: the robots' bodies.
+  void SetKeepClear(std::vector<ImVec4> boxes) { keep_clear_ = std::move(boxes); }
+  /// Places and draws the queued labels: by role (names, links, values), each at its own spot
+  /// when that is free, else at the first free spot around its anchor with a thin leader line,
+  /// else not at all (at this zoom). Free: covering no placed label and no keep-clear box.
+  void FlushLabels();
+  /// Screen boxes of the labels drawn by FlushLabels() (none overlaps another).
+  const std::vector<ImVec4>& placed_labels() const { return placed_; }
+  /// Labels queued but left out for want of a free spot.
+  int dropped_labels() const { return dropped_; }
+
  private:
   float Width(float px) const { return px * theme_.line_scale; }
-  /// Labels already drawn this frame: a label that would overlap one is skipped (zoomed-out
-  /// views of many robots stay readable instead of turning into a smudge of text).
-  std::vector<ImVec4> labels_;
+  struct Queued {
+    ImVec2 anchor;  ///< the world point on screen
+    ImVec2 pos;     ///< where the scene asked for the text's top-left corner
+    std::string text;
+    sim::Color color;
+    sim::LabelRole role;
+  };
+  std::vector<Queued> queued_;
+  std::vector<ImVec4> placed_, keep_clear_;
+  int dropped_ = 0;
   const std::set<std::string>* overlays_ = nullptr;
   bool degrees_ = true;
   std::vector<LegendEntry> legend_;

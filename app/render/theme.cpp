@@ -1,5 +1,7 @@
 #include "app/render/theme.hpp"
 
+#include "app/render/contrast.hpp"
+
 #include <imgui.h>
 
 #include <algorithm>
@@ -56,15 +58,15 @@ Theme MakeLight() {
   t.axis = Rgb(40, 40, 40);
   t.grid = Rgb(222, 222, 218);
   t.legend_fill = Rgb(255, 255, 255, 235);
-  t.legend_border = Rgb(170, 170, 170);
+  t.legend_border = Rgb(135, 135, 135);  // 3:1 and more on the background (WCAG)
   t.reference = Rgb(110, 110, 110);
   t.marker = Rgb(200, 40, 40);
   t.cursor = Rgb(60, 60, 60, 160);
   t.error = Rgb(180, 30, 30);
   t.world_minor = Rgb(236, 236, 232);
   t.world_major = Rgb(212, 212, 206);
-  t.world_axis = Rgb(170, 170, 165);
-  t.coordinates = Rgb(120, 120, 120);
+  t.world_axis = Rgb(138, 138, 133);
+  t.coordinates = Rgb(108, 108, 108);  // text: 4.5:1
   t.backdrop = Rgb(255, 255, 255);
   return t;
 }
@@ -86,7 +88,7 @@ Theme MakeDark() {
   t.error = Rgb(255, 120, 120);
   t.world_minor = Rgb(40, 42, 47);
   t.world_major = Rgb(60, 62, 68);
-  t.world_axis = Rgb(100, 102, 110);
+  t.world_axis = Rgb(112, 114, 122);
   t.coordinates = Rgb(150, 150, 150);
   t.backdrop = Rgb(30, 32, 36);
   return t;
@@ -102,13 +104,13 @@ Theme MakePrint() {
   t.grid = Rgb(218, 218, 218);
   t.legend_fill = Rgb(255, 255, 255, 240);
   t.legend_border = Rgb(100, 100, 100);
-  t.reference = Rgb(150, 150, 150);
+  t.reference = Rgb(140, 140, 140);
   t.marker = Rgb(0, 0, 0);
   t.cursor = Rgb(60, 60, 60, 160);
   t.error = Rgb(0, 0, 0);
   t.world_minor = Rgb(240, 240, 240);
   t.world_major = Rgb(210, 210, 210);
-  t.world_axis = Rgb(150, 150, 150);
+  t.world_axis = Rgb(140, 140, 140);
   t.coordinates = Rgb(80, 80, 80);
   t.backdrop = Rgb(255, 255, 255);
   return t;
@@ -119,7 +121,7 @@ Theme MakeHighContrast() {
   t.id = ThemeId::kHighContrast;
   t.name = "high-contrast";
   t.dark = true;
-  t.line_scale = 1.5f;
+  t.line_scale = 2.0f;  // thicker lines, seen from the back of a room
   t.background = Rgb(0, 0, 0);
   t.text = Rgb(255, 255, 255);
   t.axis = Rgb(255, 255, 255);
@@ -142,7 +144,8 @@ Theme MakeHighContrast() {
 
 // Dark themes keep hues but turn greys around (black outlines and labels become light) and
 // lift dark colours so they stand out on the dark background; print keeps only luminance.
-sim::Color Theme::Ink(sim::Color c) const {
+static sim::Color MapInk(const Theme& theme, sim::Color c) {
+  const ThemeId id = theme.id;
   switch (id) {
     case ThemeId::kLight:
       return c;
@@ -164,6 +167,61 @@ sim::Color Theme::Ink(sim::Color c) const {
     }
   }
   return c;
+}
+
+// A few distinct colours are asked for many times a frame (a thousand robots): the last ones are
+// remembered, as the contrast search costs a few dozen pow() calls.
+static sim::Color Remembered(const Theme& theme, sim::Color c, double ratio) {
+  struct Slot {
+    const Theme* theme = nullptr;
+    double ratio = 0;
+    sim::Color in, out;
+  };
+  thread_local Slot slots[16];
+  auto same = [](sim::Color a, sim::Color b) {
+    return a.r == b.r && a.g == b.g && a.b == b.b && a.a == b.a;
+  };
+  const unsigned h = static_cast<unsigned>(c.r * 255) * 7u + static_cast<unsigned>(c.g * 255) * 13u +
+                     static_cast<unsigned>(c.b * 255) * 31u + (ratio > 4 ? 1u : 0u);
+  Slot& s = slots[h % 16];
+  if (s.theme == &theme && s.ratio == ratio && same(s.in, c)) return s.out;
+  const sim::Color mapped = MapInk(theme, c);
+  sim::Color out = WithContrast(mapped.WithAlpha(1.0f), theme.background, ratio);
+  out.a = ratio > kLineContrast ? 1.0f : mapped.a;
+  s = {&theme, ratio, c, out};
+  return out;
+}
+
+sim::Color Theme::Ink(sim::Color c) const {
+  return Remembered(*this, c, kLineContrast);
+}
+
+sim::Color Theme::Fill(sim::Color c) const {
+  return MapInk(*this, c);
+}
+
+sim::Color Theme::TextInk(sim::Color c) const {
+  return Remembered(*this, c, kTextContrast);
+}
+
+const std::vector<ThemeInk>& ThemeInks() {
+  static const std::vector<ThemeInk> k = {
+      {"text", &Theme::text, InkUse::kText},
+      {"axis", &Theme::axis, InkUse::kText},  // tick labels and the scale bar's text
+      {"grid", &Theme::grid, InkUse::kDecoration},
+      {"legend_fill", &Theme::legend_fill, InkUse::kDecoration},
+      {"legend_border", &Theme::legend_border, InkUse::kLine},
+      {"reference", &Theme::reference, InkUse::kLine},
+      {"marker", &Theme::marker, InkUse::kLine},
+      {"cursor", &Theme::cursor, InkUse::kLine},
+      {"error", &Theme::error, InkUse::kText},
+      {"world_minor", &Theme::world_minor, InkUse::kDecoration},
+      {"world_major", &Theme::world_major, InkUse::kDecoration},
+      {"world_axis", &Theme::world_axis, InkUse::kLine},
+      {"coordinates", &Theme::coordinates, InkUse::kText},
+      {"backdrop", &Theme::backdrop, InkUse::kDecoration},
+  };
+  return k;
 }
 
 SeriesLook Theme::Series(sim::Color color, int index, bool dashed) const {

@@ -4,6 +4,7 @@
 /// colours are shown, and how plot series are told apart (print: dash patterns and greys).
 
 #include <string>
+#include <vector>
 
 #include "app/render/canvas.hpp"
 #include "sim/core/draw.hpp"
@@ -51,9 +52,16 @@ struct Theme {
   /// True for dark backgrounds (the GUI's ImGui style follows).
   bool dark = false;
 
-  /// An experiment's colour (robot, trail, label) as shown on this theme's background: dark
-  /// inks become light on dark themes, print turns colours to greys.
+  /// An experiment's colour (robot, trail, mark) as shown on this theme's background: dark
+  /// inks become light on dark themes, print turns colours to greys; the result has at least
+  /// 3:1 contrast against the background (WCAG 2.1 for lines and marks; alpha kept).
   sim::Color Ink(sim::Color c) const;
+  /// Ink() of a label: opaque, with at least 4.5:1 contrast against the background (WCAG 2.1
+  /// for text).
+  sim::Color TextInk(sim::Color c) const;
+  /// Ink() of a filled area (a robot's body, a heading wedge): mapped to the theme but not
+  /// pushed away from the background, since its outline carries the contrast.
+  sim::Color Fill(sim::Color c) const;
   /// Colour, dash and marker of a plot series with palette index `index` (dashed: the figure
   /// asks for a dashed line, e.g. a reference path). Colour themes: past the palette's
   /// kPaletteSize colours, series repeat colours and differ by dash pattern. Print: series
@@ -61,6 +69,22 @@ struct Theme {
   /// 42 series.
   SeriesLook Series(sim::Color color, int index, bool dashed) const;
 };
+
+/// What a colour of a theme's table is for, and so the contrast it needs (app/render/contrast).
+enum class InkUse {
+  kText,        ///< text: 4.5:1 against the background
+  kLine,        ///< lines and marks: 3:1
+  kDecoration,  ///< grid lines and fills behind the content (WCAG 1.4.11 exempts them)
+};
+/// One colour of a theme's table.
+struct ThemeInk {
+  const char* name;  ///< the member's name, e.g. "coordinates"
+  sim::Color Theme::*member;
+  InkUse use;
+};
+/// Every colour of the theme tables but the background, with its use: what the contrast test
+/// checks (tests/app/contrast_test.cpp).
+const std::vector<ThemeInk>& ThemeInks();
 
 /// The theme called `id`.
 const Theme& GetTheme(ThemeId id);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "app/render/camera.hpp"
 #include "app/render/canvas_draw_sink.hpp"
 #include "app/render/faded_draw_sink.hpp"
 #include "app/render/plot.hpp"
@@ -69,77 +70,6 @@ std::string ParseSceneOverlays(const std::string& text, std::set<std::string>* o
   return "";
 }
 
-// The legend of the marks the scene drew: a sample of each and its label, bottom left.
-static void DrawLegend(Canvas& cv, const View& view, const Theme& th,
-                const std::vector<CanvasDrawSink::LegendEntry>& entries) {
-  if (entries.empty()) return;
-  const FontRole f = FontRole::kSmall;
-  const float row = cv.FontSize(f) + 6, sample = 26;
-  float w = 0;
-  for (const auto& e : entries) w = std::max(w, cv.TextSize(f, e.label).x);
-  const float h = row * static_cast<float>(entries.size()) + 8;
-  const ImVec2 lo(view.min.x + 10, std::max(view.min.y + 60, view.max.y - 56 - h));
-  const ImVec2 hi(lo.x + w + sample + 24, lo.y + h);
-  cv.FillRect(lo, hi, th.backdrop.WithAlpha(0.9f), 3.0f);
-  cv.StrokeRect(lo, hi, th.legend_border, 1.0f, 3.0f);
-  for (std::size_t i = 0; i < entries.size(); ++i) {
-    const auto& e = entries[i];
-    const sim::Color c = th.Ink(e.color);
-    const float y = lo.y + 4 + row * static_cast<float>(i), cy = y + row / 2;
-    const float x0 = lo.x + 7, x1 = x0 + sample, cx = 0.5f * (x0 + x1);
-    const float lw = 2.0f * th.line_scale;
-    switch (e.mark) {
-      case sim::LegendMark::kBody: {
-        cv.FillRect(ImVec2(cx - 9, cy - 6), ImVec2(cx + 9, cy + 6), c, 1.0f);
-        const ImVec2 wedge[3] = {ImVec2(cx + 6, cy), ImVec2(cx - 3, cy - 4), ImVec2(cx - 3, cy + 4)};
-        cv.FillPolygon(wedge, 3, sim::Color{1, 1, 1, 0.9f});
-        break;
-      }
-      case sim::LegendMark::kLine:
-      case sim::LegendMark::kTrail:
-        cv.Line(ImVec2(x0, cy), ImVec2(x1, cy), {c, lw});
-        break;
-      case sim::LegendMark::kDashedLine:
-        cv.Line(ImVec2(x0, cy), ImVec2(x1, cy), {c, lw, LineDash::Dashes(5, 3)});
-        break;
-      case sim::LegendMark::kGhost:
-        cv.StrokeRect(ImVec2(cx - 8, cy - 5), ImVec2(cx + 8, cy + 5), c.WithAlpha(0.6f), 1.5f, 2.0f);
-        break;
-      case sim::LegendMark::kDot:
-        cv.FillCircle(ImVec2(cx, cy), 4.0f, c);
-        cv.StrokeCircle(ImVec2(cx, cy), 4.0f, th.text, 1.0f);
-        break;
-      case sim::LegendMark::kCross:
-        cv.Line(ImVec2(cx - 5, cy - 5), ImVec2(cx + 5, cy + 5), {c, lw});
-        cv.Line(ImVec2(cx - 5, cy + 5), ImVec2(cx + 5, cy - 5), {c, lw});
-        break;
-      case sim::LegendMark::kEllipse: {
-        std::vector<ImVec2> pts;
-        for (int k = 0; k < 24; ++k)
-          pts.push_back(ImVec2(cx + 11 * std::cos(k * 0.2618f), cy + 5 * std::sin(k * 0.2618f)));
-        cv.Polyline(pts.data(), static_cast<int>(pts.size()), {c, 1.5f}, true);
-        break;
-      }
-      case sim::LegendMark::kRing:
-        cv.StrokeCircle(ImVec2(cx, cy), 6.0f, c, lw);
-        break;
-      case sim::LegendMark::kArrow:
-        cv.Line(ImVec2(x0, cy), ImVec2(x1, cy), {c, lw});
-        cv.Line(ImVec2(x1, cy), ImVec2(x1 - 6, cy - 4), {c, lw});
-        cv.Line(ImVec2(x1, cy), ImVec2(x1 - 6, cy + 4), {c, lw});
-        break;
-      case sim::LegendMark::kArc: {
-        std::vector<ImVec2> pts;
-        for (int k = 0; k <= 8; ++k)
-          pts.push_back(ImVec2(x0 + 2 + 22 * std::cos(-k * 0.12f), cy + 6 + 22 * std::sin(-k * 0.12f) * 0.6f));
-        cv.Polyline(pts.data(), static_cast<int>(pts.size()), {c, 1.5f});
-        break;
-      }
-    }
-    cv.Text(ImVec2(lo.x + 14 + sample, y + 2), f, th.text, e.label);
-  }
-}
-
 double GridStep(double ppm, double min_px) {
   double step = 1e-3;
   static const double kMult[] = {1, 2, 5};
@@ -194,14 +124,44 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
     hline(o.y, th.world_axis);
   }
 
+  // The robots and their recent trails on screen: labels keep off the bodies, the legend off
+  // both.
+  const FocusSet focus = FocusOf(exp, 3.0);
+  LegendAvoid avoid;
+  std::vector<ImVec4> bodies;
+  for (std::size_t i = 0; i < focus.bodies.size(); ++i) {
+    const ImVec2 c = view.ToScreen(focus.bodies[i]);
+    const float r = static_cast<float>(focus.radii[i] * view.scale);
+    avoid.bodies.push_back(c);
+    if (r >= 3.0f) bodies.push_back(ImVec4(c.x - r, c.y - r, c.x + r, c.y + r));
+  }
+  for (const Vec2& p : focus.trails) avoid.trails.push_back(view.ToScreen(p));
+  // Scene labels also keep off what the view draws over them: the time and caption (top left),
+  // the scale bar (bottom right) and the grid's coordinates (bottom and left edges).
+  {
+    const float fs = cv.FontSize(FontRole::kSmall);
+    if (opt.time_label)
+      bodies.push_back(ImVec4(view.min.x, view.min.y, view.min.x + 16 + cv.TextSize(FontRole::kTitle, "t = 000.00 s  " + opt.time_note).x,
+                              view.min.y + 40 + (opt.caption.empty() ? 0 : fs + 6)));
+    if (opt.scale_bar)
+      bodies.push_back(ImVec4(view.max.x - 40 - static_cast<float>(major * view.scale),
+                              view.max.y - 50 - cv.FontSize(FontRole::kLabel), view.max.x, view.max.y));
+    if (opt.grid && opt.coordinates) {
+      bodies.push_back(ImVec4(view.min.x, view.max.y - fs - 6, view.max.x, view.max.y));
+      bodies.push_back(ImVec4(view.min.x, view.min.y, view.min.x + 4 + cv.TextSize(FontRole::kSmall, "-00.0").x, view.max.y));
+    }
+  }
+
   CanvasDrawSink sink(cv, view, th, FontRole::kSmall);
   sink.SetOverlays(opt.scene_overlays);
   sink.SetAnglesInDegrees(opt.degrees);
+  sink.SetKeepClear(std::move(bodies));
   exp.Draw(sink);
   for (const WorldOverlay& o : opt.overlays) {
     FadedDrawSink faded(sink, 0.4f);
     o.exp->DrawOverlay(faded);
   }
+  sink.FlushLabels();
 
   // Coordinates of the major grid lines along the bottom and left edges, in metres.
   if (opt.grid && opt.coordinates) {
@@ -251,7 +211,13 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
       Label(cv, th, FontRole::kSmall, ImVec2(view.min.x + 12, view.min.y + 36), th.axis,
             opt.caption);
   }
-  if (opt.legend) DrawLegend(cv, view, th, sink.legend());
+  if (opt.legend) {
+    const float pins = opt.overlays.empty()
+                           ? 0.0f
+                           : (cv.FontSize(FontRole::kSmall) + 6) * opt.overlays.size() + 14;
+    DrawWorldLegend(cv, view, th, sink.legend(), avoid, opt.legend_state, opt.clock,
+                    60.0f + pins, 56.0f);
+  }
   // Legend of the overlays, top right: a dashed sample in the entry's colour and its label.
   if (!opt.overlays.empty()) {
     const float row = cv.FontSize(FontRole::kSmall) + 6, sample = 26;

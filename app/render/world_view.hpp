@@ -8,6 +8,7 @@
 #include "app/render/canvas.hpp"
 #include "app/render/theme.hpp"
 #include "app/render/view.hpp"
+#include "app/render/world_legend.hpp"
 #include "sim/core/experiment.hpp"
 
 namespace formsim::app {
@@ -29,7 +30,9 @@ struct WorldViewOptions {
   std::string time_note;               ///< after the time label, e.g. "(timeline; live at 7.00 s)"
   /// Overlays of the scene to draw (sim::Overlays() names); nullptr: the defaults.
   const std::set<std::string>* scene_overlays = nullptr;
-  bool legend = false;  ///< a legend of every kind of mark drawn, bottom left
+  bool legend = false;  ///< a legend of every kind of mark drawn (app/render/world_legend.hpp)
+  LegendState* legend_state = nullptr;  ///< the legend's corner and collapse between frames
+  double clock = 0.0;                   ///< seconds, for the legend's once-a-second corner choice
   bool degrees = true;  ///< angles in the scene's labels in degrees (else radians)
 };
 

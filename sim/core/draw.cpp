@@ -57,7 +57,8 @@ void DrawRobotBody(DrawSink& draw, const Pose2& pose, const std::vector<Vec2>& b
   // The name sits just above the body's circumscribed circle, whatever the zoom, once the body
   // is large enough for a name to sit beside its neighbours'.
   if (!name.empty() && extent_px >= 12.0)
-    draw.Text({pose.x, pose.y + extent}, name, Color{0.1f, 0.1f, 0.1f, 1.0f}, -6.0f, -16.0f);
+    draw.Label({pose.x, pose.y + extent}, name, Color{0.1f, 0.1f, 0.1f, 1.0f}, LabelRole::kName,
+               -6.0f, -16.0f);
 }
 
 std::string AngleLabel(const DrawSink& draw, double rad) {

@@ -22,6 +22,9 @@ Color PaletteColor(int index);
 /// Kinds of mark a legend shows (the scene names each kind it drew, see DrawSink::Legend).
 enum class LegendMark { kBody, kLine, kDashedLine, kGhost, kDot, kCross, kEllipse, kRing, kArrow, kArc, kTrail };
 
+/// What a label names, in the order views place them (earlier roles win a contested spot).
+enum class LabelRole { kName, kLink, kValue };
+
 /// An optional layer of a scene ("what the law sees"): its name (scenario `view: {overlays}`,
 /// `--overlay`, the View panel), a label for the panel, and whether views show it by default.
 struct OverlayInfo {
@@ -50,8 +53,15 @@ class DrawSink {
                                  Color color) = 0;
   /// An 'x' marker of `size` metres (e.g. a rejected measurement).
   virtual void Cross(Vec2 p, double size, Color color) = 0;
-  /// A label anchored at a world point, offset in pixels.
+  /// A label anchored at a world point, offset in pixels (a value: placed after names and links).
   virtual void Text(Vec2 p, const std::string& text, Color color, float dx_px = 0, float dy_px = 0) = 0;
+  /// A label of a given role: views place robot names first, then link labels, then values,
+  /// and move (or drop) a later label that would cover an earlier one. Default: Text().
+  virtual void Label(Vec2 p, const std::string& text, Color color, LabelRole role, float dx_px = 0,
+                     float dy_px = 0) {
+    (void)role;
+    Text(p, text, color, dx_px, dy_px);
+  }
   /// A ring that grows and fades, to flash an event (saturation, collision). `age` in [0,1].
   virtual void Flash(Vec2 p, double radius, Color color, float age) = 0;
   /// Whether the view wants overlay `name` (see Overlays()); by default the overlays that are

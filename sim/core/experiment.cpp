@@ -2,6 +2,7 @@
 #include "sim/core/number_format.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <stdexcept>
@@ -156,6 +157,16 @@ void Experiment::Bounds(Vec2& lo, Vec2& hi) const {
   if (!(lo.x <= hi.x) || !(lo.y <= hi.y)) {
     lo = {-1, -1};
     hi = {1, 1};
+  }
+}
+
+void Experiment::FocusPoints(std::vector<Vec2>& bodies, std::vector<double>& radii,
+                             std::vector<Vec2>& /*trails*/, double /*seconds*/) const {
+  for (const auto& r : world_.robots()) {
+    const RobotDef& d = r->def();
+    bodies.push_back(r->pose().p());
+    radii.push_back(d.shape == RobotDef::Shape::kCircle ? d.radius
+                                                         : std::hypot(d.half_length, d.half_width));
   }
 }
 

@@ -139,6 +139,11 @@ class Experiment {
   void DrawOverlay(DrawSink& draw) const { DrawScene(draw); }
   /// Axis-aligned box that should be visible (for fit-all).
   virtual void Bounds(Vec2& lo, Vec2& hi) const;
+  /// What a presentation camera keeps in view: each robot's position and size (`bodies`: x, y
+  /// and the radius of its circumscribed circle, m) and the points of their trails drawn in the
+  /// last `seconds` (`trails`). Appends to both. Default: the robots, no trails.
+  virtual void FocusPoints(std::vector<Vec2>& bodies, std::vector<double>& radii,
+                           std::vector<Vec2>& trails, double seconds) const;
   /// Metrics over the run so far: summary.json's `results`, the printed and GUI tables.
   virtual Metrics Results() const = 0;
   /// summary.json: scenario, provenance, steps, results, event counts and the first events.

@@ -90,6 +90,10 @@ Metrics FormationExperiment::Results() const {
     table.rows.emplace_back(l.name, "links." + l.name);
   }
   m.AddTable(std::move(table));
+  // Contacts: each collision once, whatever robots and links it involves (the event log's one
+  // definition); the links' events.collision count the contacts of their follower.
+  m.Set("events.collision", static_cast<double>(events_.Count(event::kCollision)));
+  m.SetBetter("events.collision", Better::kLower);
   if (cfg_.switching.enabled() || cfg_.avoidance.present) {
     // Switching and avoidance: collisions after the initial transient (settle_time), the largest
     // formation error after it, and per switch how long the error took to stay below 1e-2.
@@ -152,7 +156,8 @@ Metrics FormationExperiment::Results() const {
   m.AddHeadline({"max|e_l| [m]", "links.*.max_abs_error_after_settle.l", C::kMax, "%.3g"});
   m.AddHeadline({"max|e_phi| [rad]", "links.*.max_abs_error_after_settle.phi", C::kMax, "%.3g"});
   m.AddHeadline({"rmse e_l [m]", "links.*.rmse_after_settle.l", C::kMax, "%.3g"});
-  m.AddHeadline({"collisions", "links.*.events.collision", C::kSum, "%.0f"});
+  // A contact counts once (summary.json's event count), not once per link of each robot in it.
+  m.AddHeadline({"collisions", "events.collision", C::kValue, "%.0f"});
   return m;
 }
 

@@ -241,7 +241,7 @@ void FormationExperiment::DrawScene(DrawSink& draw) const {
         std::string label = Sprintf("%.3f m", l.truth.l);
         if (cfg_.robots[l.follower].node.law == FormationLaw::kLPhi)
           label += ", " + AngleLabel(draw, control::WrapTo2Pi(l.truth.phi));
-        draw.Text(mid, label, Color{0.25f, 0.25f, 0.25f, 0.9f}, 4.0f, 4.0f);
+        draw.Label(mid, label, Color{0.25f, 0.25f, 0.25f, 0.9f}, LabelRole::kLink, 4.0f, 4.0f);
       }
     }
   }
@@ -376,7 +376,7 @@ void FormationExperiment::DrawLawOverlays(DrawSink& draw, double body_px,
       const Vec2 u = d * (1.0 / n);
       Arrow(draw, a + u * 0.1, b - u * 0.1, g, 2.0f, 0.06);
       const bool lphi = cfg_.robots[l.follower].node.law == FormationLaw::kLPhi;
-      draw.Text((a + b) * 0.5, lphi ? "l-φ" : "l-l", g, -14.0f, -16.0f);
+      draw.Label((a + b) * 0.5, lphi ? "l-φ" : "l-l", g, LabelRole::kLink, -14.0f, -16.0f);
     }
     if (!links_.empty()) draw.Legend(LegendMark::kArrow, g, "graph: leader -> follower (law)");
   }
@@ -482,6 +482,17 @@ void FormationExperiment::Bounds(Vec2& lo, Vec2& hi) const {
     lo = {std::min(lo.x, p.x - kBoundsMargin), std::min(lo.y, p.y - kBoundsMargin)};
     hi = {std::max(hi.x, p.x + kBoundsMargin), std::max(hi.y, p.y + kBoundsMargin)};
   }
+}
+
+void FormationExperiment::FocusPoints(std::vector<Vec2>& bodies, std::vector<double>& radii,
+                                      std::vector<Vec2>& trails, double seconds) const {
+  Experiment::FocusPoints(bodies, radii, trails, seconds);
+  // A trail point is pushed every trail_every steps: the last `seconds` are its last n points.
+  const double per_point = dt() * cfg_.trail_every;
+  const std::size_t n = per_point > 0 ? static_cast<std::size_t>(seconds / per_point) : 0;
+  for (const Agent& a : agents_)
+    for (std::size_t k = a.trail.size() > n ? a.trail.size() - n : 0; k < a.trail.size(); ++k)
+      trails.push_back(a.trail[k]);
 }
 
 }  // namespace formsim::sim::formation

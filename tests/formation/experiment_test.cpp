@@ -261,3 +261,30 @@ TEST(FormationExperiment, InvalidFixturesAreRejectedWithTheRightMessage) {
 
 }  // namespace
 }  // namespace formsim::sim::formation
+
+namespace formsim::sim::formation {
+namespace {
+
+// One contact is one collision everywhere: the results' headline (the GUI's Tables tab, the
+// history, Monte Carlo) equals summary.json's event count, though the contact involves robots of
+// several links (formation_traj2_ukf: one contact, and each of its three links saw it).
+TEST(FormationExperiment, ACollisionIsCountedOncePerContact) {
+  auto exp = RunScenario(Scenario("formation_traj2_ukf"));
+  const long contacts = exp->events().Count(event::kCollision);
+  ASSERT_GT(contacts, 0) << "the scenario has a contact";
+  double per_link = 0;
+  for (const char* l : {"R1-R2", "R1-R3", "R2-R3"})
+    per_link += *exp->Results().Find(std::string("links.") + l + ".events.collision");
+  EXPECT_GT(per_link, static_cast<double>(contacts)) << "links share the contact";
+  bool found = false;
+  for (const Metrics::HeadlineValue& h : exp->Results().Headlines())
+    if (h.label == "collisions") {
+      found = true;
+      EXPECT_EQ(h.value, static_cast<double>(contacts));
+    }
+  EXPECT_TRUE(found);
+  EXPECT_EQ(*exp->Results().Find("events.collision"), static_cast<double>(contacts));
+}
+
+}  // namespace
+}  // namespace formsim::sim::formation

@@ -1,0 +1,168 @@
+#include "app/render/world_legend.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace formsim::app {
+namespace {
+
+// A sample of a mark, centred in [x0, x1] at height cy.
+void DrawSample(Canvas& cv, const Theme& th, sim::LegendMark mark, sim::Color color, float x0,
+                float x1, float cy) {
+  const sim::Color c = mark == sim::LegendMark::kBody ? th.Fill(color) : th.Ink(color);
+  const float cx = 0.5f * (x0 + x1);
+  const float lw = 2.0f * th.line_scale;
+  switch (mark) {
+    case sim::LegendMark::kBody: {
+      cv.FillRect(ImVec2(cx - 9, cy - 6), ImVec2(cx + 9, cy + 6), c, 1.0f);
+      const ImVec2 wedge[3] = {ImVec2(cx + 6, cy), ImVec2(cx - 3, cy - 4), ImVec2(cx - 3, cy + 4)};
+      cv.FillPolygon(wedge, 3, sim::Color{1, 1, 1, 0.9f});
+      break;
+    }
+    case sim::LegendMark::kLine:
+    case sim::LegendMark::kTrail:
+      cv.Line(ImVec2(x0, cy), ImVec2(x1, cy), {c, lw});
+      break;
+    case sim::LegendMark::kDashedLine:
+      cv.Line(ImVec2(x0, cy), ImVec2(x1, cy), {c, lw, LineDash::Dashes(5, 3)});
+      break;
+    case sim::LegendMark::kGhost:
+      cv.StrokeRect(ImVec2(cx - 8, cy - 5), ImVec2(cx + 8, cy + 5), c.WithAlpha(0.6f), 1.5f, 2.0f);
+      break;
+    case sim::LegendMark::kDot:
+      cv.FillCircle(ImVec2(cx, cy), 4.0f, c);
+      cv.StrokeCircle(ImVec2(cx, cy), 4.0f, th.text, 1.0f);
+      break;
+    case sim::LegendMark::kCross:
+      cv.Line(ImVec2(cx - 5, cy - 5), ImVec2(cx + 5, cy + 5), {c, lw});
+      cv.Line(ImVec2(cx - 5, cy + 5), ImVec2(cx + 5, cy - 5), {c, lw});
+      break;
+    case sim::LegendMark::kEllipse: {
+      std::vector<ImVec2> pts;
+      for (int k = 0; k < 24; ++k)
+        pts.push_back(ImVec2(cx + 11 * std::cos(k * 0.2618f), cy + 5 * std::sin(k * 0.2618f)));
+      cv.Polyline(pts.data(), static_cast<int>(pts.size()), {c, 1.5f}, true);
+      break;
+    }
+    case sim::LegendMark::kRing:
+      cv.StrokeCircle(ImVec2(cx, cy), 6.0f, c, lw);
+      break;
+    case sim::LegendMark::kArrow:
+      cv.Line(ImVec2(x0, cy), ImVec2(x1, cy), {c, lw});
+      cv.Line(ImVec2(x1, cy), ImVec2(x1 - 6, cy - 4), {c, lw});
+      cv.Line(ImVec2(x1, cy), ImVec2(x1 - 6, cy + 4), {c, lw});
+      break;
+    case sim::LegendMark::kArc: {
+      std::vector<ImVec2> pts;
+      for (int k = 0; k <= 8; ++k)
+        pts.push_back(ImVec2(x0 + 2 + 22 * std::cos(-k * 0.12f), cy + 6 + 22 * std::sin(-k * 0.12f) * 0.6f));
+      cv.Polyline(pts.data(), static_cast<int>(pts.size()), {c, 1.5f});
+      break;
+    }
+  }
+}
+
+struct Layout {
+  int columns = 1, rows = 0, shown = 0;
+  float col_w = 0, row_h = 0, w = 0, h = 0;
+};
+
+constexpr float kSample = 24, kPad = 6, kTitleGap = 2;
+
+Layout Measure(Canvas& cv, const std::vector<CanvasDrawSink::LegendEntry>& entries, int shown,
+               int columns, bool collapsed, float title_w) {
+  const FontRole f = FontRole::kSmall;
+  Layout l;
+  l.row_h = cv.FontSize(f) + 4;
+  l.columns = columns;
+  l.shown = shown;
+  float label_w = 0;
+  for (int i = 0; i < shown; ++i) label_w = std::max(label_w, cv.TextSize(f, entries[static_cast<std::size_t>(i)].label).x);
+  l.col_w = kSample + 8 + label_w + 10;
+  const bool more = shown < static_cast<int>(entries.size());
+  l.rows = collapsed ? 0 : (shown + columns - 1) / columns + (more ? 1 : 0);
+  l.w = std::max(title_w + 2 * kPad, collapsed ? 0.0f : columns * l.col_w + 2 * kPad);
+  l.h = l.row_h + kTitleGap + l.rows * l.row_h + kPad;
+  return l;
+}
+
+}  // namespace
+
+void DrawWorldLegend(Canvas& cv, const View& view, const Theme& th,
+                     const std::vector<CanvasDrawSink::LegendEntry>& entries,
+                     const LegendAvoid& avoid, LegendState* state, double clock,
+                     float top_reserved, float bottom_reserved) {
+  if (entries.empty()) return;
+  const FontRole f = FontRole::kSmall;
+  const bool collapsed = state != nullptr && state->collapsed;
+  const std::string title = collapsed ? "legend  +" : "legend  -";
+  const float title_w = cv.TextSize(f, title).x;
+  const float max_area = kLegendMaxShare * view.width() * view.height();
+  const int n = static_cast<int>(entries.size());
+  // As many entries as fit (the rest are counted in a last line), in two columns where that
+  // fits in 60% of the view's width, else one.
+  Layout l;
+  bool fits = false;
+  for (int shown = n; shown >= 1 && !fits; --shown) {
+    for (int columns : {2, 1}) {
+      if (columns == 2 && shown < 4) continue;
+      l = Measure(cv, entries, shown, columns, collapsed, title_w);
+      fits = l.w * l.h <= max_area && l.w <= std::min(view.width() - 50, columns == 2 ? 0.6f * view.width() : 1e9f) &&
+             l.h <= view.height() - top_reserved - bottom_reserved;
+      if (fits) break;
+    }
+    if (collapsed) break;
+  }
+  if (!fits) {
+    l = Measure(cv, entries, 0, 1, true, title_w);  // the title tab alone
+    if (l.w * l.h > max_area) return;
+  }
+  // The corner covering the fewest robots (10 each) and trail points (1 each); kept for a
+  // second, and on a tie the current one, then bottom left, bottom right, top right, top left.
+  const float x_left = view.min.x + 40, x_right = view.max.x - 10 - l.w;
+  const float y_top = view.min.y + top_reserved, y_bottom = view.max.y - bottom_reserved - l.h;
+  auto corner_min = [&](int c) {
+    return ImVec2((c % 2 == 0) ? x_left : x_right, c < 2 ? y_top : y_bottom);
+  };
+  int corner = state != nullptr ? state->corner : -1;
+  if (corner < 0 || state == nullptr || clock - state->chosen_at >= 1.0 || clock < state->chosen_at) {
+    long best = -1;
+    for (int c : {corner, 2, 3, 1, 0}) {
+      if (c < 0) continue;
+      const ImVec2 lo = corner_min(c), hi(lo.x + l.w, lo.y + l.h);
+      auto inside = [&](ImVec2 p) { return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y; };
+      long cost = 0;
+      for (const ImVec2& p : avoid.bodies) cost += inside(p) ? 10 : 0;
+      for (const ImVec2& p : avoid.trails) cost += inside(p) ? 1 : 0;
+      if (best < 0 || cost < best) best = cost, corner = c;
+    }
+    if (state != nullptr) state->corner = corner, state->chosen_at = clock;
+  }
+  const ImVec2 lo = corner_min(corner), hi(lo.x + l.w, lo.y + l.h);
+  cv.FillRect(lo, hi, th.backdrop.WithAlpha(0.88f), 3.0f);
+  cv.StrokeRect(lo, hi, th.legend_border, 1.0f, 3.0f);
+  cv.Text(ImVec2(lo.x + kPad, lo.y + 2), f, th.text, title);
+  if (state != nullptr) {
+    state->toggle_min = lo;
+    state->toggle_max = ImVec2(hi.x, lo.y + l.row_h);
+    state->box_min = lo, state->box_max = hi;
+  }
+  if (collapsed || !fits) return;
+  const int rows_per_col = (l.shown + l.columns - 1) / l.columns;
+  for (int i = 0; i < l.shown; ++i) {
+    const auto& e = entries[static_cast<std::size_t>(i)];
+    const int col = i / rows_per_col, row = i % rows_per_col;
+    const float x0 = lo.x + kPad + col * l.col_w;
+    const float y = lo.y + l.row_h + kTitleGap + row * l.row_h;
+    DrawSample(cv, th, e.mark, e.color, x0, x0 + kSample, y + l.row_h / 2);
+    cv.Text(ImVec2(x0 + kSample + 8, y + 1), f, th.text, e.label);
+  }
+  if (l.shown < n) {
+    const float y = lo.y + l.row_h + kTitleGap + rows_per_col * l.row_h;
+    cv.Text(ImVec2(lo.x + kPad, y + 1), f, th.coordinates,
+            "+ " + std::to_string(n - l.shown) + " more (larger view shows them)");
+  }
+}
+
+}  // namespace formsim::app

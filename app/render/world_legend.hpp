@@ -1,0 +1,40 @@
+#pragma once
+/// \file The world view's legend: a sample and a label for each kind of mark drawn this frame,
+/// compact (two columns where they fit), collapsible, never more than 15% of the view, in the
+/// corner that covers the fewest robots and trail points (re-chosen at most once a second).
+
+#include <vector>
+
+#include "app/render/canvas.hpp"
+#include "app/render/canvas_draw_sink.hpp"
+#include "app/render/theme.hpp"
+#include "app/render/view.hpp"
+
+namespace formsim::app {
+
+/// The largest share of the view's area the legend takes.
+inline constexpr float kLegendMaxShare = 0.15f;
+
+/// The legend's state between frames (the window keeps one; a frame drawn alone passes none).
+struct LegendState {
+  bool collapsed = false;  ///< only its title tab is drawn
+  int corner = -1;         ///< 0 top left, 1 top right, 2 bottom left, 3 bottom right; -1 unset
+  double chosen_at = -1e300;  ///< clock (s) when the corner was last chosen
+  ImVec2 toggle_min, toggle_max;  ///< where a click collapses or opens it (screen pixels)
+  ImVec2 box_min, box_max;        ///< the legend's box as last drawn
+};
+
+/// Screen points the legend should not cover: robots (`weight` 10 each) and trail points (1).
+struct LegendAvoid {
+  std::vector<ImVec2> bodies, trails;
+};
+
+/// Draws the legend of `entries` in `view`, placed away from `avoid`. `state` (may be null: a
+/// fresh choice) keeps the corner for a second of `clock` and says whether it is collapsed.
+/// `top_reserved` / `bottom_reserved`: pixels at the top and bottom taken by other labels.
+void DrawWorldLegend(Canvas& cv, const View& view, const Theme& theme,
+                     const std::vector<CanvasDrawSink::LegendEntry>& entries,
+                     const LegendAvoid& avoid, LegendState* state, double clock,
+                     float top_reserved, float bottom_reserved);
+
+}  // namespace formsim::app

@@ -1,0 +1,111 @@
+// Labels placed without collisions (names first, then links, then values; moved with a leader
+// or dropped), and the world legend: compact, at most 15% of the view, in the corner with the
+// fewest robots, kept for a second, collapsible. The same code draws window and headless frames.
+#include <gtest/gtest.h>
+
+#include "app/render/canvas_draw_sink.hpp"
+#include "app/render/vector_canvas.hpp"
+#include "app/render/world_legend.hpp"
+
+namespace formsim::app {
+namespace {
+
+View Screen(float w, float h) {
+  View v;
+  v.min = ImVec2(0, 0);
+  v.max = ImVec2(w, h);
+  v.center = {0, 0};
+  v.scale = 100;
+  return v;
+}
+
+bool Overlap(const ImVec4& a, const ImVec4& b) {
+  return a.x < b.z && b.x < a.z && a.y < b.w && b.y < a.w;
+}
+
+TEST(LabelPlacement, NoPlacedLabelsOverlapAndNamesComeFirst) {
+  VectorCanvas cv(800, 600);
+  const View view = Screen(800, 600);
+  const Theme& th = GetTheme(ThemeId::kLight);
+  CanvasDrawSink sink(cv, view, th);
+  // A value first, then a link label and a name at the very same spot.
+  sink.Text({0, 0}, "l est 0.512 m", {0.85f, 0.4f, 0, 1}, 0, 0);
+  sink.Label({0, 0}, "0.500 m, 90.0°", {0.25f, 0.25f, 0.25f, 1}, sim::LabelRole::kLink, 0, 0);
+  sink.Label({0, 0}, "R2", {0.1f, 0.1f, 0.1f, 1}, sim::LabelRole::kName, 0, 0);
+  sink.FlushLabels();
+  const auto& placed = sink.placed_labels();
+  ASSERT_EQ(placed.size(), 3u);
+  for (std::size_t i = 0; i < placed.size(); ++i)
+    for (std::size_t j = i + 1; j < placed.size(); ++j)
+      EXPECT_FALSE(Overlap(placed[i], placed[j])) << i << " overlaps " << j;
+  // The name kept the asked-for spot (its box starts 2 px left of the anchor on screen).
+  const ImVec2 anchor = view.ToScreen({0, 0});
+  EXPECT_NEAR(placed[0].x, anchor.x - 2, 0.5);
+  EXPECT_NEAR(placed[0].y, anchor.y - 1, 0.5);
+}
+
+TEST(LabelPlacement, LabelsKeepOffRobotBodiesOrAreDropped) {
+  VectorCanvas cv(400, 300);
+  const View view = Screen(400, 300);
+  CanvasDrawSink sink(cv, view, GetTheme(ThemeId::kDark));
+  const ImVec2 c = view.ToScreen({0, 0});
+  const ImVec4 body(c.x - 30, c.y - 30, c.x + 30, c.y + 30);
+  sink.SetKeepClear({body});
+  sink.Label({0, 0}, "R3", {0.1f, 0.1f, 0.1f, 1}, sim::LabelRole::kName, 0, 0);
+  for (int k = 0; k < 60; ++k) sink.Text({0, 0}, "value " + std::to_string(k), {0, 0, 0, 1}, 0, 0);
+  sink.FlushLabels();
+  for (const ImVec4& b : sink.placed_labels()) EXPECT_FALSE(Overlap(b, body));
+  EXPECT_GT(sink.placed_labels().size(), 1u) << "labels move to free spots";
+  EXPECT_GT(sink.dropped_labels(), 0) << "those without a free spot are left out";
+  EXPECT_EQ(static_cast<int>(sink.placed_labels().size()) + sink.dropped_labels(), 61);
+}
+
+std::vector<CanvasDrawSink::LegendEntry> Entries(int n) {
+  std::vector<CanvasDrawSink::LegendEntry> e;
+  for (int i = 0; i < n; ++i)
+    e.push_back({sim::LegendMark::kLine, sim::PaletteColor(i),
+                 "mark number " + std::to_string(i) + " of the scene"});
+  return e;
+}
+
+TEST(WorldLegend, TakesAtMostFifteenPercentAndAvoidsTheRobots) {
+  for (auto [w, h] : std::vector<std::pair<float, float>>{{1920.f, 1080.f}, {900.f, 600.f}, {480.f, 320.f}}) {
+    VectorCanvas cv(w, h);
+    const View view = Screen(w, h);
+    LegendAvoid avoid;
+    // Robots in the bottom-left corner, where the legend goes by default.
+    for (int k = 0; k < 5; ++k) avoid.bodies.push_back(ImVec2(60.f + 10 * k, h - 90.f));
+    LegendState st;
+    DrawWorldLegend(cv, view, GetTheme(ThemeId::kLight), Entries(14), avoid, &st, 0.0, 60, 56);
+    const float area = (st.box_max.x - st.box_min.x) * (st.box_max.y - st.box_min.y);
+    EXPECT_GT(area, 0.0f) << w;
+    EXPECT_LE(area, kLegendMaxShare * w * h + 1) << w << "x" << h;
+    EXPECT_NE(st.corner, 2) << "the robots are bottom left";
+    for (const ImVec2& p : avoid.bodies)
+      EXPECT_FALSE(p.x >= st.box_min.x && p.x <= st.box_max.x && p.y >= st.box_min.y &&
+                   p.y <= st.box_max.y);
+  }
+}
+
+TEST(WorldLegend, CornerIsReChosenAtMostOnceASecondAndCollapses) {
+  VectorCanvas cv(1280, 800);
+  const View view = Screen(1280, 800);
+  LegendState st;
+  LegendAvoid avoid;
+  DrawWorldLegend(cv, view, GetTheme(ThemeId::kLight), Entries(6), avoid, &st, 10.0, 60, 56);
+  const int first = st.corner;
+  const float open_h = st.box_max.y - st.box_min.y;
+  // The robots arrive in its corner: it stays for the rest of the second, then moves.
+  for (int k = 0; k < 20; ++k)
+    avoid.bodies.push_back(ImVec2(0.5f * (st.box_min.x + st.box_max.x), st.box_min.y + 3.0f * k));
+  DrawWorldLegend(cv, view, GetTheme(ThemeId::kLight), Entries(6), avoid, &st, 10.5, 60, 56);
+  EXPECT_EQ(st.corner, first);
+  DrawWorldLegend(cv, view, GetTheme(ThemeId::kLight), Entries(6), avoid, &st, 11.1, 60, 56);
+  EXPECT_NE(st.corner, first);
+  st.collapsed = true;
+  DrawWorldLegend(cv, view, GetTheme(ThemeId::kLight), Entries(6), avoid, &st, 11.2, 60, 56);
+  EXPECT_LT(st.box_max.y - st.box_min.y, 0.5f * open_h) << "collapsed: a title tab";
+}
+
+}  // namespace
+}  // namespace formsim::app
