@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "app/render/label_markup.hpp"
 #include "app/render/long_text.hpp"
 #include "app/render/plot_frame.hpp"
 #include "app/render/plot_marker.hpp"
+
 
 namespace formsim::app::plot_detail {
 void PlotFrame::DrawAxes() {
@@ -14,7 +16,7 @@ void PlotFrame::DrawAxes() {
     // Centred over the data, kept inside the figure; a title wider than the figure is cut at a
     // character boundary and ends in "...".
     const float avail = std::max(0.0f, max.x - min.x - 2 * pad);
-    std::string title = data.title;
+    std::string title = MarkupText(data.title);
     ImVec2 ts = cv.TextSize(title_font, title);
     if (ts.x > avail) {
       while (!title.empty() && cv.TextSize(title_font, title + "...").x > avail) {
@@ -58,13 +60,14 @@ void PlotFrame::DrawAxes() {
     cv.Text(ImVec2(b.x - cv.TextSize(tick_font, s).x, b.y + 5 + tick_h + 2), tick_font, th.text, s);
   }
   if (!data.x_label.empty()) {
-    const ImVec2 ts = cv.TextSize(label_font, data.x_label);
+    const std::string x_label = MarkupText(data.x_label);
+    const ImVec2 ts = cv.TextSize(label_font, x_label);
     cv.Text(ImVec2(0.5f * (a.x + b.x) - ts.x / 2, max.y - pad - ts.y - bottom_reserve), label_font,
-            th.text, data.x_label);
+            th.text, x_label);
   }
   if (!data.y_label.empty())
     cv.TextVertical(ImVec2(min.x + pad + cv.FontSize(label_font) / 2, 0.5f * (a.y + b.y)),
-                    label_font, th.text, data.y_label);
+                    label_font, th.text, MarkupText(data.y_label));
 }
 
 // The map from bottom (min) to top (max), ticks on its right.
@@ -95,7 +98,7 @@ void PlotFrame::DrawColourBar() {
   if (ce != 0) cv.Text(ImVec2(x0b, a.y - tick_h - 3), tick_font, th.text, PowerLabel(ce));
   if (!data.heatmap.value_label.empty())
     cv.TextVertical(ImVec2(x1b + 6 + wmax + 8 + cv.FontSize(label_font) / 2, 0.5f * (a.y + b.y)),
-                    label_font, th.text, data.heatmap.value_label);
+                    label_font, th.text, MarkupText(data.heatmap.value_label));
 }
 
 void PlotFrame::DrawLegend() {
@@ -128,7 +131,7 @@ void PlotFrame::DrawLegend() {
         DrawMarker(cv, ImVec2(0.5f * (p0.x + p1.x), cy), 3.2f, look.marker, look.color,
                    look.hollow_markers);
     }
-    cv.Text(ImVec2(p1.x + 7, y + 2), st.label_font, th.text, Shorten(s.label, kLegendBytes));
+    cv.Text(ImVec2(p1.x + 7, y + 2), st.label_font, th.text, Shorten(MarkupText(s.label), kLegendBytes));
   }
 }
 

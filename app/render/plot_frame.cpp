@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "app/render/label_markup.hpp"
 #include "app/render/long_text.hpp"
+
 
 namespace formsim::app::plot_detail {
 namespace {
@@ -253,7 +255,7 @@ void PlotFrame::PlaceLegend() {
     float wmax = 0;
     for (int i : legend_items)
       wmax =
-          std::max(wmax, cv.TextSize(st.label_font, Shorten(data.series[i].label, kLegendBytes)).x);
+          std::max(wmax, cv.TextSize(st.label_font, Shorten(MarkupText(data.series[i].label), kLegendBytes)).x);
     col_w = sample_w + 14 + wmax + 8;
     // A tall legend goes to several columns, so it fits in a corner of a short plot.
     const int n = static_cast<int>(legend_items.size());
