@@ -238,7 +238,10 @@ std::vector<LessonCheckResult> CheckLesson(const std::string& file, const Lesson
   std::vector<std::vector<Slot>> slots(list.size());
   TaskPool pool(std::max(1, opt.jobs));
   pool.ForEach(list.size(), [&](std::size_t r) {
-    const auto& [key, on] = list[r];
+    // Named references, not a structured binding: clang 14 cannot capture a binding in the
+    // lambda below.
+    const RunKey& key = list[r].first;
+    const std::vector<std::size_t>& on = list[r].second;
     std::vector<Slot>& out = slots[r];
     out.resize(on.size());
     std::optional<SweepRecord> rec =
