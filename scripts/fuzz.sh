@@ -34,7 +34,14 @@ run() {
       -max_len=16384 -print_final_stats=1 -artifact_prefix="$ROOT/fuzz-artifacts/$harness-" \
       "$CORPUS/$harness" "${seeds[@]}" 2>&1) |
     grep -E "^#[0-9]+.*DONE|stat::number_of_executed_units|ERROR|SUMMARY|Test unit written|deadly" || true
-  # libFuzzer exits non-zero and leaves an artifact when it found something.
+  # libFuzzer leaves an artifact when it found something: a crash, a leak, a timeout (-timeout, a
+  # hang) or an out-of-memory. A slow unit (over 10 s, not a hang) is kept aside and reported.
+  local slow
+  for slow in fuzz-artifacts/"$harness"-slow-unit-*; do
+    [ -e "$slow" ] || continue
+    mkdir -p fuzz-artifacts/slow && mv "$slow" fuzz-artifacts/slow/
+    echo "fuzz: $harness: a slow input (not a failure), kept in fuzz-artifacts/slow/$(basename "$slow")"
+  done
   if ls fuzz-artifacts/"$harness"-* >/dev/null 2>&1; then
     echo "fuzz: $harness found a failing input: $(ls fuzz-artifacts/"$harness"-*)"
     return 1
