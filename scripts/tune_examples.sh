@@ -36,13 +36,14 @@ example() {
   for m in $metrics; do expr+="${expr:+ + }$m"; done
   for p in "$@"; do params+=(--param "$p"); done
   local d="$out/$name"
-  "$formsim" tune "$scenario" "${params[@]}" --metric "$expr" --seeds 1..5 --budget 80 --out "$d/tune" -q
+  "$formsim" tune "$scenario" "${params[@]}" --metric "$expr" --seeds 1..5 --budget 80 --method bobyqa --out "$d/tune" -q
   "$formsim" sweep "$scenario" --seeds 6..25 --out "$d/shipped" --no-figures -q
   "$formsim" sweep "$d/tune/best.yaml" --seeds 6..25 --out "$d/tuned" --no-figures -q
   local hist="$d/tune/history.csv" rows best
   rows=$(($(wc -l < "$hist") - 1))
-  # The row of the lowest finite objective (column 2 + number of gains), the first of equals.
-  best=$(awk -F, -v c="$(($# + 2))" 'NR > 1 && $c ~ /^[0-9.eE+-]+$/ && (b == "" || $c + 0 < b + 0) { b = $c; row = NR - 1 }
+  # The row of the lowest finite objective (column 3 + number of gains: eval, stage, the gains),
+  # the first of equals.
+  best=$(awk -F, -v c="$(($# + 3))" 'NR > 1 && $c ~ /^[0-9.eE+-]+$/ && (b == "" || $c + 0 < b + 0) { b = $c; row = NR - 1 }
     END { print row }' "$hist")
   echo
   echo "### $scenario"

@@ -21,6 +21,7 @@
 #include "sim/study/sweep.hpp"
 #include "sim/study/sweep_tables.hpp"
 #include "sim/study/tune.hpp"
+#include "sim/study/tune_validation.hpp"
 
 namespace fs = std::filesystem;
 
@@ -221,7 +222,20 @@ StudyCommands::StudyCommands(CLI::App& app) {
   tune_->add_option("--seeds", tune_seeds_,
                     "Seeds averaged per evaluation: 1..5 (default: the scenario's)");
   tune_->add_option("--budget", budget_, "Evaluations at most (default 60)");
-  tune_->add_option("--algorithm", algorithm_, "bobyqa (default), neldermead or cobyla");
+  tune_->add_option("--method,--algorithm", algorithm_,
+                    "local: bobyqa, neldermead, cobyla; global: direct-l, crs2, mlsl, isres; or "
+                    "GLOBAL+LOCAL, a global stage (40% of the budget) then a local polish "
+                    "(default direct-l+bobyqa)");
+  tune_
+      ->add_option("--constraint", constraints_,
+                   "METRIC<=VALUE or METRIC>=VALUE on the mean over the seeds, repeatable; "
+                   "best.yaml is the best point that meets them all")
+      ->take_all();
+  tune_->add_option("--holdout", holdout_,
+                    "Seeds never searched (6..25): the start and the best point run on them; "
+                    "writes validation.csv");
+  tune_->add_option("--search-seed", search_seed_,
+                    "Seed of the random methods (crs2, mlsl, isres; default 1)");
   tune_->add_option("--set", tune_sets_, "Fixed override for every run: path.to.key=value")
       ->take_all();
   tune_->add_option("--jobs,-j", tune_jobs_, "Runs at once (default: every core)");
@@ -416,11 +430,21 @@ int StudyCommands::Tune() {
         throw std::runtime_error("--param " + p + ": tuned twice");
   }
   s.objective = sim::ParseMetricExpr(tune_metric_);
+  for (const std::string& c : constraints_) s.constraints.push_back(sim::ParseTuneConstraint(c));
   s.seeds = tune_->count("--seeds") == 0 ? std::vector<std::uint64_t>{base.setup.seed}
                                          : sim::ParseSeeds(tune_seeds_);
   s.budget = budget_;
   s.algorithm = algorithm_;
+  s.search_seed = search_seed_;
   if (budget_ < 1 || budget_ > 100000) throw std::runtime_error("--budget must be in 1 ... 100000");
+  // Everything refused before anything runs: the plan, the holdout seeds.
+  const std::vector<sim::TuneStage> plan =
+      sim::PlanTune(s.algorithm, static_cast<int>(s.params.size()), s.budget);
+  std::vector<std::uint64_t> holdout;
+  if (tune_->count("--holdout") > 0) {
+    holdout = sim::ParseSeeds(holdout_, "--holdout");
+    sim::CheckHoldout(holdout, s.seeds);
+  }
   const int jobs = CheckJobs(tune_jobs_, "--jobs");
   const std::string out =
       tune_out_.empty() ? "out/tune_" + fs::path(file).stem().string() : tune_out_;
@@ -428,9 +452,14 @@ int StudyCommands::Tune() {
   InstallStopSignals();
   sim::TaskPool pool(jobs);
   const bool tty = !tune_quiet_ && isatty(STDERR_FILENO);
+  bool random = false;
+  for (const sim::TuneStage& st : plan) random = random || sim::IsRandomMethod(st.method);
+  const std::string seed_note =
+      random ? ", search seed " + std::to_string(s.search_seed) : std::string();
   if (!tune_quiet_) {
-    std::printf("tune %s: %zu tunables, %s, budget %d evaluations x %zu seeds, %d jobs\n",
-                file.c_str(), s.params.size(), s.algorithm.c_str(), s.budget, s.seeds.size(), jobs);
+    std::printf("tune %s: %zu tunables, %zu constraint%s, %s%s, %zu seeds, %d jobs\n", file.c_str(),
+                s.params.size(), s.constraints.size(), s.constraints.size() == 1 ? "" : "s",
+                sim::PlanText(plan).c_str(), seed_note.c_str(), s.seeds.size(), jobs);
     std::fflush(stdout);
   }
   const double t0 = Now();
@@ -455,13 +484,31 @@ int StudyCommands::Tune() {
     std::string note;
     std::string text =
         sim::TunedScenarioText(source, sim::TuneOverrides(s, best.values), path, &note);
+    std::string subject;
+    for (const sim::TuneConstraint& c : s.constraints)
+      subject += (subject.empty() ? " subject to " : ", ") + c.Text();
     text = "# formsim tune: " + tune_metric_ + " = " + sim::FormatDouble(best.objective) +
            " (mean over seeds " + (tune_seeds_.empty() ? std::to_string(s.seeds[0]) : tune_seeds_) +
-           "), evaluation " + std::to_string(best.index) + " of " +
-           std::to_string(r.history.size()) + ", " + s.algorithm + "\n" + text;
+           ")" + subject + ", evaluation " + std::to_string(best.index) + " of " +
+           std::to_string(r.history.size()) + ", " + s.algorithm + seed_note + "\n" + text;
     sim::WriteFileAtomic(path, text);
     wrote.push_back("best.yaml");
     if (!note.empty() && !tune_quiet_) std::printf("note: %s\n", note.c_str());
+  } else if (!r.history.empty() && !r.history[r.best].failed()) {
+    // Runs succeeded, but none met every constraint: say how close the closest came.
+    const sim::TuneEvaluation& e = r.history[r.best];
+    std::string broken;
+    for (std::size_t k = 0; k < s.constraints.size(); ++k)
+      if (s.constraints[k].Violation(e.constraint_means[k]) > 0)
+        broken += (broken.empty() ? "" : ", ") + s.constraints[k].path + " = " +
+                  sim::FormatSignificant(e.constraint_means[k], 4) + " (wanted " +
+                  (s.constraints[k].at_most ? "<= " : ">= ") +
+                  sim::FormatDouble(s.constraints[k].bound) + ")";
+    std::fprintf(stderr,
+                 "formsim: error: no evaluation meets every --constraint; no best.yaml. Closest: "
+                 "evaluation %zu with %s (see history.csv)\n",
+                 e.index, broken.c_str());
+    rc = 3;
   } else {
     std::fprintf(stderr,
                  "formsim: error: no evaluation succeeded; no best.yaml (see history.csv)\n");
@@ -479,13 +526,29 @@ int StudyCommands::Tune() {
     const sim::TuneEvaluation& first = r.history.front();
     const sim::TuneEvaluation& best = r.history[r.best];
     std::printf("%zu evaluations in %.1f s (%s)\n", r.history.size(), wall, r.stop_reason.c_str());
-    std::printf("%-40s %14s %14s\n", "", "start", "best");
+    std::printf("%-40s %14s %14s\n", "", "start", r.has_best() ? "best" : "closest");
     for (std::size_t i = 0; i < s.params.size(); ++i)
       std::printf("%-40s %14.6g %14.6g\n", s.params[i].key.c_str(), first.values[i],
                   best.values[i]);
     std::printf("%-40s %14.6g %14.6g\n", "objective", first.objective, best.objective);
-    std::printf("wrote %s in %s\n", Join(wrote, ", ").c_str(), out.c_str());
+    for (std::size_t k = 0; k < s.constraints.size(); ++k)
+      std::printf("%-40s %14.6g %14.6g\n", s.constraints[k].Text().c_str(),
+                  first.constraint_means[k], best.constraint_means[k]);
   }
+  // Held out: the start and the best point on seeds the search never ran.
+  if (!holdout.empty() && r.has_best() && StopSignal() == 0) {
+    const auto v = sim::ValidateTune(source, s, r.history.front().values,
+                                     r.history[r.best].values, holdout, pool,
+                                     [] { return StopSignal() != 0; });
+    if (v) {
+      sim::WriteFileAtomic((fs::path(out) / "validation.csv").string(),
+                           sim::TuneValidationCsv(*v));
+      wrote.push_back("validation.csv");
+      if (!tune_quiet_) std::printf("%s", sim::TuneValidationText(*v).c_str());
+    }
+  }
+  if (!tune_quiet_ && !r.history.empty())
+    std::printf("wrote %s in %s\n", Join(wrote, ", ").c_str(), out.c_str());
   if (StopSignal() != 0) {
     std::fprintf(
         stderr,

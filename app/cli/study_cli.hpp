@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "sim/study/tune_plan.hpp"
+
 namespace formsim::app {
 
 class StudyCommands {
@@ -53,8 +55,10 @@ class StudyCommands {
   // tune
   std::string tune_scenario_;
   std::vector<std::string> params_, tune_sets_;
-  std::string tune_metric_, tune_seeds_, tune_out_;
-  std::string algorithm_ = "bobyqa";
+  std::string tune_metric_, tune_seeds_, tune_out_, holdout_;
+  std::vector<std::string> constraints_;
+  std::string algorithm_ = sim::kDefaultTuneMethod;
+  std::uint64_t search_seed_ = 1;
   int budget_ = 60;
   int tune_jobs_ = 0;
   bool tune_quiet_ = false;

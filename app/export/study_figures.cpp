@@ -317,21 +317,30 @@ PlotData TuneConvergenceFigure(const sim::TuneSettings& settings, const sim::Tun
   }
   const bool log = lo > 0 && hi / lo > 30;
   auto y = [&](double v) { return !std::isfinite(v) ? kNaN : log ? std::log10(v) : v; };
-  PlotSeries each, best;
-  each.label = "each evaluation";
+  // With constraints, the points that break one are drawn apart, and "best so far" is the best
+  // feasible one (what best.yaml holds).
+  const bool constrained = !settings.constraints.empty();
+  PlotSeries each, infeasible, best;
+  each.label = constrained ? "feasible evaluation" : "each evaluation";
   each.markers_only = true;
   each.color = sim::PaletteColor(1);
-  best.label = "best so far";
+  infeasible.label = "breaks a constraint";
+  infeasible.markers_only = true;
+  infeasible.color = sim::Color{0.6f, 0.6f, 0.6f, 1.0f};  // grey: not a candidate for best.yaml
+  infeasible.style_index = 3;
+  best.label = constrained ? "best feasible so far" : "best so far";
   best.color = sim::PaletteColor(0);
   double b = std::numeric_limits<double>::infinity();
   for (const sim::TuneEvaluation& e : r.history) {
-    each.x.push_back(static_cast<double>(e.index));
-    each.y.push_back(y(e.objective));
-    b = std::min(b, e.objective);
+    PlotSeries& dots = e.feasible() || !constrained ? each : infeasible;
+    dots.x.push_back(static_cast<double>(e.index));
+    dots.y.push_back(y(e.objective));
+    if (e.feasible()) b = std::min(b, e.objective);
     best.x.push_back(static_cast<double>(e.index));
-    best.y.push_back(y(b));
+    best.y.push_back(std::isfinite(b) ? y(b) : kNaN);
   }
   d.series = {each, best};
+  if (!infeasible.x.empty()) d.series.insert(d.series.begin() + 1, infeasible);
   // A long sum would not fit in the title: name the number of terms instead (history.csv and
   // best.yaml hold the expression).
   const std::size_t terms = static_cast<std::size_t>(std::count(expr.begin(), expr.end(), '+')) + 1;

@@ -48,9 +48,10 @@ nlopt_algorithm Algorithm(const std::string& name) {
   if (name == "bobyqa") return NLOPT_LN_BOBYQA;
   if (name == "neldermead") return NLOPT_LN_NELDERMEAD;
   if (name == "cobyla") return NLOPT_LN_COBYLA;
-  std::string known;
-  for (const std::string& a : TuneAlgorithms()) known += (known.empty() ? "" : ", ") + a;
-  throw std::runtime_error("--algorithm '" + name + "': unknown (one of " + known + ")");
+  if (name == "direct-l") return NLOPT_GN_DIRECT_L;
+  if (name == "crs2") return NLOPT_GN_CRS2_LM;
+  if (name == "mlsl") return NLOPT_G_MLSL_LDS;
+  return NLOPT_GN_ISRES;  // PlanTune let only known names through
 }
 
 std::string StopText(nlopt_result r) {
@@ -83,12 +84,29 @@ struct Context {
   const std::function<void(const TuneEvaluation&, const TuneEvaluation&)>* progress;
   const std::function<bool()>* stop;
   TuneResult* result;
-  nlopt_opt opt;
+  std::vector<nlopt_opt> opts;  // every optimiser of the stage (an AUGLAG's subsidiary too)
   std::exception_ptr error;
   bool stopped = false;
   double worst = -kInf;  // the worst finite objective so far (penalty for failed evaluations)
   bool out_of_budget = false;
+  std::size_t stage = 0;
+  int limit = 0;  // evaluations recorded at most by the end of this stage
 };
+
+// The value of metric `path` in a completed run, for `flag` (--metric or --constraint). A
+// setting (what the run ran with) or a missing name is refused, with the names there are.
+double MetricIn(const SweepRecord& r, const std::string& path, const std::string& flag) {
+  for (const auto& m : r.metrics)
+    if (m.first == path) return m.second;
+  for (const auto& m : r.settings)
+    if (m.first == path)
+      throw std::runtime_error(flag + ": '" + path +
+                               "' is a setting the run ran with, not a result of it");
+  std::vector<std::string> names;
+  for (const auto& m : r.metrics) names.push_back(m.first);
+  throw std::runtime_error(flag + ": the runs have no metric '" + path +
+                           "' (similar: " + SimilarMetrics(names, path) + ")");
+}
 
 // Runs every seed at `values`; fills the evaluation. Returns false when stopped.
 bool Evaluate(Context& c, TuneEvaluation& ev) {
@@ -107,7 +125,8 @@ bool Evaluate(Context& c, TuneEvaluation& ev) {
   for (const auto& r : recs) abandoned = abandoned || !r;
   if (abandoned) return false;
   ev.term_means.assign(s.objective.size(), 0.0);
-  std::vector<std::size_t> counted(s.objective.size(), 0);
+  ev.constraint_means.assign(s.constraints.size(), 0.0);
+  std::size_t counted = 0;
   for (std::size_t i = 0; i < recs.size(); ++i) {
     const SweepRecord& r = *recs[i];
     if (r.failed()) {
@@ -116,29 +135,27 @@ bool Evaluate(Context& c, TuneEvaluation& ev) {
         ev.message = "seed " + std::to_string(s.seeds[i]) + ": " + r.status + ": " + r.message;
       continue;
     }
-    for (std::size_t t = 0; t < s.objective.size(); ++t) {
-      const auto it = std::find_if(r.metrics.begin(), r.metrics.end(),
-                                   [&](const auto& m) { return m.first == s.objective[t].path; });
-      if (it == r.metrics.end()) {
-        std::vector<std::string> names;
-        for (const auto& m : r.metrics) names.push_back(m.first);
-        throw std::runtime_error("--metric: the runs have no metric '" + s.objective[t].path +
-                                 "' (similar: " + SimilarMetrics(names, s.objective[t].path) + ")");
-      }
-      ev.term_means[t] += it->second;
-      ++counted[t];
-    }
+    for (std::size_t t = 0; t < s.objective.size(); ++t)
+      ev.term_means[t] += MetricIn(r, s.objective[t].path, "--metric");
+    for (std::size_t k = 0; k < s.constraints.size(); ++k)
+      ev.constraint_means[k] += MetricIn(r, s.constraints[k].path, "--constraint");
+    ++counted;
   }
+  const double nan = std::nan("");
   ev.objective = 0;
   for (std::size_t t = 0; t < s.objective.size(); ++t) {
-    ev.term_means[t] =
-        ev.failed() ? std::nan("") : ev.term_means[t] / static_cast<double>(counted[t]);
+    ev.term_means[t] = ev.failed() ? nan : ev.term_means[t] / static_cast<double>(counted);
     ev.objective += s.objective[t].weight * ev.term_means[t];
+  }
+  ev.violation = 0;
+  for (std::size_t k = 0; k < s.constraints.size(); ++k) {
+    ev.constraint_means[k] =
+        ev.failed() ? nan : ev.constraint_means[k] / static_cast<double>(counted);
+    ev.violation = std::max(ev.violation, s.constraints[k].Violation(ev.constraint_means[k]));
   }
   if (ev.failed()) {
     ev.objective = kInf;
   } else if (!std::isfinite(ev.objective)) {
-    ev.failed_runs = 0;
     ev.message = "the objective is not finite";
     ev.objective = kInf;
   }
@@ -152,54 +169,164 @@ double Seen(const Context& c, const TuneEvaluation& ev) {
   return std::isfinite(c.worst) ? c.worst + std::max(1.0, std::abs(c.worst)) : 1e10;
 }
 
-// Evaluates `values` (or finds them evaluated already) and records the evaluation. Returns
-// false when the optimisation must end: stopped, out of budget, or an error (kept in c.error).
-bool Point(Context& c, const std::vector<double>& values, double* seen) {
+// Whether `a` is a better result than `b`: feasible before infeasible, then the lower objective
+// among feasible ones, the smaller violation among infeasible ones (the first of equals wins).
+bool IsBetter(const TuneEvaluation& a, const TuneEvaluation& b) {
+  if (a.feasible() != b.feasible()) return a.feasible();
+  if (a.feasible()) return a.objective < b.objective;
+  if (a.failed() != b.failed()) return !a.failed();
+  return a.violation < b.violation;
+}
+
+void StopAll(Context& c) {
+  for (nlopt_opt o : c.opts) nlopt_force_stop(o);
+}
+
+// Evaluates `values` (or finds them evaluated already). Returns the evaluation, or null when the
+// optimisation must end: stopped, out of this stage's budget, or an error (kept in c.error).
+const TuneEvaluation* Point(Context& c, const std::vector<double>& values) {
   TuneResult& res = *c.result;
-  // A point met again (NLopt's start, a Nelder-Mead revisit) is not run again.
+  // A point met again (NLopt's start, a Nelder-Mead revisit, the polish's start) is not run
+  // again.
   for (const TuneEvaluation& e : res.history)
-    if (e.values == values) {
-      *seen = Seen(c, e);
-      return true;
-    }
-  if (static_cast<int>(res.history.size()) >= c.settings->budget) {
+    if (e.values == values) return &e;
+  if (static_cast<int>(res.history.size()) >= c.limit) {
     c.out_of_budget = true;
-    return false;
+    return nullptr;
   }
   TuneEvaluation ev;
   ev.index = res.history.size() + 1;
+  ev.stage = c.stage;
   ev.values = values;
   try {
     if (!Evaluate(c, ev)) {
       c.stopped = true;
-      return false;
+      return nullptr;
     }
   } catch (...) {
     c.error = std::current_exception();
-    return false;
+    return nullptr;
   }
   res.history.push_back(ev);
-  if (res.history.size() == 1 || ev.objective < res.history[res.best].objective)
+  if (res.history.size() == 1 || IsBetter(ev, res.history[res.best]))
     res.best = res.history.size() - 1;
   if (*c.progress) (*c.progress)(res.history.back(), res.history[res.best]);
   if (std::isfinite(ev.objective)) c.worst = std::max(c.worst, ev.objective);
-  *seen = Seen(c, ev);
-  return true;
+  return &res.history.back();
+}
+
+std::vector<double> Values(const Context& c, unsigned n, const double* u) {
+  std::vector<double> values;
+  for (unsigned i = 0; i < n; ++i) values.push_back(ToValue(c.settings->params[i], u[i]));
+  return values;
 }
 
 double Objective(unsigned n, const double* u, double* /*grad*/, void* data) {
   Context& c = *static_cast<Context*>(data);
-  std::vector<double> values;
-  for (unsigned i = 0; i < n; ++i) values.push_back(ToValue(c.settings->params[i], u[i]));
-  double seen = 0;
-  if (!Point(c, values, &seen)) nlopt_force_stop(c.opt);
-  return seen;
+  const TuneEvaluation* ev = Point(c, Values(c, n, u));
+  if (ev == nullptr) {
+    StopAll(c);
+    return 0;
+  }
+  return Seen(c, *ev);
+}
+
+// One inequality constraint for NLopt, g(u) <= 0: the violation relative to the bound's size.
+struct ConstraintData {
+  Context* context;
+  std::size_t k;
+};
+
+double Constraint(unsigned n, const double* u, double* /*grad*/, void* data) {
+  const ConstraintData& d = *static_cast<const ConstraintData*>(data);
+  Context& c = *d.context;
+  const TuneEvaluation* ev = Point(c, Values(c, n, u));
+  if (ev == nullptr) {
+    StopAll(c);
+    return 0;
+  }
+  if (ev->failed()) return 1e10;  // a failed run satisfies nothing
+  return c.settings->constraints[d.k].Violation(ev->constraint_means[d.k]);
+}
+
+// Runs one stage of the plan from `u` (scaled), with initial steps `step` of each interval.
+nlopt_result RunStage(Context& c, const TuneStage& stage, std::vector<double>& u, double step,
+                      std::vector<ConstraintData>& constraint_data) {
+  const TuneSettings& s = *c.settings;
+  const unsigned n = static_cast<unsigned>(s.params.size());
+  const bool constrained = !s.constraints.empty();
+  const bool auglag = constrained && !TakesConstraints(stage.method);
+  // NLopt's random stream, for the methods that draw from it, restarts at the search seed.
+  nlopt_srand(s.search_seed);
+  std::vector<double> lb(n, 0.0), ub(n, 1.0), steps(n, step);
+  auto make = [&](nlopt_algorithm alg) {
+    nlopt_opt o = nlopt_create(alg, n);
+    if (o == nullptr) throw std::runtime_error("NLopt could not create the optimiser");
+    c.opts.push_back(o);
+    nlopt_set_lower_bounds(o, lb.data());
+    nlopt_set_upper_bounds(o, ub.data());
+    nlopt_set_xtol_abs1(o, 1e-5);  // 1e-5 of each search interval
+    return o;
+  };
+  nlopt_opt outer = make(auglag ? NLOPT_AUGLAG : Algorithm(stage.method));
+  nlopt_opt inner = outer;
+  if (auglag) {
+    inner = make(Algorithm(stage.method));
+    nlopt_set_local_optimizer(outer, inner);
+  }
+  if (stage.method == "mlsl") {
+    nlopt_opt local = make(NLOPT_LN_BOBYQA);
+    nlopt_set_xtol_rel(local, 1e-4);
+    nlopt_set_local_optimizer(inner, local);
+  }
+  // The budget counts new points: Point stops the stage at its limit.
+  for (nlopt_opt o : c.opts) nlopt_set_maxeval(o, 4 * s.budget + 10);
+  nlopt_set_initial_step(outer, steps.data());
+  if (inner != outer) nlopt_set_initial_step(inner, steps.data());
+  nlopt_set_min_objective(outer, Objective, &c);
+  for (std::size_t k = 0; k < s.constraints.size(); ++k) constraint_data.push_back({&c, k});
+  for (ConstraintData& d : constraint_data) nlopt_add_inequality_constraint(outer, Constraint, &d, 1e-9);
+  double fmin = 0;
+  const nlopt_result r = nlopt_optimize(outer, u.data(), &fmin);
+  for (nlopt_opt o : c.opts) nlopt_destroy(o);
+  c.opts.clear();
+  constraint_data.clear();
+  return r;
 }
 
 }  // namespace
 
-std::vector<std::string> TuneAlgorithms() {
-  return {"bobyqa", "neldermead", "cobyla"};
+std::string TuneConstraint::Text() const {
+  return path + (at_most ? "<=" : ">=") + FormatDouble(bound);
+}
+
+double TuneConstraint::Violation(double mean) const {
+  if (std::isnan(mean)) return kInf;
+  // Relative to the bound's size, so constraints of different units weigh alike (absolute
+  // for a bound of 0).
+  const double scale = bound != 0 ? std::abs(bound) : 1.0;
+  return std::max(0.0, (at_most ? mean - bound : bound - mean) / scale);
+}
+
+TuneConstraint ParseTuneConstraint(const std::string& arg) {
+  auto fail = [&](const std::string& why) {
+    return std::runtime_error("--constraint '" + arg + "': " + why +
+                              " (expected METRIC<=VALUE or METRIC>=VALUE)");
+  };
+  std::size_t op = arg.find("<=");
+  TuneConstraint c;
+  if (op == std::string::npos) {
+    op = arg.find(">=");
+    c.at_most = false;
+  }
+  if (op == std::string::npos) throw fail("no <= or >=");
+  c.path = Trim(arg.substr(0, op));
+  if (c.path.empty()) throw fail("a metric name is missing");
+  for (char ch : c.path)
+    if (!IsPathChar(ch)) throw fail(std::string("'") + ch + "' in the metric name");
+  if (!ParseFiniteDouble(Trim(arg.substr(op + 2)), &c.bound))
+    throw fail("the bound is not a finite number");
+  return c;
 }
 
 std::vector<MetricTerm> ParseMetricExpr(const std::string& expr) {
@@ -297,35 +424,42 @@ TuneResult RunTune(
   if (s.objective.empty()) throw std::runtime_error("formsim tune: give --metric");
   if (s.seeds.empty()) throw std::runtime_error("formsim tune: give --seeds");
   if (s.budget < 1) throw std::runtime_error("--budget must be at least 1");
-  const nlopt_algorithm alg = Algorithm(s.algorithm);
   const unsigned n = static_cast<unsigned>(s.params.size());
   TuneResult result;
-  nlopt_srand(1);  // no algorithm offered here draws random numbers; fixed all the same
-  nlopt_opt opt = nlopt_create(alg, n);
-  if (opt == nullptr) throw std::runtime_error("NLopt could not create the optimiser");
-  Context c{&source, &s, &pool, &progress, &stop, &result, opt, nullptr};
-  // The first steps span 15 % of each interval (NLopt keeps them inside the bounds).
-  std::vector<double> lb(n, 0.0), ub(n, 1.0), u(n), step(n, 0.15);
-  std::vector<double> start;
+  result.plan = PlanTune(s.algorithm, static_cast<int>(n), s.budget);
+  Context c{&source, &s, &pool, &progress, &stop, &result, {}, nullptr};
+  std::vector<double> u(n), start;
   for (unsigned i = 0; i < n; ++i) {
     u[i] = std::clamp(ToUnit(s.params[i], s.params[i].start), 0.0, 1.0);
     start.push_back(s.params[i].start);
   }
   // Evaluation 1 is the scenario's own values, exactly (BOBYQA may move its first point away
-  // from a bound).
-  double seen = 0;
+  // from a bound); a metric it does not have is refused here, before the search.
+  c.limit = result.plan.front().evaluations;
   nlopt_result r = NLOPT_MAXEVAL_REACHED;
-  if (Point(c, start, &seen)) {
-    nlopt_set_lower_bounds(opt, lb.data());
-    nlopt_set_upper_bounds(opt, ub.data());
-    nlopt_set_min_objective(opt, Objective, &c);
-    nlopt_set_maxeval(opt, 2 * s.budget + 10);  // the budget counts new points (Point stops)
-    nlopt_set_xtol_abs1(opt, 1e-5);             // 1e-5 of each search interval
-    nlopt_set_initial_step(opt, step.data());
-    double fmin = 0;
-    r = nlopt_optimize(opt, u.data(), &fmin);
+  std::vector<ConstraintData> constraint_data;
+  constraint_data.reserve(s.constraints.size());
+  if (Point(c, start) != nullptr) {
+    int used = 0;
+    for (std::size_t k = 0; k < result.plan.size() && !c.stopped && !c.error; ++k) {
+      used += result.plan[k].evaluations;
+      c.stage = k;
+      c.limit = used;
+      c.out_of_budget = false;
+      // A local polish starts from the best point so far, with finer first steps.
+      if (k > 0) {
+        const TuneEvaluation& b = result.history[result.best];
+        for (unsigned i = 0; i < n; ++i)
+          u[i] = std::clamp(ToUnit(s.params[i], b.values[i]), 0.0, 1.0);
+      }
+      try {
+        r = RunStage(c, result.plan[k], u, k == 0 ? 0.15 : 0.05, constraint_data);
+      } catch (...) {
+        for (nlopt_opt o : c.opts) nlopt_destroy(o);
+        throw;
+      }
+    }
   }
-  nlopt_destroy(opt);
   if (c.error) std::rethrow_exception(c.error);
   result.stop_reason = c.stopped                                   ? "interrupted"
                        : c.out_of_budget || r == NLOPT_FORCED_STOP ? "budget used"
@@ -334,14 +468,24 @@ TuneResult RunTune(
 }
 
 std::string TuneHistoryCsv(const TuneSettings& s, const TuneResult& r) {
-  std::string csv = "eval";
+  // Each constrained metric once: a term's column already holds it.
+  std::vector<std::size_t> shown;
+  for (std::size_t k = 0; k < s.constraints.size(); ++k) {
+    bool dup = false;
+    for (const MetricTerm& t : s.objective) dup = dup || t.path == s.constraints[k].path;
+    for (std::size_t j : shown) dup = dup || s.constraints[j].path == s.constraints[k].path;
+    if (!dup) shown.push_back(k);
+  }
+  std::string csv = "eval,stage";
   for (const TuneParam& p : s.params) csv += "," + p.key;
   csv += ",objective";
   for (const MetricTerm& t : s.objective) csv += ",mean." + t.path;
-  csv += ",failed_runs,best_so_far,message\n";
+  for (std::size_t k : shown) csv += ",mean." + s.constraints[k].path;
+  csv += ",feasible,failed_runs,best_so_far,message\n";
   double best = kInf;
   for (const TuneEvaluation& e : r.history) {
-    csv += std::to_string(e.index);
+    csv += std::to_string(e.index) + ",";
+    csv += e.stage < r.plan.size() ? r.plan[e.stage].method : s.algorithm;
     for (double v : e.values) {
       csv += ',';
       AppendDouble(csv, v);
@@ -352,8 +496,13 @@ std::string TuneHistoryCsv(const TuneSettings& s, const TuneResult& r) {
       csv += ',';
       if (!std::isnan(m)) AppendDouble(csv, m);
     }
-    best = std::min(best, e.objective);
-    csv += "," + std::to_string(e.failed_runs) + ",";
+    for (std::size_t k : shown) {
+      csv += ',';
+      if (k < e.constraint_means.size() && !std::isnan(e.constraint_means[k]))
+        AppendDouble(csv, e.constraint_means[k]);
+    }
+    if (e.feasible()) best = std::min(best, e.objective);
+    csv += std::string(",") + (e.feasible() ? "1" : "0") + "," + std::to_string(e.failed_runs) + ",";
     AppendDouble(csv, best);
     csv += "," + CsvField(e.message) + "\n";
   }

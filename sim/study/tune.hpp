@@ -1,10 +1,12 @@
 #pragma once
-/// \file `formsim tune`: derivative-free minimisation (NLopt's BOBYQA, Nelder-Mead or COBYLA)
-/// of a metric, or a weighted sum of metrics, averaged over a set of seeds, over chosen real
-/// tunables within bounds. The optimiser works in coordinates scaled to [0, 1] per tunable
-/// (logarithmic for tunables with a log slider), starts from the scenario's values, and every
-/// evaluation runs the seeds in parallel on a TaskPool. The function values depend only on the
-/// arguments and NLopt's algorithms are deterministic, so the same call gives the same history.
+/// \file `formsim tune`: derivative-free minimisation with NLopt (local, global, or a global
+/// stage then a local polish: sim/study/tune_plan.hpp) of a metric, or a weighted sum of
+/// metrics, averaged over a set of seeds, over chosen real tunables within bounds, subject to
+/// constraints `METRIC<=VALUE` / `METRIC>=VALUE` on the same averages. The optimiser works in
+/// coordinates scaled to [0, 1] per tunable (logarithmic for tunables with a log slider),
+/// starts from the scenario's values, and every evaluation runs the seeds in parallel on a
+/// TaskPool. The function values depend only on the arguments, and the methods that draw random
+/// numbers draw them from `search_seed`, so the same call gives the same history.
 
 #include <cstddef>
 #include <cstdint>
@@ -15,6 +17,7 @@
 #include "sim/core/param_table.hpp"
 #include "sim/scenario/scenario.hpp"
 #include "sim/core/task_pool.hpp"
+#include "sim/study/tune_plan.hpp"
 
 namespace formsim::sim {
 
@@ -41,34 +44,56 @@ struct TuneParam {
 /// ScenarioError naming the --param argument.
 TuneParam ParseTuneParam(const std::string& arg, const ParamTable& params);
 
-/// The algorithms offered: "bobyqa" (default), "neldermead", "cobyla".
-std::vector<std::string> TuneAlgorithms();
+/// One `--constraint`: the mean over the seeds of a result metric, at most or at least a bound.
+struct TuneConstraint {
+  std::string path;      ///< dotted path under summary.json's `results`
+  bool at_most = true;   ///< PATH<=BOUND (else PATH>=BOUND)
+  double bound = 0;
+  std::string Text() const;  ///< "PATH<=BOUND"
+  /// How far `mean` is on the wrong side of the bound (> 0: violated; NaN counts as violated).
+  double Violation(double mean) const;
+};
+
+/// Parses "PATH<=VALUE" or "PATH>=VALUE" (spaces allowed). Throws std::runtime_error naming
+/// --constraint.
+TuneConstraint ParseTuneConstraint(const std::string& arg);
 
 struct TuneSettings {
   std::vector<TuneParam> params;
   std::vector<MetricTerm> objective;
+  std::vector<TuneConstraint> constraints;
   std::vector<std::uint64_t> seeds;
   std::vector<Override> sets;  ///< --set overrides applied to every run
   int budget = 60;             ///< evaluations at most (each runs every seed)
+  /// `--method`: one method or GLOBAL+LOCAL (sim/study/tune_plan.hpp).
   std::string algorithm = "bobyqa";
+  std::uint64_t search_seed = 1;  ///< NLopt's random stream (crs2, mlsl, isres)
 };
 
 /// One evaluation: a point, the mean of each term's metric over the seeds and the objective.
 struct TuneEvaluation {
-  std::size_t index = 0;           ///< 1-based, in the order NLopt asked
-  std::vector<double> values;      ///< per tunable
-  std::vector<double> term_means;  ///< per term (NaN when a run failed)
-  double objective = 0;            ///< +inf when a run failed (message says which)
+  std::size_t index = 0;                 ///< 1-based, in the order NLopt asked
+  std::size_t stage = 0;                 ///< 0-based stage of the plan that asked for it
+  std::vector<double> values;            ///< per tunable
+  std::vector<double> term_means;        ///< per term (NaN when a run failed)
+  std::vector<double> constraint_means;  ///< per constraint (NaN when a run failed)
+  double objective = 0;                  ///< +inf when a run failed (message says which)
+  double violation = 0;  ///< the largest constraint violation, relative to its bound; 0: feasible
   std::size_t failed_runs = 0;
   std::string message;
-  bool failed() const { return failed_runs > 0; }
+  bool failed() const { return failed_runs > 0 || !message.empty(); }
+  /// Ran, and every constraint holds.
+  bool feasible() const { return !failed() && !(violation > 0); }
 };
 
 struct TuneResult {
   std::vector<TuneEvaluation> history;
-  std::size_t best = 0;     ///< index into history of the lowest objective (first of equals)
+  /// Index into history of the lowest objective among the feasible evaluations (first of
+  /// equals); without a feasible one, the evaluation closest to feasible.
+  std::size_t best = 0;
   std::string stop_reason;  ///< why NLopt stopped ("budget used", "converged (x tolerance)", ...)
-  bool has_best() const { return !history.empty() && !history[best].failed(); }
+  std::vector<TuneStage> plan;  ///< the stages run and their budgets
+  bool has_best() const { return !history.empty() && history[best].feasible(); }
 };
 
 /// Every override of an evaluation at `values`: --set, then the tuned values (no seed).
@@ -76,15 +101,19 @@ std::vector<Override> TuneOverrides(const TuneSettings& s, const std::vector<dou
 
 /// Runs the optimisation. `progress(evaluation, best so far)` after each evaluation; when
 /// `stop()` turns true the optimisation ends after the current evaluation's runs are
-/// abandoned (that evaluation is not recorded). Throws std::runtime_error when a term names a
-/// metric the runs do not have (after the first evaluation, with the names that exist).
+/// abandoned (that evaluation is not recorded). Throws std::runtime_error before the search
+/// when --method or --budget is refused (PlanTune), and at evaluation 1 (the scenario's own
+/// values, before the optimiser starts) when a term or a constraint names a metric the runs do
+/// not have (with the names that exist) or a setting rather than a result.
 TuneResult RunTune(
     const ScenarioSource& source, const TuneSettings& settings, TaskPool& pool,
     const std::function<void(const TuneEvaluation&, const TuneEvaluation&)>& progress = {},
     const std::function<bool()>& stop = {});
 
-/// history.csv: eval, the tuned keys, objective, each term's mean, failed_runs, best_so_far,
-/// message; numbers as shortest round-trip text.
+/// history.csv: eval, stage (its method), the tuned keys, objective, each term's mean, each
+/// constrained metric's mean (when not a term already), feasible (1/0), failed_runs,
+/// best_so_far (the best feasible objective so far), message; numbers as shortest round-trip
+/// text.
 std::string TuneHistoryCsv(const TuneSettings& s, const TuneResult& r);
 
 }  // namespace formsim::sim

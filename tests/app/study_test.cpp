@@ -337,7 +337,9 @@ TEST(TuneCli, DeterministicAndBestYamlReproducesTheBestObjective) {
       "0.5*links.R1-R2.max_abs_error_after_settle.l'"
       " --seeds 1..2 --budget 8 -q";
   const std::string a = TempDir("tune_a"), b = TempDir("tune_b");
-  ASSERT_EQ(Formsim(tune + " -j1 --out " + a, a + ".log"), 0) << ReadText(a + ".log");
+  // --algorithm is the older name of --method.
+  ASSERT_EQ(Formsim(tune + " -j1 --method bobyqa --out " + a, a + ".log"), 0)
+      << ReadText(a + ".log");
   ASSERT_EQ(Formsim(tune + " -j2 --algorithm bobyqa --out " + b, b + ".log"), 0)
       << ReadText(b + ".log");
   for (const char* f : {"history.csv", "best.yaml"})
@@ -346,17 +348,18 @@ TEST(TuneCli, DeterministicAndBestYamlReproducesTheBestObjective) {
   const std::string history = ReadText(a + "/history.csv");
   EXPECT_EQ(Lines(history), 9u);
   EXPECT_EQ(history.substr(0, history.find('\n')),
-            "eval,robots.R2.follow.k_l,robots.R2.follow.k_phi,objective,mean.links.R1-R2.max_abs_"
-            "error_after_settle.phi,"
-            "mean.links.R1-R2.max_abs_error_after_settle.l,failed_runs,best_so_far,message");
+            "eval,stage,robots.R2.follow.k_l,robots.R2.follow.k_phi,objective,mean.links.R1-R2."
+            "max_abs_error_after_settle.phi,"
+            "mean.links.R1-R2.max_abs_error_after_settle.l,feasible,failed_runs,best_so_far,"
+            "message");
   // The first evaluation is the scenario's own gains.
-  EXPECT_NE(history.find("\n1,0.15,0.08,"), std::string::npos) << history;
+  EXPECT_NE(history.find("\n1,bobyqa,0.15,0.08,"), std::string::npos) << history;
   // The best objective: the last best_so_far.
   std::stringstream ss(history);
   std::string line, last;
   while (std::getline(ss, line)) last = line;
   const std::vector<std::string> f = SplitCsvLine(last);
-  const double best = Number(f[7]);
+  const double best = Number(f[9]);
   ASSERT_TRUE(std::isfinite(best));
 
   // best.yaml keeps the file's comments, loads, and gives that objective again on the same seeds.
@@ -394,7 +397,7 @@ TEST(TuneCli, BadInputNamesTheFlag) {
       2);
   EXPECT_NE(ReadText(d + ".log").find("--metric 'a +'"), std::string::npos);
   EXPECT_EQ(Formsim("tune formation_traj2_ukf --set duration=1 --param robots.R2.follow.k_l "
-                    "--metric links.nope --budget 2 --out " +
+                    "--metric links.nope --method bobyqa --budget 3 --out " +
                         d,
                     d + ".log"),
             2);
@@ -405,7 +408,71 @@ TEST(TuneCli, BadInputNamesTheFlag) {
                         d,
                     d + ".log"),
             2);
-  EXPECT_NE(ReadText(d + ".log").find("--algorithm 'newton'"), std::string::npos);
+  EXPECT_NE(ReadText(d + ".log").find("--method 'newton': unknown method"), std::string::npos);
+  // Refused before anything runs: a budget too small for the plan, held-out seeds that were
+  // searched, a constraint on a setting rather than a result, a malformed constraint.
+  const std::string base = "tune formation_traj2_ukf --set duration=1 --param robots.R2.follow.k_l ";
+  EXPECT_EQ(Formsim(base + "--metric x --budget 5 --out " + d, d + ".log"), 2);
+  EXPECT_NE(ReadText(d + ".log").find("--budget 5: too small for --method direct-l+bobyqa with 1 "
+                                      "tunable (needs at least 7: 4 for direct-l, 3 for bobyqa)"),
+            std::string::npos)
+      << ReadText(d + ".log");
+  EXPECT_EQ(Formsim(base + "--metric x --seeds 1..5 --holdout 4..9 --out " + d, d + ".log"), 2);
+  EXPECT_NE(ReadText(d + ".log").find("--holdout: seeds 4, 5 are also in --seeds"),
+            std::string::npos)
+      << ReadText(d + ".log");
+  EXPECT_EQ(Formsim(base + "--metric x --constraint 'links.R1-R2.rmse<0.1' --out " + d,
+                    d + ".log"),
+            2);
+  EXPECT_NE(ReadText(d + ".log").find("--constraint 'links.R1-R2.rmse<0.1': no <= or >="),
+            std::string::npos)
+      << ReadText(d + ".log");
+  EXPECT_EQ(Formsim("tune velocity_constant --set duration=2 --param "
+                    "control.kp --metric robots.R_fused.control.linear_error "
+                    "--constraint 'settle_time<=1' --method bobyqa --budget 3 --out " +
+                        d,
+                    d + ".log"),
+            2);
+  EXPECT_NE(ReadText(d + ".log").find(
+                "--constraint: 'settle_time' is a setting the run ran with, not a result of it"),
+            std::string::npos)
+      << ReadText(d + ".log");
+}
+
+TEST(TuneCli, ConstraintsHoldoutAndNoFeasiblePoint) {
+  // The scenario's k_l against the after-settle l error, with the phi error held at most at
+  // its start value: best.yaml meets it, history.csv marks each point, the holdout is written.
+  const std::string base =
+      "tune formation_traj2_ukf --set duration=3 --param robots.R2.follow.k_l "
+      "--metric links.R1-R2.max_abs_error_after_settle.l --seeds 1..2 --budget 10 -q ";
+  const std::string a = TempDir("tune_constrained");
+  ASSERT_EQ(Formsim(base + "--constraint 'links.R1-R2.max_abs_error_after_settle.phi<=0.05' "
+                           "--holdout 3..5 --out " + a,
+                    a + ".log"),
+            0)
+      << ReadText(a + ".log");
+  const std::string history = ReadText(a + "/history.csv");
+  EXPECT_NE(history.find(",feasible,"), std::string::npos);
+  EXPECT_NE(history.find("\n1,direct-l,"), std::string::npos) << "the default plan" << history;
+  EXPECT_NE(history.find(",bobyqa,"), std::string::npos) << "the polish" << history;
+  EXPECT_NE(ReadText(a + "/best.yaml").find("subject to links.R1-R2.max_abs_error_after_settle."
+                                            "phi<=0.05"),
+            std::string::npos);
+  const std::string validation = ReadText(a + "/validation.csv");
+  EXPECT_EQ(validation.rfind("seed,objective_start,objective_best,difference,best_feasible\n3,", 0),
+            0u)
+      << validation;
+  EXPECT_EQ(Lines(validation), 7u) << "header, three seeds, mean and the interval";
+  // A bound no point meets: no best.yaml, exit status 3, the closest point named.
+  const std::string b = TempDir("tune_infeasible");
+  EXPECT_EQ(Formsim(base + "--constraint 'links.R1-R2.max_abs_error_after_settle.phi<=0' --out " + b,
+                    b + ".log"),
+            3);
+  EXPECT_FALSE(fs::exists(b + "/best.yaml"));
+  EXPECT_NE(ReadText(b + ".log").find("no evaluation meets every --constraint"), std::string::npos)
+      << ReadText(b + ".log");
+  EXPECT_NE(ReadText(b + "/history.csv").find(",0,0,inf,"), std::string::npos)
+      << "infeasible rows, no best so far";
 }
 
 // --- figures, on pixels -------------------------------------------------------------------

@@ -13,9 +13,11 @@
 #include <stdexcept>
 #include <thread>
 
+#include "sim/core/number_format.hpp"
 #include "sim/study/sweep.hpp"
 #include "sim/study/sweep_tables.hpp"
 #include "sim/study/tune.hpp"
+#include "sim/study/tune_validation.hpp"
 #include "test_kind.hpp"
 
 namespace formsim::sim {
@@ -335,15 +337,21 @@ TEST(TuneParam, BoundsFromTheDeclarationOrGiven) {
   EXPECT_NE(err("v:1").find("KEY:LO:HI"), std::string::npos);
 }
 
-TEST(Tune, FindsTheMinimumAndIsDeterministic) {
-  // x after 1 s on the circle is (v/ω) sin(ω): minimal at the smallest v.
+// Tuning v in [0.2, 2] for x after 1 s on the circle, over seeds 1 and 2.
+TuneSettings CircleTune() {
   const ParsedScenario p = ParseScenario(Circle(), {});
   TuneSettings s;
   s.params = {ParseTuneParam("v:0.2:2", p.params)};
   s.objective = ParseMetricExpr("x");
   s.seeds = {1, 2};
+  return s;
+}
+
+TEST(Tune, FindsTheMinimumAndIsDeterministic) {
+  // x after 1 s on the circle is (v/ω) sin(ω): minimal at the smallest v.
+  TuneSettings s = CircleTune();
   s.budget = 25;
-  for (const std::string& alg : TuneAlgorithms()) {
+  for (const char* alg : {"bobyqa", "neldermead", "cobyla"}) {
     s.algorithm = alg;
     TaskPool one(1), two(2);
     const TuneResult a = RunTune(Circle(), s, one), b = RunTune(Circle(), s, two);
@@ -358,6 +366,115 @@ TEST(Tune, FindsTheMinimumAndIsDeterministic) {
   TaskPool pool(1);
   EXPECT_NE(ErrorOf([&] { RunTune(Circle(), s, pool); }).find("no metric 'xx' (similar: x)"),
             std::string::npos);
+}
+
+TEST(Tune, GlobalMethodsAndTwoStagePlansFindTheMinimumDeterministically) {
+  TuneSettings s = CircleTune();
+  s.budget = 45;
+  for (const char* alg :
+       {"direct-l", "crs2", "mlsl", "isres", "direct-l+bobyqa", "crs2+cobyla"}) {
+    s.algorithm = alg;
+    TaskPool one(1), two(2);
+    const TuneResult a = RunTune(Circle(), s, one), b = RunTune(Circle(), s, two);
+    ASSERT_TRUE(a.has_best()) << alg;
+    EXPECT_NEAR(a.history[a.best].values[0], 0.2, 0.02) << alg;
+    EXPECT_LE(a.history.size(), 45u) << alg;
+    EXPECT_EQ(TuneHistoryCsv(s, a), TuneHistoryCsv(s, b)) << alg;
+  }
+  // The two stages: 40% to the global one, its method named on each row of history.csv.
+  s.algorithm = "direct-l+bobyqa";
+  TaskPool pool(2);
+  const TuneResult r = RunTune(Circle(), s, pool);
+  ASSERT_EQ(r.plan.size(), 2u);
+  EXPECT_EQ(PlanText(r.plan), "direct-l 18 + bobyqa 27 evaluations");
+  for (const TuneEvaluation& e : r.history) EXPECT_EQ(e.stage, e.index <= 18 ? 0u : 1u);
+  EXPECT_NE(TuneHistoryCsv(s, r).find("\n19,bobyqa,"), std::string::npos);
+  // A random method's history follows its search seed.
+  s.algorithm = "crs2";
+  const std::string seed1 = TuneHistoryCsv(s, RunTune(Circle(), s, pool));
+  s.search_seed = 2;
+  EXPECT_NE(TuneHistoryCsv(s, RunTune(Circle(), s, pool)), seed1);
+}
+
+TEST(TunePlan, RefusesUnknownMethodsWrongOrderAndSmallBudgets) {
+  EXPECT_EQ(PlanText(PlanTune("bobyqa", 2, 60)), "bobyqa 60 evaluations");
+  EXPECT_EQ(PlanText(PlanTune("isres+cobyla", 1, 60)), "isres 41 + cobyla 19 evaluations")
+      << "the global stage gets what its first population needs when 40% is less";
+  EXPECT_NE(ErrorOf([] { PlanTune("newton", 1, 60); })
+                .find("--method 'newton': unknown method 'newton' (one of bobyqa, neldermead, "
+                      "cobyla, direct-l, crs2, mlsl, isres, or GLOBAL+LOCAL"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf([] { PlanTune("bobyqa+crs2", 1, 60); }).find("GLOBAL+LOCAL"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf([] { PlanTune("crs2", 2, 30); })
+                .find("--budget 30: too small for --method crs2 with 2 tunables (needs at least "
+                      "31: 31 for crs2)"),
+            std::string::npos);
+}
+
+TEST(Tune, ConstraintsParseAndKeepTheBestFeasiblePoint) {
+  const TuneConstraint c = ParseTuneConstraint(" a.b >= -0.5 ");
+  EXPECT_EQ(c.path, "a.b");
+  EXPECT_FALSE(c.at_most);
+  EXPECT_EQ(c.bound, -0.5);
+  EXPECT_EQ(c.Text(), "a.b>=-0.5");
+  EXPECT_EQ(c.Violation(-0.25), 0);
+  EXPECT_EQ(c.Violation(-1), 1) << "relative to the bound's size";
+  for (const char* bad : {"a.b", "a.b<=x", "<=1", "a b<=1", "a.b>=inf"})
+    EXPECT_NE(ErrorOf([&] { ParseTuneConstraint(bad); }).find("--constraint '"), std::string::npos)
+        << bad;
+
+  // Unconstrained, x is smallest at v = 0.2; x >= half of x at the start (v = 1.2) moves the
+  // best to the bound, with every method (COBYLA natively, the others inside AUGLAG).
+  TuneSettings s = CircleTune();
+  s.budget = 3;
+  TaskPool pool(2);
+  const double x_start = RunTune(Circle(), s, pool).history[0].objective;
+  s.constraints = {ParseTuneConstraint("x>=" + FormatDouble(x_start / 2))};
+  s.budget = 40;
+  for (const char* alg : {"cobyla", "bobyqa", "neldermead", "direct-l+cobyla"}) {
+    s.algorithm = alg;
+    const TuneResult r = RunTune(Circle(), s, pool);
+    ASSERT_TRUE(r.has_best()) << alg;
+    const TuneEvaluation& best = r.history[r.best];
+    EXPECT_GE(best.objective, x_start / 2) << alg;
+    EXPECT_LE(best.objective, x_start / 2 * 1.05) << alg << ": near the bound";
+    for (const TuneEvaluation& e : r.history) {
+      if (e.feasible()) {
+        EXPECT_GE(e.objective, best.objective) << alg;
+      }
+    }
+    EXPECT_NE(TuneHistoryCsv(s, r).find(",feasible,"), std::string::npos);
+  }
+  // A bound no point meets: no best, and the closest point is kept.
+  s.constraints = {ParseTuneConstraint("x<=-1")};
+  s.algorithm = "cobyla";
+  const TuneResult none = RunTune(Circle(), s, pool);
+  EXPECT_FALSE(none.has_best());
+  for (const TuneEvaluation& e : none.history)
+    EXPECT_GE(e.violation, none.history[none.best].violation);
+  // A constraint on a metric the runs do not have: refused at evaluation 1.
+  s.constraints = {ParseTuneConstraint("xx<=1")};
+  EXPECT_NE(ErrorOf([&] { RunTune(Circle(), s, pool); })
+                .find("--constraint: the runs have no metric 'xx' (similar: x)"),
+            std::string::npos);
+}
+
+TEST(TuneValidation, HeldOutSeedsComparePairedAndRefuseOverlap) {
+  EXPECT_NE(ErrorOf([] { CheckHoldout({4, 5, 6}, {1, 2, 3, 4}); })
+                .find("--holdout: seed 4 is also in --seeds"),
+            std::string::npos);
+  TuneSettings s = CircleTune();
+  TaskPool pool(2);
+  const auto v = ValidateTune(Circle(), s, {1.2}, {0.2}, {7, 8, 9}, pool);
+  ASSERT_TRUE(v.has_value());
+  EXPECT_EQ(v->compared, 3u);
+  EXPECT_EQ(v->best_better, 3u) << "x is smaller at the smaller speed on every seed";
+  EXPECT_LT(v->difference.ci95_hi, 0);
+  EXPECT_NEAR(v->best_stats.mean / v->start_stats.mean, 0.2 / 1.2, 0.05);
+  const std::string csv = TuneValidationCsv(*v);
+  EXPECT_EQ(csv.rfind("seed,objective_start,objective_best,difference,best_feasible\n7,", 0), 0u);
+  EXPECT_NE(TuneValidationText(*v).find("best is better on 3 of 3 seeds"), std::string::npos);
 }
 
 TEST(Tune, FailedEvaluationsAreRecordedNotFatal) {
