@@ -209,7 +209,16 @@ StudyCommands::StudyCommands(CLI::App& app) {
   collect_->add_flag("--quiet,-q", collect_quiet_, "Print nothing but errors");
 
   tune_ = app.add_subcommand("tune", "Optimise tunables for a metric averaged over seeds (NLopt)");
-  tune_->add_option("scenario", tune_scenario_, "Scenario name or YAML path")->required();
+  tune_->add_option("scenario", tune_scenario_, "Scenario name or YAML path");
+  tune_
+      ->add_option("--scenario", tune_scenarios_,
+                   "One more scenario, repeatable, or @FILE (one per line): the objective folds "
+                   "every scenario's runs; each must have every tuned key")
+      ->take_all();
+  tune_->add_option("--over", over_,
+                    "How the runs of an evaluation (every scenario x seed) fold into the "
+                    "objective and the constraints: mean (default), max (the worst case) or "
+                    "quantile:Q");
   tune_
       ->add_option("--param", params_,
                    "KEY or KEY:LO:HI (default bounds: the declared slider range)")
@@ -417,11 +426,51 @@ int StudyCommands::Collect() {
                            collect_quiet_);
 }
 
+namespace {
+
+// The positional scenario and every --scenario, with @FILE read as a list (one name or path per
+// line, # comments); a scenario named twice is refused.
+std::vector<sim::ScenarioSource> TuneSources(const std::string& positional,
+                                             const std::vector<std::string>& flags) {
+  std::vector<std::string> names;
+  if (!positional.empty()) names.push_back(positional);
+  for (const std::string& f : flags) {
+    if (f.empty() || f[0] != '@') {
+      names.push_back(f);
+      continue;
+    }
+    std::ifstream in(f.substr(1));
+    if (!in) throw std::runtime_error("--scenario " + f + ": cannot read the list file");
+    std::string line;
+    while (std::getline(in, line)) {
+      const std::size_t hash = line.find('#');
+      if (hash != std::string::npos) line.resize(hash);
+      const std::size_t a = line.find_first_not_of(" \t\r");
+      if (a == std::string::npos) continue;
+      names.push_back(line.substr(a, line.find_last_not_of(" \t\r") - a + 1));
+    }
+  }
+  if (names.empty()) throw std::runtime_error("formsim tune: give a scenario (or --scenario)");
+  std::vector<sim::ScenarioSource> out;
+  std::set<std::string> seen;
+  for (const std::string& n : names) {
+    const std::string file = sim::ResolveScenario(n);
+    if (!seen.insert(fs::absolute(file).lexically_normal().string()).second)
+      throw std::runtime_error("--scenario " + n + ": named twice");
+    out.push_back(sim::ScenarioSource::FromFile(file));
+  }
+  return out;
+}
+
+}  // namespace
+
 int StudyCommands::Tune() {
-  const std::string file = sim::ResolveScenario(tune_scenario_);
-  const sim::ScenarioSource source = sim::ScenarioSource::FromFile(file);
+  const std::vector<sim::ScenarioSource> sources = TuneSources(tune_scenario_, tune_scenarios_);
+  const sim::ScenarioSource& source = sources.front();
+  const std::string file = source.file();
   sim::TuneSettings s;
   s.sets = sim::CliOverrides(tune_sets_, -1);
+  s.over = sim::ParseTuneOver(over_);
   const sim::ParsedScenario base = sim::ParseScenario(source, s.sets);
   for (const std::string& p : params_) {
     s.params.push_back(sim::ParseTuneParam(p, base.params));
@@ -429,6 +478,7 @@ int StudyCommands::Tune() {
       if (s.params[i].key == s.params.back().key)
         throw std::runtime_error("--param " + p + ": tuned twice");
   }
+  sim::CheckTunedKeys(sources, s);
   s.objective = sim::ParseMetricExpr(tune_metric_);
   for (const std::string& c : constraints_) s.constraints.push_back(sim::ParseTuneConstraint(c));
   s.seeds = tune_->count("--seeds") == 0 ? std::vector<std::uint64_t>{base.setup.seed}
@@ -457,14 +507,21 @@ int StudyCommands::Tune() {
   const std::string seed_note =
       random ? ", search seed " + std::to_string(s.search_seed) : std::string();
   if (!tune_quiet_) {
-    std::printf("tune %s: %zu tunables, %zu constraint%s, %s%s, %zu seeds, %d jobs\n", file.c_str(),
-                s.params.size(), s.constraints.size(), s.constraints.size() == 1 ? "" : "s",
-                sim::PlanText(plan).c_str(), seed_note.c_str(), s.seeds.size(), jobs);
+    std::string what = file;
+    if (sources.size() > 1)
+      what = std::to_string(sources.size()) + " scenarios (" + file + ", ...), " + s.over.Text() +
+             " over them";
+    else if (s.over.kind != sim::TuneOver::Kind::kMean)
+      what += ", " + s.over.Text() + " over the seeds";
+    std::printf("tune %s: %zu tunables, %zu constraint%s, %s%s, %zu seeds, %d jobs\n",
+                what.c_str(), s.params.size(), s.constraints.size(),
+                s.constraints.size() == 1 ? "" : "s", sim::PlanText(plan).c_str(),
+                seed_note.c_str(), s.seeds.size(), jobs);
     std::fflush(stdout);
   }
   const double t0 = Now();
   const sim::TuneResult r = sim::RunTune(
-      source, s, pool,
+      sources, s, pool,
       [&](const sim::TuneEvaluation& e, const sim::TuneEvaluation& best) {
         if (tty)
           std::fprintf(stderr, "\revaluation %zu/%d  objective %-12.6g best %-12.6g", e.index,
@@ -480,20 +537,30 @@ int StudyCommands::Tune() {
   int rc = 0;
   if (r.has_best()) {
     const sim::TuneEvaluation& best = r.history[r.best];
-    const std::string path = (fs::path(out) / "best.yaml").string();
-    std::string note;
-    std::string text =
-        sim::TunedScenarioText(source, sim::TuneOverrides(s, best.values), path, &note);
     std::string subject;
     for (const sim::TuneConstraint& c : s.constraints)
       subject += (subject.empty() ? " subject to " : ", ") + c.Text();
-    text = "# formsim tune: " + tune_metric_ + " = " + sim::FormatDouble(best.objective) +
-           " (mean over seeds " + (tune_seeds_.empty() ? std::to_string(s.seeds[0]) : tune_seeds_) +
-           ")" + subject + ", evaluation " + std::to_string(best.index) + " of " +
-           std::to_string(r.history.size()) + ", " + s.algorithm + seed_note + "\n" + text;
-    sim::WriteFileAtomic(path, text);
-    wrote.push_back("best.yaml");
-    if (!note.empty() && !tune_quiet_) std::printf("note: %s\n", note.c_str());
+    const std::string over =
+        s.over.kind == sim::TuneOver::Kind::kMean ? "mean" : s.over.Text();
+    // best.yaml: the first scenario; best_<name>.yaml: each other one, with the same values.
+    for (std::size_t i = 0; i < sources.size(); ++i) {
+      const std::string name =
+          i == 0 ? "best.yaml"
+                 : "best_" + fs::path(sources[i].file()).stem().string() + ".yaml";
+      const std::string path = (fs::path(out) / name).string();
+      std::string note;
+      std::string text =
+          sim::TunedScenarioText(sources[i], sim::TuneOverrides(s, best.values), path, &note);
+      text = "# formsim tune: " + tune_metric_ + " = " + sim::FormatDouble(best.objective) + " (" +
+             over + " over seeds " +
+             (tune_seeds_.empty() ? std::to_string(s.seeds[0]) : tune_seeds_) +
+             (sources.size() > 1 ? " of " + std::to_string(sources.size()) + " scenarios" : "") +
+             ")" + subject + ", evaluation " + std::to_string(best.index) + " of " +
+             std::to_string(r.history.size()) + ", " + s.algorithm + seed_note + "\n" + text;
+      sim::WriteFileAtomic(path, text);
+      wrote.push_back(name);
+      if (!note.empty() && !tune_quiet_) std::printf("note: %s\n", note.c_str());
+    }
   } else if (!r.history.empty() && !r.history[r.best].failed()) {
     // Runs succeeded, but none met every constraint: say how close the closest came.
     const sim::TuneEvaluation& e = r.history[r.best];
@@ -537,7 +604,7 @@ int StudyCommands::Tune() {
   }
   // Held out: the start and the best point on seeds the search never ran.
   if (!holdout.empty() && r.has_best() && StopSignal() == 0) {
-    const auto v = sim::ValidateTune(source, s, r.history.front().values,
+    const auto v = sim::ValidateTune(sources, s, r.history.front().values,
                                      r.history[r.best].values, holdout, pool,
                                      [] { return StopSignal() != 0; });
     if (v) {

@@ -54,6 +54,8 @@ class StudyCommands {
   bool collect_quiet_ = false;
   // tune
   std::string tune_scenario_;
+  std::vector<std::string> tune_scenarios_;  ///< --scenario A --scenario B (@FILE: a list)
+  std::string over_ = "mean";
   std::vector<std::string> params_, tune_sets_;
   std::string tune_metric_, tune_seeds_, tune_out_, holdout_;
   std::vector<std::string> constraints_;

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "sim/core/number_format.hpp"
+#include "sim/study/metric_stats.hpp"
 #include "sim/study/sweep.hpp"
 #include "sim/study/sweep_tables.hpp"
 
@@ -78,7 +79,7 @@ std::string StopText(nlopt_result r) {
 }
 
 struct Context {
-  const ScenarioSource* source;
+  const std::vector<ScenarioSource>* sources;
   const TuneSettings* settings;
   TaskPool* pool;
   const std::function<void(const TuneEvaluation&, const TuneEvaluation&)>* progress;
@@ -108,54 +109,66 @@ double MetricIn(const SweepRecord& r, const std::string& path, const std::string
                            "' (similar: " + SimilarMetrics(names, path) + ")");
 }
 
-// Runs every seed at `values`; fills the evaluation. Returns false when stopped.
+// Runs every scenario on every seed at `values`; fills the evaluation. Returns false when
+// stopped.
 bool Evaluate(Context& c, TuneEvaluation& ev) {
   const TuneSettings& s = *c.settings;
+  const std::vector<ScenarioSource>& sources = *c.sources;
   std::vector<Override> base = TuneOverrides(s, ev.values);
-  std::vector<std::optional<SweepRecord>> recs(s.seeds.size());
-  bool abandoned = false;
+  const std::size_t runs = sources.size() * s.seeds.size();
+  std::vector<std::optional<SweepRecord>> recs(runs);
   c.pool->ForEach(
-      s.seeds.size(),
+      runs,
       [&](std::size_t i) {
         std::vector<Override> o = base;
-        o.push_back({"seed", std::to_string(s.seeds[i]), "--seeds", -1});
-        recs[i] = RunScenarioOnce(*c.source, o, *c.stop);
+        o.push_back({"seed", std::to_string(s.seeds[i % s.seeds.size()]), "--seeds", -1});
+        recs[i] = RunScenarioOnce(sources[i / s.seeds.size()], o, *c.stop);
       },
       *c.stop);
-  for (const auto& r : recs) abandoned = abandoned || !r;
-  if (abandoned) return false;
+  for (const auto& r : recs)
+    if (!r) return false;
+  // Per run: the weighted sum, and each constrained metric (mirrored for >=, so the fold's
+  // worst case is the largest value for every constraint).
+  std::vector<double> sums;
+  std::vector<std::vector<double>> constrained(s.constraints.size());
   ev.term_means.assign(s.objective.size(), 0.0);
-  ev.constraint_means.assign(s.constraints.size(), 0.0);
-  std::size_t counted = 0;
-  for (std::size_t i = 0; i < recs.size(); ++i) {
+  for (std::size_t i = 0; i < runs; ++i) {
     const SweepRecord& r = *recs[i];
     if (r.failed()) {
       ++ev.failed_runs;
       if (ev.message.empty())
-        ev.message = "seed " + std::to_string(s.seeds[i]) + ": " + r.status + ": " + r.message;
+        ev.message = (sources.size() > 1 ? sources[i / s.seeds.size()].file() + " " : "") +
+                     "seed " + std::to_string(s.seeds[i % s.seeds.size()]) + ": " + r.status +
+                     ": " + r.message;
       continue;
     }
-    for (std::size_t t = 0; t < s.objective.size(); ++t)
-      ev.term_means[t] += MetricIn(r, s.objective[t].path, "--metric");
-    for (std::size_t k = 0; k < s.constraints.size(); ++k)
-      ev.constraint_means[k] += MetricIn(r, s.constraints[k].path, "--constraint");
-    ++counted;
+    double sum = 0;
+    for (std::size_t t = 0; t < s.objective.size(); ++t) {
+      const double m = MetricIn(r, s.objective[t].path, "--metric");
+      ev.term_means[t] += m;
+      sum += s.objective[t].weight * m;
+    }
+    sums.push_back(sum);
+    for (std::size_t k = 0; k < s.constraints.size(); ++k) {
+      const double m = MetricIn(r, s.constraints[k].path, "--constraint");
+      constrained[k].push_back(s.constraints[k].at_most ? m : -m);
+    }
   }
   const double nan = std::nan("");
-  ev.objective = 0;
-  for (std::size_t t = 0; t < s.objective.size(); ++t) {
-    ev.term_means[t] = ev.failed() ? nan : ev.term_means[t] / static_cast<double>(counted);
-    ev.objective += s.objective[t].weight * ev.term_means[t];
-  }
+  for (double& m : ev.term_means) m = ev.failed() ? nan : m / static_cast<double>(sums.size());
+  ev.constraint_means.assign(s.constraints.size(), nan);
   ev.violation = 0;
-  for (std::size_t k = 0; k < s.constraints.size(); ++k) {
-    ev.constraint_means[k] =
-        ev.failed() ? nan : ev.constraint_means[k] / static_cast<double>(counted);
-    ev.violation = std::max(ev.violation, s.constraints[k].Violation(ev.constraint_means[k]));
-  }
   if (ev.failed()) {
     ev.objective = kInf;
-  } else if (!std::isfinite(ev.objective)) {
+    return true;
+  }
+  ev.objective = s.over.Of(sums);
+  for (std::size_t k = 0; k < s.constraints.size(); ++k) {
+    const double folded = s.over.Of(constrained[k]);
+    ev.constraint_means[k] = s.constraints[k].at_most ? folded : -folded;
+    ev.violation = std::max(ev.violation, s.constraints[k].Violation(ev.constraint_means[k]));
+  }
+  if (!std::isfinite(ev.objective)) {
     ev.message = "the objective is not finite";
     ev.objective = kInf;
   }
@@ -404,6 +417,59 @@ TuneParam ParseTuneParam(const std::string& arg, const ParamTable& params) {
   return p;
 }
 
+std::string TuneOver::Text() const {
+  switch (kind) {
+    case Kind::kMean:
+      return "mean";
+    case Kind::kMax:
+      return "max";
+    case Kind::kQuantile:
+      break;
+  }
+  return "quantile:" + FormatDouble(q);
+}
+
+double TuneOver::Of(std::vector<double> values) const {
+  if (kind == Kind::kMax) return *std::max_element(values.begin(), values.end());
+  if (kind == Kind::kQuantile) {
+    std::sort(values.begin(), values.end());
+    return Quantile(values, q);
+  }
+  double sum = 0;
+  for (double v : values) sum += v;
+  return sum / static_cast<double>(values.size());
+}
+
+TuneOver ParseTuneOver(const std::string& text) {
+  TuneOver o;
+  if (text == "mean") return o;
+  if (text == "max") {
+    o.kind = TuneOver::Kind::kMax;
+    return o;
+  }
+  if (text.rfind("quantile:", 0) == 0 && ParseFiniteDouble(text.substr(9), &o.q) && o.q > 0 &&
+      o.q < 1) {
+    o.kind = TuneOver::Kind::kQuantile;
+    return o;
+  }
+  throw std::runtime_error("--over '" + text +
+                           "': expected mean, max (the worst case) or quantile:Q with 0 < Q < 1");
+}
+
+void CheckTunedKeys(const std::vector<ScenarioSource>& sources, const TuneSettings& s) {
+  for (std::size_t i = 1; i < sources.size(); ++i) {
+    const ParsedScenario parsed = ParseScenario(sources[i], s.sets);
+    for (const TuneParam& p : s.params) {
+      const Param* q = parsed.params.Find(p.key);
+      if (q == nullptr || q->kind != Param::Kind::kDouble)
+        throw ScenarioError("--scenario " + sources[i].file(), p.key,
+                            q == nullptr ? "this scenario has no such tunable (every scenario "
+                                           "of a tune must have every tuned key)"
+                                         : "not a real-valued tunable in this scenario");
+    }
+  }
+}
+
 std::vector<Override> TuneOverrides(const TuneSettings& s, const std::vector<double>& values) {
   std::vector<Override> out;
   for (const Override& o : s.sets) {
@@ -420,6 +486,14 @@ TuneResult RunTune(
     const ScenarioSource& source, const TuneSettings& s, TaskPool& pool,
     const std::function<void(const TuneEvaluation&, const TuneEvaluation&)>& progress,
     const std::function<bool()>& stop) {
+  return RunTune(std::vector<ScenarioSource>{source}, s, pool, progress, stop);
+}
+
+TuneResult RunTune(
+    const std::vector<ScenarioSource>& sources, const TuneSettings& s, TaskPool& pool,
+    const std::function<void(const TuneEvaluation&, const TuneEvaluation&)>& progress,
+    const std::function<bool()>& stop) {
+  if (sources.empty()) throw std::runtime_error("formsim tune: give a scenario");
   if (s.params.empty()) throw std::runtime_error("formsim tune: give at least one --param");
   if (s.objective.empty()) throw std::runtime_error("formsim tune: give --metric");
   if (s.seeds.empty()) throw std::runtime_error("formsim tune: give --seeds");
@@ -427,7 +501,7 @@ TuneResult RunTune(
   const unsigned n = static_cast<unsigned>(s.params.size());
   TuneResult result;
   result.plan = PlanTune(s.algorithm, static_cast<int>(n), s.budget);
-  Context c{&source, &s, &pool, &progress, &stop, &result, {}, nullptr};
+  Context c{&sources, &s, &pool, &progress, &stop, &result, {}, nullptr};
   std::vector<double> u(n), start;
   for (unsigned i = 0; i < n; ++i) {
     u[i] = std::clamp(ToUnit(s.params[i], s.params[i].start), 0.0, 1.0);
@@ -468,11 +542,12 @@ TuneResult RunTune(
 }
 
 std::string TuneHistoryCsv(const TuneSettings& s, const TuneResult& r) {
-  // Each constrained metric once: a term's column already holds it.
+  // Each constrained metric once: a term's column already holds it when the fold is the mean.
+  const bool mean = s.over.kind == TuneOver::Kind::kMean;
   std::vector<std::size_t> shown;
   for (std::size_t k = 0; k < s.constraints.size(); ++k) {
     bool dup = false;
-    for (const MetricTerm& t : s.objective) dup = dup || t.path == s.constraints[k].path;
+    for (const MetricTerm& t : s.objective) dup = dup || (mean && t.path == s.constraints[k].path);
     for (std::size_t j : shown) dup = dup || s.constraints[j].path == s.constraints[k].path;
     if (!dup) shown.push_back(k);
   }
@@ -480,7 +555,8 @@ std::string TuneHistoryCsv(const TuneSettings& s, const TuneResult& r) {
   for (const TuneParam& p : s.params) csv += "," + p.key;
   csv += ",objective";
   for (const MetricTerm& t : s.objective) csv += ",mean." + t.path;
-  for (std::size_t k : shown) csv += ",mean." + s.constraints[k].path;
+  for (std::size_t k : shown)
+    csv += "," + (mean ? std::string("mean") : s.over.Text()) + "." + s.constraints[k].path;
   csv += ",feasible,failed_runs,best_so_far,message\n";
   double best = kInf;
   for (const TuneEvaluation& e : r.history) {

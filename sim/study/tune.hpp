@@ -58,6 +58,21 @@ struct TuneConstraint {
 /// --constraint.
 TuneConstraint ParseTuneConstraint(const std::string& arg);
 
+/// `--over`: how the objective and the constraints fold the runs of an evaluation (every
+/// scenario times every seed) into one number. mean (default), max (the worst case), or
+/// quantile:Q (0 < Q < 1, type 7). For a `>=` constraint the fold is mirrored (max: the smallest
+/// value), so max is the worst case for every constraint.
+struct TuneOver {
+  enum class Kind { kMean, kMax, kQuantile } kind = Kind::kMean;
+  double q = 0.5;
+  std::string Text() const;
+  /// The fold of `values` (not empty; finite).
+  double Of(std::vector<double> values) const;
+};
+
+/// Parses `mean`, `max` or `quantile:Q`. Throws std::runtime_error naming --over.
+TuneOver ParseTuneOver(const std::string& text);
+
 struct TuneSettings {
   std::vector<TuneParam> params;
   std::vector<MetricTerm> objective;
@@ -68,15 +83,22 @@ struct TuneSettings {
   /// `--method`: one method or GLOBAL+LOCAL (sim/study/tune_plan.hpp).
   std::string algorithm = "bobyqa";
   std::uint64_t search_seed = 1;  ///< NLopt's random stream (crs2, mlsl, isres)
+  TuneOver over;                  ///< the fold of the runs of an evaluation
 };
 
-/// One evaluation: a point, the mean of each term's metric over the seeds and the objective.
+/// Checks that every scenario after the first has each tuned key as a real-valued tunable
+/// (the bounds are the first scenario's). Throws ScenarioError naming --scenario and the key.
+void CheckTunedKeys(const std::vector<ScenarioSource>& sources, const TuneSettings& s);
+
+/// One evaluation: a point, the mean of each term's metric over the runs (every scenario times
+/// every seed), the objective (the `--over` fold of each run's weighted sum) and each
+/// constraint's fold.
 struct TuneEvaluation {
   std::size_t index = 0;                 ///< 1-based, in the order NLopt asked
   std::size_t stage = 0;                 ///< 0-based stage of the plan that asked for it
   std::vector<double> values;            ///< per tunable
   std::vector<double> term_means;        ///< per term (NaN when a run failed)
-  std::vector<double> constraint_means;  ///< per constraint (NaN when a run failed)
+  std::vector<double> constraint_means;  ///< per constraint, its `--over` fold (NaN: a run failed)
   double objective = 0;                  ///< +inf when a run failed (message says which)
   double violation = 0;  ///< the largest constraint violation, relative to its bound; 0: feasible
   std::size_t failed_runs = 0;
@@ -105,6 +127,11 @@ std::vector<Override> TuneOverrides(const TuneSettings& s, const std::vector<dou
 /// when --method or --budget is refused (PlanTune), and at evaluation 1 (the scenario's own
 /// values, before the optimiser starts) when a term or a constraint names a metric the runs do
 /// not have (with the names that exist) or a setting rather than a result.
+TuneResult RunTune(
+    const std::vector<ScenarioSource>& sources, const TuneSettings& settings, TaskPool& pool,
+    const std::function<void(const TuneEvaluation&, const TuneEvaluation&)>& progress = {},
+    const std::function<bool()>& stop = {});
+/// One scenario.
 TuneResult RunTune(
     const ScenarioSource& source, const TuneSettings& settings, TaskPool& pool,
     const std::function<void(const TuneEvaluation&, const TuneEvaluation&)>& progress = {},

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
 
 #include "sim/core/number_format.hpp"
@@ -58,26 +59,29 @@ void CheckHoldout(const std::vector<std::uint64_t>& holdout,
                              " also in --seeds; held-out seeds must be ones the search never ran");
 }
 
-std::optional<TuneValidation> ValidateTune(const ScenarioSource& source, const TuneSettings& s,
+std::optional<TuneValidation> ValidateTune(const std::vector<ScenarioSource>& sources,
+                                           const TuneSettings& s,
                                            const std::vector<double>& start_values,
                                            const std::vector<double>& best_values,
                                            const std::vector<std::uint64_t>& holdout,
                                            TaskPool& pool, const std::function<bool()>& stop) {
-  const std::size_t n = holdout.size();
-  // Runs 0 .. n-1: the start point; n .. 2n-1: the best point.
+  const std::size_t seeds = holdout.size(), n = sources.size() * seeds;
+  // Runs 0 .. n-1: the start point; n .. 2n-1: the best point; scenario-major within each.
   std::vector<std::optional<SweepRecord>> recs(2 * n);
   pool.ForEach(
       2 * n,
       [&](std::size_t i) {
         std::vector<Override> o = TuneOverrides(s, i < n ? start_values : best_values);
-        o.push_back({"seed", std::to_string(holdout[i % n]), "--holdout", -1});
-        recs[i] = RunScenarioOnce(source, o, stop);
+        o.push_back({"seed", std::to_string(holdout[i % seeds]), "--holdout", -1});
+        recs[i] = RunScenarioOnce(sources[(i % n) / seeds], o, stop);
       },
       stop);
   for (const auto& r : recs)
     if (!r) return std::nullopt;
   TuneValidation v;
   v.seeds = holdout;
+  for (const ScenarioSource& src : sources)
+    v.scenarios.push_back(std::filesystem::path(src.file()).stem().string());
   std::vector<double> a, b, d;
   for (std::size_t i = 0; i < n; ++i) {
     bool start_ok = false, best_ok = false;
@@ -99,12 +103,13 @@ std::optional<TuneValidation> ValidateTune(const ScenarioSource& source, const T
 }
 
 std::string TuneValidationCsv(const TuneValidation& v) {
-  std::string csv = "seed,objective_start,objective_best,difference,best_feasible\n";
+  std::string csv = "scenario,seed,objective_start,objective_best,difference,best_feasible\n";
   auto num = [&](double x) {
     if (!std::isnan(x)) AppendDouble(csv, x);
   };
-  for (std::size_t i = 0; i < v.seeds.size(); ++i) {
-    csv += std::to_string(v.seeds[i]) + ",";
+  for (std::size_t i = 0; i < v.start.size(); ++i) {
+    csv += CsvField(v.scenarios[i / v.seeds.size()]) + "," +
+           std::to_string(v.seeds[i % v.seeds.size()]) + ",";
     num(v.start[i]);
     csv += ",";
     num(v.best[i]);
@@ -114,7 +119,7 @@ std::string TuneValidationCsv(const TuneValidation& v) {
   }
   const MetricStats* cols[] = {&v.start_stats, &v.best_stats, &v.difference};
   for (const char* row : {"mean", "ci95_lo", "ci95_hi"}) {
-    csv += row;
+    csv += std::string(",") + row;
     for (const MetricStats* m : cols) {
       csv += ",";
       num(row[0] == 'm' ? m->mean : row[5] == 'l' ? m->ci95_lo : m->ci95_hi);
@@ -125,17 +130,20 @@ std::string TuneValidationCsv(const TuneValidation& v) {
 }
 
 std::string TuneValidationText(const TuneValidation& v) {
-  std::string out = "held-out seeds " + Seeds(v.seeds) + " (" + std::to_string(v.compared) +
-                    " compared), objective mean ± 95% CI:\n";
+  std::string out = "held-out seeds " + Seeds(v.seeds) +
+                    (v.scenarios.size() > 1
+                         ? " of " + std::to_string(v.scenarios.size()) + " scenarios"
+                         : std::string()) +
+                    " (" + std::to_string(v.compared) + " runs compared), objective mean ± 95% CI:\n";
   out += "  start " + MeanCi(v.start_stats) + "\n";
   out += "  best  " + MeanCi(v.best_stats) + "\n";
   out += "  best - start (paired) " + MeanCi(v.difference) + "; best is better on " +
-         std::to_string(v.best_better) + " of " + std::to_string(v.compared) + " seeds\n";
+         std::to_string(v.best_better) + " of " + std::to_string(v.compared) + " runs\n";
   std::size_t infeasible = 0;
   for (bool f : v.best_feasible) infeasible += f ? 0 : 1;
   if (infeasible > 0)
     out += "  the best point breaks a constraint on " + std::to_string(infeasible) + " of " +
-           std::to_string(v.seeds.size()) + " held-out seeds\n";
+           std::to_string(v.best_feasible.size()) + " held-out runs\n";
   return out;
 }
 

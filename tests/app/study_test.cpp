@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 
 #include "app/gui/offscreen_renderer.hpp"
@@ -459,7 +460,9 @@ TEST(TuneCli, ConstraintsHoldoutAndNoFeasiblePoint) {
                                             "phi<=0.05"),
             std::string::npos);
   const std::string validation = ReadText(a + "/validation.csv");
-  EXPECT_EQ(validation.rfind("seed,objective_start,objective_best,difference,best_feasible\n3,", 0),
+  EXPECT_EQ(validation.rfind("scenario,seed,objective_start,objective_best,difference,best_feasible"
+                             "\nformation_traj2_ukf,3,",
+                             0),
             0u)
       << validation;
   EXPECT_EQ(Lines(validation), 7u) << "header, three seeds, mean and the interval";
@@ -473,6 +476,35 @@ TEST(TuneCli, ConstraintsHoldoutAndNoFeasiblePoint) {
       << ReadText(b + ".log");
   EXPECT_NE(ReadText(b + "/history.csv").find(",0,0,inf,"), std::string::npos)
       << "infeasible rows, no best so far";
+}
+
+TEST(TuneCli, SeveralScenariosFoldIntoOneObjectiveAndEachGetsItsBestYaml) {
+  const std::string list = TempDir("tune_list") + ".txt";
+  {
+    std::ofstream f(list);
+    f << "# the paper's trajectories\nformation_traj2\n  formation_traj3  # the third\n";
+  }
+  const std::string a = TempDir("tune_multi");
+  ASSERT_EQ(Formsim("tune formation_traj1 --scenario @" + list +
+                        " --set duration=2 --param robots.R2.follow.k_l "
+                        "--metric links.R1-R2.max_abs_error.l --over max --seeds 1..2 "
+                        "--method bobyqa --budget 4 -q --out " + a,
+                    a + ".log"),
+            0)
+      << ReadText(a + ".log");
+  for (const char* f : {"best.yaml", "best_formation_traj2.yaml", "best_formation_traj3.yaml"})
+    EXPECT_NE(ReadText(a + "/" + f).find("(max over seeds 1..2 of 3 scenarios)"),
+              std::string::npos)
+        << f;
+  // A scenario without a tuned key is refused before anything runs, naming it and the key.
+  const std::string b = TempDir("tune_multi_bad");
+  EXPECT_EQ(Formsim("tune formation_traj1 --scenario agv_fused --param robots.R2.follow.k_l "
+                    "--metric x --out " + b,
+                    b + ".log"),
+            2);
+  EXPECT_NE(ReadText(b + ".log").find("agv_fused.yaml"), std::string::npos) << ReadText(b + ".log");
+  EXPECT_NE(ReadText(b + ".log").find("robots.R2.follow.k_l"), std::string::npos);
+  EXPECT_FALSE(fs::exists(b + "/history.csv"));
 }
 
 // --- figures, on pixels -------------------------------------------------------------------

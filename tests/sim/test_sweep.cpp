@@ -466,15 +466,43 @@ TEST(TuneValidation, HeldOutSeedsComparePairedAndRefuseOverlap) {
             std::string::npos);
   TuneSettings s = CircleTune();
   TaskPool pool(2);
-  const auto v = ValidateTune(Circle(), s, {1.2}, {0.2}, {7, 8, 9}, pool);
+  const auto v = ValidateTune({Circle()}, s, {1.2}, {0.2}, {7, 8, 9}, pool);
   ASSERT_TRUE(v.has_value());
   EXPECT_EQ(v->compared, 3u);
   EXPECT_EQ(v->best_better, 3u) << "x is smaller at the smaller speed on every seed";
   EXPECT_LT(v->difference.ci95_hi, 0);
   EXPECT_NEAR(v->best_stats.mean / v->start_stats.mean, 0.2 / 1.2, 0.05);
   const std::string csv = TuneValidationCsv(*v);
-  EXPECT_EQ(csv.rfind("seed,objective_start,objective_best,difference,best_feasible\n7,", 0), 0u);
-  EXPECT_NE(TuneValidationText(*v).find("best is better on 3 of 3 seeds"), std::string::npos);
+  EXPECT_EQ(csv.rfind("scenario,seed,objective_start,objective_best,difference,best_feasible\n"
+                      "circle,7,",
+                      0),
+            0u);
+  EXPECT_NE(TuneValidationText(*v).find("best is better on 3 of 3 runs"), std::string::npos);
+}
+
+TEST(Tune, OverFoldsEveryScenarioAndSeedIntoTheObjective) {
+  EXPECT_EQ(ParseTuneOver("quantile:0.9").Text(), "quantile:0.9");
+  EXPECT_EQ(ParseTuneOver("max").Of({1, 5, 2}), 5);
+  EXPECT_EQ(ParseTuneOver("mean").Of({1, 5, 3}), 3);
+  EXPECT_EQ(ParseTuneOver("quantile:0.5").Of({4, 1, 2}), 2);
+  for (const char* bad : {"", "min", "quantile:1", "quantile:0", "quantile:x"})
+    EXPECT_NE(ErrorOf([&] { ParseTuneOver(bad); }).find("--over '"), std::string::npos) << bad;
+  // Two scenarios (the circle at two turn rates): the objective is the fold of all four runs,
+  // and max is never below mean.
+  TuneSettings s = CircleTune();
+  s.budget = 3;
+  const ScenarioSource fast = ScenarioSource::FromText(
+      std::string(testkind::kScenario), "circle_fast.yaml", "");
+  TaskPool pool(2);
+  const TuneResult one = RunTune(Circle(), s, pool);
+  const TuneResult two = RunTune({Circle(), fast}, s, pool);
+  EXPECT_EQ(two.history[0].objective, one.history[0].objective)
+      << "the same scenario twice folds to the same mean";
+  s.over = ParseTuneOver("max");
+  const TuneResult worst = RunTune({Circle(), fast}, s, pool);
+  EXPECT_GE(worst.history[0].objective, two.history[0].objective);
+  // Scenarios of one kind have every key (a scenario without one: tests/app/study_test.cpp).
+  EXPECT_EQ(ErrorOf([&] { CheckTunedKeys({Circle(), fast}, s); }), "");
 }
 
 TEST(Tune, FailedEvaluationsAreRecordedNotFatal) {
