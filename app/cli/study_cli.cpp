@@ -2,11 +2,14 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -21,6 +24,7 @@
 #include "sim/study/sweep.hpp"
 #include "sim/study/sweep_tables.hpp"
 #include "sim/study/tune.hpp"
+#include "sim/study/tune_history.hpp"
 #include "sim/study/tune_validation.hpp"
 
 namespace fs = std::filesystem;
@@ -243,6 +247,9 @@ StudyCommands::StudyCommands(CLI::App& app) {
   tune_->add_option("--holdout", holdout_,
                     "Seeds never searched (6..25): the start and the best point run on them; "
                     "writes validation.csv");
+  tune_->add_flag("--resume", tune_resume_,
+                  "Continue the tune in --out: its recorded evaluations are replayed into the "
+                  "optimiser, which then goes on as if it had never stopped");
   tune_->add_option("--search-seed", search_seed_,
                     "Seed of the random methods (crs2, mlsl, isres; default 1)");
   tune_->add_option("--set", tune_sets_, "Fixed override for every run: path.to.key=value")
@@ -462,6 +469,88 @@ std::vector<sim::ScenarioSource> TuneSources(const std::string& positional,
   return out;
 }
 
+// The evaluations recorded in `out` for --resume (none for a new tune). A folder holding a tune
+// is refused without --resume, and with it when its manifest is another tune's.
+std::vector<sim::TuneEvaluation> TuneRecorded(const std::string& out,
+                                              const std::vector<sim::ScenarioSource>& sources,
+                                              const sim::TuneSettings& s, bool resume) {
+  const fs::path manifest = fs::path(out) / "tune.manifest";
+  std::error_code ec;
+  if (!fs::exists(manifest, ec)) return {};
+  std::ifstream in(manifest);
+  std::stringstream text;
+  text << in.rdbuf();
+  const fs::path history = fs::path(out) / "history.csv";
+  std::ifstream h(history);
+  std::stringstream rows;
+  rows << h.rdbuf();
+  if (!resume)
+    throw std::runtime_error("'" + out + "' holds a tune already; add --resume to continue it, "
+                             "or choose another --out");
+  const std::string want = sim::TuneManifest(sources, s);
+  if (text.str() != want) {
+    // Name the first line that differs.
+    std::stringstream a(text.str()), b(want);
+    std::string la, lb;
+    while (std::getline(a, la) && std::getline(b, lb) && la == lb) {
+    }
+    throw std::runtime_error("--resume: '" + out + "' holds another tune (it has '" + la +
+                             "', this one '" + lb + "')");
+  }
+  return sim::ReadTuneHistory(rows.str(), s);
+}
+
+// history.csv as the tune goes: the recorded rows rewritten whole (a torn last line dropped),
+// then one row appended and flushed per new evaluation, so a kill keeps every finished one.
+class TuneHistoryFile {
+ public:
+  TuneHistoryFile(std::string path, const sim::TuneSettings& s,
+                  const std::vector<sim::TuneStage>& plan,
+                  const std::vector<sim::TuneEvaluation>& recorded)
+      : path_(std::move(path)), s_(s), plan_(plan), replayed_(recorded.size()) {
+    std::string text = sim::TuneHistoryHeader(s);
+    for (const sim::TuneEvaluation& e : recorded) text += Row(e);
+    sim::WriteFileAtomic(path_, text);
+    best_ = std::numeric_limits<double>::infinity();  // counted again as the replay comes
+    file_ = std::fopen(path_.c_str(), "ab");
+    if (file_ == nullptr)
+      throw std::runtime_error("cannot append to '" + path_ + "': " + std::strerror(errno));
+  }
+  ~TuneHistoryFile() { Close(); }
+  TuneHistoryFile(const TuneHistoryFile&) = delete;
+  TuneHistoryFile& operator=(const TuneHistoryFile&) = delete;
+
+  void Add(const sim::TuneEvaluation& e) {
+    const std::string row = Row(e);
+    if (e.index <= replayed_ || file_ == nullptr) return;  // on disk already
+    ++added_;
+    if (std::fputs(row.c_str(), file_) < 0 || std::fflush(file_) != 0) {
+      std::fprintf(stderr, "formsim: error: appending to %s: %s (the whole file is written again "
+                   "at the end)\n", path_.c_str(), std::strerror(errno));
+      std::fclose(file_);
+      file_ = nullptr;
+    }
+  }
+  void Close() {
+    if (file_ != nullptr) std::fclose(file_);
+    file_ = nullptr;
+  }
+  /// New rows appended so far.
+  std::size_t added() const { return added_; }
+
+ private:
+  std::string Row(const sim::TuneEvaluation& e) {
+    if (e.feasible()) best_ = std::min(best_, e.objective);
+    return sim::TuneHistoryRow(s_, plan_, e, best_);
+  }
+  std::string path_;
+  const sim::TuneSettings& s_;
+  const std::vector<sim::TuneStage>& plan_;
+  std::size_t replayed_, added_ = 0;
+  double best_ = std::numeric_limits<double>::infinity();
+  std::FILE* file_ = nullptr;
+};
+
 }  // namespace
 
 int StudyCommands::Tune() {
@@ -498,7 +587,13 @@ int StudyCommands::Tune() {
   const int jobs = CheckJobs(tune_jobs_, "--jobs");
   const std::string out =
       tune_out_.empty() ? "out/tune_" + fs::path(file).stem().string() : tune_out_;
+  const std::vector<sim::TuneEvaluation> recorded = TuneRecorded(out, sources, s, tune_resume_);
   sim::PrepareOutputDir(out);
+  sim::WriteFileAtomic((fs::path(out) / "tune.manifest").string(), sim::TuneManifest(sources, s));
+  TuneHistoryFile history((fs::path(out) / "history.csv").string(), s, plan, recorded);
+  if (!tune_quiet_ && !recorded.empty())
+    std::printf("resuming: %zu evaluations recorded in %s are replayed\n", recorded.size(),
+                out.c_str());
   InstallStopSignals();
   sim::TaskPool pool(jobs);
   const bool tty = !tune_quiet_ && isatty(STDERR_FILENO);
@@ -520,18 +615,33 @@ int StudyCommands::Tune() {
     std::fflush(stdout);
   }
   const double t0 = Now();
-  const sim::TuneResult r = sim::RunTune(
-      sources, s, pool,
-      [&](const sim::TuneEvaluation& e, const sim::TuneEvaluation& best) {
-        if (tty)
-          std::fprintf(stderr, "\revaluation %zu/%d  objective %-12.6g best %-12.6g", e.index,
-                       s.budget, e.objective, best.objective);
-      },
-      [] { return StopSignal() != 0; });
+  sim::TuneResult r;
+  try {
+    r = sim::RunTune(
+        sources, s, pool,
+        [&](const sim::TuneEvaluation& e, const sim::TuneEvaluation& best) {
+          history.Add(e);
+          if (tty)
+            std::fprintf(stderr, "\revaluation %zu/%d  objective %-12.6g best %-12.6g", e.index,
+                         s.budget, e.objective, best.objective);
+        },
+        [] { return StopSignal() != 0; }, recorded);
+  } catch (...) {
+    // Refused at evaluation 1 (a metric the runs do not have): no tune to resume is left.
+    history.Close();
+    if (recorded.empty() && history.added() == 0) {
+      std::error_code ec;
+      fs::remove(fs::path(out) / "tune.manifest", ec);
+      fs::remove(fs::path(out) / "history.csv", ec);
+    }
+    throw;
+  }
   if (tty) std::fprintf(stderr, "\r%78s\r", "");
   const double wall = Now() - t0;
 
-  // history.csv first: whatever happens next, every evaluation is on disk.
+  // history.csv first, whole and synced (the rows were appended as they came): whatever happens
+  // next, every evaluation is on disk.
+  history.Close();
   sim::WriteFileAtomic((fs::path(out) / "history.csv").string(), sim::TuneHistoryCsv(s, r));
   std::vector<std::string> wrote = {"history.csv"};
   int rc = 0;

@@ -64,6 +64,7 @@ class StudyCommands {
   int budget_ = 60;
   int tune_jobs_ = 0;
   bool tune_quiet_ = false;
+  bool tune_resume_ = false;
 };
 
 }  // namespace formsim::app

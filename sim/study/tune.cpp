@@ -92,6 +92,7 @@ struct Context {
   bool out_of_budget = false;
   std::size_t stage = 0;
   int limit = 0;  // evaluations recorded at most by the end of this stage
+  const std::vector<TuneEvaluation>* recorded = nullptr;  // --resume: replayed, not run
 };
 
 // The value of metric `path` in a completed run, for `flag` (--metric or --constraint). A
@@ -211,14 +212,29 @@ const TuneEvaluation* Point(Context& c, const std::vector<double>& values) {
   ev.index = res.history.size() + 1;
   ev.stage = c.stage;
   ev.values = values;
-  try {
-    if (!Evaluate(c, ev)) {
-      c.stopped = true;
+  if (res.history.size() < c.recorded->size()) {
+    // --resume: the optimiser asks again for what it asked before; history.csv has the answer.
+    const TuneEvaluation& rec = (*c.recorded)[res.history.size()];
+    if (rec.values != values) {
+      c.error = std::make_exception_ptr(std::runtime_error(
+          "--resume: evaluation " + std::to_string(ev.index) +
+          " asks for other values than history.csv holds; this tune cannot be resumed exactly "
+          "(run it again without --resume)"));
       return nullptr;
     }
-  } catch (...) {
-    c.error = std::current_exception();
-    return nullptr;
+    ev = rec;
+    ev.index = res.history.size() + 1;
+    ev.stage = c.stage;
+  } else {
+    try {
+      if (!Evaluate(c, ev)) {
+        c.stopped = true;
+        return nullptr;
+      }
+    } catch (...) {
+      c.error = std::current_exception();
+      return nullptr;
+    }
   }
   res.history.push_back(ev);
   if (res.history.size() == 1 || IsBetter(ev, res.history[res.best]))
@@ -492,7 +508,7 @@ TuneResult RunTune(
 TuneResult RunTune(
     const std::vector<ScenarioSource>& sources, const TuneSettings& s, TaskPool& pool,
     const std::function<void(const TuneEvaluation&, const TuneEvaluation&)>& progress,
-    const std::function<bool()>& stop) {
+    const std::function<bool()>& stop, const std::vector<TuneEvaluation>& recorded) {
   if (sources.empty()) throw std::runtime_error("formsim tune: give a scenario");
   if (s.params.empty()) throw std::runtime_error("formsim tune: give at least one --param");
   if (s.objective.empty()) throw std::runtime_error("formsim tune: give --metric");
@@ -502,6 +518,7 @@ TuneResult RunTune(
   TuneResult result;
   result.plan = PlanTune(s.algorithm, static_cast<int>(n), s.budget);
   Context c{&sources, &s, &pool, &progress, &stop, &result, {}, nullptr};
+  c.recorded = &recorded;
   std::vector<double> u(n), start;
   for (unsigned i = 0; i < n; ++i) {
     u[i] = std::clamp(ToUnit(s.params[i], s.params[i].start), 0.0, 1.0);
@@ -535,54 +552,14 @@ TuneResult RunTune(
     }
   }
   if (c.error) std::rethrow_exception(c.error);
+  if (result.history.size() < recorded.size())
+    throw std::runtime_error("--resume: history.csv holds " + std::to_string(recorded.size()) +
+                             " evaluations, more than this tune makes (" +
+                             std::to_string(result.history.size()) + ")");
   result.stop_reason = c.stopped                                   ? "interrupted"
                        : c.out_of_budget || r == NLOPT_FORCED_STOP ? "budget used"
                                                                    : StopText(r);
   return result;
-}
-
-std::string TuneHistoryCsv(const TuneSettings& s, const TuneResult& r) {
-  // Each constrained metric once: a term's column already holds it when the fold is the mean.
-  const bool mean = s.over.kind == TuneOver::Kind::kMean;
-  std::vector<std::size_t> shown;
-  for (std::size_t k = 0; k < s.constraints.size(); ++k) {
-    bool dup = false;
-    for (const MetricTerm& t : s.objective) dup = dup || (mean && t.path == s.constraints[k].path);
-    for (std::size_t j : shown) dup = dup || s.constraints[j].path == s.constraints[k].path;
-    if (!dup) shown.push_back(k);
-  }
-  std::string csv = "eval,stage";
-  for (const TuneParam& p : s.params) csv += "," + p.key;
-  csv += ",objective";
-  for (const MetricTerm& t : s.objective) csv += ",mean." + t.path;
-  for (std::size_t k : shown)
-    csv += "," + (mean ? std::string("mean") : s.over.Text()) + "." + s.constraints[k].path;
-  csv += ",feasible,failed_runs,best_so_far,message\n";
-  double best = kInf;
-  for (const TuneEvaluation& e : r.history) {
-    csv += std::to_string(e.index) + ",";
-    csv += e.stage < r.plan.size() ? r.plan[e.stage].method : s.algorithm;
-    for (double v : e.values) {
-      csv += ',';
-      AppendDouble(csv, v);
-    }
-    csv += ',';
-    AppendDouble(csv, e.objective);
-    for (double m : e.term_means) {
-      csv += ',';
-      if (!std::isnan(m)) AppendDouble(csv, m);
-    }
-    for (std::size_t k : shown) {
-      csv += ',';
-      if (k < e.constraint_means.size() && !std::isnan(e.constraint_means[k]))
-        AppendDouble(csv, e.constraint_means[k]);
-    }
-    if (e.feasible()) best = std::min(best, e.objective);
-    csv += std::string(",") + (e.feasible() ? "1" : "0") + "," + std::to_string(e.failed_runs) + ",";
-    AppendDouble(csv, best);
-    csv += "," + CsvField(e.message) + "\n";
-  }
-  return csv;
 }
 
 }  // namespace formsim::sim

@@ -127,20 +127,19 @@ std::vector<Override> TuneOverrides(const TuneSettings& s, const std::vector<dou
 /// when --method or --budget is refused (PlanTune), and at evaluation 1 (the scenario's own
 /// values, before the optimiser starts) when a term or a constraint names a metric the runs do
 /// not have (with the names that exist) or a setting rather than a result.
+/// `recorded`: evaluations of an earlier run of the same tune (--resume), replayed in order
+/// instead of run (progress is called for them too); a point that differs from the record
+/// throws.
 TuneResult RunTune(
     const std::vector<ScenarioSource>& sources, const TuneSettings& settings, TaskPool& pool,
     const std::function<void(const TuneEvaluation&, const TuneEvaluation&)>& progress = {},
-    const std::function<bool()>& stop = {});
+    const std::function<bool()>& stop = {}, const std::vector<TuneEvaluation>& recorded = {});
 /// One scenario.
 TuneResult RunTune(
     const ScenarioSource& source, const TuneSettings& settings, TaskPool& pool,
     const std::function<void(const TuneEvaluation&, const TuneEvaluation&)>& progress = {},
     const std::function<bool()>& stop = {});
 
-/// history.csv: eval, stage (its method), the tuned keys, objective, each term's mean, each
-/// constrained metric's mean (when not a term already), feasible (1/0), failed_runs,
-/// best_so_far (the best feasible objective so far), message; numbers as shortest round-trip
-/// text.
-std::string TuneHistoryCsv(const TuneSettings& s, const TuneResult& r);
+/// history.csv and --resume: sim/study/tune_history.hpp.
 
 }  // namespace formsim::sim

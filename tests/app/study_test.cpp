@@ -478,6 +478,37 @@ TEST(TuneCli, ConstraintsHoldoutAndNoFeasiblePoint) {
       << "infeasible rows, no best so far";
 }
 
+TEST(TuneCli, KilledMidwayResumesToTheSameHistoryAndBestPoint) {
+  const std::string tune =
+      " tune formation_traj2_ukf --set duration=8 --param robots.R2.follow.k_l --param "
+      "robots.R2.follow.k_phi --metric links.R1-R2.max_abs_error_after_settle.l --seeds 1..2 "
+      "--method crs2+bobyqa --budget 40 -q -j1 --out ";
+  const std::string a = TempDir("tune_whole"), b = TempDir("tune_killed");
+  ASSERT_EQ(Formsim(tune + a, a + ".log"), 0) << ReadText(a + ".log");
+  // kill -9 once history.csv holds 10 evaluations (header + 10 lines).
+  const std::string h = b + "/history.csv";
+  RunShell("(" + Binary() + tune + b + " & pid=$!; for i in $(seq 1 2400); do [ -f " + h +
+               " ] && [ $(wc -l < " + h + ") -ge 11 ] && break; sleep 0.05; done; kill -KILL $pid; "
+               "wait $pid)",
+           b + ".log");
+  const std::size_t kept = Lines(ReadText(h));
+  ASSERT_GE(kept, 11u) << ReadText(b + ".log");
+  ASSERT_LT(kept, 41u) << "killed midway";
+  EXPECT_FALSE(fs::exists(b + "/best.yaml"));
+  // Without --resume the folder is refused; with it the tune ends as the whole one did.
+  EXPECT_EQ(Formsim(tune + b, b + ".log"), 2);
+  EXPECT_NE(ReadText(b + ".log").find("holds a tune already; add --resume"), std::string::npos);
+  ASSERT_EQ(Formsim(tune + b + " --resume", b + ".log"), 0) << ReadText(b + ".log");
+  for (const char* f : {"history.csv", "best.yaml", "tune.manifest"})
+    EXPECT_EQ(ReadText(a + "/" + f), ReadText(b + "/" + f)) << f;
+  // A resume with other settings is refused, naming what differs.
+  EXPECT_EQ(Formsim(tune + b + " --resume --search-seed 2", b + ".log"), 2);
+  EXPECT_NE(ReadText(b + ".log").find("holds another tune (it has 'search_seed 1', this one "
+                                      "'search_seed 2')"),
+            std::string::npos)
+      << ReadText(b + ".log");
+}
+
 TEST(TuneCli, SeveralScenariosFoldIntoOneObjectiveAndEachGetsItsBestYaml) {
   const std::string list = TempDir("tune_list") + ".txt";
   {

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <random>
 #include <set>
 #include <stdexcept>
@@ -17,6 +18,7 @@
 #include "sim/study/sweep.hpp"
 #include "sim/study/sweep_tables.hpp"
 #include "sim/study/tune.hpp"
+#include "sim/study/tune_history.hpp"
 #include "sim/study/tune_validation.hpp"
 #include "test_kind.hpp"
 
@@ -503,6 +505,35 @@ TEST(Tune, OverFoldsEveryScenarioAndSeedIntoTheObjective) {
   EXPECT_GE(worst.history[0].objective, two.history[0].objective);
   // Scenarios of one kind have every key (a scenario without one: tests/app/study_test.cpp).
   EXPECT_EQ(ErrorOf([&] { CheckTunedKeys({Circle(), fast}, s); }), "");
+}
+
+TEST(TuneHistory, ReadsBackEveryCompleteRowAndDropsATornOne) {
+  TuneSettings s = CircleTune();
+  s.constraints = {ParseTuneConstraint("x>=0.1"), ParseTuneConstraint("x<=5")};
+  s.budget = 6;
+  TaskPool pool(1);
+  TuneResult r = RunTune(Circle(), s, pool);
+  r.history[1].failed_runs = 1;  // a message with every CSV hazard
+  r.history[1].message = "seed 2: error: \"a, b\"\nnext line";
+  r.history[1].objective = std::numeric_limits<double>::infinity();
+  const std::string csv = TuneHistoryCsv(s, r);
+  const std::vector<TuneEvaluation> back = ReadTuneHistory(csv, s);
+  ASSERT_EQ(back.size(), r.history.size());
+  for (std::size_t i = 0; i < back.size(); ++i) {
+    EXPECT_EQ(back[i].values, r.history[i].values);
+    EXPECT_EQ(back[i].objective, r.history[i].objective);
+    EXPECT_EQ(back[i].message, r.history[i].message);
+    EXPECT_EQ(back[i].feasible(), r.history[i].feasible());
+    EXPECT_EQ(back[i].violation, r.history[i].violation) << i;
+  }
+  // A kill while the last row was written: that row is left out, the rest read back.
+  EXPECT_EQ(ReadTuneHistory(csv.substr(0, csv.size() - 5), s).size(), r.history.size() - 1);
+  // Another tune's history is refused.
+  s.objective = ParseMetricExpr("2*x");
+  EXPECT_EQ(ReadTuneHistory(csv, s).size(), r.history.size()) << "same columns";
+  s.params[0].key = "omega";
+  EXPECT_NE(ErrorOf([&] { ReadTuneHistory(csv, s); }).find("another tune's history"),
+            std::string::npos);
 }
 
 TEST(Tune, FailedEvaluationsAreRecordedNotFatal) {
