@@ -17,6 +17,7 @@
 
 #include "app/cli/stop_signal.hpp"
 #include "app/export/study_figures.hpp"
+#include "app/export/tune_figures.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/run_output.hpp"
 #include "sim/scenario/scenario_files.hpp"
@@ -691,14 +692,19 @@ int StudyCommands::Tune() {
                  "formsim: error: no evaluation succeeded; no best.yaml (see history.csv)\n");
     rc = 2;
   }
-  try {
-    WriteFigurePng(TuneConvergenceFigure(s, r, tune_metric_),
-                   (fs::path(out) / "convergence.png").string());
-    wrote.push_back("convergence.png");
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "formsim: error: the figure could not be written: %s\n", e.what());
-    rc = rc ? rc : 4;
-  }
+  // The figures; a failed one is reported and the others still written.
+  auto figure = [&](const PlotData& data, const std::string& name) {
+    try {
+      WriteFigurePng(data, (fs::path(out) / name).string());
+      wrote.push_back(name);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "formsim: error: %s could not be written: %s\n", name.c_str(),
+                   e.what());
+      rc = rc ? rc : 4;
+    }
+  };
+  figure(TuneConvergenceFigure(s, r, tune_metric_), "convergence.png");
+  if (s.params.size() == 2) figure(TuneLandscapeFigure(s, r, tune_metric_), "landscape.png");
   if (!tune_quiet_ && !r.history.empty()) {
     const sim::TuneEvaluation& first = r.history.front();
     const sim::TuneEvaluation& best = r.history[r.best];
@@ -721,6 +727,7 @@ int StudyCommands::Tune() {
       sim::WriteFileAtomic((fs::path(out) / "validation.csv").string(),
                            sim::TuneValidationCsv(*v));
       wrote.push_back("validation.csv");
+      figure(TuneValidationFigure(*v, tune_metric_), "validation.png");
       if (!tune_quiet_) std::printf("%s", sim::TuneValidationText(*v).c_str());
     }
   }

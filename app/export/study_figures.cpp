@@ -305,53 +305,6 @@ void WritePanelsPng(const std::vector<PlotData>& panels, const std::string& path
   WritePng(path, width, height, image.data());
 }
 
-PlotData TuneConvergenceFigure(const sim::TuneSettings& settings, const sim::TuneResult& r,
-                               const std::string& expr) {
-  PlotData d;
-  // Objectives that span decades read better on a log scale.
-  double lo = kNaN, hi = kNaN;
-  for (const sim::TuneEvaluation& e : r.history) {
-    if (!std::isfinite(e.objective)) continue;
-    if (!(e.objective >= lo)) lo = e.objective;
-    if (!(e.objective <= hi)) hi = e.objective;
-  }
-  const bool log = lo > 0 && hi / lo > 30;
-  auto y = [&](double v) { return !std::isfinite(v) ? kNaN : log ? std::log10(v) : v; };
-  // With constraints, the points that break one are drawn apart, and "best so far" is the best
-  // feasible one (what best.yaml holds).
-  const bool constrained = !settings.constraints.empty();
-  PlotSeries each, infeasible, best;
-  each.label = constrained ? "feasible evaluation" : "each evaluation";
-  each.markers_only = true;
-  each.color = sim::PaletteColor(1);
-  infeasible.label = "breaks a constraint";
-  infeasible.markers_only = true;
-  infeasible.color = sim::Color{0.6f, 0.6f, 0.6f, 1.0f};  // grey: not a candidate for best.yaml
-  infeasible.style_index = 3;
-  best.label = constrained ? "best feasible so far" : "best so far";
-  best.color = sim::PaletteColor(0);
-  double b = std::numeric_limits<double>::infinity();
-  for (const sim::TuneEvaluation& e : r.history) {
-    PlotSeries& dots = e.feasible() || !constrained ? each : infeasible;
-    dots.x.push_back(static_cast<double>(e.index));
-    dots.y.push_back(y(e.objective));
-    if (e.feasible()) b = std::min(b, e.objective);
-    best.x.push_back(static_cast<double>(e.index));
-    best.y.push_back(std::isfinite(b) ? y(b) : kNaN);
-  }
-  d.series = {each, best};
-  if (!infeasible.x.empty()) d.series.insert(d.series.begin() + 1, infeasible);
-  // A long sum would not fit in the title: name the number of terms instead (history.csv and
-  // best.yaml hold the expression).
-  const std::size_t terms = static_cast<std::size_t>(std::count(expr.begin(), expr.end(), '+')) + 1;
-  d.title =
-      "formsim tune (" + settings.algorithm + ", " + std::to_string(settings.seeds.size()) +
-      " seeds): " + (expr.size() <= 60 ? expr : "sum of " + std::to_string(terms) + " metrics");
-  d.x_label = "evaluation";
-  d.y_label = log ? "log₁₀ objective" : "objective";
-  return d;
-}
-
 void WriteFigurePng(const PlotData& data, const std::string& path, int width, int height) {
   OffscreenRenderer renderer(width, height);
   const auto& px = renderer.RenderFigure(data, width, height);

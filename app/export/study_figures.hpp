@@ -8,14 +8,13 @@
 ///   random samples of two or more keys, grids of three or more: panels (SweepPanels), one per
 ///                          varied key: each point's mean against the key, coloured by the
 ///                          metric, and for grid keys the mean over the other keys with its band
-///   tune                   the objective of each evaluation and the best so far
+/// (The tune's figures: app/export/tune_figures.hpp.)
 
 #include <string>
 #include <vector>
 
 #include "app/render/plot.hpp"
 #include "sim/study/sweep_tables.hpp"
-#include "sim/study/tune.hpp"
 
 namespace formsim::app {
 
@@ -48,10 +47,6 @@ std::vector<PlotData> SweepPanels(const sim::SweepDefinition& def, const sim::Sw
 /// panel_height pixels. Throws std::runtime_error when it cannot be written.
 void WritePanelsPng(const std::vector<PlotData>& panels, const std::string& path,
                     int panel_width = 640, int panel_height = 440, int columns = 2);
-
-/// The convergence of a tuning run.
-PlotData TuneConvergenceFigure(const sim::TuneSettings& settings, const sim::TuneResult& result,
-                               const std::string& expr);
 
 /// Renders `data` headless (OSMesa) as a white paper-style figure and writes it as a PNG.
 /// Throws std::runtime_error when it cannot be written.

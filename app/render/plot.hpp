@@ -45,6 +45,7 @@ struct PlotHeatmap {
   /// Text drawn in each cell where it fits (row-major like `values`), e.g. "0.12 ± 0.03"; where
   /// it is empty, missing or too wide: the value itself.
   std::vector<std::string> cell_labels;
+  bool cell_values = true;  ///< write the value (or label) in each cell where it fits
   bool empty() const { return columns <= 0 || rows <= 0; }
 };
 

@@ -275,7 +275,8 @@ void PlotFrame::PlaceLegend() {
       if (best < 0 || n < best) best = n, corner = c;
     }
     const float f = (leg_size.y + 12) / std::max(1.0f, b.y - a.y);
-    if (best > 0 && !data.equal_aspect && f < 0.45f) {
+    // Over a heatmap every corner hides cells and its cells are not a range to raise: below.
+    if (best > 0 && !data.equal_aspect && !heat && f < 0.45f) {
       // Raise the top of the y range until the top band of height f is empty of data.
       y1 = (ry.hi + ypad * 0.3 - y0 * f) / (1 - f);
       LayOutOnce();
@@ -286,7 +287,7 @@ void PlotFrame::PlaceLegend() {
         const long n = CountInside(lo, hi);
         if (best2 < 0 || n < best2) best2 = n, corner = c;
       }
-    } else if (best > 0) {
+    } else if (best > 0 || heat) {
       // No free corner and no room above the data: the legend goes below the axes, in as many
       // columns as fit the figure's width (the axes keep their width).
       const int n = static_cast<int>(legend_items.size());

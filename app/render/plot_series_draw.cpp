@@ -197,7 +197,7 @@ void PlotFrame::DrawSeries(double cursor_x) {
                                                                                 : value;
         if (cv.TextSize(tick_font, txt).x + 6 > hi.x - lo.x) txt = value;
         const ImVec2 ts = cv.TextSize(tick_font, txt);
-        if (ts.x + 6 <= hi.x - lo.x && ts.y + 4 <= hi.y - lo.y) {
+        if (h.cell_values && ts.x + 6 <= hi.x - lo.x && ts.y + 4 <= hi.y - lo.y) {
           const bool light = 0.299f * col.r + 0.587f * col.g + 0.114f * col.b > 0.55f;
           cv.Text(ImVec2(0.5f * (lo.x + hi.x) - ts.x / 2, 0.5f * (lo.y + hi.y) - ts.y / 2),
                   tick_font, light ? sim::Color{0.08f, 0.08f, 0.08f, 1} : sim::Color{1, 1, 1, 1},

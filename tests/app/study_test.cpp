@@ -10,6 +10,7 @@
 
 #include "app/gui/offscreen_renderer.hpp"
 #include "app/export/study_figures.hpp"
+#include "app/export/tune_figures.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/study/sweep.hpp"
 #include "tests/app/test_util.hpp"
@@ -466,6 +467,8 @@ TEST(TuneCli, ConstraintsHoldoutAndNoFeasiblePoint) {
             0u)
       << validation;
   EXPECT_EQ(Lines(validation), 7u) << "header, three seeds, mean and the interval";
+  EXPECT_GT(fs::file_size(a + "/validation.png"), 5000u);
+  EXPECT_FALSE(fs::exists(a + "/landscape.png")) << "one tuned key: no landscape";
   // A bound no point meets: no best.yaml, exit status 3, the closest point named.
   const std::string b = TempDir("tune_infeasible");
   EXPECT_EQ(Formsim(base + "--constraint 'links.R1-R2.max_abs_error_after_settle.phi<=0' --out " + b,
@@ -501,6 +504,7 @@ TEST(TuneCli, KilledMidwayResumesToTheSameHistoryAndBestPoint) {
   ASSERT_EQ(Formsim(tune + b + " --resume", b + ".log"), 0) << ReadText(b + ".log");
   for (const char* f : {"history.csv", "best.yaml", "tune.manifest"})
     EXPECT_EQ(ReadText(a + "/" + f), ReadText(b + "/" + f)) << f;
+  EXPECT_GT(fs::file_size(a + "/landscape.png"), 5000u) << "two tuned keys: a landscape";
   // A resume with other settings is refused, naming what differs.
   EXPECT_EQ(Formsim(tune + b + " --resume --search-seed 2", b + ".log"), 2);
   EXPECT_NE(ReadText(b + ".log").find("holds another tune (it has 'search_seed 1', this one "
@@ -536,6 +540,59 @@ TEST(TuneCli, SeveralScenariosFoldIntoOneObjectiveAndEachGetsItsBestYaml) {
   EXPECT_NE(ReadText(b + ".log").find("agv_fused.yaml"), std::string::npos) << ReadText(b + ".log");
   EXPECT_NE(ReadText(b + ".log").find("robots.R2.follow.k_l"), std::string::npos);
   EXPECT_FALSE(fs::exists(b + "/history.csv"));
+}
+
+TEST(TuneFigures, LandscapeIsExactAtTheEvaluationsAndValidationShowsThePairs) {
+  // Two keys on [0, 1] x [0, 1]; three evaluations, the second breaking a constraint.
+  sim::TuneSettings s;
+  for (const char* k : {"a", "b"}) {
+    sim::TuneParam p;
+    p.key = k;
+    p.lo = 0;
+    p.hi = 1;
+    s.params.push_back(p);
+  }
+  s.constraints = {sim::ParseTuneConstraint("c<=1")};
+  sim::TuneResult r;
+  const double pts[3][3] = {{1.0 / 8, 1.0 / 8, 3}, {5.0 / 8, 1.0 / 8, 2}, {7.0 / 8, 7.0 / 8, 1}};
+  for (int i = 0; i < 3; ++i) {
+    sim::TuneEvaluation e;
+    e.index = static_cast<std::size_t>(i + 1);
+    e.values = {pts[i][0], pts[i][1]};
+    e.objective = pts[i][2];
+    e.violation = i == 1 ? 0.5 : 0;
+    r.history.push_back(e);
+  }
+  r.best = 2;
+  const PlotData d = TuneLandscapeFigure(s, r, "m", 4);
+  ASSERT_EQ(d.heatmap.columns, 4);
+  ASSERT_EQ(d.heatmap.rows, 4);
+  EXPECT_EQ(d.heatmap.values[0], 3) << "cell (0, 0) holds evaluation 1 exactly";
+  EXPECT_EQ(d.heatmap.values[2], 2) << "an infeasible evaluation still tells the objective";
+  EXPECT_EQ(d.heatmap.values[15], 1);
+  EXPECT_GT(d.heatmap.values[1], 2);
+  EXPECT_LT(d.heatmap.values[1], 3) << "between the points: a weighted mean";
+  ASSERT_EQ(d.series.size(), 4u);
+  EXPECT_EQ(d.series[0].x.size(), 2u) << "two feasible points";
+  EXPECT_EQ(d.series[1].label, "breaks a constraint");
+  EXPECT_EQ(d.series[3].label, "best");
+  for (const PlotSeries& c : d.series)
+    for (double x : c.x) EXPECT_TRUE(std::isnan(x) || x <= 3.5) << "crosses stay inside the map";
+  EXPECT_EQ(d.x_tick_labels.front(), "0.125");
+
+  sim::TuneValidation v;
+  v.seeds = {6, 7};
+  v.scenarios = {"x"};
+  v.start = {2, 3};
+  v.best = {1, 3.5};
+  v.best_feasible = {true, true};
+  v.difference = sim::StatsOf({-1, 0.5});
+  v.compared = 2;
+  v.best_better = 1;
+  const PlotData f = TuneValidationFigure(v, "m");
+  EXPECT_EQ(f.series[0].y, (std::vector<double>{-1, 0.5}));
+  EXPECT_EQ(f.reference_lines, (std::vector<double>{0.0}));
+  EXPECT_NE(f.title.find("better on 1 of 2 runs"), std::string::npos);
 }
 
 // --- figures, on pixels -------------------------------------------------------------------
