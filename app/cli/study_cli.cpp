@@ -226,7 +226,8 @@ StudyCommands::StudyCommands(CLI::App& app) {
                     "quantile:Q");
   tune_
       ->add_option("--param", params_,
-                   "KEY or KEY:LO:HI (default bounds: the declared slider range)")
+                   "KEY or KEY:LO:HI (default bounds: the declared slider range); integer "
+                   "keys, flags and choices too (KEY alone), searched by a global stage")
       ->take_all()
       ->required();
   tune_
@@ -710,9 +711,14 @@ int StudyCommands::Tune() {
     const sim::TuneEvaluation& best = r.history[r.best];
     std::printf("%zu evaluations in %.1f s (%s)\n", r.history.size(), wall, r.stop_reason.c_str());
     std::printf("%-40s %14s %14s\n", "", "start", r.has_best() ? "best" : "closest");
-    for (std::size_t i = 0; i < s.params.size(); ++i)
-      std::printf("%-40s %14.6g %14.6g\n", s.params[i].key.c_str(), first.values[i],
-                  best.values[i]);
+    for (std::size_t i = 0; i < s.params.size(); ++i) {
+      const sim::TuneParam& p = s.params[i];
+      std::printf("%-40s %14s %14s\n", p.key.c_str(),
+                  (p.discrete() ? p.Text(first.values[i])
+                                : sim::FormatSignificant(first.values[i], 6)).c_str(),
+                  (p.discrete() ? p.Text(best.values[i])
+                                : sim::FormatSignificant(best.values[i], 6)).c_str());
+    }
     std::printf("%-40s %14.6g %14.6g\n", "objective", first.objective, best.objective);
     for (std::size_t k = 0; k < s.constraints.size(); ++k)
       std::printf("%-40s %14.6g %14.6g\n", s.constraints[k].Text().c_str(),

@@ -18,21 +18,13 @@ std::string ExprText(const std::string& expr) {
   return expr.size() <= 60 ? expr : "sum of " + std::to_string(terms) + " metrics";
 }
 
-// A key's value <-> its place in [0, 1] of the search box (log keys in log space), as the
-// optimiser sees it.
-double Unit(const sim::TuneParam& p, double v) {
-  return p.log_scale ? (std::log(v) - std::log(p.lo)) / (std::log(p.hi) - std::log(p.lo))
-                     : (v - p.lo) / (p.hi - p.lo);
-}
-double ValueAt(const sim::TuneParam& p, double u) {
-  return p.log_scale ? std::exp(std::log(p.lo) + u * (std::log(p.hi) - std::log(p.lo)))
-                     : p.lo + u * (p.hi - p.lo);
-}
-
 // Tick labels for `cells` columns: the key's value at each cell's centre (the plot thins them).
 std::vector<std::string> Ticks(const sim::TuneParam& p, int cells) {
   std::vector<std::string> out;
-  for (int c = 0; c < cells; ++c) out.push_back(sim::FormatSignificant(ValueAt(p, (c + 0.5) / cells), 3));
+  for (int c = 0; c < cells; ++c) {
+    const double v = p.FromUnit((c + 0.5) / cells);
+    out.push_back(p.discrete() ? p.Text(v) : sim::FormatSignificant(v, 3));
+  }
   return out;
 }
 
@@ -95,8 +87,8 @@ PlotData TuneLandscapeFigure(const sim::TuneSettings& settings, const sim::TuneR
   std::vector<double> ux, uy, f;
   for (const sim::TuneEvaluation& e : r.history)
     if (std::isfinite(e.objective)) {
-      ux.push_back(Unit(px, e.values[0]));
-      uy.push_back(Unit(py, e.values[1]));
+      ux.push_back(px.ToUnit(e.values[0]));
+      uy.push_back(py.ToUnit(e.values[1]));
       f.push_back(e.objective);
     }
   d.heatmap.columns = d.heatmap.rows = cells;
@@ -118,7 +110,7 @@ PlotData TuneLandscapeFigure(const sim::TuneSettings& settings, const sim::TuneR
     }
   // The points in cell coordinates (cell c spans c - 0.5 ... c + 0.5); the start and the best
   // as crosses a cell and a half wide, so they show over a crowd of points.
-  auto cell = [&](const sim::TuneParam& p, double v) { return Unit(p, v) * cells - 0.5; };
+  auto cell = [&](const sim::TuneParam& p, double v) { return p.ToUnit(v) * cells - 0.5; };
   const bool constrained = !settings.constraints.empty();
   PlotSeries visited, infeasible;
   visited.label = constrained ? "evaluated, meets the constraints" : "evaluated";

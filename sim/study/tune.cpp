@@ -31,20 +31,6 @@ bool IsPathChar(char c) {
          c == '[' || c == ']' || static_cast<unsigned char>(c) >= 0x80;
 }
 
-// Scaled coordinate u in [0, 1] <-> the tunable's value.
-double ToValue(const TuneParam& p, double u) {
-  u = std::clamp(u, 0.0, 1.0);
-  if (u == 0.0) return p.lo;
-  if (u == 1.0) return p.hi;
-  const double v = p.log_scale ? std::exp(std::log(p.lo) + u * (std::log(p.hi) - std::log(p.lo)))
-                               : p.lo + u * (p.hi - p.lo);
-  return std::clamp(v, p.lo, p.hi);
-}
-double ToUnit(const TuneParam& p, double v) {
-  return p.log_scale ? (std::log(v) - std::log(p.lo)) / (std::log(p.hi) - std::log(p.lo))
-                     : (v - p.lo) / (p.hi - p.lo);
-}
-
 nlopt_algorithm Algorithm(const std::string& name) {
   if (name == "bobyqa") return NLOPT_LN_BOBYQA;
   if (name == "neldermead") return NLOPT_LN_NELDERMEAD;
@@ -93,6 +79,10 @@ struct Context {
   std::size_t stage = 0;
   int limit = 0;  // evaluations recorded at most by the end of this stage
   const std::vector<TuneEvaluation>* recorded = nullptr;  // --resume: replayed, not run
+  // The stage's coordinates: the optimiser's coordinate j is key dims[j]; the other keys keep
+  // their value in `base` (a local polish holds the integer and choice keys).
+  std::vector<std::size_t> dims{};
+  std::vector<double> base{};
 };
 
 // The value of metric `path` in a completed run, for `flag` (--metric or --constraint). A
@@ -245,8 +235,8 @@ const TuneEvaluation* Point(Context& c, const std::vector<double>& values) {
 }
 
 std::vector<double> Values(const Context& c, unsigned n, const double* u) {
-  std::vector<double> values;
-  for (unsigned i = 0; i < n; ++i) values.push_back(ToValue(c.settings->params[i], u[i]));
+  std::vector<double> values = c.base;
+  for (unsigned j = 0; j < n; ++j) values[c.dims[j]] = c.settings->params[c.dims[j]].FromUnit(u[j]);
   return values;
 }
 
@@ -282,7 +272,7 @@ double Constraint(unsigned n, const double* u, double* /*grad*/, void* data) {
 nlopt_result RunStage(Context& c, const TuneStage& stage, std::vector<double>& u, double step,
                       std::vector<ConstraintData>& constraint_data) {
   const TuneSettings& s = *c.settings;
-  const unsigned n = static_cast<unsigned>(s.params.size());
+  const unsigned n = static_cast<unsigned>(c.dims.size());
   const bool constrained = !s.constraints.empty();
   const bool auglag = constrained && !TakesConstraints(stage.method);
   // NLopt's random stream, for the methods that draw from it, restarts at the search seed.
@@ -397,6 +387,31 @@ std::vector<MetricTerm> ParseMetricExpr(const std::string& expr) {
   return out;
 }
 
+double TuneParam::FromUnit(double u) const {
+  u = std::clamp(u, 0.0, 1.0);
+  if (kind == Kind::kChoice)
+    return std::min(hi, std::floor(u * static_cast<double>(choices.size())));
+  if (u == 0.0) return lo;
+  if (u == 1.0) return hi;
+  const double v = log_scale ? std::exp(std::log(lo) + u * (std::log(hi) - std::log(lo)))
+                             : lo + u * (hi - lo);
+  return std::clamp(kind == Kind::kInteger ? std::round(v) : v, lo, hi);
+}
+
+double TuneParam::ToUnit(double v) const {
+  if (kind == Kind::kChoice) return (v + 0.5) / static_cast<double>(choices.size());
+  return log_scale ? (std::log(v) - std::log(lo)) / (std::log(hi) - std::log(lo))
+                   : (v - lo) / (hi - lo);
+}
+
+std::string TuneParam::Text(double v) const {
+  if (kind == Kind::kChoice) {
+    const std::size_t i = static_cast<std::size_t>(std::clamp(v, 0.0, hi));
+    return choices[i];
+  }
+  return FormatDouble(v);
+}
+
 TuneParam ParseTuneParam(const std::string& arg, const ParamTable& params) {
   const std::string where = "--param " + arg;
   const std::size_t colon = arg.find(':');
@@ -404,10 +419,21 @@ TuneParam ParseTuneParam(const std::string& arg, const ParamTable& params) {
   p.key = Trim(arg.substr(0, colon));
   const Param* q = params.Find(p.key);
   if (q == nullptr) throw ScenarioError(where, p.key, "not a tunable of this scenario");
-  if (q->kind != Param::Kind::kDouble)
-    throw ScenarioError(
-        where, p.key,
-        "tune searches real-valued tunables; vary integers, flags and enums with formsim sweep");
+  if (q->kind == Param::Kind::kChoice || q->kind == Param::Kind::kBool) {
+    if (colon != std::string::npos)
+      throw ScenarioError(where, p.key,
+                          "a choice is searched over all its values: give the key alone");
+    p.kind = TuneParam::Kind::kChoice;
+    p.choices = q->kind == Param::Kind::kBool ? std::vector<std::string>{"false", "true"}
+                                              : q->choices;
+    if (p.choices.size() < 2)
+      throw ScenarioError(where, p.key, "has a single choice: there is nothing to search");
+    p.lo = 0;
+    p.hi = static_cast<double>(p.choices.size() - 1);
+    p.start = std::clamp(q->value, p.lo, p.hi);
+    return p;
+  }
+  if (q->kind == Param::Kind::kInt) p.kind = TuneParam::Kind::kInteger;
   if (colon == std::string::npos) {
     p.lo = q->slider_min();
     p.hi = q->slider_max();
@@ -424,11 +450,17 @@ TuneParam ParseTuneParam(const std::string& arg, const ParamTable& params) {
                             "bound " + FormatDouble(v) + " is not a valid value: " + why);
     }
   }
+  if (p.kind == TuneParam::Kind::kInteger) {
+    if (colon != std::string::npos && (p.lo != std::round(p.lo) || p.hi != std::round(p.hi)))
+      throw ScenarioError(where, p.key, "an integer key needs whole-number bounds");
+    p.lo = std::ceil(p.lo);
+    p.hi = std::floor(p.hi);
+  }
   if (!(p.lo < p.hi))
     throw ScenarioError(
         where, p.key,
         "needs LO < HI, got [" + FormatDouble(p.lo) + ", " + FormatDouble(p.hi) + "]");
-  p.log_scale = q->tune.log_scale && p.lo > 0;
+  p.log_scale = q->tune.log_scale && p.lo > 0 && p.kind == TuneParam::Kind::kReal;
   p.start = std::clamp(q->value, p.lo, p.hi);
   return p;
 }
@@ -494,7 +526,7 @@ std::vector<Override> TuneOverrides(const TuneSettings& s, const std::vector<dou
     if (!tuned) out.push_back(o);
   }
   for (std::size_t i = 0; i < s.params.size(); ++i)
-    out.push_back({s.params[i].key, FormatDouble(values[i]), "formsim tune", -1});
+    out.push_back({s.params[i].key, s.params[i].Text(values[i]), "formsim tune", -1});
   return out;
 }
 
@@ -515,15 +547,14 @@ TuneResult RunTune(
   if (s.seeds.empty()) throw std::runtime_error("formsim tune: give --seeds");
   if (s.budget < 1) throw std::runtime_error("--budget must be at least 1");
   const unsigned n = static_cast<unsigned>(s.params.size());
+  int reals = 0;
+  for (const TuneParam& p : s.params) reals += p.discrete() ? 0 : 1;
   TuneResult result;
-  result.plan = PlanTune(s.algorithm, static_cast<int>(n), s.budget);
+  result.plan = PlanTune(s.algorithm, static_cast<int>(n), s.budget, reals);
   Context c{&sources, &s, &pool, &progress, &stop, &result, {}, nullptr};
   c.recorded = &recorded;
-  std::vector<double> u(n), start;
-  for (unsigned i = 0; i < n; ++i) {
-    u[i] = std::clamp(ToUnit(s.params[i], s.params[i].start), 0.0, 1.0);
-    start.push_back(s.params[i].start);
-  }
+  std::vector<double> start;
+  for (const TuneParam& p : s.params) start.push_back(p.start);
   // Evaluation 1 is the scenario's own values, exactly (BOBYQA may move its first point away
   // from a bound); a metric it does not have is refused here, before the search.
   c.limit = result.plan.front().evaluations;
@@ -537,12 +568,17 @@ TuneResult RunTune(
       c.stage = k;
       c.limit = used;
       c.out_of_budget = false;
-      // A local polish starts from the best point so far, with finer first steps.
-      if (k > 0) {
-        const TuneEvaluation& b = result.history[result.best];
-        for (unsigned i = 0; i < n; ++i)
-          u[i] = std::clamp(ToUnit(s.params[i], b.values[i]), 0.0, 1.0);
-      }
+      // A global stage searches every key; a local one the real keys, from the best point so
+      // far (the start for a plan of one local method), with finer first steps after a global
+      // stage.
+      const bool global = IsGlobalMethod(result.plan[k].method);
+      c.base = k == 0 ? start : result.history[result.best].values;
+      c.dims.clear();
+      for (std::size_t i = 0; i < n; ++i)
+        if (global || !s.params[i].discrete()) c.dims.push_back(i);
+      std::vector<double> u;
+      for (std::size_t i : c.dims)
+        u.push_back(std::clamp(s.params[i].ToUnit(c.base[i]), 0.0, 1.0));
       try {
         r = RunStage(c, result.plan[k], u, k == 0 ? 0.15 : 0.05, constraint_data);
       } catch (...) {

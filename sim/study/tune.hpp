@@ -31,16 +31,31 @@ struct MetricTerm {
 /// "-0.5*x.y"). Throws std::runtime_error naming --metric.
 std::vector<MetricTerm> ParseMetricExpr(const std::string& expr);
 
-/// One tuned tunable and its search interval.
+/// One tuned tunable and its search interval. The optimiser sees every key as a coordinate in
+/// [0, 1]: a real key maps it linearly (or logarithmically) onto [lo, hi]; an integer key rounds
+/// that to a whole number; a choice key (an enum, a flag) splits [0, 1] into equal slots, one
+/// per choice. Integer and choice keys are searched by a global stage only, then held at the
+/// best value for the local polish.
 struct TuneParam {
+  enum class Kind { kReal, kInteger, kChoice };
   std::string key;
-  double lo = 0, hi = 1;
+  Kind kind = Kind::kReal;
+  double lo = 0, hi = 1;  ///< kChoice: 0 ... choices - 1
   bool log_scale = false;  ///< searched in log space (the tunable's slider is logarithmic)
-  double start = 0;        ///< the scenario's value, clamped into [lo, hi]
+  double start = 0;        ///< the scenario's value, clamped into [lo, hi] (kChoice: its index)
+  std::vector<std::string> choices;  ///< kChoice: the YAML strings, in order
+
+  bool discrete() const { return kind != Kind::kReal; }
+  /// The value at coordinate u in [0, 1] (clamped), and back (a choice: its slot's middle).
+  double FromUnit(double u) const;
+  double ToUnit(double value) const;
+  /// The value as YAML text: a number, or the choice's name.
+  std::string Text(double value) const;
 };
 
-/// Parses `KEY` or `KEY:LO:HI` against the scenario's tunables: a real tunable; default bounds
-/// its declared slider range; explicit bounds must be valid values with LO < HI. Throws
+/// Parses `KEY` or `KEY:LO:HI` against the scenario's tunables: a real or integer tunable
+/// (default bounds its declared slider range; explicit bounds must be valid values with LO < HI,
+/// whole numbers for an integer), or a choice or flag (`KEY` alone: every choice). Throws
 /// ScenarioError naming the --param argument.
 TuneParam ParseTuneParam(const std::string& arg, const ParamTable& params);
 

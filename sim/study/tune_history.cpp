@@ -1,5 +1,6 @@
 #include "sim/study/tune_history.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -90,7 +91,12 @@ std::string TuneHistoryRow(const TuneSettings& s, const std::vector<TuneStage>& 
                            const TuneEvaluation& e, double best_so_far) {
   std::string csv = std::to_string(e.index) + ",";
   csv += e.stage < plan.size() ? plan[e.stage].method : s.algorithm;
-  for (double v : e.values) Number(csv, v);
+  for (std::size_t i = 0; i < e.values.size(); ++i) {
+    if (s.params[i].kind == TuneParam::Kind::kChoice)
+      csv += "," + CsvField(s.params[i].Text(e.values[i]));  // the choice's name
+    else
+      Number(csv, e.values[i]);
+  }
   Number(csv, e.objective);
   for (double m : e.term_means) Number(csv, m);
   for (std::size_t k : ConstraintColumns(s))
@@ -130,7 +136,18 @@ std::vector<TuneEvaluation> ReadTuneHistory(const std::string& text, const TuneS
     TuneEvaluation e;
     e.index = row;
     std::size_t c = 2;
-    for (std::size_t i = 0; i < s.params.size(); ++i) e.values.push_back(Read(f[c++], row));
+    for (std::size_t i = 0; i < s.params.size(); ++i) {
+      const TuneParam& p = s.params[i];
+      if (p.kind != TuneParam::Kind::kChoice) {
+        e.values.push_back(Read(f[c++], row));
+        continue;
+      }
+      const auto it = std::find(p.choices.begin(), p.choices.end(), f[c++]);
+      if (it == p.choices.end())
+        throw std::runtime_error("--resume: history.csv row " + std::to_string(row) + ": '" +
+                                 f[c - 1] + "' is not a choice of " + p.key);
+      e.values.push_back(static_cast<double>(it - p.choices.begin()));
+    }
     e.objective = Read(f[c++], row);
     for (std::size_t t = 0; t < s.objective.size(); ++t) e.term_means.push_back(Read(f[c++], row));
     // A constraint without a column of its own reads its term's mean.
@@ -165,7 +182,9 @@ std::string TuneManifest(const std::vector<ScenarioSource>& sources, const TuneS
     AppendDouble(m, p.lo);
     m += " ";
     AppendDouble(m, p.hi);
-    m += p.log_scale ? " log\n" : "\n";
+    m += p.log_scale ? " log" : p.kind == TuneParam::Kind::kInteger ? " integer" : "";
+    for (const std::string& choice : p.choices) m += " " + choice;
+    m += "\n";
   }
   for (const MetricTerm& t : s.objective) {
     m += "term ";

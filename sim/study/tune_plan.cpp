@@ -41,11 +41,17 @@ int MinEvaluations(const std::string& m, int n) {
   return n + 2;  // a local method's first simplex or interpolation set
 }
 
-std::vector<TuneStage> PlanTune(const std::string& spec, int n, int budget) {
+std::vector<TuneStage> PlanTune(const std::string& spec, int n, int budget, int reals) {
+  if (reals < 0) reals = n;
   const std::size_t plus = spec.find('+');
   std::vector<TuneStage> plan;
   if (plus == std::string::npos) {
     CheckKnown(spec, spec);
+    if (!IsGlobalMethod(spec) && reals < n)
+      throw std::runtime_error("--method " + spec +
+                               ": integer and choice keys are searched by a global stage; use a "
+                               "global method or GLOBAL+LOCAL (such as direct-l+" +
+                               spec + ")");
     plan.push_back({spec, budget});
   } else {
     const std::string g = spec.substr(0, plus), l = spec.substr(plus + 1);
@@ -55,16 +61,21 @@ std::vector<TuneStage> PlanTune(const std::string& spec, int n, int budget) {
       throw std::runtime_error("--method '" + spec +
                                "': a two-stage plan is GLOBAL+LOCAL (global: direct-l, crs2, "
                                "mlsl, isres; local: bobyqa, neldermead, cobyla)");
-    const int global = std::max(MinEvaluations(g, n), budget * 2 / 5);
-    plan.push_back({g, global});
-    plan.push_back({l, budget - global});
+    if (reals == 0) {
+      plan.push_back({g, budget});  // nothing real to polish
+    } else {
+      const int global = std::max(MinEvaluations(g, n), budget * 2 / 5);
+      plan.push_back({g, global});
+      plan.push_back({l, budget - global});
+    }
   }
+  // A global stage searches every key, a local one the real keys.
+  auto need = [&](const std::string& m) { return MinEvaluations(m, IsGlobalMethod(m) ? n : reals); };
   int needed = 0;
   std::string parts;
   for (const TuneStage& s : plan) {
-    needed += MinEvaluations(s.method, n);
-    parts += (parts.empty() ? "" : ", ") + std::to_string(MinEvaluations(s.method, n)) + " for " +
-             s.method;
+    needed += need(s.method);
+    parts += (parts.empty() ? "" : ", ") + std::to_string(need(s.method)) + " for " + s.method;
   }
   // Evaluation 1 is the scenario's own values: it counts in the first stage's budget.
   if (budget < needed)

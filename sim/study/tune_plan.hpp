@@ -38,11 +38,13 @@ struct TuneStage {
 /// The default `--method`: a global stage, then a local polish.
 inline const char* kDefaultTuneMethod = "direct-l+bobyqa";
 
-/// Parses `--method` ("bobyqa", "crs2", "direct-l+bobyqa") for `n` tunables and `budget`
+/// Parses `--method` ("bobyqa", "crs2", "direct-l+bobyqa") for `n` tunables, `reals` of them
+/// real (the others integer or choice keys, which only a global stage searches), and `budget`
 /// evaluations. A two-stage plan gives the global stage 40% of the budget (at least what it
-/// needs) and the rest to the local one. Throws std::runtime_error naming --method (unknown
-/// method, a second stage that is not local) or --budget (too small, saying how small).
-std::vector<TuneStage> PlanTune(const std::string& method, int n, int budget);
+/// needs) and the rest to the local one; with no real key it is the global stage alone. Throws
+/// std::runtime_error naming --method (unknown method, a second stage that is not local, a
+/// local method alone with integer or choice keys) or --budget (too small, saying how small).
+std::vector<TuneStage> PlanTune(const std::string& method, int n, int budget, int reals = -1);
 
 /// "direct-l 24 + bobyqa 36 evaluations" (the split stated in the output).
 std::string PlanText(const std::vector<TuneStage>& plan);

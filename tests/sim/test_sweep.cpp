@@ -330,7 +330,13 @@ TEST(TuneParam, BoundsFromTheDeclarationOrGiven) {
   EXPECT_EQ(w.lo, -1.0);
   EXPECT_EQ(w.start, 0.5);
   auto err = [&](const char* a) { return ErrorOf([&] { ParseTuneParam(a, p.params); }); };
-  EXPECT_NE(err("drive.mode").find("real-valued"), std::string::npos);
+  const TuneParam mode = ParseTuneParam("drive.mode", p.params);
+  EXPECT_EQ(mode.kind, TuneParam::Kind::kChoice);
+  EXPECT_EQ(mode.choices, (std::vector<std::string>{"ideal", "traction"}));
+  EXPECT_EQ(mode.Text(mode.FromUnit(0.49)), "ideal");
+  EXPECT_EQ(mode.Text(mode.FromUnit(0.51)), "traction");
+  EXPECT_EQ(mode.FromUnit(1.0), 1.0);
+  EXPECT_NE(err("drive.mode:0:1").find("give the key alone"), std::string::npos);
   EXPECT_NE(
       err("v:-1:2").find("--param v:-1:2: key 'v': bound -1 is not a valid value: must be >= 0"),
       std::string::npos);
@@ -396,6 +402,35 @@ TEST(Tune, GlobalMethodsAndTwoStagePlansFindTheMinimumDeterministically) {
   const std::string seed1 = TuneHistoryCsv(s, RunTune(Circle(), s, pool));
   s.search_seed = 2;
   EXPECT_NE(TuneHistoryCsv(s, RunTune(Circle(), s, pool)), seed1);
+}
+
+TEST(Tune, ChoiceKeysAreSearchedByTheGlobalStageAndHeldForThePolish) {
+  // x after 1 s: the traction drive is slower to reach the commanded speed, so with the smallest
+  // v either mode could win; the search must try both and pick the better, and the polish (a
+  // local method on v alone) must keep the mode the global stage chose.
+  TuneSettings s = CircleTune();
+  const ParsedScenario p = ParseScenario(Circle(), {});
+  s.params.push_back(ParseTuneParam("drive.mode", p.params));
+  s.algorithm = "direct-l+bobyqa";
+  s.budget = 30;
+  TaskPool pool(2);
+  const TuneResult r = RunTune(Circle(), s, pool);
+  ASSERT_TRUE(r.has_best());
+  std::set<double> modes, polished_modes;
+  for (const TuneEvaluation& e : r.history) {
+    modes.insert(e.values[1]);
+    if (e.stage == 1) polished_modes.insert(e.values[1]);
+  }
+  EXPECT_EQ(modes.size(), 2u) << "both choices tried";
+  EXPECT_EQ(polished_modes, (std::set<double>{r.history[r.best].values[1]}))
+      << "the polish holds the best choice";
+  EXPECT_NE(TuneHistoryCsv(s, r).find(",ideal,"), std::string::npos) << "written by name";
+  EXPECT_EQ(ReadTuneHistory(TuneHistoryCsv(s, r), s).back().values, r.history.back().values);
+  for (const TuneEvaluation& e : r.history) EXPECT_EQ(e.values[1], std::round(e.values[1]));
+  EXPECT_EQ(TuneOverrides(s, r.history[0].values)[1].value, "ideal");
+  // Only choices: the global stage alone.
+  s.params.erase(s.params.begin());
+  EXPECT_EQ(PlanText(PlanTune("direct-l+bobyqa", 1, 30, 0)), "direct-l 30 evaluations");
 }
 
 TEST(TunePlan, RefusesUnknownMethodsWrongOrderAndSmallBudgets) {
