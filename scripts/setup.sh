@@ -1,13 +1,21 @@
 #!/usr/bin/env bash
-# Installs every Debian package formsim needs that is not installed yet. Idempotent; run as root.
+# Installs the Debian packages formsim needs that are not installed yet. Idempotent; run as root.
+#   scripts/setup.sh        everything: the build, the tests, the sanitizers, the cluster tests
+#   scripts/setup.sh demo   only what building `formsim` and running the headless demo need
 set -euo pipefail
-PKGS=(build-essential cmake pkg-config libbox2d-dev libeigen3-dev libimgui-dev libglfw3-dev libosmesa6-dev
-      libstb-dev libyaml-cpp-dev libcli11-dev libfuzzylite-dev libgtest-dev libgmock-dev libbenchmark-dev
-      xvfb xauth ffmpeg fonts-dejavu-core zlib1g-dev
+# Building formsim and running it headless.
+DEMO_PKGS=(build-essential cmake pkg-config libbox2d-dev libeigen3-dev libimgui-dev libglfw3-dev
+           libosmesa6-dev libstb-dev libyaml-cpp-dev libcli11-dev libfuzzylite-dev zlib1g-dev
+           fonts-dejavu-core
+           libnlopt-dev                             # formsim tune: NLopt's methods
+           libcairo2-dev libfreetype-dev)           # vector figures (PDF)
+PKGS=("${DEMO_PKGS[@]}"
+      libgtest-dev libgmock-dev libbenchmark-dev
+      xvfb xauth ffmpeg         # the window's tests under Xvfb; video export
       clang libclang-rt-14-dev  # clang: the sanitizer build and the libFuzzer harnesses
-      libnlopt-dev              # formsim tune: BOBYQA, Nelder-Mead, COBYLA
       parallel slurm-wlm munge  # the sweep's GNU parallel and single-node Slurm tests
-      libcairo2-dev libfreetype-dev poppler-utils libxml2-utils)  # vector figures; PDF and SVG checks
+      poppler-utils libxml2-utils)  # PDF and SVG checks
+if [ "${1:-}" = "demo" ]; then PKGS=("${DEMO_PKGS[@]}"); fi
 missing=()
 for p in "${PKGS[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
 if [ ${#missing[@]} -gt 0 ]; then
