@@ -1,6 +1,7 @@
 /// \file The rows of the window's command table (app/gui/command_table.hpp), assembled from the
 /// panels' rows. Each panel registers its own rows: the panel classes (app/gui/panel.hpp) in
-/// their files (FormationEditorPanel::Rows, LessonPanel::Rows, TimelinePanel::Rows); the rows
+/// their files (FormationEditorPanel::Rows, HistoryPanel::Rows, LessonPanel::Rows,
+/// TimelinePanel::Rows); the rows
 /// of the parts still drawn by the window class (AppUi) are the functions below, one per part.
 /// A command's name is written once, in its row.
 ///
@@ -16,6 +17,7 @@
 #include "app/export/figure_export.hpp"
 #include "app/gui/command_row_makers.hpp"
 #include "app/gui/formation_editor_panel.hpp"
+#include "app/gui/history_panel.hpp"
 #include "app/gui/lesson_panel.hpp"
 #include "app/gui/timeline_panel.hpp"
 #include "app/gui/ui.hpp"
@@ -412,31 +414,10 @@ std::vector<Command> CompareRows() {
   return t;
 }
 
-// History: the History tab: runs and undo.
-std::vector<Command> HistoryRows() {
+// Undo: undo and redo of edits (the history's rows are HistoryPanel::Rows).
+std::vector<Command> UndoRows() {
   std::vector<Command> t;
   auto row = [&t](Command c) { t.push_back(std::move(c)); };
-  row({.name = "history",
-       .menu = "Compare/History",
-       .help = "Show the history of runs (the History tab)",
-       .run = [](AppUi& ui, const CommandArgs&, Src) {
-         ui.state().select_tab = "history";
-         return std::string();
-       }});
-  row({.name = "restore",
-       .args = {Whole("N", 1, 1000000000)},
-       .menu = "Compare/Restore history row…",
-       .help = "Edit the settings of history row N back in (its seed into the seed field)",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         return ui.CmdRestore(static_cast<int>(a.Whole(0)));
-       }});
-  row({.name = "pin-row",
-       .args = {Whole("N", 1, 1000000000)},
-       .menu = "Compare/Pin history row…",
-       .help = "Replay history row N exactly and pin it",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         return ui.CmdPinRow(static_cast<int>(a.Whole(0)));
-       }});
   row({.name = "undo",
        .keys = {"Ctrl+Z"},
        .menu = "Compare/Undo",
@@ -530,7 +511,7 @@ std::vector<Command> WindowRows() {
 using RowsOf = std::vector<Command> (*)();
 const RowsOf kPanelOrder[] = {
     ScenarioRows, RunRows,      ParameterRows,               ViewRows,
-    PlotRows,     CompareRows,  HistoryRows,                 TimelinePanel::Rows,
+    PlotRows,     CompareRows,  HistoryPanel::Rows,          UndoRows,     TimelinePanel::Rows,
     FormationEditorPanel::Rows, PaletteRows,                 LessonPanel::Rows,
     WindowRows,
 };

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "app/gui/command_row_makers.hpp"
+#include "app/gui/timeline_panel.hpp"
 #include "app/gui/ui.hpp"
 #include "app/render/imgui_canvas.hpp"
 #include "control/formation/formation_graph.hpp"
@@ -68,55 +69,57 @@ const char* ModeHint(EditMode m) {
 }  // namespace
 
 std::string FormationEditorPanel::CmdFormation(const std::string& command) {
-  return RunRestructure(command, [&] { return sf::Restructure(ui_.session(), command, "GUI edit"); });
+  return RunRestructure(command,
+                        [&] { return sf::Restructure(ctx_.session(), command, "GUI edit"); });
 }
 
 std::string FormationEditorPanel::CmdFormationChange(const sf::StructureChange& change) {
   return RunRestructure(sf::StructureChangeText(change),
-                        [&] { return sf::Restructure(ui_.session(), change, "GUI edit"); });
+                        [&] { return sf::Restructure(ctx_.session(), change, "GUI edit"); });
 }
 
 std::string FormationEditorPanel::RunRestructure(const std::string& command,
                                                  const std::function<std::string()>& restructure) {
-  ui_.CmdLive();
-  const std::string err = ui_.ReplaceRun("restructured", restructure);
+  ctx_.Find<TimelinePanel>()->CmdLive();
+  const std::string err = ctx_.replace_run("restructured", restructure);
   picks_.clear();  // a refused change starts its picks again
   if (!err.empty()) {
-    ui_.SetStatus("formation " + command + " refused: " + err, true);
+    ctx_.SetStatus("formation " + command + " refused: " + err, true);
     return err;
   }
-  ui_.state().step_budget = 0;
-  ui_.SetStatus("formation " + command + ": done, the run goes on from here");
+  ctx_.state->step_budget = 0;
+  ctx_.SetStatus("formation " + command + ": done, the run goes on from here");
   return "";
 }
 
 std::string FormationEditorPanel::CmdSlot(const std::string& robot, double x, double y, bool continues_drag) {
   std::vector<std::pair<std::string, std::string>> edits;
   try {
-    const sf::FormationEditing* editing = sf::EditingOf(ui_.session().exp());
+    const sf::FormationEditing* editing = sf::EditingOf(ctx_.session().exp());
     if (editing == nullptr)
       throw std::runtime_error("this kind of scenario has no desired slots to drag");
     edits = editing->SlotEdits(robot, {x, y});
   } catch (const std::exception& e) {
-    ui_.SetStatus(std::string("slot: ") + e.what(), true);
+    ctx_.SetStatus(std::string("slot: ") + e.what(), true);
     return e.what();
   }
   // Each edit is checked with the whole scenario; two distances that only fit together (an l-l
   // triangle) are tried in the other order when the first alone is refused.
-  std::string err = ui_.session().Edit(edits[0].first, edits[0].second, "slot drag", continues_drag);
+  std::string err =
+      ctx_.session().Edit(edits[0].first, edits[0].second, "slot drag", continues_drag);
   if (!err.empty() && edits.size() > 1) {
-    if (ui_.session().Edit(edits[1].first, edits[1].second, "slot drag", continues_drag).empty()) {
-      err = ui_.session().Edit(edits[0].first, edits[0].second, "slot drag", continues_drag);
+    if (ctx_.session().Edit(edits[1].first, edits[1].second, "slot drag", continues_drag).empty()) {
+      err = ctx_.session().Edit(edits[0].first, edits[0].second, "slot drag", continues_drag);
       edits.pop_back();
     }
   }
   for (std::size_t k = 1; k < edits.size() && err.empty(); ++k)
-    err = ui_.session().Edit(edits[k].first, edits[k].second, "slot drag", continues_drag);
+    err = ctx_.session().Edit(edits[k].first, edits[k].second, "slot drag", continues_drag);
   if (!err.empty()) {
-    ui_.SetStatus("slot of " + robot + " refused: " + err, true);
+    ctx_.SetStatus("slot of " + robot + " refused: " + err, true);
     return err;
   }
-  ui_.SetStatus("slot of " + robot + " at (" + Coord(x) + ", " + Coord(y) + ")");
+  ctx_.SetStatus("slot of " + robot + " at (" + Coord(x) + ", " + Coord(y) + ")");
   return "";
 }
 
@@ -144,29 +147,29 @@ std::string FormationEditorPanel::CmdEditor(const std::string& mode) {
   else if (m == "slots") next = EditMode::kSlots;
   else {
     const std::string why = "editor: expects off, add [l_phi|l_l], remove, attach [l_phi|l_l], law or slots, got '" + mode + "'";
-    ui_.SetStatus(why, true);
+    ctx_.SetStatus(why, true);
     return why;
   }
-  if (next != EditMode::kOff && sf::EditingOf(ui_.session().exp()) == nullptr) {
+  if (next != EditMode::kOff && sf::EditingOf(ctx_.session().exp()) == nullptr) {
     const std::string why = "editor: this scenario has no formation to edit";
-    ui_.SetStatus(why, true);
+    ctx_.SetStatus(why, true);
     return why;
   }
   if (std::string err = set_law(); !err.empty()) {
-    ui_.SetStatus(err, true);
+    ctx_.SetStatus(err, true);
     return err;
   }
   mode_ = next;
   picks_.clear();
   slot_drag_.clear();
-  ui_.SetStatus(next == EditMode::kOff ? "editor off" : ModeHint(next));
+  ctx_.SetStatus(next == EditMode::kOff ? "editor off" : ModeHint(next));
   return "";
 }
 
 std::string FormationEditorPanel::RobotAt(Vec2 p, const View& view) const {
   std::string name;
   double best = 1e300;
-  for (const auto& r : ui_.session().exp().world().robots()) {
+  for (const auto& r : ctx_.session().exp().world().robots()) {
     const double reach = std::max(r->def().half_length, r->def().radius) + 8.0 / view.scale;
     const double d = (r->pose().p() - p).Norm();
     if (d < reach && d < best) best = d, name = r->name();
@@ -175,15 +178,15 @@ std::string FormationEditorPanel::RobotAt(Vec2 p, const View& view) const {
 }
 
 std::string FormationEditorPanel::EditorClick(Vec2 p) {
-  const std::string hit = RobotAt(p, ui_.state().view);
+  const std::string hit = RobotAt(p, ctx_.state->view);
   auto& picks = picks_;
   const FormationLaw law = LawOf(law_);
-  const sf::FormationEditing* editing = sf::EditingOf(ui_.session().exp());
+  const sf::FormationEditing* editing = sf::EditingOf(ctx_.session().exp());
   auto leaders_of = [&](const std::string& robot) {
     return editing != nullptr ? editing->LeadersOf(robot) : std::vector<std::string>{};
   };
   auto picked = [&](const std::string& what) {
-    ui_.SetStatus(what + ": " + Joined(picks));
+    ctx_.SetStatus(what + ": " + Joined(picks));
     return std::string();
   };
   switch (mode_) {
@@ -205,7 +208,7 @@ std::string FormationEditorPanel::EditorClick(Vec2 p) {
         const std::string why = "add: pick " + std::to_string(Needed(law_)) +
                                 " leader(s) for " + control::formation::LawName(law) +
                                 " first (click them)";
-        ui_.SetStatus(why, true);
+        ctx_.SetStatus(why, true);
         return why;
       }
       return CmdFormationChange({sf::AddFollower{law, picks, Rounded(p.x), Rounded(p.y), ""}});
@@ -221,7 +224,7 @@ std::string FormationEditorPanel::EditorClick(Vec2 p) {
         const std::vector<std::string> leaders = leaders_of(hit);
         if (leaders.empty()) {
           const std::string why = hit + " is a root leader: it has no law to switch";
-          ui_.SetStatus(why, true);
+          ctx_.SetStatus(why, true);
           return why;
         }
         if (leaders.size() == 2)
@@ -236,11 +239,11 @@ std::string FormationEditorPanel::EditorClick(Vec2 p) {
       if (!hit.empty() && slot_drag_.empty()) {
         if (leaders_of(hit).empty()) {
           const std::string why = hit + " is a root leader: it has no desired slot";
-          ui_.SetStatus(why, true);
+          ctx_.SetStatus(why, true);
           return why;
         }
         slot_drag_ = hit;
-        ui_.SetStatus("slot of " + hit + ": click or drag where it should be");
+        ctx_.SetStatus("slot of " + hit + ": click or drag where it should be");
         return "";
       }
       if (slot_drag_.empty()) return picked("no follower there");
@@ -257,7 +260,7 @@ bool FormationEditorPanel::WorldMouse(const View& view) {
     if (mode_ == EditMode::kSlots) {
       slot_drag_.clear();
       EditorClick(p);
-      ui_.state().gesture_key.clear();
+      ctx_.state->gesture_key.clear();
     } else {
       EditorClick(p);
     }
@@ -266,13 +269,13 @@ bool FormationEditorPanel::WorldMouse(const View& view) {
       ImGui::IsMouseDown(ImGuiMouseButton_Left) && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 2.0f)) {
     const Vec2 p = view.ToWorld(io.MousePos);
     // The drag's edits make one undo step.
-    const bool continues = ui_.state().gesture_key == "slot:" + slot_drag_;
+    const bool continues = ctx_.state->gesture_key == "slot:" + slot_drag_;
     CmdSlot(slot_drag_, p.x, p.y, continues);
-    ui_.state().gesture_key = "slot:" + slot_drag_;
+    ctx_.state->gesture_key = "slot:" + slot_drag_;
   }
   if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) && mode_ == EditMode::kSlots) {
     slot_drag_.clear();
-    ui_.state().gesture_key.clear();
+    ctx_.state->gesture_key.clear();
   }
   return true;
 }
@@ -280,7 +283,7 @@ bool FormationEditorPanel::WorldMouse(const View& view) {
 void FormationEditorPanel::Draw(const Fonts&) {
   if (mode_ != EditMode::kOff) ImGui::SetNextItemOpen(true);
   if (!ImGui::CollapsingHeader("Formation")) return;
-  const sim::Experiment& exp = ui_.session().exp();
+  const sim::Experiment& exp = ctx_.session().exp();
   ImGui::PushTextWrapPos(0.0f);
   ImGui::TextDisabled("Click in the world view to build the formation; every change is checked "
                       "like a scenario file (cycle, missing leader, impossible triangle).");
@@ -317,9 +320,9 @@ void FormationEditorPanel::Draw(const Fonts&) {
     ImGui::PopTextWrapPos();
   }
   // A refused change says why right here (the status line may be scrolled out of view).
-  if (ui_.state().status_is_error && !ui_.state().status.empty()) {
+  if (ctx_.state->status_is_error && !ctx_.state->status.empty()) {
     ImGui::PushTextWrapPos(0.0f);
-    ImGui::TextColored(ImVec4(0.8f, 0.1f, 0.1f, 1), "%s", ui_.state().status.c_str());
+    ImGui::TextColored(ImVec4(0.8f, 0.1f, 0.1f, 1), "%s", ctx_.state->status.c_str());
     ImGui::PopTextWrapPos();
   }
   // Named shapes: the whole graph and every slot in one click.
@@ -451,9 +454,9 @@ std::vector<Command> FormationEditorPanel::Rows() {
   return t;
 }
 
-std::unique_ptr<Panel> MakeKindPanel(AppUi& window, const sim::Experiment& exp) {
+std::unique_ptr<Panel> MakeKindPanel(const PanelContext& ctx, const sim::Experiment& exp) {
   if (exp.As<sf::FormationEditing>() != nullptr)
-    return std::make_unique<FormationEditorPanel>(window);
+    return std::make_unique<FormationEditorPanel>(ctx);
   return nullptr;
 }
 

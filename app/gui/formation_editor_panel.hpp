@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "app/gui/command_table.hpp"
-#include "app/gui/panel.hpp"
+#include "app/gui/panel_context.hpp"
 #include "control/common/geometry.hpp"
 
 namespace formsim::sim::formation {
@@ -27,7 +27,7 @@ class FormationEditorPanel : public Panel {
   /// What a left click in the world view does.
   enum class EditMode { kOff, kAdd, kRemove, kAttach, kSwitchLaw, kSlots };
 
-  explicit FormationEditorPanel(AppUi& window) : ui_(window) {}
+  explicit FormationEditorPanel(const PanelContext& ctx) : ctx_(ctx) {}
   /// The Formation menu's rows: editor, formation, shape, slot, click, switch-formation.
   static std::vector<Command> Rows();
 
@@ -63,7 +63,7 @@ class FormationEditorPanel : public Panel {
   /// The robot nearest world point `p` within a few pixels of its body ("" none).
   std::string RobotAt(Vec2 p, const View& view) const;
 
-  AppUi& ui_;
+  const PanelContext& ctx_;
   EditMode mode_ = EditMode::kOff;
   int law_ = 0;                     ///< 0 l_phi, 1 l_l (add and attach)
   std::vector<std::string> picks_;  ///< robots picked so far (follower and/or leaders)
@@ -74,7 +74,7 @@ class FormationEditorPanel : public Panel {
 
 /// The experiment kind's own panel for the session's experiment, found by its capabilities
 /// (the Formation editor for one exposing formation::FormationEditing), or null.
-std::unique_ptr<Panel> MakeKindPanel(AppUi& window, const sim::Experiment& exp);
+std::unique_ptr<Panel> MakeKindPanel(const PanelContext& ctx, const sim::Experiment& exp);
 /// True when `panel` (may be null) is the kind panel MakeKindPanel would make for `exp`.
 bool IsKindPanelFor(const Panel* panel, const sim::Experiment& exp);
 

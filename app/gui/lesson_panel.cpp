@@ -75,7 +75,7 @@ std::vector<Command> LessonPanel::Rows() {
 }
 
 void LessonPanel::Draw(const Fonts& fonts) {
-  const sim::LessonDef& l = ui_.session().lesson();
+  const sim::LessonDef& l = ctx_.session().lesson();
   ImGui::BeginChild("lesson_text", ImVec2(0, 0), false);
   ImGui::PushFont(fonts.Get(FontRole::kTitle));
   LongTextWrapped("title", l.title, 300);  // any length (app/render/long_text.hpp)
@@ -103,13 +103,13 @@ void LessonPanel::Draw(const Fonts& fonts) {
   }
   part("What to watch", l.watch);
   part("What to try next", l.try_next);
-  DrawLessonChecks(l, ui_.session().exp(), checks_);
-  const auto actions = ui_.session().exp().Actions();
+  DrawLessonChecks(l, ctx_.session().exp(), checks_);
+  const auto actions = ctx_.session().exp().Actions();
   if (!actions.empty()) {
     ImGui::Separator();
     ImGui::TextDisabled("This scenario's buttons (also under Parameters):");
     for (const sim::ActionSpec& a : actions) {
-      if (ImGui::Button(Shorten(a.label, 80).c_str())) ui_.CmdAction(a.id);
+      if (ImGui::Button(Shorten(a.label, 80).c_str())) ctx_.run("action " + a.id);
       if (!a.help.empty() && ImGui::IsItemHovered()) SafeTooltip(a.help);
       ImGui::SameLine();
     }

@@ -6,14 +6,14 @@
 #include <vector>
 
 #include "app/gui/command_table.hpp"
-#include "app/gui/panel.hpp"
+#include "app/gui/panel_context.hpp"
 #include "sim/study/lesson_checks.hpp"
 
 namespace formsim::app {
 
 class LessonPanel : public Panel {
  public:
-  explicit LessonPanel(AppUi& window) : ui_(window) {}
+  explicit LessonPanel(const PanelContext& ctx) : ctx_(ctx) {}
   /// The `lesson` row: opens a shipped lesson on its tab.
   static std::vector<Command> Rows();
 
@@ -31,7 +31,7 @@ class LessonPanel : public Panel {
   };
 
  private:
-  AppUi& ui_;
+  const PanelContext& ctx_;
   CheckCache checks_;
 };
 

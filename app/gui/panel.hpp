@@ -2,12 +2,14 @@
 /// \file One panel of the window: it owns its state, draws itself where the window's layout
 /// puts it and registers its command rows (each panel class has a static `Rows()`; the one
 /// table is assembled from them in app/gui/command_rows.cpp). The window (AppUi) creates the
-/// panels, hands each the shared context (itself: the session, the view, the theme, the status
-/// line, the command runner) and wires them into its layout; it owns no panel's state.
+/// panels, hands each the shared context (app/gui/panel_context.hpp: the session and its
+/// record, the view options and theme, the status line, the command runner, ReplaceRun, the
+/// other panels) and wires them into its layout; it owns no panel's state.
 ///
 /// Panels so far: the Formation editor (app/gui/formation_editor_panel.hpp, the formation
 /// kind's own panel, created only when the experiment exposes formation::FormationEditing), the
-/// Timeline (app/gui/timeline_panel.hpp) and the Lesson (app/gui/lesson_panel.hpp).
+/// Timeline (app/gui/timeline_panel.hpp), the History (app/gui/history_panel.hpp) and the
+/// Lesson (app/gui/lesson_panel.hpp).
 
 #include <string>
 

@@ -40,14 +40,14 @@ bool TimelinePanel::CatchingUp() const {
 
 void TimelinePanel::Advance(double budget_s) {
   if (!tl_.active) return;
-  if (tl_.run_id != ui_.session().run_id()) {
+  if (tl_.run_id != ctx_.session().run_id()) {
     tl_ = Timeline();  // the run was reset or branched: the timeline is back at its end
     return;
   }
   try {
     if (!tl_.replay || tl_.replay->step() > tl_.target) {
       tl_.replay = std::make_unique<sim::RunReplay>(
-          ui_.session().source(), ui_.session().run_log(),
+          ctx_.session().source(), ctx_.session().run_log(),
           [](sim::Experiment& e) { e.mutable_recorder().SetHistoryLimit(2000); });
       ++tl_.rebuilds;
     }
@@ -58,12 +58,12 @@ void TimelinePanel::Advance(double budget_s) {
     tl_.replay->AdvanceTo(tl_.target, false, stop);
   } catch (const std::exception& e) {
     tl_ = Timeline();
-    ui_.SetStatus(std::string("timeline: the replay failed: ") + e.what(), true);
+    ctx_.SetStatus(std::string("timeline: the replay failed: ") + e.what(), true);
   }
 }
 
 std::string TimelinePanel::CmdScrub(double t, bool finish_now) {
-  const sim::Experiment& exp = ui_.session().exp();
+  const sim::Experiment& exp = ctx_.session().exp();
   // [0, end of the run so far]: refused outside it before t becomes a step (1e308 / dt is no
   // step number). A step of slack (and the float rounding of the slider) so that the live end,
   // typed as shown or dragged to, is accepted.
@@ -73,15 +73,15 @@ std::string TimelinePanel::CmdScrub(double t, bool finish_now) {
     std::snprintf(buf, sizeof buf, "scrub: t = %.6g s is outside the run so far, 0 ... %.6g s",
                   t, end);
     const std::string why = buf;
-    ui_.SetStatus(why, true);
+    ctx_.SetStatus(why, true);
     return why;
   }
   const long step = std::min(exp.steps(), static_cast<long>(std::llround(t / exp.dt())));
   if (step >= exp.steps()) return CmdLive();
-  ui_.state().playing = false;
-  if (tl_.run_id != ui_.session().run_id()) tl_ = Timeline();
+  ctx_.state->playing = false;
+  if (tl_.run_id != ctx_.session().run_id()) tl_ = Timeline();
   tl_.active = true;
-  tl_.run_id = ui_.session().run_id();
+  tl_.run_id = ctx_.session().run_id();
   tl_.target = step;
   if (finish_now) Advance(0);
   char buf[96];
@@ -89,7 +89,7 @@ std::string TimelinePanel::CmdScrub(double t, bool finish_now) {
                 "timeline at t = %.2f s (live end %.2f s): play to go on, or "
                 "branch from here",
                 step * exp.dt(), exp.time());
-  ui_.SetStatus(buf);
+  ctx_.SetStatus(buf);
   return "";
 }
 
@@ -102,28 +102,28 @@ std::string TimelinePanel::CmdLive() {
 std::string TimelinePanel::CmdBranch() {
   if (!tl_.active) {
     const std::string why = "branch: move the timeline to the time to branch from first";
-    ui_.SetStatus(why, true);
+    ctx_.SetStatus(why, true);
     return why;
   }
   const long at = tl_.target;
-  const double t = at * ui_.session().exp().dt();
-  if (pins_original_) ui_.CmdPin();
-  const std::string err = ui_.ReplaceRun("branched", [&] { return ui_.session().Branch(at); });
+  const double t = at * ctx_.session().exp().dt();
+  if (pins_original_) ctx_.run("pin");
+  const std::string err = ctx_.replace_run("branched", [&] { return ctx_.session().Branch(at); });
   if (!err.empty()) {
-    ui_.SetStatus(err, true);
+    ctx_.SetStatus(err, true);
     return err;
   }
   tl_ = Timeline();
-  ui_.state().playing = false;
+  ctx_.state->playing = false;
   char buf[96];
   std::snprintf(buf, sizeof buf, "branched at t = %.2f s: change the gains, then play", t);
-  ui_.SetStatus(buf);
+  ctx_.SetStatus(buf);
   return "";
 }
 
 void TimelinePanel::Draw(const Fonts&) {
   const ImVec2 min = min_, max = max_;
-  const sim::Experiment& live = ui_.session().exp();
+  const sim::Experiment& live = ctx_.session().exp();
   ImGui::SetCursorScreenPos(ImVec2(min.x + 6, min.y + 4));
   ImGui::PushID("timeline");
   const ImGuiStyle& st = ImGui::GetStyle();

@@ -13,14 +13,14 @@
 #include <vector>
 
 #include "app/gui/command_table.hpp"
-#include "app/gui/panel.hpp"
+#include "app/gui/panel_context.hpp"
 #include "app/gui/tuning_state.hpp"
 
 namespace formsim::app {
 
 class TimelinePanel : public Panel {
  public:
-  explicit TimelinePanel(AppUi& window) : ui_(window) {}
+  explicit TimelinePanel(const PanelContext& ctx) : ctx_(ctx) {}
   /// scrub, live, branch (Compare menu).
   static std::vector<Command> Rows();
 
@@ -54,7 +54,7 @@ class TimelinePanel : public Panel {
   void Forget() { tl_ = Timeline(); }
 
  private:
-  AppUi& ui_;
+  const PanelContext& ctx_;
   Timeline tl_;
   bool pins_original_ = true;  ///< "branch from here" pins the run it leaves first
   ImVec2 min_{0, 0}, max_{0, 0};

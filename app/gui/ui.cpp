@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "app/gui/formation_editor_panel.hpp"
+#include "app/gui/history_panel.hpp"
 #include "app/gui/lesson_panel.hpp"
 #include "app/gui/timeline_panel.hpp"
 #include "sim/core/number_format.hpp"
@@ -56,7 +57,7 @@ AppUi::AppUi(std::unique_ptr<sim::Session> session) : owned_(std::move(session))
   shipped_ = ShippedAndLessons();
   SyncScenarioFields();
   StartRecording(session_->cli_overrides(), 0);
-  LoadHistoryFor(session_->file());
+  history_->LoadFor(session_->file());
 }
 
 AppUi::AppUi(sim::Session& borrowed) : session_(&borrowed) {
@@ -64,7 +65,7 @@ AppUi::AppUi(sim::Session& borrowed) : session_(&borrowed) {
   shipped_ = ShippedAndLessons();
   SyncScenarioFields();
   StartRecording(session_->cli_overrides(), 0);
-  LoadHistoryFor(session_->file());
+  history_->LoadFor(session_->file());
 }
 
 AppUi::~AppUi() {
@@ -77,16 +78,29 @@ void AppUi::SetRunSetup(std::function<void(sim::Experiment&)> setup) {
 }
 
 void AppUi::MakePanels() {
-  auto timeline = std::make_unique<TimelinePanel>(*this);
+  ctx_.session = [this]() -> sim::Session& { return *session_; };
+  ctx_.record = &record_;
+  ctx_.state = &state_;
+  ctx_.set_status = [this](const std::string& message, bool error) { SetStatus(message, error); };
+  ctx_.run = [this](const std::string& line) { return RunScriptAction(line); };
+  ctx_.replace_run = [this](const std::string& status, const std::function<std::string()>& change) {
+    return ReplaceRun(status, change);
+  };
+  ctx_.panels = &panels_;
+  ctx_.kind_panel = &kind_panel_;
+  auto timeline = std::make_unique<TimelinePanel>(ctx_);
   timeline_ = timeline.get();
   panels_.push_back(std::move(timeline));
-  panels_.push_back(std::make_unique<LessonPanel>(*this));
+  auto history = std::make_unique<HistoryPanel>(ctx_);
+  history_ = history.get();
+  panels_.push_back(std::move(history));
+  panels_.push_back(std::make_unique<LessonPanel>(ctx_));
   SyncKindPanel();
 }
 
 void AppUi::SyncKindPanel() {
   if (!IsKindPanelFor(kind_panel_.get(), session_->exp()))
-    kind_panel_ = MakeKindPanel(*this, session_->exp());
+    kind_panel_ = MakeKindPanel(ctx_, session_->exp());
 }
 
 Panel* AppUi::PanelToDismiss() const {
@@ -98,10 +112,10 @@ Panel* AppUi::PanelToDismiss() const {
 
 std::string AppUi::ReplaceRun(const std::string& status,
                               const std::function<std::string()>& change) {
-  auto row = PendingRow(status);
+  auto row = history_->PendingRow(status);
   const std::string err = change();
   if (!err.empty()) return err;
-  if (row) history_.Add(std::move(*row));
+  if (row) history_->Add(std::move(*row));
   return "";
 }
 
@@ -140,9 +154,7 @@ void AppUi::SyncScenarioFields() {
 
 void AppUi::Adopt(std::unique_ptr<sim::Session> session, const std::string& message) {
   // The old scenario's last run goes into its history, kept for when it is opened again.
-  if (auto row = PendingRow("closed")) history_.Add(std::move(*row));
-  histories_[session_->file()] = std::move(history_);
-  history_ = sim::RunHistory();
+  history_->Shelve(session_->file());
   DropScenarioState();
   const long step = session_->exp().steps();
   if (run_setup_) {
@@ -155,7 +167,7 @@ void AppUi::Adopt(std::unique_ptr<sim::Session> session, const std::string& mess
   SyncScenarioFields();
   SyncKindPanel();
   StartRecording({}, step);
-  LoadHistoryFor(session_->file());
+  history_->LoadFor(session_->file());
   SetStatus(message);
 }
 
@@ -185,18 +197,18 @@ std::string AppUi::CmdStep() {
     SetStatus(std::string("step failed: ") + e.what(), true);
     return state_.status;
   }
-  if (session_->exp().finished()) NoteRunInHistory(session_->exp().status());
+  if (session_->exp().finished()) history_->NoteRun(session_->exp().status());
   return "";
 }
 
 std::string AppUi::CmdReset() {
-  auto row = PendingRow("reset");
+  auto row = history_->PendingRow("reset");
   const std::string err = session_->Reset();
   if (!err.empty()) {
     SetStatus(err, true);
     return err;
   }
-  if (row) history_.Add(std::move(*row));
+  if (row) history_->Add(std::move(*row));
   state_.step_budget = 0;
   CopyString(state_.seed_text, sizeof(state_.seed_text), std::to_string(session_->seed()));
   SetStatus("reset");
@@ -214,13 +226,13 @@ std::string AppUi::CmdResetSeed(const std::string& seed_text) {
     SetStatus(why, true);
     return why;
   }
-  auto row = PendingRow("reset");
+  auto row = history_->PendingRow("reset");
   const std::string err = session_->Reset(seed);
   if (!err.empty()) {
     SetStatus(err, true);
     return err;
   }
-  if (row) history_.Add(std::move(*row));
+  if (row) history_->Add(std::move(*row));
   state_.step_budget = 0;
   CopyString(state_.seed_text, sizeof(state_.seed_text), std::to_string(seed));
   SetStatus("reset with seed " + std::to_string(seed));
@@ -228,13 +240,13 @@ std::string AppUi::CmdResetSeed(const std::string& seed_text) {
 }
 
 std::string AppUi::CmdReload() {
-  auto row = PendingRow("reloaded");
+  auto row = history_->PendingRow("reloaded");
   const std::string err = session_->Reload();
   if (!err.empty()) {
     SetStatus(err, true);
     return err;
   }
-  if (row) history_.Add(std::move(*row));
+  if (row) history_->Add(std::move(*row));
   SyncScenarioFields();
   SyncKindPanel();  // the file may now hold another kind
   SetStatus("reloaded " + session_->file());
@@ -277,11 +289,11 @@ std::string AppUi::CmdSave(const std::string& path, bool overwrite) {
       return "";
     }
     std::string also;
-    if (!history_.empty()) {
+    if (!history_->history().empty()) {
       // The history goes beside the scenario and comes back when it is opened.
       const std::string hist = sim::RunHistory::PathFor(path);
       try {
-        history_.Save(hist);
+        history_->history().Save(hist);
         also = ", history in " + hist;
       } catch (const std::exception& e) {
         also = "; the history was not saved: " + std::string(e.what());
@@ -437,7 +449,7 @@ void AppUi::Advance(double wall_dt) {
         char buf[64];
         std::snprintf(buf, sizeof buf, "finished at t = %.2f s", session_->exp().time());
         SetStatus(buf);
-        NoteRunInHistory(session_->exp().status());
+        history_->NoteRun(session_->exp().status());
       }
     } catch (const std::exception& e) {
       // Nothing a step throws may end the program: stop and say what happened.

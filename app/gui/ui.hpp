@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "app/gui/command_table.hpp"
-#include "app/gui/panel.hpp"
+#include "app/gui/panel_context.hpp"
 #include "app/gui/speed_meter.hpp"
 #include "app/render/fonts.hpp"
 #include "app/render/theme.hpp"
@@ -29,6 +29,7 @@
 
 namespace formsim::app {
 
+class HistoryPanel;
 class TimelinePanel;
 
 /// Speeds offered by the Run panel; 0 means as fast as possible.
@@ -163,11 +164,6 @@ class AppUi {
   std::string CmdPin();
   std::string CmdUnpin(int id);
   std::string CmdUnpinAll();
-  /// Edits the settings of history row `number` back in (seed into the seed field).
-  std::string CmdRestore(int number);
-  /// History row `number`; null when there is none, with the reason in `why` and the status.
-  const sim::HistoryRow* HistoryRowOrRefuse(const std::string& action, int number,
-                                            std::string* why);
   /// Pins history row `number` (replayed exactly from its log).
   std::string CmdPinRow(int number);
   /// Runs the current settings over seeds 1..n in the background (as `formsim sweep`).
@@ -238,9 +234,6 @@ class AppUi {
   /// Writes the tables of the finished Monte Carlo (runs.csv, aggregate.csv, as `formsim sweep`
   /// writes them) into `dir`/montecarlo. Returns false when there is none.
   bool WriteMonteCarlo(const std::string& dir);
-  /// Adds the current run to the history when it has run and has no row yet.
-  void NoteRunInHistory(const std::string& status);
-  const sim::RunHistory& history() const { return history_; }
   const std::vector<std::unique_ptr<PinnedRun>>& pins() const { return pins_; }
 
   // ---- The panels (app/gui/panel.hpp) and what the window shares with them.
@@ -248,10 +241,7 @@ class AppUi {
   /// null: a formation scenario has a FormationEditorPanel, others none.
   template <class P>
   P* Find() const {
-    if (auto* p = dynamic_cast<P*>(kind_panel_.get())) return p;
-    for (const auto& panel : panels_)
-      if (auto* p = dynamic_cast<P*>(panel.get())) return p;
-    return nullptr;
+    return ctx_.Find<P>();
   }
   /// The first panel with something open that Esc closes (null: none).
   Panel* PanelToDismiss() const;
@@ -274,16 +264,12 @@ class AppUi {
   /// Per frame: collects finished pin replays, Monte Carlo results, the timeline's progress.
   void UpdateBackground();
   void StartRecording(const std::vector<sim::Override>& cli, long step);
-  /// Before the current run is replaced (reset, reload, branch, load): its history row.
-  std::optional<sim::HistoryRow> PendingRow(const std::string& status) const;
-  void LoadHistoryFor(const std::string& file);
   void DropScenarioState();  ///< pins, Monte Carlo, timeline: on loading another scenario
   std::string PinReplay(std::shared_ptr<const sim::ScenarioSource> source, sim::RunLog log,
                         long steps, const std::string& origin);
   RunValues CurrentValues() const;
   /// "pin 1: k_l 0.15 -> 0.4" (what differs from the current run).
   std::string PinLabel(const PinnedRun& pin) const;
-  const sim::ParamTable& TextParams(const sim::ScenarioSource& source);
   /// Adds the pinned runs and the Monte Carlo bands to a live plot of figure `fig`.
   void DecoratePlot(const sim::FigureSpec& fig, PlotData& data);
   /// The time the plots' cursor marks: the timeline's when it is on, else the live time.
@@ -291,11 +277,12 @@ class AppUi {
   /// The experiment the world view shows: the timeline's replay, or the live run.
   const sim::Experiment& ShownExperiment() const;
   void DrawTuningSection();
-  void DrawHistoryTab();
   void DrawCompareTable(const sim::Metrics& now);
+  /// The History tab's list of the pinned runs (above the history table).
+  void DrawPinnedRuns();
   /// The kind's own panel for the experiment now: made, kept or dropped (MakeKindPanel).
   void SyncKindPanel();
-  /// The window's own panels, made once.
+  /// The context handed to the panels, then the window's own panels, made once.
   void MakePanels();
   /// Replaces the session after a successful load (keeps view options, resets per-run state).
   void Adopt(std::unique_ptr<sim::Session> session, const std::string& message);
@@ -327,7 +314,9 @@ class AppUi {
   /// without one): drawn where the layout puts them.
   std::vector<std::unique_ptr<Panel>> panels_;
   std::unique_ptr<Panel> kind_panel_;
+  PanelContext ctx_;  ///< what every panel gets of the window (refers to the members above)
   TimelinePanel* timeline_ = nullptr;  ///< one of panels_: every window has one
+  HistoryPanel* history_ = nullptr;    ///< one of panels_: every window has one
   std::function<void(sim::Experiment&)> run_setup_;
   std::unique_ptr<sim::Session> owned_;
   sim::Session* session_ = nullptr;
@@ -342,11 +331,6 @@ class AppUi {
   std::string session_file_;
   std::vector<std::unique_ptr<PinnedRun>> pins_;
   int next_pin_ = 1;
-  sim::RunHistory history_;
-  std::map<std::string, sim::RunHistory> histories_;    ///< of scenarios opened before, by file
-  long history_run_ = -1;                               ///< run id that has its history row
-  std::map<std::string, sim::ParamTable> text_params_;  ///< by SHA-256 of a scenario text
-  std::vector<int> history_order_;  ///< rows in the order shown (sorted by a column)
   MonteCarloState mc_;
   std::unique_ptr<sim::SessionJournal> journal_;  ///< the window's crash-safe journal
   std::vector<sim::RecoveredSession> unfinished_;  ///< offered for restore, newest first

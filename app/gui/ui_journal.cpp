@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "app/render/long_text.hpp"
+#include "app/gui/history_panel.hpp"
 #include "app/gui/ui.hpp"
 
 namespace formsim::app {
@@ -99,9 +100,7 @@ std::string AppUi::CmdRestoreSession() {
   }
   // As a load: the current run goes into its history, then the restored session takes over,
   // its record (and journal) going on from the restored one.
-  if (auto row = PendingRow("closed")) history_.Add(std::move(*row));
-  histories_[session_->file()] = std::move(history_);
-  history_ = sim::RunHistory();
+  history_->Shelve(session_->file());
   DropScenarioState();
   session_->SetObserver(nullptr);
   owned_ = std::move(restored);
@@ -116,7 +115,7 @@ std::string AppUi::CmdRestoreSession() {
     });
   }
   session_->SetObserver([this](const sim::SessionEvent& e) { record_.Add(e); });
-  LoadHistoryFor(session_->file());
+  history_->LoadFor(session_->file());
   std::error_code ec;
   std::filesystem::remove(r.path, ec);
   unfinished_.erase(unfinished_.begin());

@@ -4,6 +4,7 @@
 /// another scenario is loaded.
 #include <cstdio>
 
+#include "app/gui/history_panel.hpp"
 #include "app/gui/ui.hpp"
 #include "sim/core/run_output.hpp"
 
@@ -62,7 +63,7 @@ std::string AppUi::CmdPin() {
 
 std::string AppUi::CmdPinRow(int number) {
   std::string missing;
-  const sim::HistoryRow* row = HistoryRowOrRefuse("pin-row", number, &missing);
+  const sim::HistoryRow* row = history_->RowOrRefuse("pin-row", number, &missing);
   if (row == nullptr) return missing;
   if (row->source->sha256() != session_->source().sha256() &&
       sim::ParseScenario(*row->source, {}).setup.type != session_->exp().setup().type) {
@@ -110,6 +111,42 @@ std::string AppUi::PinLabel(const PinnedRun& pin) const {
   const std::string diff =
       sim::DescribeDifferences(pin.values, CurrentValues(), session_->params());
   return label + ": " + (diff.empty() ? "same settings" : diff);
+}
+
+// The History tab's first part: the pinned runs, each with what differs and its unpin button.
+void AppUi::DrawPinnedRuns() {
+  ImGui::Text("Pinned runs (%zu)", pins_.size());
+  if (!pins_.empty() && ImGui::BeginTable("pins", 3,
+                                          ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg |
+                                              ImGuiTableFlags_SizingStretchProp)) {
+    ImGui::TableSetupColumn("pin", ImGuiTableColumnFlags_WidthFixed, 60);
+    ImGui::TableSetupColumn("what differs from the current run");
+    ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed, 60);
+    ImGui::TableHeadersRow();
+    int unpin = 0;
+    for (const auto& p : pins_) {
+      ImGui::TableNextRow();
+      ImGui::TableSetColumnIndex(0);
+      ImGui::Text("pin %d", p->id);
+      ImGui::TableSetColumnIndex(1);
+      const std::string label = PinLabel(*p);
+      ImGui::TextWrapped(
+          "%s (%s)",
+          label.substr(label.find(':') == std::string::npos ? label.size() : label.find(':') + 2)
+              .c_str(),
+          p->origin.c_str());
+      if (!p->error.empty())
+        ImGui::TextColored(ImVec4(0.75f, 0.1f, 0.1f, 1), "%s", p->error.c_str());
+      ImGui::TableSetColumnIndex(2);
+      ImGui::PushID(p->id);
+      if (ImGui::SmallButton("unpin")) unpin = p->id;
+      ImGui::PopID();
+    }
+    ImGui::EndTable();
+    if (unpin) CmdUnpin(unpin);
+  }
+  ImGui::Spacing();
+
 }
 
 }  // namespace formsim::app

@@ -16,6 +16,7 @@
 #include "app/render/imgui_canvas.hpp"
 #include "app/render/long_text.hpp"
 #include "app/gui/lesson_panel.hpp"
+#include "app/gui/history_panel.hpp"
 #include "app/gui/ui.hpp"
 
 namespace formsim::app {
@@ -320,7 +321,8 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
       ImGui::EndTabItem();
     }
     if (ImGui::BeginTabItem("History", nullptr, tab("History"))) {
-      DrawHistoryTab();
+      DrawPinnedRuns();
+      history_->Draw(fonts);
       ImGui::EndTabItem();
     }
     if (ImGui::BeginTabItem("Summary", nullptr, tab("Summary"))) {

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <filesystem>
 
+#include "app/gui/history_panel.hpp"
 #include "app/gui/timeline_panel.hpp"
 #include "app/gui/ui.hpp"
 #include "sim/core/run_output.hpp"
@@ -104,26 +105,12 @@ RunValues AppUi::CurrentValues() const {
   return v;
 }
 
-const sim::ParamTable& AppUi::TextParams(const sim::ScenarioSource& source) {
-  auto it = text_params_.find(source.sha256());
-  if (it == text_params_.end()) {
-    sim::ParamTable params;
-    try {
-      params = sim::ParseScenario(source, {}).params;
-    } catch (const std::exception&) {
-      // A text that reads only with overrides: its rows show their settings as recorded.
-    }
-    it = text_params_.emplace(source.sha256(), std::move(params)).first;
-  }
-  return it->second;
-}
-
 void AppUi::DropScenarioState() {
   pins_.clear();  // each pin's destructor waits for its replay, which stops at once
   next_pin_ = 1;
   mc_ = MonteCarloState();
   timeline_->Forget();
-  history_run_ = -1;
+  history_->Forget();
 }
 
 }  // namespace formsim::app

@@ -8,6 +8,7 @@
 
 #include "app/gui/command_table.hpp"
 #include "app/gui/formation_editor_panel.hpp"
+#include "app/gui/history_panel.hpp"
 #include "app/gui/lesson_panel.hpp"
 #include "app/gui/timeline_panel.hpp"
 #include "tests/app/ui_window.hpp"
@@ -29,7 +30,8 @@ TEST(Panels, TheTableHoldsEachPanelsRowsOnceInItsOrder) {
   for (const Command& c : Commands()) EXPECT_TRUE(names.insert(c.name).second) << c.name;
   // Each panel's rows are in the table, as the panel registers them, in the panel's order.
   for (const auto& rows :
-       {FormationEditorPanel::Rows(), LessonPanel::Rows(), TimelinePanel::Rows()}) {
+       {FormationEditorPanel::Rows(), HistoryPanel::Rows(), LessonPanel::Rows(),
+        TimelinePanel::Rows()}) {
     ASSERT_FALSE(rows.empty());
     std::size_t last = 0;
     for (const Command& r : rows) {
@@ -61,6 +63,7 @@ TEST(Panels, TheFormationEditorIsTheFormationKindsOwn) {
   AppUi& ui = w.ui();
   ASSERT_NE(ui.Find<FormationEditorPanel>(), nullptr);
   EXPECT_NE(ui.Find<LessonPanel>(), nullptr);
+  EXPECT_NE(ui.Find<HistoryPanel>(), nullptr);
   EXPECT_EQ(ui.RunScriptAction("editor add l_phi"), "");
   EXPECT_EQ(ui.Find<FormationEditorPanel>()->mode(), FormationEditorPanel::EditMode::kAdd);
   EXPECT_EQ(ui.PanelToDismiss(), ui.Find<FormationEditorPanel>());

@@ -1,17 +1,19 @@
-/// \file The run history: a row for every run that reaches its end or is reset (when, how far,
-/// status, seed, what differs from the loaded file, headline metrics), sortable by any column;
-/// a row's settings can be edited back in (through the normal edit path) or the run pinned
-/// (replayed exactly from its log). Saved beside a saved scenario and read back with it. The
-/// History tab also lists the pinned runs.
+/// \file The History panel (app/gui/history_panel.hpp): the run history, its restore, its tab.
+#include "app/gui/history_panel.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 
+#include "app/gui/command_row_makers.hpp"
 #include "app/gui/ui.hpp"
 #include "sim/core/number_format.hpp"
 
 namespace fs = std::filesystem;
+
+// Each row names only the fields it sets; the others keep their defaults on purpose.
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
 
 namespace formsim::app {
 
@@ -26,23 +28,24 @@ std::string MetricText(const sim::Metrics::HeadlineValue& m) {
 
 }  // namespace
 
-std::optional<sim::HistoryRow> AppUi::PendingRow(const std::string& status) const {
-  if (session_->exp().steps() == 0 || history_run_ == session_->run_id()) return std::nullopt;
+std::optional<sim::HistoryRow> HistoryPanel::PendingRow(const std::string& status) const {
+  if (ctx_.session().exp().steps() == 0 || history_run_ == ctx_.session().run_id())
+    return std::nullopt;
   try {
-    return sim::RunHistory::RowOf(*session_, status);
+    return sim::RunHistory::RowOf(ctx_.session(), status);
   } catch (const std::exception&) {
     return std::nullopt;  // the session's text no longer reads without overrides
   }
 }
 
-void AppUi::NoteRunInHistory(const std::string& status) {
+void HistoryPanel::NoteRun(const std::string& status) {
   if (auto row = PendingRow(status)) {
     history_.Add(std::move(*row));
-    history_run_ = session_->run_id();
+    history_run_ = ctx_.session().run_id();
   }
 }
 
-void AppUi::LoadHistoryFor(const std::string& file) {
+void HistoryPanel::LoadFor(const std::string& file) {
   history_run_ = -1;
   const auto kept = histories_.find(file);
   if (kept != histories_.end()) {
@@ -57,90 +60,78 @@ void AppUi::LoadHistoryFor(const std::string& file) {
   try {
     history_ = sim::RunHistory::Load(path);
   } catch (const std::exception& e) {
-    SetStatus(std::string("the history beside the scenario was not read: ") + e.what(), true);
+    ctx_.SetStatus(std::string("the history beside the scenario was not read: ") + e.what(), true);
   }
 }
 
-const sim::HistoryRow* AppUi::HistoryRowOrRefuse(const std::string& action, int number,
+void HistoryPanel::Shelve(const std::string& file) {
+  if (auto row = PendingRow("closed")) history_.Add(std::move(*row));
+  histories_[file] = std::move(history_);
+  history_ = sim::RunHistory();
+}
+
+const sim::ParamTable& HistoryPanel::TextParams(const sim::ScenarioSource& source) {
+  auto it = text_params_.find(source.sha256());
+  if (it == text_params_.end()) {
+    sim::ParamTable params;
+    try {
+      params = sim::ParseScenario(source, {}).params;
+    } catch (const std::exception&) {
+      // A text that reads only with overrides: its rows show their settings as recorded.
+    }
+    it = text_params_.emplace(source.sha256(), std::move(params)).first;
+  }
+  return it->second;
+}
+
+const sim::HistoryRow* HistoryPanel::RowOrRefuse(const std::string& action, int number,
                                                  std::string* why) {
   const sim::HistoryRow* row = history_.Find(number);
   if (row == nullptr) {
     *why = action + ": no history row " + std::to_string(number);
-    SetStatus(*why, true);
+    ctx_.SetStatus(*why, true);
   }
   return row;
 }
 
-std::string AppUi::CmdRestore(int number) {
+std::string HistoryPanel::CmdRestore(int number) {
   std::string why;
-  const sim::HistoryRow* row = HistoryRowOrRefuse("restore", number, &why);
+  const sim::HistoryRow* row = RowOrRefuse("restore", number, &why);
   if (row == nullptr) return why;
   const sim::HistoryRow r = *row;  // edits below may not touch the history, but be safe
   const sim::ParamTable& text = TextParams(*r.source);
   int edits = 0;
   std::string refused;
-  for (const sim::Param& p : session_->params().all()) {
+  for (const sim::Param& p : ctx_.session().params().all()) {
     const std::string v = r.Value(p.key, text);
-    if (v.empty() || v == session_->EffectiveValue(p.key)) continue;
-    const std::string err = session_->Edit(p.key, v, "restore");
+    if (v.empty() || v == ctx_.session().EffectiveValue(p.key)) continue;
+    const std::string err = ctx_.session().Edit(p.key, v, "restore");
     if (err.empty())
       ++edits;
     else
       refused += (refused.empty() ? "" : "; ") + p.key + ": " + err;
   }
-  std::snprintf(state_.seed_text, sizeof(state_.seed_text), "%s", std::to_string(r.seed).c_str());
+  std::snprintf(ctx_.state->seed_text, sizeof(ctx_.state->seed_text), "%s",
+                std::to_string(r.seed).c_str());
   sim::SessionEvent note;
   note.kind = sim::SessionEvent::Kind::kNote;
   note.key = "restore";
   note.value = "history row " + std::to_string(number);
-  note.step = session_->exp().steps();
-  record_.Add(note);
+  note.step = ctx_.session().exp().steps();
+  ctx_.record->Add(note);
   std::string msg = "restored row " + std::to_string(number) + ": " + std::to_string(edits) +
                     " edit" + (edits == 1 ? "" : "s");
-  if (r.seed != session_->seed())
+  if (r.seed != ctx_.session().seed())
     msg += "; its seed " + std::to_string(r.seed) + " is in the seed field (Reset with seed)";
   if (!refused.empty()) {
-    SetStatus(msg + "; refused: " + refused, true);
+    ctx_.SetStatus(msg + "; refused: " + refused, true);
     return refused;
   }
-  SetStatus(msg);
+  ctx_.SetStatus(msg);
   return "";
 }
 
-void AppUi::DrawHistoryTab() {
-  // ---- pinned runs ----
-  ImGui::Text("Pinned runs (%zu)", pins_.size());
-  if (!pins_.empty() && ImGui::BeginTable("pins", 3,
-                                          ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg |
-                                              ImGuiTableFlags_SizingStretchProp)) {
-    ImGui::TableSetupColumn("pin", ImGuiTableColumnFlags_WidthFixed, 60);
-    ImGui::TableSetupColumn("what differs from the current run");
-    ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed, 60);
-    ImGui::TableHeadersRow();
-    int unpin = 0;
-    for (const auto& p : pins_) {
-      ImGui::TableNextRow();
-      ImGui::TableSetColumnIndex(0);
-      ImGui::Text("pin %d", p->id);
-      ImGui::TableSetColumnIndex(1);
-      const std::string label = PinLabel(*p);
-      ImGui::TextWrapped(
-          "%s (%s)",
-          label.substr(label.find(':') == std::string::npos ? label.size() : label.find(':') + 2)
-              .c_str(),
-          p->origin.c_str());
-      if (!p->error.empty())
-        ImGui::TextColored(ImVec4(0.75f, 0.1f, 0.1f, 1), "%s", p->error.c_str());
-      ImGui::TableSetColumnIndex(2);
-      ImGui::PushID(p->id);
-      if (ImGui::SmallButton("unpin")) unpin = p->id;
-      ImGui::PopID();
-    }
-    ImGui::EndTable();
-    if (unpin) CmdUnpin(unpin);
-  }
-  ImGui::Spacing();
-
+void HistoryPanel::Draw(const Fonts&) {
   // ---- history ----
   const auto& rows = history_.rows();
   ImGui::Text("History (%zu runs; saved beside the scenario when it is saved)", rows.size());
@@ -173,13 +164,14 @@ void AppUi::DrawHistoryTab() {
           best[c] = m->value;
   // What each row's settings differ in from the loaded file.
   std::vector<std::pair<std::string, std::string>> loaded;
-  for (const sim::Param& p : session_->loaded_params().all()) loaded.emplace_back(p.key, p.Text());
+  for (const sim::Param& p : ctx_.session().loaded_params().all())
+    loaded.emplace_back(p.key, p.Text());
   std::vector<std::string> settings(rows.size());
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const sim::ParamTable& text = TextParams(*rows[i].source);
     RunValues values;
     for (const auto& [key, v] : loaded) values.emplace_back(key, rows[i].Value(key, text));
-    settings[i] = sim::DescribeDifferences(loaded, values, session_->loaded_params());
+    settings[i] = sim::DescribeDifferences(loaded, values, ctx_.session().loaded_params());
     if (settings[i].empty()) settings[i] = "as loaded";
     const int changes = rows[i].mid_run_changes();
     if (changes > 0) settings[i] += " (" + std::to_string(changes) + " mid-run)";
@@ -274,7 +266,36 @@ void AppUi::DrawHistoryTab() {
   }
   ImGui::EndTable();
   if (restore) CmdRestore(restore);
-  if (pin) CmdPinRow(pin);
+  if (pin) ctx_.run("pin-row " + std::to_string(pin));
+}
+
+std::vector<Command> HistoryPanel::Rows() {
+  using rows::Whole;
+  using Src = CommandSource;
+  std::vector<Command> t;
+  auto row = [&t](Command c) { t.push_back(std::move(c)); };
+  row({.name = "history",
+       .menu = "Compare/History",
+       .help = "Show the history of runs (the History tab)",
+       .run = [](AppUi& ui, const CommandArgs&, Src) {
+         ui.state().select_tab = "history";
+         return std::string();
+       }});
+  row({.name = "restore",
+       .args = {Whole("N", 1, 1000000000)},
+       .menu = "Compare/Restore history row…",
+       .help = "Edit the settings of history row N back in (its seed into the seed field)",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) {
+         return ui.Find<HistoryPanel>()->CmdRestore(static_cast<int>(a.Whole(0)));
+       }});
+  row({.name = "pin-row",
+       .args = {Whole("N", 1, 1000000000)},
+       .menu = "Compare/Pin history row…",
+       .help = "Replay history row N exactly and pin it",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) {
+         return ui.CmdPinRow(static_cast<int>(a.Whole(0)));
+       }});
+  return t;
 }
 
 }  // namespace formsim::app
