@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "app/export/export.hpp"
+#include "app/export/figure_requests.hpp"
 #include "app/cli/figures_command.hpp"
 #include "app/cli/lessons_cli.hpp"
 #include "app/gui/gui.hpp"
@@ -45,6 +46,7 @@ struct RunOptions {
   std::string snapshot;
   std::string theme = "light";
   std::string titles = "full";
+  std::string log_y;  // --log-y NAME,...
   bool timing = false;
 };
 
@@ -80,7 +82,11 @@ int RunCommand(RunOptions opt) {
   opt.exp.titles = ParseTitleMode(opt.titles, "--titles");
   std::vector<sim::Override> overrides = Overrides(opt.sets, opt.seed);
   if (!opt.max_steps.empty()) overrides.push_back({"max_steps", opt.max_steps, "--max-steps", -1});
+  if (!opt.log_y.empty()) opt.exp.log_y = ParseFigureNames(opt.log_y, "--log-y");
   sim::Session session(file, overrides);
+  // The figures' markup and the --log-y names, before simulating (figures from a first step).
+  if (!opt.exp.plots_dir.empty()) CheckFigureRequests(ProbeFigures(file, overrides), opt.exp.log_y);
+  else if (!opt.exp.log_y.empty()) throw std::runtime_error("--log-y needs --plots DIR");
   sim::PrepareOutputDir(out);  // fail before simulating, not after
   if (opt.exp.any()) PrepareExport(opt.exp);  // a missing ffmpeg fails before simulating too
   // Rows go to disk as they are recorded; memory keeps a bounded history for the figures.
@@ -252,7 +258,10 @@ int Main(int argc, char** argv) {
   run_cmd->add_option(
       "--theme", run.theme,
       std::string("Colours of frames, snapshot and figures: ") + ThemeNames() + " (default light)");
-  run_cmd->add_option("--titles", run.titles, std::string("Figure titles: ") + TitleModeNames() + " (default full; short drops the panel letter and a closing (detail), none has no title)");
+  run_cmd->add_option("--titles", run.titles, TitleModeHelp());
+  run_cmd->add_option("--log-y", run.log_y,
+                      "Figures (ids, comma-separated) drawn with a logarithmic y axis; values "
+                      "<= 0 are left out with a note");
   run_cmd->add_option("--video", run.exp.video,
                       "Write an MP4 video (.mp4, .mkv or .mov; needs ffmpeg on PATH)");
   run_cmd->add_option("--gif", run.exp.gif,
@@ -292,7 +301,10 @@ int Main(int argc, char** argv) {
   figs_cmd->add_option("--dpi", figs.dpi, "Pixels per inch of PNG files (default 96)");
   figs_cmd->add_option("--theme", figs.theme,
                        std::string("Colours: ") + ThemeNames() + " (default light)");
-  figs_cmd->add_option("--titles", figs.titles, std::string("Figure titles: ") + TitleModeNames() + " (default full; short drops the panel letter and a closing (detail), none has no title)");
+  figs_cmd->add_option("--titles", figs.titles, TitleModeHelp());
+  figs_cmd->add_option("--log-y", figs.log_y,
+                       "Figures (ids, comma-separated) drawn with a logarithmic y axis in every "
+                       "scenario that has them");
   figs_cmd->add_option("--jobs,-j", figs.jobs, "Scenarios at once (default: one per core)");
   figs_cmd->add_flag("--quiet,-q", figs.quiet, "Print nothing but errors");
 

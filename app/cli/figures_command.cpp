@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "app/export/export.hpp"
+#include "app/export/figure_requests.hpp"
 #include "app/cli/progress.hpp"
 #include "sim/core/run_output.hpp"
 #include "sim/scenario/scenario_files.hpp"
@@ -114,10 +115,12 @@ int FiguresCommand(const FiguresOptions& o) {
   opt.dpi = ParseDpi(o.dpi);
   opt.theme = ParseTheme(o.theme, "--theme");
   opt.titles = ParseTitleMode(o.titles, "--titles");
+  if (!o.log_y.empty()) opt.log_y = ParseFigureNames(o.log_y, "--log-y");
   opt.whole_run = true;  // the world view shows the whole run
   if (o.jobs < 0) throw std::runtime_error("--jobs must be 0 (one per core) or more");
 
   std::vector<Job> jobs;
+  std::vector<sim::FigureSpec> all_figures;
   const std::vector<std::string> names =
       o.scenarios.empty() ? sim::ShippedScenarios() : o.scenarios;
   for (const std::string& name : names) {
@@ -128,10 +131,14 @@ int FiguresCommand(const FiguresOptions& o) {
       if (other.name == job.name)
         throw std::runtime_error("figures: two scenarios are called '" + job.name +
                                  "' (their figures would overwrite each other)");
-    // Loaded once here, so a bad scenario fails before anything is drawn.
-    sim::Session check(job.file, std::vector<sim::Override>{});
+    // Loaded (and stepped once) here, so a bad scenario or bad figure markup fails before
+    // anything is drawn.
+    const std::vector<sim::FigureSpec> figs = ProbeFigures(job.file, {});
+    CheckFigureRequests(figs, {});
+    all_figures.insert(all_figures.end(), figs.begin(), figs.end());
     jobs.push_back(std::move(job));
   }
+  CheckFigureRequests(all_figures, opt.log_y);  // each --log-y name is a figure of some scenario
   if (jobs.empty()) throw std::runtime_error("figures: no scenario to draw");
   sim::PrepareOutputDir(o.out_dir);
   // Each scenario's outputs are checked (folders, fonts, ffmpeg...) before the first worker.

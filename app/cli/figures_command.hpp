@@ -19,6 +19,7 @@ struct FiguresOptions {
   double dpi = 96;
   std::string theme = "light";
   std::string titles = "full";  ///< --titles full|short|none
+  std::string log_y;            ///< --log-y NAME,...: figures with a log y axis
   int jobs = 0;  ///< worker processes; 0: one per core
   bool quiet = false;
 };

@@ -8,6 +8,7 @@
 #include "app/export/figure_export.hpp"
 #include "app/cli/progress.hpp"
 #include "app/cli/stop_signal.hpp"
+#include "app/export/figure_titles.hpp"
 #include "app/export/study_figures.hpp"
 #include "sim/study/reproduction.hpp"
 #include "sim/study/reproduction_registry.hpp"
@@ -43,12 +44,14 @@ ReproduceCommand::ReproduceCommand(CLI::App& app) {
                    "Override for every case, after its own: path.to.key=value (e.g. duration)")
       ->take_all();
   cmd_->add_option("--jobs,-j", jobs_, "Runs at once (default: every core)");
+  cmd_->add_option("--titles", titles_, TitleModeHelp());
   cmd_->add_flag("--quiet,-q", quiet_, "Print the tables only (no progress, no summary lines)");
 }
 
 int ReproduceCommand::Run() {
   const sim::ReproPaper paper = sim::SelectTables(sim::FindReproPaper(paper_), tables_);
   const std::vector<std::uint64_t> seeds = sim::ParseSeeds(seeds_);
+  const TitleMode titles = ParseTitleMode(titles_, "--titles");
   if (jobs_ < 0 || jobs_ > 1024) throw std::runtime_error("--jobs must be in 1 ... 1024");
   const int jobs = jobs_ == 0 ? sim::TaskPool::HardwareThreads() : jobs_;
   const std::string out = out_.empty() ? "out/reproduce_" + paper.name : out_;
@@ -85,7 +88,8 @@ int ReproduceCommand::Run() {
   int rc = 0;
   std::vector<std::string> wrote = {"tables.md", "cells.csv"};
   for (const sim::ReproFigure& f : paper.figures) {
-    const PlotData data = ResolveFigure(sim::ReproBarFigure(f, res), sim::Recorder());
+    PlotData data = ResolveFigure(sim::ReproBarFigure(f, res), sim::Recorder());
+    data.title = TitleFor(data.title, titles);
     try {
       const std::string stem = (fs::path(out) / f.id).string();
       WriteFigurePng(data, stem + ".png");
@@ -93,7 +97,7 @@ int ReproduceCommand::Run() {
       const VectorFigure vector = RecordPlot(data, 960, 600, GetTheme(ThemeId::kLight));
       for (const FigureFormat format : {FigureFormat::kSvg, FigureFormat::kPdf}) {
         const std::string ext = std::string(".") + FormatExtension(format);
-        WriteVectorFigure(vector, format, FigureSize{}, f.title, stem + ext);
+        WriteVectorFigure(vector, format, FigureSize{}, data.title, stem + ext);
         wrote.push_back(f.id + ext);
       }
     } catch (const std::exception& e) {

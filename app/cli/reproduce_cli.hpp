@@ -28,6 +28,7 @@ class ReproduceCommand {
   std::string seeds_ = "1..10";
   std::string out_;
   std::string tables_;
+  std::string titles_ = "full";  ///< --titles full|short|none of the figures
   std::vector<std::string> sets_;
   int jobs_ = 0;  ///< 0: every hardware thread
   bool quiet_ = false;

@@ -16,6 +16,7 @@
 #include <stdexcept>
 
 #include "app/cli/stop_signal.hpp"
+#include "app/export/figure_titles.hpp"
 #include "app/export/study_figures.hpp"
 #include "app/export/tune_figures.hpp"
 #include "sim/core/number_format.hpp"
@@ -108,8 +109,8 @@ std::string Join(const std::vector<std::string>& v, const std::string& sep) {
 // Tables, ranking and figure of a sweep from its records (a whole sweep, or one shard's part).
 // Returns the exit code: 2 when --metric names no metric (the tables are written first).
 int WriteSweepOutputs(const sim::SweepDefinition& def, const std::vector<sim::SweepRecord>& records,
-                      const std::string& out, std::string metric, SweepBand band, bool figures,
-                      bool quiet) {
+                      const std::string& out, std::string metric, SweepBand band, TitleMode titles,
+                      bool figures, bool quiet) {
   const sim::SweepTables tables = sim::BuildSweepTables(def, records);
   sim::WriteSweepTables(out, tables);
   std::vector<std::string> wrote = {"runs.csv", "aggregate.csv"};
@@ -129,8 +130,10 @@ int WriteSweepOutputs(const sim::SweepDefinition& def, const std::vector<sim::Sw
       wrote.push_back(ranking);
       PlotData fig;
       const bool single = SweepFigure(def, tables, records, m, &fig, band);
-      const std::vector<PlotData> panels =
+      std::vector<PlotData> panels =
           single ? std::vector<PlotData>{} : SweepPanels(def, tables, m, band);
+      fig.title = TitleFor(fig.title, titles);
+      for (PlotData& p : panels) p.title = TitleFor(p.title, titles);
       if (single || !panels.empty()) {
         const std::string name = "plot_" + metric + ".png";
         try {
@@ -202,6 +205,7 @@ StudyCommands::StudyCommands(CLI::App& app) {
   sweep_->add_option("--sample-seed", sample_seed_,
                      "Seed of the Latin hypercube of random:N (default 1)");
   sweep_->add_flag("--no-figures", no_figures_, "Write the tables only");
+  sweep_->add_option("--titles", titles_, TitleModeHelp());
   sweep_->add_flag("--quiet,-q", quiet_, "Print nothing but errors");
 
   collect_ =
@@ -211,6 +215,7 @@ StudyCommands::StudyCommands(CLI::App& app) {
   collect_->add_option("--metric", collect_metric_, "Metric the figure and ranking show");
   collect_->add_option("--band", collect_band_,
                        "Spread shaded around the mean: sd, ci95 (default) or minmax");
+  collect_->add_option("--titles", collect_titles_, TitleModeHelp());
   collect_->add_flag("--quiet,-q", collect_quiet_, "Print nothing but errors");
 
   tune_ = app.add_subcommand("tune", "Optimise tunables for a metric averaged over seeds (NLopt)");
@@ -258,6 +263,7 @@ StudyCommands::StudyCommands(CLI::App& app) {
       ->take_all();
   tune_->add_option("--jobs,-j", tune_jobs_, "Runs at once (default: every core)");
   tune_->add_option("--out", tune_out_, "Output folder (default out/tune_<scenario>)");
+  tune_->add_option("--titles", tune_titles_, TitleModeHelp());
   tune_->add_flag("--quiet,-q", tune_quiet_, "Print nothing but errors");
 }
 
@@ -276,6 +282,7 @@ int StudyCommands::Sweep() {
     throw std::runtime_error(
         "formsim sweep: give a scenario (or `sweep collect DIR... --out DIR`)");
   const SweepBand band = ParseSweepBand(band_);  // refused before anything runs
+  const TitleMode titles = ParseTitleMode(titles_, "--titles");
   const std::string file = sim::ResolveScenario(scenario_);
   const sim::ScenarioSource source = sim::ScenarioSource::FromFile(file);
   // Given but empty (`--seeds ''`) is refused, never read as "the scenario's seed".
@@ -385,7 +392,7 @@ int StudyCommands::Sweep() {
     std::printf("\n");
   }
   const bool whole = shard_n == 1;
-  const int rc = WriteSweepOutputs(def, RecordsOf(out, def, mine), out, metric_, band,
+  const int rc = WriteSweepOutputs(def, RecordsOf(out, def, mine), out, metric_, band, titles,
                                    whole && !no_figures_, quiet_);
   if (!whole && !quiet_)
     std::printf("shard %d/%d done; merge the shards with: formsim sweep collect DIR... --out DIR\n",
@@ -395,6 +402,7 @@ int StudyCommands::Sweep() {
 
 int StudyCommands::Collect() {
   const SweepBand band = ParseSweepBand(collect_band_);
+  const TitleMode titles = ParseTitleMode(collect_titles_, "--titles");
   std::vector<sim::SweepDefinition> defs;
   for (const std::string& d : collect_dirs_) defs.push_back(sim::ReadManifest(d));
   const sim::SweepDefinition& def = defs.front();
@@ -431,7 +439,7 @@ int StudyCommands::Collect() {
   }
   if (!collect_quiet_)
     std::printf("collected %zu runs from %zu folders\n", records.size(), collect_dirs_.size());
-  return WriteSweepOutputs(def, records, collect_out_, collect_metric_, band, true,
+  return WriteSweepOutputs(def, records, collect_out_, collect_metric_, band, titles, true,
                            collect_quiet_);
 }
 
@@ -556,6 +564,7 @@ class TuneHistoryFile {
 }  // namespace
 
 int StudyCommands::Tune() {
+  const TitleMode titles = ParseTitleMode(tune_titles_, "--titles");  // before anything runs
   const std::vector<sim::ScenarioSource> sources = TuneSources(tune_scenario_, tune_scenarios_);
   const sim::ScenarioSource& source = sources.front();
   const std::string file = source.file();
@@ -693,9 +702,11 @@ int StudyCommands::Tune() {
                  "formsim: error: no evaluation succeeded; no best.yaml (see history.csv)\n");
     rc = 2;
   }
-  // The figures; a failed one is reported and the others still written.
-  auto figure = [&](const PlotData& data, const std::string& name) {
+  // The figures (titles as --titles asks); a failed one is reported and the others still
+  // written.
+  auto figure = [&](PlotData data, const std::string& name) {
     try {
+      data.title = TitleFor(data.title, titles);
       WriteFigurePng(data, (fs::path(out) / name).string());
       wrote.push_back(name);
     } catch (const std::exception& e) {

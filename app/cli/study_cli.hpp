@@ -40,6 +40,7 @@ class StudyCommands {
   std::string out_;
   std::string metric_;
   std::string band_ = "ci95";  ///< --band sd|ci95|minmax: the spread shaded around the mean
+  std::string titles_ = "full";          ///< --titles full|short|none of the figures
   std::string shard_;
   bool resume_ = false;
   bool print_jobs_ = false;
@@ -51,6 +52,7 @@ class StudyCommands {
   std::vector<std::string> collect_dirs_;
   std::string collect_out_, collect_metric_;
   std::string collect_band_ = "ci95";
+  std::string collect_titles_ = "full";
   bool collect_quiet_ = false;
   // tune
   std::string tune_scenario_;
@@ -60,6 +62,7 @@ class StudyCommands {
   std::string tune_metric_, tune_seeds_, tune_out_, holdout_;
   std::vector<std::string> constraints_;
   std::string algorithm_ = sim::kDefaultTuneMethod;
+  std::string tune_titles_ = "full";
   std::uint64_t search_seed_ = 1;
   int budget_ = 60;
   int tune_jobs_ = 0;

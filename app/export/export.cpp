@@ -379,6 +379,7 @@ ExportStats RunWithExport(sim::Session& session, const ExportOptions& opt,
         PlotData data = ResolveFigure(fig, exp.recorder());
         if (!data.error.empty()) throw std::runtime_error("figure '" + fig.id + "': " + data.error);
         data.title = TitleFor(data.title, opt.titles);
+        data.log_y = opt.log_y.count(fig.id) > 0;
         const std::string stem = opt.plots_dir + "/" + fig.id + ".";
         for (FigureFormat f : opt.plot_formats) {
           if (f == FigureFormat::kPng) {

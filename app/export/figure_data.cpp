@@ -1,6 +1,30 @@
 #include "app/export/figure_data.hpp"
 
+#include "app/render/label_markup.hpp"
+
 namespace formsim::app {
+
+std::string FigureMarkupError(const sim::FigureSpec& spec) {
+  auto check = [](const std::string& what, const std::string& text) {
+    const std::string e = MarkupError(text);
+    return e.empty() ? e : what + ": " + e;
+  };
+  for (const auto& [what, text] : {std::pair<const char*, const std::string&>{"title", spec.title},
+                                   {"x label", spec.x_label},
+                                   {"y label", spec.y_label}})
+    if (std::string e = check(what, text); !e.empty()) return e;
+  for (std::size_t i = 0; i < spec.series.size(); ++i)
+    if (std::string e = check("series " + std::to_string(i + 1), spec.series[i].label); !e.empty())
+      return e;
+  return "";
+}
+
+bool IsTimePlot(const sim::FigureSpec& spec) {
+  bool time = !spec.equal_aspect && spec.categories.empty() && !spec.series.empty();
+  for (const sim::SeriesSpec& s : spec.series)
+    time = time && (s.x_column.empty() || s.x_column == "t");
+  return time;
+}
 
 PlotData ResolveFigure(const sim::FigureSpec& spec, const sim::Recorder& rec) {
   PlotData d;
@@ -12,6 +36,7 @@ PlotData ResolveFigure(const sim::FigureSpec& spec, const sim::Recorder& rec) {
   d.marker_x = spec.marker_x;
   d.x_is_time = !spec.series.empty() && spec.categories.empty();
   d.x_tick_labels = spec.categories;
+  d.error = FigureMarkupError(spec);
   for (std::size_t i = 0; i < spec.series.size(); ++i) {
     const sim::SeriesSpec& s = spec.series[i];
     PlotSeries p;

@@ -26,6 +26,11 @@ const char* TitleModeNames() {
   return "full|short|none";
 }
 
+std::string TitleModeHelp() {
+  return std::string("Figure titles: ") + TitleModeNames() +
+         " (default full; short drops the panel letter and a closing (detail), none has no title)";
+}
+
 TitleMode ParseTitleMode(const std::string& text, const std::string& flag) {
   if (text == "full") return TitleMode::kFull;
   if (text == "short") return TitleMode::kShort;

@@ -7,11 +7,14 @@
 #include <memory>
 #include <stdexcept>
 
+#include "app/render/label_markup.hpp"
 #include "app/render/vector_fonts.hpp"
 #include "sim/core/run_output.hpp"
 
 namespace formsim::app {
 namespace {
+
+constexpr const char* kPdfCreationDate = "2000-01-01T00:00:00Z";
 
 cairo_status_t Append(void* closure, const unsigned char* data, unsigned int length) {
   static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
@@ -35,6 +38,25 @@ void RectPath(cairo_t* cr, ImVec2 a, ImVec2 b, float r) {
   cairo_arc(cr, a.x + r, a.y + h - r, r, M_PI / 2, M_PI);
   cairo_arc(cr, a.x + r, a.y + r, r, M_PI, 3 * M_PI / 2);
   cairo_close_path(cr);
+}
+
+// A text op from its baseline start: plain text at once, markup run by run (scripts smaller,
+// on a shifted baseline, each run starting where the one before ended).
+void ShowText(cairo_t* cr, const VectorOp& op, float em) {
+  if (!op.markup) {
+    cairo_set_font_size(cr, em);
+    cairo_move_to(cr, op.pts[0].x, op.pts[0].y);
+    cairo_show_text(cr, op.text.c_str());
+    return;
+  }
+  double x = op.pts[0].x, y_end = 0;
+  for (const MarkupRun& run : ParseMarkup(op.text).runs) {
+    const RunPlacement place = PlacementOf(run.kind);
+    cairo_set_font_size(cr, place.scale * em);
+    cairo_move_to(cr, x, op.pts[0].y + place.shift_em * em);
+    cairo_show_text(cr, run.text.c_str());
+    cairo_get_current_point(cr, &x, &y_end);
+  }
 }
 
 void Draw(cairo_t* cr, const VectorFigure& fig) {
@@ -97,10 +119,8 @@ void Draw(cairo_t* cr, const VectorFigure& fig) {
           cairo_translate(cr, -op.pts[1].x, -op.pts[1].y);
         }
         cairo_set_font_face(cr, fonts.CairoFace(op.font));
-        cairo_set_font_size(cr, fonts.EmSize(op.font));
         SetColor(cr, op.color);
-        cairo_move_to(cr, op.pts[0].x, op.pts[0].y);
-        cairo_show_text(cr, op.text.c_str());
+        ShowText(cr, op, fonts.EmSize(op.font));
         cairo_restore(cr);
         break;
       case VectorOp::Kind::kPushClip:
@@ -125,8 +145,13 @@ std::string PdfDocument(const VectorFigure& fig, const FigureSize& size, const s
   std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
       cairo_pdf_surface_create_for_stream(Append, &bytes, pt_w, pt_h), cairo_surface_destroy);
   if (!title.empty())
-    cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_TITLE, title.c_str());
+    cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_TITLE,
+                                   PlainText(title).c_str());  // plain text, markup resolved
   cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATOR, "formsim");
+  // Cairo writes the wall-clock time as CreationDate unless told otherwise; a fixed date keeps
+  // the same figure byte-identical from run to run (results are deterministic, so are files).
+  cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATE_DATE,
+                                 kPdfCreationDate);
   std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()), cairo_destroy);
   cairo_scale(cr.get(), pt_w / fig.width, pt_h / fig.height);
   Draw(cr.get(), fig);

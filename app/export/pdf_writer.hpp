@@ -10,7 +10,8 @@
 
 namespace formsim::app {
 
-/// The PDF bytes of `fig`. Throws std::runtime_error with Cairo's reason on failure.
+/// The PDF bytes of `fig`, the same bytes for the same figure (a fixed creation date). Throws
+/// std::runtime_error with Cairo's reason on failure.
 std::string PdfDocument(const VectorFigure& fig, const FigureSize& size, const std::string& title);
 
 /// Writes PdfDocument atomically to `path`. Throws std::runtime_error naming the file.

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "app/render/label_markup.hpp"
 #include "app/render/vector_fonts.hpp"
 #include "sim/core/run_output.hpp"
 #include "sim/core/number_format.hpp"
@@ -79,6 +80,23 @@ std::string Rect(const VectorOp& op, float inset) {
   return s;
 }
 
+// A text element's content: the text, or for markup its runs, scripts as <tspan>s with a
+// baseline shift and a smaller font size (the text stays editable text).
+std::string TextContent(const VectorOp& op, float em) {
+  if (!op.markup) return Escape(op.text);
+  std::string out;
+  for (const MarkupRun& run : ParseMarkup(op.text).runs) {
+    if (run.kind == ScriptKind::kNormal) {
+      out += Escape(run.text);
+      continue;
+    }
+    out += std::string("<tspan baseline-shift=\"") +
+           (run.kind == ScriptKind::kSub ? "sub" : "super") + "\" font-size=\"" +
+           Num(PlacementOf(run.kind).scale * em) + "\">" + Escape(run.text) + "</tspan>";
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string SvgDocument(const VectorFigure& fig, const FigureSize& size, const std::string& title) {
@@ -89,7 +107,8 @@ std::string SvgDocument(const VectorFigure& fig, const FigureSize& size, const s
   out += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" + size.width.Text() +
          "\" height=\"" + size.height.Text() + "\" viewBox=\"0 0 " + Num(fig.width) + " " +
          Num(fig.height) + "\" xml:space=\"preserve\">\n";
-  if (!title.empty()) out += "<title>" + Escape(title) + "</title>\n";
+  // The document title is plain text: the figure title's drawn form (markup resolved).
+  if (!title.empty()) out += "<title>" + Escape(PlainText(title)) + "</title>\n";
   out += "<desc>formsim figure</desc>\n";
   int clip_id = 0, open_groups = 0;
   for (const VectorOp& op : fig.ops) {
@@ -126,7 +145,7 @@ std::string SvgDocument(const VectorFigure& fig, const FigureSize& size, const s
         if (spec.bold) out += " font-weight=\"bold\"";
         if (op.vertical)
           out += " transform=\"rotate(-90 " + Num(op.pts[1].x) + " " + Num(op.pts[1].y) + ")\"";
-        out += Paint("fill", op.color) + ">" + Escape(op.text) + "</text>\n";
+        out += Paint("fill", op.color) + ">" + TextContent(op, fonts.EmSize(op.font)) + "</text>\n";
         break;
       }
       case VectorOp::Kind::kPushClip: {

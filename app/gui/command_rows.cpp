@@ -82,6 +82,15 @@ std::vector<std::string> ThemeList() {
   return out;
 }
 
+// The figures of the run whose y axis may be logarithmic: plots against time (not the
+// trajectories' equal-aspect plane, not bar charts).
+std::vector<std::string> TimePlotIds(const AppUi& ui) {
+  std::vector<std::string> out;
+  for (const sim::FigureSpec& f : ui.session().exp().Figures())
+    if (IsTimePlot(f)) out.push_back(f.id);
+  return out;
+}
+
 // ---- when a command can run ----
 
 std::string NeedsActions(const AppUi& ui) {
@@ -375,6 +384,18 @@ std::vector<Command> PlotRows() {
        .menu = "File/Export figures…",
        .help = "Write every figure of the current run as SVG and PDF into DIR",
        .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdExportFigures(a.Text(0)); }});
+  row({.name = "log-y",
+       .args = {Offer(Text("PLOT", "a time plot's figure id", ArgType::kChoice), TimePlotIds),
+                Choice("on|off", {"on", "off"})},
+       .menu = "View/Log y axis of a plot…",
+       .help = "Draw a time plot's y axis in decades (values <= 0 left out, with a note)",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) {
+         if (a.Text(1) == "on")
+           ui.state().plot_log_y.insert(a.Text(0));
+         else
+           ui.state().plot_log_y.erase(a.Text(0));
+         return std::string();
+       }});
   return t;
 }
 

@@ -145,6 +145,7 @@ void AppUi::SyncScenarioFields() {
     CopyString(state_.session_path, sizeof(state_.session_path),
                fs::path(current).stem().string() + "_session.yaml");
   state_.plot_closed.clear();
+  state_.plot_log_y.clear();
   state_.follow = -1;
   state_.auto_fit = true;
   state_.fit_now = true;

@@ -48,6 +48,7 @@ struct UiState {
   bool coordinates = true;
   ThemeId theme = ThemeId::kLight;          ///< colours of the panels, the world view and the plots
   std::map<std::string, bool> plot_closed;  ///< figure id -> hidden by the user
+  std::set<std::string> plot_log_y;         ///< figure ids drawn with a log y axis (log-y)
   bool screenshot_requested = false;
   std::string screenshot_path;  ///< where the requested screenshot goes ("" = numbered name)
   std::string status;           ///< last message for the status line

@@ -8,6 +8,7 @@
 
 #include "app/export/figure_data.hpp"
 #include "app/gui/ui.hpp"
+#include "app/render/label_markup.hpp"
 #include "sim/core/number_format.hpp"
 
 namespace formsim::app {
@@ -79,7 +80,7 @@ void AppUi::DecoratePlot(const sim::FigureSpec& fig, PlotData& data) {
       data.series.push_back(std::move(s));
     }
     PlotSeries legend;
-    legend.label = PinLabel(*p);
+    legend.label = EscapeMarkup(PinLabel(*p));  // key names and values drawn as they are
     legend.color = legend_ink;
     legend.dash_style = slot;
     data.series.push_back(std::move(legend));

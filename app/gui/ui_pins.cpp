@@ -108,8 +108,9 @@ std::string AppUi::CmdUnpinAll() {
 std::string AppUi::PinLabel(const PinnedRun& pin) const {
   std::string label = "pin " + std::to_string(pin.id);
   if (!pin.ready()) return label + (pin.error.empty() ? " (replaying...)" : " (failed)");
+  // Changes shared by several keys told once: "k_l 0.15 → 0.5 (R2, R3)".
   const std::string diff =
-      sim::DescribeDifferences(pin.values, CurrentValues(), session_->params());
+      sim::FactorChanges(sim::DifferencesOf(pin.values, CurrentValues(), session_->params()));
   return label + ": " + (diff.empty() ? "same settings" : diff);
 }
 

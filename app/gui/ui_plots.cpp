@@ -13,7 +13,9 @@
 #include <cmath>
 
 #include "app/export/figure_data.hpp"
+#include "app/gui/command_table.hpp"
 #include "app/render/imgui_canvas.hpp"
+#include "app/render/label_markup.hpp"
 #include "app/render/long_text.hpp"
 #include "app/gui/lesson_panel.hpp"
 #include "app/gui/history_panel.hpp"
@@ -190,6 +192,7 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
       std::string decoration = std::to_string(mc_.bands.runs) + "/" + std::to_string(mc_.bands_at);
       for (const auto& pin : pins_)
         if (pin->ready()) decoration += "|" + std::to_string(pin->id) + ":" + PinLabel(*pin);
+      for (const std::string& id : state_.plot_log_y) decoration += "|log:" + id;
       PlotStyle style;
       style.title_font = FontRole::kLabel;
       style.label_font = FontRole::kUi;
@@ -200,6 +203,13 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
       ImGuiCanvas canvas(ImGui::GetWindowDrawList(), fonts);
       for (std::size_t i = 0; i < figures.size(); ++i) {
         if (!is_open(figures[i])) continue;
+        // A time plot's log-y toggle on a line of its own above it (the log-y command).
+        if (IsTimePlot(figures[i])) {
+          bool log_y = state_.plot_log_y.count(figures[i].id) > 0;
+          if (ImGui::Checkbox(("log y##" + figures[i].id).c_str(), &log_y))
+            RunCommand(*FindCommand("log-y"), figures[i].id + (log_y ? " on" : " off"),
+                       CommandSource::kButton);
+        }
         const ImVec2 p0 = ImGui::GetCursorScreenPos();
         const float w = ImGui::GetContentRegionAvail().x;
         const ImVec2 p1(p0.x + w, p0.y + h);
@@ -213,6 +223,7 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
           // Resolved and drawn (without the cursor, which moves every frame), and kept.
           plot.data = ResolveFigure(figures[i], exp.recorder());
           DecoratePlot(figures[i], plot.data);  // pinned runs, Monte Carlo bands
+          plot.data.log_y = state_.plot_log_y.count(figures[i].id) > 0;
           plot.decoration = decoration;
           const DrawMark mark = Mark(dl);
           plot.layout = DrawPlot(canvas, p0, p1, plot.data, style);
@@ -240,7 +251,7 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
             const double x =
                 L.x0 + (m.x - L.area_min.x) / (L.area_max.x - L.area_min.x) * (L.x1 - L.x0);
             ImGui::BeginTooltip();
-            ImGui::Text("%s = %.4g", data.x_label.c_str(), x);
+            ImGui::Text("%s = %.4g", MarkupText(data.x_label).c_str(), x);
             // At most 40 rows of at most 80 bytes each: a tooltip is one draw list of 16-bit
             // indices (a swarm's thousand series or a 100,000-character name would abort).
             int rows = 0, more = 0;
@@ -253,7 +264,7 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
                 }
                 ++rows;
                 const sim::Color c = style.theme->Series(s.color, s.style_index, s.dashed).color;
-                ImGui::TextColored(ImVec4(c.r, c.g, c.b, 1), "%s: %.5g", Shorten(s.label, 80).c_str(), y);
+                ImGui::TextColored(ImVec4(c.r, c.g, c.b, 1), "%s: %.5g", Shorten(MarkupText(s.label), 80).c_str(), y);
               }
             }
             if (more > 0) ImGui::TextDisabled("... %d more", more);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "app/render/fonts.hpp"
+#include "app/render/label_markup.hpp"
 #include "sim/core/draw.hpp"
 
 namespace formsim::app {
@@ -66,6 +67,20 @@ class Canvas {
                             const std::string& text) = 0;
   /// Width and line height of `text` in `font`, logical pixels.
   virtual ImVec2 TextSize(FontRole font, const std::string& text) const = 0;
+  /// A label written with markup (label_markup.hpp), placed like Text. By default its Unicode
+  /// form (MarkupText); vector canvases keep the runs (sub- and superscripts stay text).
+  virtual void Label(ImVec2 pos, FontRole font, sim::Color color, const std::string& markup) {
+    Text(pos, font, color, MarkupText(markup));
+  }
+  /// A markup label placed like TextVertical.
+  virtual void LabelVertical(ImVec2 center, FontRole font, sim::Color color,
+                             const std::string& markup) {
+    TextVertical(center, font, color, MarkupText(markup));
+  }
+  /// Width and line height of a markup label as Label draws it.
+  virtual ImVec2 LabelSize(FontRole font, const std::string& markup) const {
+    return TextSize(font, MarkupText(markup));
+  }
   /// Restricts drawing to [min, max] (intersected with the current clip) until PopClip.
   virtual void PushClip(ImVec2 min, ImVec2 max) = 0;
   virtual void PopClip() = 0;

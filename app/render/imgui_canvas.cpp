@@ -213,6 +213,13 @@ void ImGuiCanvas::Text(ImVec2 pos, FontRole font, sim::Color color, const std::s
                ToImColor(color), text.c_str());
 }
 
+void ImGuiCanvas::RotateSince(int v0, ImVec2 center) {
+  for (int i = v0; i < dl_->VtxBuffer.Size; ++i) {
+    const ImVec2 p = dl_->VtxBuffer[i].pos;
+    dl_->VtxBuffer[i].pos = ImVec2(center.x + (p.y - center.y), center.y - (p.x - center.x));
+  }
+}
+
 // ImGui has no rotated text, so the glyph vertices are rotated after AddText.
 void ImGuiCanvas::TextVertical(ImVec2 center, FontRole font, sim::Color color,
                                const std::string& text) {
@@ -220,10 +227,42 @@ void ImGuiCanvas::TextVertical(ImVec2 center, FontRole font, sim::Color color,
   dl_->PushClipRect(ImVec2(-1e5f, -1e5f), ImVec2(1e5f, 1e5f), false);  // no culling before rotating
   const int v0 = dl_->VtxBuffer.Size;
   Text(ImVec2(center.x - ext.x / 2, center.y - ext.y / 2), font, color, text);
-  for (int i = v0; i < dl_->VtxBuffer.Size; ++i) {
-    const ImVec2 p = dl_->VtxBuffer[i].pos;
-    dl_->VtxBuffer[i].pos = ImVec2(center.x + (p.y - center.y), center.y - (p.x - center.x));
+  RotateSince(v0, center);
+  dl_->PopClipRect();
+}
+
+ImVec2 ImGuiCanvas::LabelSize(FontRole font, const std::string& markup) const {
+  ImFont* f = fonts_.Get(font);
+  const float size = f->FontSize / fonts_.scale;
+  float w = 0;
+  for (const MarkupRun& run : AtlasRuns(markup))
+    w += f->CalcTextSizeA(PlacementOf(run.kind).scale * size, FLT_MAX, 0.0f, run.text.c_str()).x;
+  return ImVec2(w, size);
+}
+
+void ImGuiCanvas::Label(ImVec2 pos, FontRole font, sim::Color color, const std::string& markup) {
+  ImFont* f = fonts_.Get(font);
+  const float s = fonts_.scale, size = f->FontSize / s;
+  // A run's top so that its baseline is the line's, moved by its shift (ascents scale with size).
+  const float ascent = f->Ascent / f->FontSize;
+  float x = pos.x;
+  for (const MarkupRun& run : AtlasRuns(markup)) {
+    const RunPlacement place = PlacementOf(run.kind);
+    const float run_size = place.scale * size;
+    const float y = pos.y + ascent * size + place.shift_em * size - ascent * run_size;
+    dl_->AddText(f, run_size, ImVec2(std::round(x * s) / s, std::round(y * s) / s),
+                 ToImColor(color), run.text.c_str());
+    x += f->CalcTextSizeA(run_size, FLT_MAX, 0.0f, run.text.c_str()).x;
   }
+}
+
+void ImGuiCanvas::LabelVertical(ImVec2 center, FontRole font, sim::Color color,
+                                const std::string& markup) {
+  const ImVec2 ext = LabelSize(font, markup);
+  dl_->PushClipRect(ImVec2(-1e5f, -1e5f), ImVec2(1e5f, 1e5f), false);  // no culling before rotating
+  const int v0 = dl_->VtxBuffer.Size;
+  Label(ImVec2(center.x - ext.x / 2, center.y - ext.y / 2), font, color, markup);
+  RotateSince(v0, center);
   dl_->PopClipRect();
 }
 

@@ -31,6 +31,12 @@ class ImGuiCanvas : public Canvas {
   void TextVertical(ImVec2 center, FontRole font, sim::Color color,
                     const std::string& text) override;
   ImVec2 TextSize(FontRole font, const std::string& text) const override;
+  /// Markup: Unicode scripts where the atlas has them, other scripts smaller on a shifted
+  /// baseline (label_markup.hpp's AtlasRuns).
+  void Label(ImVec2 pos, FontRole font, sim::Color color, const std::string& markup) override;
+  void LabelVertical(ImVec2 center, FontRole font, sim::Color color,
+                     const std::string& markup) override;
+  ImVec2 LabelSize(FontRole font, const std::string& markup) const override;
   float FontSize(FontRole font) const override;
   void PushClip(ImVec2 min, ImVec2 max) override;
   void PopClip() override;
@@ -40,6 +46,8 @@ class ImGuiCanvas : public Canvas {
   }
 
  private:
+  /// Rotates the vertices added since `v0` by 90° counter-clockwise about `center`.
+  void RotateSince(int v0, ImVec2 center);
   void DashedPolyline(const ImVec2* pts, int n, ImU32 col, float width, const LineDash& dash);
   ImDrawList* dl_;
   const Fonts& fonts_;

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "app/render/plot_frame.hpp"
+#include "app/render/plot_log_scale.hpp"
 
 namespace formsim::app {
 
@@ -89,7 +90,14 @@ PlotStyle FigureStyle(const Theme& theme) {
 
 PlotLayout DrawPlot(Canvas& cv, ImVec2 min, ImVec2 max, const PlotData& data, const PlotStyle& st,
                     double cursor_x) {
-  plot_detail::PlotFrame f(cv, min, max, data, st);
+  // A log y axis draws the data in decades; the stages then work as for a linear one.
+  long dropped = 0;
+  bool log_y = false;
+  PlotData decades;
+  if (data.log_y) decades = LogYData(data, &dropped, &log_y);
+  plot_detail::PlotFrame f(cv, min, max, log_y ? decades : data, st);
+  f.log_y = log_y;
+  f.log_dropped = dropped;
   cv.FillRect(min, max, f.th.background);
   f.Ranges();
   f.Layout();

@@ -61,6 +61,10 @@ struct PlotData {
   std::vector<std::string> x_tick_labels, y_tick_labels;
   PlotHeatmap heatmap;     ///< drawn beneath the series when not empty
   double x_margin = 0.0;   ///< room added left and right, as a fraction of the x range
+  /// A logarithmic y axis (decade ticks 10^k); values <= 0 are left out with a note. Lines and
+  /// bands only: bar charts and heatmaps keep a linear axis. PlotLayout's y range is then in
+  /// decades (log10 of y).
+  bool log_y = false;
   std::string error;       ///< shown instead of data when the figure could not be resolved
 };
 

@@ -4,32 +4,45 @@
 #include <cmath>
 
 #include "app/render/label_markup.hpp"
-#include "app/render/long_text.hpp"
 #include "app/render/plot_frame.hpp"
 #include "app/render/plot_marker.hpp"
 
 
 namespace formsim::app::plot_detail {
+
+ImVec2 LegendTextSize(const Canvas& cv, FontRole font, const std::string& label) {
+  return cv.LabelSize(font, ShortenMarkup(label, kLegendBytes));
+}
+
+void DrawLegendText(Canvas& cv, ImVec2 pos, FontRole font, sim::Color color,
+                    const std::string& label) {
+  cv.Label(pos, font, color, ShortenMarkup(label, kLegendBytes));
+}
+
 void PlotFrame::DrawAxes() {
   const FontRole title_font = st.title_font, label_font = st.label_font, tick_font = st.tick_font;
   if (title_h > 0) {
-    // Centred over the data, kept inside the figure; a title wider than the figure is cut at a
-    // character boundary and ends in "...".
+    // Centred over the data, kept inside the figure.
     const float avail = std::max(0.0f, max.x - min.x - 2 * pad);
-    std::string title = MarkupText(data.title);
-    ImVec2 ts = cv.TextSize(title_font, title);
-    if (ts.x > avail) {
-      while (!title.empty() && cv.TextSize(title_font, title + "...").x > avail) {
-        while (!title.empty() && (static_cast<unsigned char>(title.back()) & 0xC0) == 0x80)
-          title.pop_back();  // UTF-8 continuation bytes, then their lead byte
-        if (!title.empty()) title.pop_back();
+    // A title wider than the figure is cut at a character boundary and ends in "…": the
+    // longest cut that fits, found by halving (a title may be very long).
+    std::string title = data.title;
+    if (cv.LabelSize(title_font, title).x > avail) {
+      std::size_t lo = 0, hi = 0;
+      for (const MarkupRun& r : ParseMarkup(data.title).runs) hi += r.text.size();
+      while (lo < hi) {
+        const std::size_t mid = (lo + hi + 1) / 2;
+        if (cv.LabelSize(title_font, ShortenMarkup(data.title, mid)).x <= avail)
+          lo = mid;
+        else
+          hi = mid - 1;
       }
-      title += "...";
-      ts = cv.TextSize(title_font, title);
+      title = ShortenMarkup(data.title, lo);
     }
+    const ImVec2 ts = cv.LabelSize(title_font, title);
     const float x =
         std::max(min.x + pad, std::min(0.5f * (a.x + b.x) - ts.x / 2, max.x - pad - ts.x));
-    cv.Text(ImVec2(x, min.y + pad), title_font, th.text, title);
+    cv.Label(ImVec2(x, min.y + pad), title_font, th.text, title);
   }
   // Grid and ticks as 1-px rectangles on whole pixels (sharp on screen and in PNGs).
   auto px_col = [&](double v) { return std::floor(X(v)); };
@@ -55,19 +68,22 @@ void PlotFrame::DrawAxes() {
     cv.Text(ImVec2(a.x - 6 - ts.x, y - ts.y / 2), tick_font, th.text, s);
   }
   if (ey != 0) cv.Text(ImVec2(a.x, a.y - tick_h - 3), tick_font, th.text, PowerLabel(ey));
+  if (log_y && log_dropped > 0)
+    cv.Text(ImVec2(a.x, a.y - tick_h - 3), tick_font, th.text,
+            "log y: " + std::to_string(log_dropped) + (log_dropped == 1 ? " value" : " values") +
+                " ≤ 0 not drawn");
   if (ex != 0) {
     const std::string s = PowerLabel(ex);
     cv.Text(ImVec2(b.x - cv.TextSize(tick_font, s).x, b.y + 5 + tick_h + 2), tick_font, th.text, s);
   }
   if (!data.x_label.empty()) {
-    const std::string x_label = MarkupText(data.x_label);
-    const ImVec2 ts = cv.TextSize(label_font, x_label);
-    cv.Text(ImVec2(0.5f * (a.x + b.x) - ts.x / 2, max.y - pad - ts.y - bottom_reserve), label_font,
-            th.text, x_label);
+    const ImVec2 ts = cv.LabelSize(label_font, data.x_label);
+    cv.Label(ImVec2(0.5f * (a.x + b.x) - ts.x / 2, max.y - pad - ts.y - bottom_reserve), label_font,
+             th.text, data.x_label);
   }
   if (!data.y_label.empty())
-    cv.TextVertical(ImVec2(min.x + pad + cv.FontSize(label_font) / 2, 0.5f * (a.y + b.y)),
-                    label_font, th.text, MarkupText(data.y_label));
+    cv.LabelVertical(ImVec2(min.x + pad + cv.FontSize(label_font) / 2, 0.5f * (a.y + b.y)),
+                     label_font, th.text, data.y_label);
 }
 
 // The map from bottom (min) to top (max), ticks on its right.
@@ -97,8 +113,8 @@ void PlotFrame::DrawColourBar() {
   }
   if (ce != 0) cv.Text(ImVec2(x0b, a.y - tick_h - 3), tick_font, th.text, PowerLabel(ce));
   if (!data.heatmap.value_label.empty())
-    cv.TextVertical(ImVec2(x1b + 6 + wmax + 8 + cv.FontSize(label_font) / 2, 0.5f * (a.y + b.y)),
-                    label_font, th.text, MarkupText(data.heatmap.value_label));
+    cv.LabelVertical(ImVec2(x1b + 6 + wmax + 8 + cv.FontSize(label_font) / 2, 0.5f * (a.y + b.y)),
+                     label_font, th.text, data.heatmap.value_label);
 }
 
 void PlotFrame::DrawLegend() {
@@ -131,7 +147,7 @@ void PlotFrame::DrawLegend() {
         DrawMarker(cv, ImVec2(0.5f * (p0.x + p1.x), cy), 3.2f, look.marker, look.color,
                    look.hollow_markers);
     }
-    cv.Text(ImVec2(p1.x + 7, y + 2), st.label_font, th.text, Shorten(MarkupText(s.label), kLegendBytes));
+    DrawLegendText(cv, ImVec2(p1.x + 7, y + 2), st.label_font, th.text, s.label);
   }
 }
 

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "app/render/label_markup.hpp"
-#include "app/render/long_text.hpp"
+#include "app/render/plot_log_scale.hpp"
 
 
 namespace formsim::app::plot_detail {
@@ -40,13 +40,7 @@ double At(const std::vector<double>& v, std::size_t i) {
   return i < v.size() ? v[i] : kNaN;
 }
 
-std::string PowerLabel(int e) {
-  static const char* sup[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
-  std::string digits = std::to_string(std::abs(e)), out = "×10";
-  if (e < 0) out += "⁻";
-  for (char c : digits) out += sup[c - '0'];
-  return out;
-}
+std::string PowerLabel(int e) { return "×10" + SuperscriptInt(e); }
 
 // Distance errors of order 1e-4 read better as "1.5" with "×10⁻⁴" than as "0.00015".
 int AxisExponent(double lo, double hi) {
@@ -80,6 +74,7 @@ std::string PlotFrame::XText(double t) const {
 }
 
 std::string PlotFrame::YText(double t) const {
+  if (log_y) return DecadeLabel(t, ystep);
   return cat_y ? data.y_tick_labels[static_cast<std::size_t>(std::llround(t))]
                : FormatTick(t, ystep, ey);
 }
@@ -164,10 +159,15 @@ void PlotFrame::LayOutOnce() {
   const FontRole tick_font = st.tick_font;
   const float top = min.y + pad + title_h + tick_h * 0.6f;
   b.y = max.y - pad - xlabel_h - tick_h - 8 - bottom_reserve;
-  a.y = top + (AxisExponent(y0, y1) != 0 ? tick_h + 2 : 0);
+  // Room above the axes for the shared power of ten, or a log axis's note of dropped values.
+  const bool above = log_y ? log_dropped > 0 : AxisExponent(y0, y1) != 0;
+  a.y = top + (above ? tick_h + 2 : 0);
   const int ny = std::max(2, static_cast<int>((b.y - a.y) / 45));
   if (cat_y) {
     L.y_ticks = CategoryTicks(data.y_tick_labels.size(), (b.y - a.y) / (tick_h + 6));
+    ey = 0;
+  } else if (log_y) {
+    L.y_ticks = DecadeTicks(y0, y1, ny, &ystep);
     ey = 0;
   } else {
     L.y_ticks = NiceTicks(y0, y1, ny, &ystep);
@@ -255,7 +255,7 @@ void PlotFrame::PlaceLegend() {
     float wmax = 0;
     for (int i : legend_items)
       wmax =
-          std::max(wmax, cv.TextSize(st.label_font, Shorten(MarkupText(data.series[i].label), kLegendBytes)).x);
+          std::max(wmax, LegendTextSize(cv, st.label_font, data.series[i].label).x);
     col_w = sample_w + 14 + wmax + 8;
     // A tall legend goes to several columns, so it fits in a corner of a short plot.
     const int n = static_cast<int>(legend_items.size());

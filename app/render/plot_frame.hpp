@@ -23,6 +23,12 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// corner).
 constexpr std::size_t kLegendBytes = 80;
 
+/// A legend entry's label (markup) as drawn: its runs when the drawn text fits kLegendBytes,
+/// else the drawn text cut to that many bytes.
+ImVec2 LegendTextSize(const Canvas& cv, FontRole font, const std::string& label);
+void DrawLegendText(Canvas& cv, ImVec2 pos, FontRole font, sim::Color color,
+                    const std::string& label);
+
 /// The finite extent of some values (NaN, NaN while empty).
 struct Range {
   double lo = kNaN, hi = kNaN;
@@ -68,6 +74,10 @@ struct PlotFrame {
   double ypad = 0;
   int bar_series = 0;  ///< bar series share each category
   bool heat = false, cat_x = false, cat_y = false;
+  /// A log y axis: `data` is already in decades (LogYData); `log_dropped` values <= 0 were
+  /// left out of it.
+  bool log_y = false;
+  long log_dropped = 0;
 
   // ---- layout ----
   float pad, title_h, tick_h, xlabel_h, ylabel_w;

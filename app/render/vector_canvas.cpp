@@ -90,6 +90,32 @@ void VectorCanvas::TextVertical(ImVec2 center, FontRole font, sim::Color color,
   op.vertical = true;
 }
 
+void VectorCanvas::Label(ImVec2 pos, FontRole font, sim::Color color, const std::string& markup) {
+  if (markup.empty() || color.a <= 0) return;
+  Text(pos, font, color, markup);
+  fig_.ops.back().markup = true;
+}
+
+void VectorCanvas::LabelVertical(ImVec2 center, FontRole font, sim::Color color,
+                                 const std::string& markup) {
+  if (markup.empty() || color.a <= 0) return;
+  const ImVec2 ext = LabelSize(font, markup);
+  VectorOp& op = Add(VectorOp::Kind::kText, color);
+  op.pts = {ImVec2(center.x - ext.x / 2, center.y - ext.y / 2 + VectorFonts::Get().Baseline(font)),
+            center};
+  op.font = font;
+  op.text = markup;
+  op.vertical = true;
+  op.markup = true;
+}
+
+ImVec2 VectorCanvas::LabelSize(FontRole font, const std::string& markup) const {
+  float w = 0;
+  for (const MarkupRun& run : ParseMarkup(markup).runs)
+    w += PlacementOf(run.kind).scale * VectorFonts::Get().Width(font, run.text);
+  return ImVec2(w, FontSize(font));
+}
+
 ImVec2 VectorCanvas::TextSize(FontRole font, const std::string& text) const {
   return ImVec2(VectorFonts::Get().Width(font, text), FontSize(font));
 }

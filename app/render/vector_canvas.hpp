@@ -32,6 +32,7 @@ struct VectorOp {
   FontRole font = FontRole::kUi;
   bool vertical = false;  ///< text rotated 90° counter-clockwise about pts[0]
   std::string text;       ///< text: pts[0] is the left end of the baseline (before rotating)
+  bool markup = false;    ///< `text` is label markup: drawn as its runs (ParseMarkup)
 };
 
 /// A figure as drawing calls in logical pixels (1/96 inch), y down.
@@ -55,6 +56,10 @@ class VectorCanvas : public Canvas {
   void TextVertical(ImVec2 center, FontRole font, sim::Color color,
                     const std::string& text) override;
   ImVec2 TextSize(FontRole font, const std::string& text) const override;
+  void Label(ImVec2 pos, FontRole font, sim::Color color, const std::string& markup) override;
+  void LabelVertical(ImVec2 center, FontRole font, sim::Color color,
+                     const std::string& markup) override;
+  ImVec2 LabelSize(FontRole font, const std::string& markup) const override;
   void PushClip(ImVec2 min, ImVec2 max) override;
   void PopClip() override;
   void Clip(ImVec2& min, ImVec2& max) const override;

@@ -145,7 +145,7 @@ std::vector<FigureSpec> AgvExperiment::Figures() const {
   figs.push_back(fig6b);
 
   FigureSpec cross =
-      TimeFigure("cross_track", "True cross-track error (" + mode + " localisation)", "e_d [mm]",
+      TimeFigure("cross_track", "True cross-track error (" + mode + " localisation)", "e_{d} [mm]",
                  {Line("cross-track error", "cross_track_mm", kTruthColor)});
   cross.reference_lines = {-10.0, 10.0};  // the paper's ±10 mm
   figs.push_back(cross);

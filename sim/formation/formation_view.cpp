@@ -42,12 +42,12 @@ std::vector<FigureSpec> FormationExperiment::Figures() const {
   }
   figs.push_back(traj);
 
-  FigureSpec phi = TimeFigure("phi_error", "(b) Bearing error e_φ = φ_des − φ", "e_φ [rad]", {});
-  FigureSpec dist = TimeFigure("distance_error", "(c) Distance errors e_l = l_des − l", "e_l [m]", {});
+  FigureSpec phi = TimeFigure("phi_error", "(b) Bearing error e_{φ} = φ_{des} − φ", "e_{φ} [rad]", {});
+  FigureSpec dist = TimeFigure("distance_error", "(c) Distance errors e_{l} = l_{des} − l", "e_{l} [m]", {});
   FigureSpec alpha =
-      TimeFigure("alpha_error", "(d) Heading differences e_α = θ_i − θ_j", "e_α [rad]", {});
-  FigureSpec est = TimeFigure("estimation_error", "(f) Estimation error φ_est − φ with ±2σ (UKF)",
-                              "φ_est − φ [rad]", {});
+      TimeFigure("alpha_error", "(d) Heading differences e_{α} = θ_{i} − θ_{j}", "e_{α} [rad]", {});
+  FigureSpec est = TimeFigure("estimation_error", "(f) Estimation error φ_{est} − φ with ±2σ (UKF)",
+                              "φ_{est} − φ [rad]", {});
   for (FigureSpec* f : {&phi, &dist, &alpha, &est}) f->reference_lines = {0.0};
   int color = 0;
   const int c_t = recorder_.Column("t");
@@ -55,13 +55,13 @@ std::vector<FigureSpec> FormationExperiment::Figures() const {
     const Link& l = links_[k];
     const std::string& n = l.name;
     if (cfg_.robots[l.follower].node.law == FormationLaw::kLPhi)
-      phi.series.push_back(Line("e_φ " + n, n + ".e_phi", color));
-    dist.series.push_back(Line("e_l " + n, n + ".e_l", color));
+      phi.series.push_back(Line("e_{φ} " + n, n + ".e_phi", color));
+    dist.series.push_back(Line("e_{l} " + n, n + ".e_l", color));
     alpha.series.push_back(Line("α " + n, n + ".alpha", color));
     // The estimation figure shows every link whose UKF ran at some time of the run (the
     // estimator can be switched live).
     if (l.ever_ukf && recorder_.rows() > 0) {
-      est.series.push_back(Line("φ_est − φ " + n, n + ".phi_est_err", color));
+      est.series.push_back(Line("φ_{est} − φ " + n, n + ".phi_est_err", color));
       // ±2σ bands as inline data from the recorded standard deviations.
       SeriesSpec hi = Line("±2σ " + n, "", color, true);
       SeriesSpec lo = Line("", "", color, true);
@@ -84,11 +84,11 @@ std::vector<FigureSpec> FormationExperiment::Figures() const {
     // Every link at once: the largest and the median distance error, and the l-φ bearing's.
     FigureSpec all = TimeFigure(
         "distance_error_all",
-        Sprintf("(c) Distance errors over all %zu links: largest and median |e_l|", links_.size()),
+        Sprintf("(c) Distance errors over all %zu links: largest and median |e_{l}|", links_.size()),
         "|e| [m], [rad]", {});
-    all.series.push_back(Line("max |e_l|", "links.max_abs_e_l", 0));
-    all.series.push_back(Line("median |e_l|", "links.median_abs_e_l", 2));
-    all.series.push_back(Line("max |e_φ| (l-φ links) [rad]", "links.max_abs_e_phi", 1, true));
+    all.series.push_back(Line("max |e_{l}|", "links.max_abs_e_l", 0));
+    all.series.push_back(Line("median |e_{l}|", "links.median_abs_e_l", 2));
+    all.series.push_back(Line("max |e_{φ}| (l-φ links) [rad]", "links.max_abs_e_phi", 1, true));
     all.reference_lines = {0.0};
     figs.push_back(all);
   }
@@ -110,7 +110,7 @@ std::vector<FigureSpec> FormationExperiment::Figures() const {
     // Switching and avoidance: the formation error against the 1e-2 tolerance, and each
     // follower's distance to the nearest obstacle against the safety distance.
     FigureSpec fe = TimeFigure("formation_error",
-                               "Formation error: largest |e_l| [m], |e_φ| [rad] (followers not avoiding)",
+                               "Formation error: largest |e_{l}| [m], |e_{φ}| [rad] (followers not avoiding)",
                                "error", {});
     fe.series.push_back(Line("formation error", "formation.error", 0));
     fe.reference_lines = {0.0, kRecoveredError};

@@ -206,18 +206,26 @@ std::string ShortKey(const std::string& key, const ParamTable& params) {
   }
 }
 
-std::string DescribeDifferences(const std::vector<std::pair<std::string, std::string>>& from,
-                                const std::vector<std::pair<std::string, std::string>>& to,
-                                const ParamTable& params) {
+std::vector<SettingChange> DifferencesOf(
+    const std::vector<std::pair<std::string, std::string>>& from,
+    const std::vector<std::pair<std::string, std::string>>& to, const ParamTable& params) {
   std::map<std::string, const std::string*> other;
   for (const auto& [key, b] : to) other[key] = &b;
-  std::string out;
+  std::vector<SettingChange> out;
   for (const auto& [key, a] : from) {
     const auto it = other.find(key);
     if (it == other.end() || *it->second == a) continue;
-    out += (out.empty() ? "" : ", ") + (params.Find(key) ? ShortKey(key, params) : key) + " " + a +
-           " -> " + *it->second;
+    out.push_back({key, params.Find(key) ? ShortKey(key, params) : key, a, *it->second});
   }
+  return out;
+}
+
+std::string DescribeDifferences(const std::vector<std::pair<std::string, std::string>>& from,
+                                const std::vector<std::pair<std::string, std::string>>& to,
+                                const ParamTable& params) {
+  std::string out;
+  for (const SettingChange& c : DifferencesOf(from, to, params))
+    out += (out.empty() ? "" : ", ") + c.name + " " + c.from + " -> " + c.to;
   return out;
 }
 

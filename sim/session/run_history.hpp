@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "sim/core/metrics.hpp"
+#include "sim/core/setting_changes.hpp"
 #include "sim/session/run_log.hpp"
 #include "sim/session/session.hpp"
 
@@ -61,6 +62,11 @@ class RunHistory {
   std::vector<HistoryRow> rows_;
 };
 
+/// The settings that differ between two runs (`from` and `to` map keys to values; keys missing
+/// on one side are left out), in the order of `from`, each tunable named by ShortKey.
+std::vector<SettingChange> DifferencesOf(
+    const std::vector<std::pair<std::string, std::string>>& from,
+    const std::vector<std::pair<std::string, std::string>>& to, const ParamTable& params);
 /// "k_l 0.15 -> 0.4, seed 1 -> 7": the settings that differ between two runs, each tunable named
 /// by the shortest tail of its key that no other tunable of `params` shares. `from` and `to` map
 /// keys to values; keys missing on one side are left out.

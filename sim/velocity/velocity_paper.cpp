@@ -83,7 +83,7 @@ ReproPaper VelocityPaper() {
   ReproFigure fig;
   fig.id = "fig6_speed_rmse";
   fig.table = "fig6";
-  fig.title = "Fig. 6: speed-estimate RMSE per floor, R_fused, mean ± std";
+  fig.title = "Fig. 6: speed-estimate RMSE per floor, R_{fused}, mean ± std";
   fig.y_label = "speed RMSE [m/s]";
   fig.categories = {{"all", ""},
                     {"tile", "floors.floor."},

@@ -2,6 +2,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <string>
 
 #include "sim/velocity/velocity_experiment.hpp"
 
@@ -11,6 +13,22 @@ namespace {
 
 Vec2 ToVec2(const cv::Vec2d& v) {
   return {v.x(), v.y()};
+}
+
+// A unit's name in figure text (label markup): the paper's R_odo and R_fused are R with a
+// subscript, so a name with one inner '_' is written R_{odo}; any other name as it stands, the
+// characters markup gives a meaning to escaped.
+std::string UnitLabel(const std::string& name) {
+  const std::size_t u = name.find('_');
+  if (name.find_first_of("\\^{}") == std::string::npos && u != std::string::npos && u > 0 &&
+      u + 1 < name.size() && name.find('_', u + 1) == std::string::npos)
+    return name.substr(0, u) + "_{" + name.substr(u + 1) + "}";
+  std::string out;
+  for (char c : name) {
+    if (std::strchr("\\_^{}", c) != nullptr) out += '\\';
+    out += c;
+  }
+  return out;
 }
 
 }  // namespace
@@ -89,7 +107,7 @@ void VelocityExperiment::DrawScene(DrawSink& draw) const {
 void VelocityExperiment::RobotFigures(const RobotUnit& u, std::vector<FigureSpec>& out) const {
   const std::string p = u.spec.name + ".";
   const std::string suffix = units_.size() > 1 ? "_" + u.spec.name : "";
-  const std::string who = units_.size() > 1 ? " (" + u.spec.name + ")" : "";
+  const std::string who = units_.size() > 1 ? " (" + UnitLabel(u.spec.name) + ")" : "";
   const bool vi = cfg_.estimator.vi_baseline;
 
   FigureSpec speed = TimeFigure(
@@ -115,7 +133,7 @@ void VelocityExperiment::RobotFigures(const RobotUnit& u, std::vector<FigureSpec
                   Line("fused", p + "w_fused", 2), Line("true", p + "w_true", 0)}));
 
   FigureSpec slip = TimeFigure(
-      "slip" + suffix, "Wheel slip ratio κ = (rω − v_contact) / max(|rω|, |v_contact|)" + who, "κ",
+      "slip" + suffix, "Wheel slip ratio κ = (rω − v_{contact}) / max(|rω|, |v_{contact}|)" + who, "κ",
       {Line("left wheel", p + "slip_l", 0), Line("right wheel", p + "slip_r", 1)});
   slip.reference_lines = {0.0};
   out.push_back(slip);
@@ -126,10 +144,10 @@ void VelocityExperiment::RobotFigures(const RobotUnit& u, std::vector<FigureSpec
 
   FigureSpec bias = TimeFigure(
       "biases" + suffix,
-      "Bias estimates: odometry speed bias b_v vs true odometry error, gyro bias" + who,
+      "Bias estimates: odometry speed bias b_{v} vs true odometry error, gyro bias" + who,
       "m/s, rad/s",
-      {Line("odometry error v_odo − v (true)", p + "err_odo", 6),
-       Line("b_v estimated", p + "bv", 2), Line("b_ψ estimated", p + "bw", 4),
+      {Line("odometry error v_{odo} − v (true)", p + "err_odo", 6),
+       Line("b_{v} estimated", p + "bv", 2), Line("b_{ψ} estimated", p + "bw", 4),
        Line("gyro bias true", p + "bg_true", 0, true), Line("gyro bias estimated", p + "bg", 5)});
   bias.reference_lines = {0.0};
   out.push_back(bias);
@@ -143,7 +161,7 @@ std::vector<FigureSpec> VelocityExperiment::Figures() const {
   for (const auto& u : units_) RobotFigures(*u, out);
   FigureSpec traj = PlaneFigure("trajectory", "Trajectories (true)", {});
   for (const auto& u : units_)
-    traj.series.push_back(Path(u->spec.name, u->spec.name + ".x", u->spec.name + ".y", u->index));
+    traj.series.push_back(Path(UnitLabel(u->spec.name), u->spec.name + ".x", u->spec.name + ".y", u->index));
   out.push_back(traj);
   return out;
 }

@@ -43,6 +43,9 @@ TEST(FigureCli, BadOutputNamesAreClearErrorsThatCreateNothing) {
        dir + "/p"},
       {"--plots " + dir + "/p --theme sepia", "--theme", "high-contrast", dir + "/p"},
       {"--plots " + dir + "/p --titles long", "--titles", "full|short|none", dir + "/p"},
+      {"--plots " + dir + "/p --log-y nope", "--log-y", "distance_error", dir + "/p"},
+      {"--plots " + dir + "/p --log-y trajectories", "--log-y", "the time plots: ", dir + "/p"},
+      {"--plots " + dir + "/p --log-y distance_error,", "--log-y", "empty name", dir + "/p"},
       {"--plots " + dir + "/p --dpi 1200 --plot-size 30cmx20cm", "--plot-size", "--dpi 1200",
        dir + "/p"},
   };
@@ -59,6 +62,18 @@ TEST(FigureCli, BadOutputNamesAreClearErrorsThatCreateNothing) {
   // --size errors still name --size.
   RunShell(RunCmd("formation_traj2 -q --out " + dir + "/out --size 100"), dir + "/log.txt");
   EXPECT_NE(ReadText(dir + "/log.txt").find("error: --size '100'"), std::string::npos);
+}
+
+// --log-y: the named time plot gets decade ticks in its SVG; the others keep a linear axis.
+TEST(FigureCli, LogYGivesTheNamedPlotDecadeTicks) {
+  const std::string dir = TempDir("cli_log_y");
+  const int rc = RunShell(RunCmd("formation_traj2 --set duration=4 -q --out " + dir +
+                                 "/out --plots " + dir + "/p --plot-format svg --log-y " +
+                                 "distance_error"),
+                          dir + "/log.txt");
+  ASSERT_EQ(rc, 0) << ReadText(dir + "/log.txt");
+  EXPECT_NE(ReadText(dir + "/p/distance_error.svg").find(">10⁻"), std::string::npos);
+  EXPECT_EQ(ReadText(dir + "/p/alpha_error.svg").find(">10⁻"), std::string::npos);
 }
 
 // An ffmpeg that starts and then fails: the run's results are written, the export is reported

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <regex>
 
 #include "app/export/export.hpp"
 #include "app/export/figure_data.hpp"
@@ -16,6 +17,7 @@
 #include "app/export/png_writer.hpp"
 #include "app/cli/progress.hpp"
 #include "app/export/svg_writer.hpp"
+#include "app/render/label_markup.hpp"
 #include "app/render/vector_canvas.hpp"
 #include "app/export/video_writer.hpp"
 #include "sim/session/session.hpp"
@@ -28,6 +30,13 @@ using testing::ReadText;
 using testing::RunShell;
 using testing::Scenario;
 using testing::TempDir;
+
+// The text a markup label's runs spell (what the SVG's and the PDF's text hold).
+std::string Plain(const std::string& label) {
+  std::string out;
+  for (const MarkupRun& r : ParseMarkup(label).runs) out += r.text;
+  return out;
+}
 
 // Output of a shell command (stdout and stderr), and its exit code.
 std::string Shell(const std::string& cmd, int* rc, const std::string& dir) {
@@ -262,7 +271,9 @@ TEST_F(FigureRun, SvgAndPdfKeepTextAndPathsAndLookLikeThePng) {
     EXPECT_GE(count("<text "), 6u) << fig.id;
     EXPECT_GE(count("<path "), data.series.size()) << fig.id;
     EXPECT_EQ(count("<image"), 0u) << fig.id;
-    EXPECT_NE(svg.find(">" + data.y_label + "</text>"), std::string::npos) << fig.id;
+    // The y label is one <text> (its scripts <tspan>s in it), spelling the label's runs.
+    const std::string flat = std::regex_replace(svg, std::regex("<tspan[^>]*>|</tspan>"), "");
+    EXPECT_NE(flat.find(">" + Plain(data.y_label) + "</text>"), std::string::npos) << fig.id;
     // PDF: poppler opens it, one page of the figure's size, every font embedded, and the axis
     // labels and legend entries come back as text.
     const std::string info = Shell("pdfinfo " + stem + ".pdf", &rc, dir);
@@ -275,12 +286,12 @@ TEST_F(FigureRun, SvgAndPdfKeepTextAndPathsAndLookLikeThePng) {
     EXPECT_EQ(fonts.find(" no "), std::string::npos) << "a font is not embedded:\n" << fonts;
     const std::string text = Shell("pdftotext " + stem + ".pdf -", &rc, dir);
     ASSERT_EQ(rc, 0) << text;
-    EXPECT_NE(text.find(data.x_label), std::string::npos) << fig.id << ":\n" << text;
-    EXPECT_NE(text.find(data.y_label), std::string::npos) << fig.id << ":\n" << text;
-    EXPECT_NE(text.find(data.title), std::string::npos) << fig.id << ":\n" << text;
+    EXPECT_NE(text.find(Plain(data.x_label)), std::string::npos) << fig.id << ":\n" << text;
+    EXPECT_NE(text.find(Plain(data.y_label)), std::string::npos) << fig.id << ":\n" << text;
+    EXPECT_NE(text.find(Plain(data.title)), std::string::npos) << fig.id << ":\n" << text;
     for (const auto& series : data.series) {
       if (series.label.empty()) continue;
-      EXPECT_NE(text.find(series.label), std::string::npos) << fig.id << ": " << series.label;
+      EXPECT_NE(text.find(Plain(series.label)), std::string::npos) << fig.id << ": " << series.label;
     }
     // The PDF drawn back at 96 dpi looks like the PNG: nearly every pixel within a small
     // difference (anti-aliasing differs at edges).
