@@ -67,12 +67,15 @@ TEST(FigureCli, BadOutputNamesAreClearErrorsThatCreateNothing) {
 // --log-y: the named time plot gets decade ticks in its SVG; the others keep a linear axis.
 TEST(FigureCli, LogYGivesTheNamedPlotDecadeTicks) {
   const std::string dir = TempDir("cli_log_y");
-  const int rc = RunShell(RunCmd("formation_traj2 --set duration=4 -q --out " + dir +
+  // 30 s: the distance errors fall through several decades.
+  const int rc = RunShell(RunCmd("formation_traj2 --set duration=30 -q --out " + dir +
                                  "/out --plots " + dir + "/p --plot-format svg --log-y " +
                                  "distance_error"),
                           dir + "/log.txt");
   ASSERT_EQ(rc, 0) << ReadText(dir + "/log.txt");
-  EXPECT_NE(ReadText(dir + "/p/distance_error.svg").find(">10⁻"), std::string::npos);
+  const std::string svg = ReadText(dir + "/p/distance_error.svg");
+  EXPECT_NE(svg.find(">10⁻³</text>"), std::string::npos);
+  EXPECT_NE(svg.find(">log y: "), std::string::npos) << "the errors cross zero: a note";
   EXPECT_EQ(ReadText(dir + "/p/alpha_error.svg").find(">10⁻"), std::string::npos);
 }
 
