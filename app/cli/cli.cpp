@@ -1,5 +1,4 @@
 #include "app/cli/cli.hpp"
-#include "app/gui/command_table.hpp"
 
 #include <unistd.h>
 
@@ -13,21 +12,22 @@
 #include <stdexcept>
 #include <vector>
 
-#include "app/export/export.hpp"
-#include "app/export/figure_requests.hpp"
 #include "app/cli/figures_command.hpp"
 #include "app/cli/lessons_cli.hpp"
-#include "app/gui/gui.hpp"
 #include "app/cli/progress.hpp"
 #include "app/cli/replay_command.hpp"
 #include "app/cli/reproduce_cli.hpp"
 #include "app/cli/stop_signal.hpp"
 #include "app/cli/study_cli.hpp"
+#include "app/export/export.hpp"
+#include "app/export/figure_requests.hpp"
+#include "app/gui/command_table.hpp"
+#include "app/gui/gui.hpp"
 #include "sim/core/run_output.hpp"
+#include "sim/core/thread_pool.hpp"
 #include "sim/scenario/scenario.hpp"
 #include "sim/scenario/scenario_files.hpp"
 #include "sim/session/session.hpp"
-#include "sim/core/thread_pool.hpp"
 
 namespace formsim::app {
 namespace {
@@ -85,8 +85,10 @@ int RunCommand(RunOptions opt) {
   if (!opt.log_y.empty()) opt.exp.log_y = ParseFigureNames(opt.log_y, "--log-y");
   sim::Session session(file, overrides);
   // The figures' markup and the --log-y names, before simulating (figures from a first step).
-  if (!opt.exp.plots_dir.empty()) CheckFigureRequests(ProbeFigures(file, overrides), opt.exp.log_y);
-  else if (!opt.exp.log_y.empty()) throw std::runtime_error("--log-y needs --plots DIR");
+  if (!opt.exp.plots_dir.empty())
+    CheckFigureRequests(ProbeFigures(file, overrides), opt.exp.log_y);
+  else if (!opt.exp.log_y.empty())
+    throw std::runtime_error("--log-y needs --plots DIR");
   sim::PrepareOutputDir(out);  // fail before simulating, not after
   if (opt.exp.any()) PrepareExport(opt.exp);  // a missing ffmpeg fails before simulating too
   // Rows go to disk as they are recorded; memory keeps a bounded history for the figures.

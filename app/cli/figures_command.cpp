@@ -12,9 +12,9 @@
 #include <filesystem>
 #include <thread>
 
+#include "app/cli/progress.hpp"
 #include "app/export/export.hpp"
 #include "app/export/figure_requests.hpp"
-#include "app/cli/progress.hpp"
 #include "sim/core/run_output.hpp"
 #include "sim/scenario/scenario_files.hpp"
 #include "sim/session/session.hpp"

@@ -4,15 +4,15 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "app/export/figure_data.hpp"
-#include "app/export/figure_export.hpp"
 #include "app/cli/progress.hpp"
 #include "app/cli/stop_signal.hpp"
+#include "app/export/figure_data.hpp"
+#include "app/export/figure_export.hpp"
 #include "app/export/figure_titles.hpp"
 #include "app/export/study_figures.hpp"
+#include "sim/core/run_output.hpp"
 #include "sim/study/reproduction.hpp"
 #include "sim/study/reproduction_registry.hpp"
-#include "sim/core/run_output.hpp"
 #include "sim/study/sweep_spec.hpp"
 
 namespace fs = std::filesystem;

@@ -40,7 +40,7 @@ class StudyCommands {
   std::string out_;
   std::string metric_;
   std::string band_ = "ci95";  ///< --band sd|ci95|minmax: the spread shaded around the mean
-  std::string titles_ = "full";          ///< --titles full|short|none of the figures
+  std::string titles_ = "full";  ///< --titles full|short|none of the figures
   std::string shard_;
   bool resume_ = false;
   bool print_jobs_ = false;

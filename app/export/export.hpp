@@ -31,7 +31,7 @@ struct ExportOptions {
   double dpi = 96;  ///< PNG figures and PNG snapshot: dpi / 96 pixels per logical pixel
   ThemeId theme = ThemeId::kLight;
   TitleMode titles = TitleMode::kFull;  ///< --titles: how much of each figure's title is shown
-  std::set<std::string> log_y;  ///< --log-y: ids of the figures drawn with a log y axis
+  std::set<std::string> log_y;          ///< --log-y: ids of the figures drawn with a log y axis
   double gif_fps = 15;
   int gif_width = 640;
   bool ui = false;         ///< draw the GUI panels around the world view

@@ -43,8 +43,8 @@ void CheckFigureRequests(const std::vector<sim::FigureSpec>& figures,
     if (ids.count(name)) continue;
     std::string list;
     for (const std::string& id : ids) list += (list.empty() ? "" : ", ") + id;
-    throw std::runtime_error(flag + " '" + name + "': no time plot of that name (the time plots: " +
-                             list + ")");
+    throw std::runtime_error(flag + " '" + name +
+                             "': no time plot of that name (the time plots: " + list + ")");
   }
 }
 

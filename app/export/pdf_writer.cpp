@@ -150,8 +150,7 @@ std::string PdfDocument(const VectorFigure& fig, const FigureSize& size, const s
   cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATOR, "formsim");
   // Cairo writes the wall-clock time as CreationDate unless told otherwise; a fixed date keeps
   // the same figure byte-identical from run to run (results are deterministic, so are files).
-  cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATE_DATE,
-                                 kPdfCreationDate);
+  cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATE_DATE, kPdfCreationDate);
   std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()), cairo_destroy);
   cairo_scale(cr.get(), pt_w / fig.width, pt_h / fig.height);
   Draw(cr.get(), fig);

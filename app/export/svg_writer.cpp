@@ -5,8 +5,8 @@
 
 #include "app/render/label_markup.hpp"
 #include "app/render/vector_fonts.hpp"
-#include "sim/core/run_output.hpp"
 #include "sim/core/number_format.hpp"
+#include "sim/core/run_output.hpp"
 
 namespace formsim::app {
 namespace {

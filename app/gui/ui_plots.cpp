@@ -14,12 +14,12 @@
 
 #include "app/export/figure_data.hpp"
 #include "app/gui/command_table.hpp"
+#include "app/gui/history_panel.hpp"
+#include "app/gui/lesson_panel.hpp"
+#include "app/gui/ui.hpp"
 #include "app/render/imgui_canvas.hpp"
 #include "app/render/label_markup.hpp"
 #include "app/render/long_text.hpp"
-#include "app/gui/lesson_panel.hpp"
-#include "app/gui/history_panel.hpp"
-#include "app/gui/ui.hpp"
 
 namespace formsim::app {
 namespace {
@@ -264,7 +264,8 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
                 }
                 ++rows;
                 const sim::Color c = style.theme->Series(s.color, s.style_index, s.dashed).color;
-                ImGui::TextColored(ImVec4(c.r, c.g, c.b, 1), "%s: %.5g", Shorten(MarkupText(s.label), 80).c_str(), y);
+                ImGui::TextColored(ImVec4(c.r, c.g, c.b, 1), "%s: %.5g",
+                                   Shorten(MarkupText(s.label), 80).c_str(), y);
               }
             }
             if (more > 0) ImGui::TextDisabled("... %d more", more);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <functional>
 #include <vector>
 
 namespace formsim::app {
@@ -213,22 +214,23 @@ void ImGuiCanvas::Text(ImVec2 pos, FontRole font, sim::Color color, const std::s
                ToImColor(color), text.c_str());
 }
 
-void ImGuiCanvas::RotateSince(int v0, ImVec2 center) {
+// ImGui has no rotated text, so the glyph vertices are rotated after AddText.
+void ImGuiCanvas::DrawRotated(ImVec2 center, const std::function<void()>& draw) {
+  dl_->PushClipRect(ImVec2(-1e5f, -1e5f), ImVec2(1e5f, 1e5f), false);  // no culling before rotating
+  const int v0 = dl_->VtxBuffer.Size;
+  draw();
   for (int i = v0; i < dl_->VtxBuffer.Size; ++i) {
     const ImVec2 p = dl_->VtxBuffer[i].pos;
     dl_->VtxBuffer[i].pos = ImVec2(center.x + (p.y - center.y), center.y - (p.x - center.x));
   }
+  dl_->PopClipRect();
 }
 
-// ImGui has no rotated text, so the glyph vertices are rotated after AddText.
 void ImGuiCanvas::TextVertical(ImVec2 center, FontRole font, sim::Color color,
                                const std::string& text) {
   const ImVec2 ext = TextSize(font, text);
-  dl_->PushClipRect(ImVec2(-1e5f, -1e5f), ImVec2(1e5f, 1e5f), false);  // no culling before rotating
-  const int v0 = dl_->VtxBuffer.Size;
-  Text(ImVec2(center.x - ext.x / 2, center.y - ext.y / 2), font, color, text);
-  RotateSince(v0, center);
-  dl_->PopClipRect();
+  DrawRotated(center,
+              [&] { Text(ImVec2(center.x - ext.x / 2, center.y - ext.y / 2), font, color, text); });
 }
 
 ImVec2 ImGuiCanvas::LabelSize(FontRole font, const std::string& markup) const {
@@ -259,11 +261,9 @@ void ImGuiCanvas::Label(ImVec2 pos, FontRole font, sim::Color color, const std::
 void ImGuiCanvas::LabelVertical(ImVec2 center, FontRole font, sim::Color color,
                                 const std::string& markup) {
   const ImVec2 ext = LabelSize(font, markup);
-  dl_->PushClipRect(ImVec2(-1e5f, -1e5f), ImVec2(1e5f, 1e5f), false);  // no culling before rotating
-  const int v0 = dl_->VtxBuffer.Size;
-  Label(ImVec2(center.x - ext.x / 2, center.y - ext.y / 2), font, color, markup);
-  RotateSince(v0, center);
-  dl_->PopClipRect();
+  DrawRotated(center, [&] {
+    Label(ImVec2(center.x - ext.x / 2, center.y - ext.y / 2), font, color, markup);
+  });
 }
 
 void ImGuiCanvas::PushClip(ImVec2 min, ImVec2 max) {

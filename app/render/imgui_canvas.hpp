@@ -5,6 +5,8 @@
 
 #include <imgui.h>
 
+#include <functional>
+
 #include "app/render/canvas.hpp"
 #include "app/render/fonts.hpp"
 
@@ -46,8 +48,8 @@ class ImGuiCanvas : public Canvas {
   }
 
  private:
-  /// Rotates the vertices added since `v0` by 90° counter-clockwise about `center`.
-  void RotateSince(int v0, ImVec2 center);
+  /// Runs `draw`, then turns what it added 90° counter-clockwise about `center`.
+  void DrawRotated(ImVec2 center, const std::function<void()>& draw);
   void DashedPolyline(const ImVec2* pts, int n, ImU32 col, float width, const LineDash& dash);
   ImDrawList* dl_;
   const Fonts& fonts_;

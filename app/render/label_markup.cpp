@@ -1,6 +1,5 @@
 #include "app/render/label_markup.hpp"
 
-
 namespace formsim::app {
 namespace {
 
@@ -73,7 +72,9 @@ std::string UnicodeScript(const MarkupRun& run) {
   return out;
 }
 
-bool IsLetter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
+bool IsLetter(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
+}
 
 const char* GreekOf(const std::string& name) {
   for (const Named& g : kGreek)
@@ -81,7 +82,9 @@ const char* GreekOf(const std::string& name) {
   return nullptr;
 }
 
-bool IsEscapable(char c) { return c == '\\' || c == '_' || c == '^' || c == '{' || c == '}'; }
+bool IsEscapable(char c) {
+  return c == '\\' || c == '_' || c == '^' || c == '{' || c == '}';
+}
 
 void Append(std::vector<MarkupRun>& runs, ScriptKind kind, const std::string& text) {
   if (text.empty()) return;

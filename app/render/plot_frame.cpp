@@ -6,7 +6,6 @@
 #include "app/render/label_markup.hpp"
 #include "app/render/plot_log_scale.hpp"
 
-
 namespace formsim::app::plot_detail {
 namespace {
 
@@ -40,7 +39,9 @@ double At(const std::vector<double>& v, std::size_t i) {
   return i < v.size() ? v[i] : kNaN;
 }
 
-std::string PowerLabel(int e) { return "×10" + SuperscriptInt(e); }
+std::string PowerLabel(int e) {
+  return "×10" + SuperscriptInt(e);
+}
 
 // Distance errors of order 1e-4 read better as "1.5" with "×10⁻⁴" than as "0.00015".
 int AxisExponent(double lo, double hi) {
@@ -254,8 +255,7 @@ void PlotFrame::PlaceLegend() {
   if (!legend_items.empty()) {
     float wmax = 0;
     for (int i : legend_items)
-      wmax =
-          std::max(wmax, LegendTextSize(cv, st.label_font, data.series[i].label).x);
+      wmax = std::max(wmax, LegendTextSize(cv, st.label_font, data.series[i].label).x);
     col_w = sample_w + 14 + wmax + 8;
     // A tall legend goes to several columns, so it fits in a corner of a short plot.
     const int n = static_cast<int>(legend_items.size());

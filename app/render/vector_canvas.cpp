@@ -77,10 +77,9 @@ void VectorCanvas::Text(ImVec2 pos, FontRole font, sim::Color color, const std::
   op.text = text;
 }
 
-void VectorCanvas::TextVertical(ImVec2 center, FontRole font, sim::Color color,
-                                const std::string& text) {
+void VectorCanvas::AddVertical(ImVec2 center, FontRole font, sim::Color color,
+                               const std::string& text, ImVec2 ext, bool markup) {
   if (text.empty() || color.a <= 0) return;
-  const ImVec2 ext = TextSize(font, text);
   VectorOp& op = Add(VectorOp::Kind::kText, color);
   // The baseline start before rotating, then the rotation about the centre.
   op.pts = {ImVec2(center.x - ext.x / 2, center.y - ext.y / 2 + VectorFonts::Get().Baseline(font)),
@@ -88,6 +87,12 @@ void VectorCanvas::TextVertical(ImVec2 center, FontRole font, sim::Color color,
   op.font = font;
   op.text = text;
   op.vertical = true;
+  op.markup = markup;
+}
+
+void VectorCanvas::TextVertical(ImVec2 center, FontRole font, sim::Color color,
+                                const std::string& text) {
+  AddVertical(center, font, color, text, TextSize(font, text), false);
 }
 
 void VectorCanvas::Label(ImVec2 pos, FontRole font, sim::Color color, const std::string& markup) {
@@ -98,15 +103,7 @@ void VectorCanvas::Label(ImVec2 pos, FontRole font, sim::Color color, const std:
 
 void VectorCanvas::LabelVertical(ImVec2 center, FontRole font, sim::Color color,
                                  const std::string& markup) {
-  if (markup.empty() || color.a <= 0) return;
-  const ImVec2 ext = LabelSize(font, markup);
-  VectorOp& op = Add(VectorOp::Kind::kText, color);
-  op.pts = {ImVec2(center.x - ext.x / 2, center.y - ext.y / 2 + VectorFonts::Get().Baseline(font)),
-            center};
-  op.font = font;
-  op.text = markup;
-  op.vertical = true;
-  op.markup = true;
+  AddVertical(center, font, color, markup, LabelSize(font, markup), true);
 }
 
 ImVec2 VectorCanvas::LabelSize(FontRole font, const std::string& markup) const {

@@ -69,6 +69,9 @@ class VectorCanvas : public Canvas {
 
  private:
   VectorOp& Add(VectorOp::Kind kind, sim::Color color);
+  /// A text op rotated 90° counter-clockwise about `center`, `ext` its measured size.
+  void AddVertical(ImVec2 center, FontRole font, sim::Color color, const std::string& text,
+                   ImVec2 ext, bool markup);
   VectorFigure fig_;
   /// The figure's rectangle, then each pushed clip intersected with the one before.
   std::vector<ImVec4> clips_;

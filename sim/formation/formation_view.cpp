@@ -42,8 +42,10 @@ std::vector<FigureSpec> FormationExperiment::Figures() const {
   }
   figs.push_back(traj);
 
-  FigureSpec phi = TimeFigure("phi_error", "(b) Bearing error e_{φ} = φ_{des} − φ", "e_{φ} [rad]", {});
-  FigureSpec dist = TimeFigure("distance_error", "(c) Distance errors e_{l} = l_{des} − l", "e_{l} [m]", {});
+  FigureSpec phi =
+      TimeFigure("phi_error", "(b) Bearing error e_{φ} = φ_{des} − φ", "e_{φ} [rad]", {});
+  FigureSpec dist =
+      TimeFigure("distance_error", "(c) Distance errors e_{l} = l_{des} − l", "e_{l} [m]", {});
   FigureSpec alpha =
       TimeFigure("alpha_error", "(d) Heading differences e_{α} = θ_{i} − θ_{j}", "e_{α} [rad]", {});
   FigureSpec est = TimeFigure("estimation_error", "(f) Estimation error φ_{est} − φ with ±2σ (UKF)",
@@ -82,10 +84,11 @@ std::vector<FigureSpec> FormationExperiment::Figures() const {
   figs.push_back(dist);
   if (links_.size() > kManyLinks) {
     // Every link at once: the largest and the median distance error, and the l-φ bearing's.
-    FigureSpec all = TimeFigure(
-        "distance_error_all",
-        Sprintf("(c) Distance errors over all %zu links: largest and median |e_{l}|", links_.size()),
-        "|e| [m], [rad]", {});
+    FigureSpec all =
+        TimeFigure("distance_error_all",
+                   Sprintf("(c) Distance errors over all %zu links: largest and median |e_{l}|",
+                           links_.size()),
+                   "|e| [m], [rad]", {});
     all.series.push_back(Line("max |e_{l}|", "links.max_abs_e_l", 0));
     all.series.push_back(Line("median |e_{l}|", "links.median_abs_e_l", 2));
     all.series.push_back(Line("max |e_{φ}| (l-φ links) [rad]", "links.max_abs_e_phi", 1, true));
@@ -109,9 +112,10 @@ std::vector<FigureSpec> FormationExperiment::Figures() const {
   if (cfg_.switching.enabled() || cfg_.avoidance.present) {
     // Switching and avoidance: the formation error against the 1e-2 tolerance, and each
     // follower's distance to the nearest obstacle against the safety distance.
-    FigureSpec fe = TimeFigure("formation_error",
-                               "Formation error: largest |e_{l}| [m], |e_{φ}| [rad] (followers not avoiding)",
-                               "error", {});
+    FigureSpec fe =
+        TimeFigure("formation_error",
+                   "Formation error: largest |e_{l}| [m], |e_{φ}| [rad] (followers not avoiding)",
+                   "error", {});
     fe.series.push_back(Line("formation error", "formation.error", 0));
     fe.reference_lines = {0.0, kRecoveredError};
     figs.push_back(fe);

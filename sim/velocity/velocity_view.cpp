@@ -133,8 +133,8 @@ void VelocityExperiment::RobotFigures(const RobotUnit& u, std::vector<FigureSpec
                   Line("fused", p + "w_fused", 2), Line("true", p + "w_true", 0)}));
 
   FigureSpec slip = TimeFigure(
-      "slip" + suffix, "Wheel slip ratio κ = (rω − v_{contact}) / max(|rω|, |v_{contact}|)" + who, "κ",
-      {Line("left wheel", p + "slip_l", 0), Line("right wheel", p + "slip_r", 1)});
+      "slip" + suffix, "Wheel slip ratio κ = (rω − v_{contact}) / max(|rω|, |v_{contact}|)" + who,
+      "κ", {Line("left wheel", p + "slip_l", 0), Line("right wheel", p + "slip_r", 1)});
   slip.reference_lines = {0.0};
   out.push_back(slip);
 
@@ -161,7 +161,8 @@ std::vector<FigureSpec> VelocityExperiment::Figures() const {
   for (const auto& u : units_) RobotFigures(*u, out);
   FigureSpec traj = PlaneFigure("trajectory", "Trajectories (true)", {});
   for (const auto& u : units_)
-    traj.series.push_back(Path(UnitLabel(u->spec.name), u->spec.name + ".x", u->spec.name + ".y", u->index));
+    traj.series.push_back(
+        Path(UnitLabel(u->spec.name), u->spec.name + ".x", u->spec.name + ".y", u->index));
   out.push_back(traj);
   return out;
 }

@@ -68,10 +68,10 @@ TEST(FigureCli, BadOutputNamesAreClearErrorsThatCreateNothing) {
 TEST(FigureCli, LogYGivesTheNamedPlotDecadeTicks) {
   const std::string dir = TempDir("cli_log_y");
   // 30 s: the distance errors fall through several decades.
-  const int rc = RunShell(RunCmd("formation_traj2 --set duration=30 -q --out " + dir +
-                                 "/out --plots " + dir + "/p --plot-format svg --log-y " +
-                                 "distance_error"),
-                          dir + "/log.txt");
+  const int rc =
+      RunShell(RunCmd("formation_traj2 --set duration=30 -q --out " + dir + "/out --plots " + dir +
+                      "/p --plot-format svg --log-y " + "distance_error"),
+               dir + "/log.txt");
   ASSERT_EQ(rc, 0) << ReadText(dir + "/log.txt");
   const std::string svg = ReadText(dir + "/p/distance_error.svg");
   EXPECT_NE(svg.find(">10⁻³</text>"), std::string::npos);

@@ -10,16 +10,16 @@
 #include <map>
 #include <regex>
 
+#include "app/cli/progress.hpp"
 #include "app/export/export.hpp"
 #include "app/export/figure_data.hpp"
-#include "app/render/imgui_canvas.hpp"
-#include "app/gui/offscreen_renderer.hpp"
 #include "app/export/png_writer.hpp"
-#include "app/cli/progress.hpp"
 #include "app/export/svg_writer.hpp"
+#include "app/export/video_writer.hpp"
+#include "app/gui/offscreen_renderer.hpp"
+#include "app/render/imgui_canvas.hpp"
 #include "app/render/label_markup.hpp"
 #include "app/render/vector_canvas.hpp"
-#include "app/export/video_writer.hpp"
 #include "sim/session/session.hpp"
 #include "tests/app/test_util.hpp"
 
@@ -291,7 +291,8 @@ TEST_F(FigureRun, SvgAndPdfKeepTextAndPathsAndLookLikeThePng) {
     EXPECT_NE(text.find(Plain(data.title)), std::string::npos) << fig.id << ":\n" << text;
     for (const auto& series : data.series) {
       if (series.label.empty()) continue;
-      EXPECT_NE(text.find(Plain(series.label)), std::string::npos) << fig.id << ": " << series.label;
+      EXPECT_NE(text.find(Plain(series.label)), std::string::npos)
+          << fig.id << ": " << series.label;
     }
     // The PDF drawn back at 96 dpi looks like the PNG: nearly every pixel within a small
     // difference (anti-aliasing differs at edges).

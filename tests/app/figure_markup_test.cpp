@@ -24,8 +24,8 @@ std::vector<std::string> TextNodes(const std::string& svg) {
   std::vector<std::string> out;
   static const std::regex element("<(text|title)[^>]*>(.*?)</\\1>");
   static const std::regex tag("<[^>]*>");
-  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), element); it != std::sregex_iterator();
-       ++it)
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), element);
+       it != std::sregex_iterator(); ++it)
     out.push_back(std::regex_replace((*it)[2].str(), tag, ""));
   return out;
 }
@@ -62,17 +62,17 @@ TEST_P(ShippedFigureMarkup, SvgTextHasNoLiteralUnderscore) {
 std::string Name(const ::testing::TestParamInfo<std::string>& info) {
   return std::filesystem::path(info.param).stem().string();
 }
-INSTANTIATE_TEST_SUITE_P(Shipped, ShippedFigureMarkup,
-                         ::testing::ValuesIn(sim::ShippedScenarios()), Name);
+INSTANTIATE_TEST_SUITE_P(Shipped, ShippedFigureMarkup, ::testing::ValuesIn(sim::ShippedScenarios()),
+                         Name);
 
 TEST(FigureMarkup, SubscriptsAreTspansWithABaselineShift) {
   for (const auto& [spec, data] : FiguresOf(testing::Scenario("formation_traj2"))) {
     if (spec.id != "distance_error") continue;
     ASSERT_EQ(data.y_label, "e_{l} [m]");
-    const std::string svg =
-        SvgDocument(RecordPlot(data, 640, 400, GetTheme(ThemeId::kLight)), FigureSize(), data.title);
+    const std::string svg = SvgDocument(RecordPlot(data, 640, 400, GetTheme(ThemeId::kLight)),
+                                        FigureSize(), data.title);
     // The y label, the title and each legend entry: e with a subscript l, still one <text>.
-    EXPECT_NE(svg.find(">e<tspan baseline-shift=\"sub\" font-size=\"") , std::string::npos);
+    EXPECT_NE(svg.find(">e<tspan baseline-shift=\"sub\" font-size=\""), std::string::npos);
     EXPECT_GE(testing::CountOf(svg, "<tspan baseline-shift=\"sub\""), 4) << svg;
     EXPECT_NE(svg.find("\">l</tspan> [m]</text>"), std::string::npos) << svg;
     EXPECT_NE(svg.find("\">des</tspan>"), std::string::npos) << svg;
@@ -82,8 +82,9 @@ TEST(FigureMarkup, SubscriptsAreTspansWithABaselineShift) {
 }
 
 TEST(FigureMarkup, UnknownCommandInAFigureIsRefusedNamingIt) {
-  sim::FigureSpec f = sim::TimeFigure("gain", "Gain \\kappa", "k [1]",
-                                      {sim::Line("e_{l} R1", "t"), sim::Line("e_{\\lamda} R2", "t")});
+  sim::FigureSpec f =
+      sim::TimeFigure("gain", "Gain \\kappa", "k [1]",
+                      {sim::Line("e_{l} R1", "t"), sim::Line("e_{\\lamda} R2", "t")});
   const std::string e = FigureMarkupError(f);
   EXPECT_NE(e.find("series 2"), std::string::npos) << e;
   EXPECT_NE(e.find("unknown markup command '\\lamda'"), std::string::npos) << e;

@@ -17,7 +17,9 @@ std::string Runs(const std::vector<MarkupRun>& runs) {
   }
   return out;
 }
-std::string Runs(const std::string& label) { return Runs(ParseMarkup(label).runs); }
+std::string Runs(const std::string& label) {
+  return Runs(ParseMarkup(label).runs);
+}
 
 TEST(LabelMarkup, ParsesIntoRuns) {
   EXPECT_EQ(Runs("e_{l} [m]"), "e|_l| [m]");
@@ -84,8 +86,8 @@ TEST(LabelMarkup, AtlasRunsUseUnicodeScriptsWhereEveryCharacterHasOne) {
   EXPECT_EQ(Runs(AtlasRuns("e_{\\phi}, \\sigma^{2}")), "e|_φ|, σ²");
   EXPECT_EQ(PlacementOf(ScriptKind::kNormal).scale, 1.0f);
   EXPECT_LT(PlacementOf(ScriptKind::kSub).scale, 1.0f);
-  EXPECT_GT(PlacementOf(ScriptKind::kSub).shift_em, 0.0f);   // down
-  EXPECT_LT(PlacementOf(ScriptKind::kSuper).shift_em, 0.0f); // up
+  EXPECT_GT(PlacementOf(ScriptKind::kSub).shift_em, 0.0f);    // down
+  EXPECT_LT(PlacementOf(ScriptKind::kSuper).shift_em, 0.0f);  // up
 }
 
 TEST(LabelMarkup, ShortenedMarkupCutsTheDrawnTextKeepingScripts) {
@@ -97,7 +99,8 @@ TEST(LabelMarkup, ShortenedMarkupCutsTheDrawnTextKeepingScripts) {
 }
 
 TEST(LabelMarkup, PlainTextHasNoMarkers) {
-  EXPECT_EQ(PlainText("(c) Distance errors e_{l} = l_{des} − l"), "(c) Distance errors eₗ = ldes − l");
+  EXPECT_EQ(PlainText("(c) Distance errors e_{l} = l_{des} − l"),
+            "(c) Distance errors eₗ = ldes − l");
   EXPECT_EQ(PlainText("max_abs_error"), "max_abs_error");
 }
 
