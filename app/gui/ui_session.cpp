@@ -109,6 +109,7 @@ RunValues AppUi::CurrentValues() const {
 void AppUi::DropScenarioState() {
   pins_.clear();  // each pin's destructor waits for its replay, which stops at once
   span_.Clear();
+  state_.value_entry.Close();
   next_pin_ = 1;
   mc_ = MonteCarloState();
   timeline_->Forget();

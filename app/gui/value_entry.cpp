@@ -33,7 +33,12 @@ void ValueEntry::Close() {
   refusal_.clear();
 }
 
+bool ValueEntry::DrawnThisFrame() const {
+  return !key_.empty() && drawn_frame_ == ImGui::GetFrameCount();
+}
+
 ValueEntry::Outcome ValueEntry::Draw() {
+  drawn_frame_ = ImGui::GetFrameCount();
   if (focus_) {
     ImGui::SetKeyboardFocusHere();
     focus_ = false;

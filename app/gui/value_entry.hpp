@@ -25,6 +25,9 @@ class ValueEntry {
   bool IsOpen(const std::string& key) const { return !key_.empty() && key_ == key; }
   /// The tunable whose field is open ("" none).
   const std::string& key() const { return key_; }
+  /// The field is open and was drawn in this frame (keys belong to it, even before ImGui hands
+  /// it the keyboard).
+  bool DrawnThisFrame() const;
   /// Draws the open field (the current ImGui item width): kCommit when Enter was pressed (the
   /// text typed is text()), kCancel when Esc was pressed or the field let go, else kNone.
   Outcome Draw();
@@ -45,7 +48,8 @@ class ValueEntry {
   std::string key_;
   std::string opened_;  ///< the text the field opened with
   char buf_[128] = "";
-  bool focus_ = false;  ///< give the field the keyboard on its next frame
+  bool focus_ = false;    ///< give the field the keyboard on its next frame
+  int drawn_frame_ = -1;  ///< ImGui's frame count when last drawn
   std::string refusal_;
 };
 
