@@ -244,6 +244,39 @@ std::vector<Command> ParameterRows() {
        .menu = "Run/Revert a value…",
        .help = "Edit a tunable back to its value in the file (with --set)",
        .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdRevert(a.Text(0)); }});
+  // The value entry, as the mouse and keyboard drive it (app/gui/value_entry.hpp).
+  auto needs_field = [](const AppUi& ui) {
+    return ui.state().value_entry.key().empty() ? std::string("no value field is open") : "";
+  };
+  row({.name = "field-open",
+       .args = {Offer(Text("KEY", "a tunable's key (a number)", ArgType::kWord), TunableKeys)},
+       .help = "Open the text entry of a tunable's field, as a double-click or Ctrl+click does",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdFieldOpen(a.Text(0)); },
+       .script_only = true});
+  row({.name = "field-type",
+       .args = {Text("TEXT", "characters to type")},
+       .help = "Type into the open field (nothing is applied until Enter)",
+       .disabled = needs_field,
+       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdFieldType(a.Text(0)); },
+       .script_only = true});
+  row({.name = "field-enter",
+       .help = "Enter in the open field: apply the value typed, or show why it is refused",
+       .disabled = needs_field,
+       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdFieldKey(true); },
+       .script_only = true});
+  row({.name = "field-escape",
+       .help = "Esc in the open field: close it, nothing applied",
+       .disabled = needs_field,
+       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdFieldKey(false); },
+       .script_only = true});
+  row({.name = "field-wheel",
+       .args = {Offer(Text("KEY", "a tunable's key (a number)", ArgType::kWord), TunableKeys),
+                Whole("STEPS", -1000, 1000)},
+       .help = "Turn the mouse wheel over a tunable's field: STEPS fine steps up (or down)",
+       .run = [](AppUi& ui, const CommandArgs& a, Src) {
+         return ui.CmdFieldWheel(a.Text(0), static_cast<int>(a.Whole(1)));
+       },
+       .script_only = true});
   row({.name = "action",
        .args = {Offer(Text("ID", "an action of the scenario", ArgType::kWord), ActionIds)},
        .menu = "Run/Scenario action",

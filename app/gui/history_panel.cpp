@@ -7,7 +7,9 @@
 #include <filesystem>
 
 #include "app/gui/command_row_makers.hpp"
+#include "app/gui/table_header.hpp"
 #include "app/gui/ui.hpp"
+#include "app/render/display_unit.hpp"
 #include "sim/core/number_format.hpp"
 
 namespace fs = std::filesystem;
@@ -21,9 +23,10 @@ namespace {
 
 const ImVec4 kBest(0.55f, 0.85f, 0.55f, 0.45f);
 
-std::string MetricText(const sim::Metrics::HeadlineValue& m) {
+// A metric cell: the comparison table's formatter and digits, in the unit its column shows.
+std::string MetricText(const sim::Metrics::HeadlineValue& m, bool degrees) {
   if (std::isnan(m.value)) return "-";
-  return m.format.empty() ? sim::FormatDouble(m.value) : sim::Sprintf(m.format.c_str(), m.value);
+  return sim::FormatCell(m.value * ShownUnit(LabelUnit(m.label), degrees).scale, 4);
 }
 
 }  // namespace
@@ -194,12 +197,22 @@ void HistoryPanel::Draw(const Fonts&) {
   ImGui::TableSetupColumn("", ImGuiTableColumnFlags_NoSort);
   ImGui::TableSetupColumn("settings (vs the file)", ImGuiTableColumnFlags_WidthFixed,
                           11 * ImGui::GetFontSize());
-  for (const auto& l : labels) ImGui::TableSetupColumn(l.c_str());
-  ImGui::TableSetupColumn("t [s]");
-  ImGui::TableSetupColumn("seed");
-  ImGui::TableSetupColumn("status");
-  ImGui::TableSetupColumn("when");
-  ImGui::TableHeadersRow();
+  // Metric columns as wide as their header (in the unit shown) and their numbers need: with
+  // ScrollX every one of them can be scrolled to, none is squeezed away.
+  const bool degrees = ctx_.state->settings.degrees;
+  std::vector<std::string> headers = {"#", "", "settings (vs the file)"};
+  for (const auto& l : labels) {
+    headers.push_back(ShownLabel(l, degrees));
+    ImGui::TableSetupColumn(headers.back().c_str(), ImGuiTableColumnFlags_WidthFixed,
+                            std::max(ImGui::CalcTextSize(headers.back().c_str()).x +
+                                         ImGui::GetFontSize(),
+                                     ImGui::CalcTextSize("0.0000000").x));
+  }
+  for (const char* h : {"t [s]", "seed", "status", "when"}) {
+    ImGui::TableSetupColumn(h);
+    headers.push_back(h);
+  }
+  TableHeaders(headers, true);
 
   // Sorted by the column the user clicked (its header toggles the direction).
   if (history_order_.size() != rows.size()) {
@@ -252,7 +265,7 @@ void HistoryPanel::Draw(const Fonts&) {
       if (m == nullptr) continue;
       if (std::isfinite(m->value) && m->value == best[c] && rows.size() > 1)
         ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg, ImGui::GetColorU32(kBest));
-      ImGui::TextUnformatted(MetricText(*m).c_str());
+      ImGui::TextUnformatted(MetricText(*m, degrees).c_str());
     }
     ImGui::TableSetColumnIndex(kTime);
     ImGui::Text("%.2f", r.t_end);

@@ -35,6 +35,8 @@ struct PinnedRun {
   int id = 0;          ///< "pin 1", "pin 2", ...
   std::string origin;  ///< "the run at t = 7.00 s", "history row 3"
   long steps = 0;      ///< the step it is pinned at
+  std::shared_ptr<const sim::ScenarioSource> source;  ///< what it replays (the comparison
+  sim::RunLog log;                                    ///< table replays it to a common span)
   struct Result {
     std::unique_ptr<sim::Experiment> exp;
     RunValues values;

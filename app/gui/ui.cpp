@@ -467,8 +467,12 @@ void AppUi::Advance(double wall_dt) {
 void AppUi::HandleKeys() {
   ImGuiIO& io = ImGui::GetIO();
   // Called after this frame's widgets: typing into a field (or a field that a click activated
-  // in this very frame, which io.WantTextInput does not know yet) never reaches a shortcut.
-  if (io.WantTextInput || io.WantCaptureKeyboard || ImGui::IsAnyItemActive()) return;
+  // in this very frame, which io.WantTextInput does not know yet) never reaches a shortcut; nor
+  // does a key in the frame between a double-click opening a value entry and its taking the
+  // keyboard.
+  if (io.WantTextInput || io.WantCaptureKeyboard || ImGui::IsAnyItemActive() ||
+      state_.value_entry.DrawnThisFrame())
+    return;
   if (io.KeyCtrl) {
     // The window's backend (GLFW) indexes letter keys by their upper-case ASCII code.
     for (int c = 'A'; c <= 'Z'; ++c)

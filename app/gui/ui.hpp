@@ -15,11 +15,13 @@
 
 #include "app/gui/command_table.hpp"
 #include "app/gui/panel_context.hpp"
+#include "app/gui/span_metrics.hpp"
 #include "app/gui/speed_meter.hpp"
 #include "app/render/fonts.hpp"
 #include "app/render/theme.hpp"
 #include "app/gui/tuning_state.hpp"
 #include "app/gui/ui_settings.hpp"
+#include "app/gui/value_entry.hpp"
 #include "app/render/camera.hpp"
 #include "app/render/view.hpp"
 #include "app/render/world_view.hpp"
@@ -88,6 +90,7 @@ struct UiState {
   std::vector<std::string> recent_commands;  ///< newest first, run from the menu or palette
   std::string open_menu;                     ///< `menu NAME`: a top-level menu to open once
   std::string focus_param;                   ///< a tunable whose field takes the keyboard once
+  ValueEntry value_entry;                    ///< the tunable whose value is being typed
   /// The argument dialog of a command run from the menu or palette (none: "").
   std::string dialog_command;
   char dialog_args[3][1024] = {};
@@ -161,6 +164,17 @@ class AppUi {
   std::string CmdRedo();
   /// Edits `key` back to its value in the file (with the command line's --set).
   std::string CmdRevert(const std::string& key);
+  /// The value entry of tunable `key` (a number), as a double-click on its slider opens it: its
+  /// section opens and the field takes the keyboard on the next frame.
+  std::string CmdFieldOpen(const std::string& key);
+  /// Types `text` into the open field, character by character as the keyboard does (through
+  /// ImGui's input queue: taken by the field that has the keyboard in the next frame).
+  std::string CmdFieldType(const std::string& text);
+  /// Enter (`commit`: the text typed is applied, or refused with the loader's reason and the
+  /// field stays open, red) or Esc (closed, nothing applied) in the open field.
+  std::string CmdFieldKey(bool commit);
+  /// `steps` notches of the mouse wheel over tunable `key`'s slider (a fine adjustment).
+  std::string CmdFieldWheel(const std::string& key, int steps);
   /// Pins the current run as it stands: a reference drawn faded (world) and dashed (plots).
   std::string CmdPin();
   std::string CmdUnpin(int id);
@@ -236,6 +250,16 @@ class AppUi {
   /// writes them) into `dir`/montecarlo. Returns false when there is none.
   bool WriteMonteCarlo(const std::string& dir);
   const std::vector<std::unique_ptr<PinnedRun>>& pins() const { return pins_; }
+  /// One run's column of the comparison table.
+  struct CompareRun {
+    std::string header;                     ///< "now (9.4 of 11.0 s)", "pin 1 (9.4 s)"
+    const sim::Metrics* metrics = nullptr;  ///< over the common span; null while replayed
+    std::string why;                        ///< why there are no metrics yet
+  };
+  /// The runs of the comparison table, the live run then each ready pin, every one cut to the
+  /// common span (the shortest run's time) by an exact replay; `title` gets the table's title,
+  /// which says so. `now`: the live run's metrics over all of it.
+  std::vector<CompareRun> CompareRuns(const sim::Metrics& now, std::string* title);
 
   // ---- The panels (app/gui/panel.hpp) and what the window shares with them.
   /// The panel of type P the window has now (the kind's own panel, or one of the window's), or
@@ -333,6 +357,7 @@ class AppUi {
   std::vector<std::unique_ptr<PinnedRun>> pins_;
   int next_pin_ = 1;
   MonteCarloState mc_;
+  SpanMetrics span_;  ///< runs cut to the common span of the comparison table
   std::unique_ptr<sim::SessionJournal> journal_;  ///< the window's crash-safe journal
   std::vector<sim::RecoveredSession> unfinished_;  ///< offered for restore, newest first
   bool journal_error_shown_ = false;

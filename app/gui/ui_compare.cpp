@@ -5,9 +5,12 @@
 /// (mean ± σ), the better value of each row marked by the metric's declared direction.
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "app/export/figure_data.hpp"
+#include "app/gui/table_header.hpp"
 #include "app/gui/ui.hpp"
+#include "app/render/display_unit.hpp"
 #include "app/render/label_markup.hpp"
 #include "sim/core/number_format.hpp"
 
@@ -16,6 +19,8 @@ namespace formsim::app {
 namespace {
 
 const ImVec4 kBest(0.55f, 0.85f, 0.55f, 0.45f);
+// Significant digits of every number of the comparison table (and of σ's decimal place).
+constexpr int kDigits = 4;
 
 // Figures can change with the settings (an estimator switched on adds series): a pin's resolved
 // figure is kept per figure and list of columns.
@@ -87,30 +92,81 @@ void AppUi::DecoratePlot(const sim::FigureSpec& fig, PlotData& data) {
   }
 }
 
-void AppUi::DrawCompareTable(const sim::Metrics& now) {
+std::vector<AppUi::CompareRun> AppUi::CompareRuns(const sim::Metrics& now, std::string* title) {
   std::vector<const PinnedRun*> pins;
   for (const auto& p : pins_)
     if (p->ready() && p->results) pins.push_back(p.get());
+  // Runs of different lengths are compared over their common span: each longer run is cut to
+  // it by an exact replay of its log (span_), so a pin that stops at 9.4 s is not measured
+  // against 11 s of the live run.
+  const sim::Experiment& live = session_->exp();
+  double span = live.time();
+  for (const PinnedRun* p : pins) span = std::min(span, p->exp->time());
+  constexpr double kSameTime = 1e-9;
+  bool cut = false;
+  // The live run is the shortest and still running: the span moves every step, so the longer
+  // runs are cut to it once the run stops (paused or finished).
+  const bool moving = state_.playing && !live.finished() && live.time() <= span + kSameTime;
+  std::vector<CompareRun> runs;
+  auto column = [&](const std::string& name, const std::string& id, const sim::Experiment& x,
+                    const sim::Metrics& whole, const std::function<SpanMetrics::Replayed()>& log) {
+    CompareRun c;
+    if (x.time() <= span + kSameTime || pins.empty()) {
+      c.header = name + sim::Sprintf(" (%.1f s)", x.time());
+      c.metrics = &whole;
+    } else {
+      cut = true;
+      c.header = name + sim::Sprintf(" (%.1f of %.1f s)", span, x.time());
+      std::string error;
+      if (moving) c.why = "cut to the common span when the run pauses";
+      else c.metrics = span_.Get(id, StepAtTime(x.steps(), x.time(), span), log, &error);
+      if (c.metrics == nullptr && c.why.empty())
+        c.why = error.empty() ? "replaying to the common span..." : "replay failed: " + error;
+    }
+    runs.push_back(std::move(c));
+  };
+  column("now", "now:" + std::to_string(session_->run_id()), live, now, [this] {
+    return SpanMetrics::Replayed{std::make_shared<sim::ScenarioSource>(session_->source()),
+                                 session_->run_log()};
+  });
+  for (const PinnedRun* p : pins)
+    column("pin " + std::to_string(p->id), "pin:" + std::to_string(p->id), *p->exp, *p->results,
+           [p] { return SpanMetrics::Replayed{p->source, p->log}; });
+  *title = cut ? sim::Sprintf("Compare over the common span 0 ... %.1f s: the longer runs cut "
+                              "to it (seeds: whole runs)",
+                              span)
+               : std::string("Compare: the current run, the pinned runs and the Monte Carlo");
+  return runs;
+}
+
+void AppUi::DrawCompareTable(const sim::Metrics& now) {
   const bool mc = mc_.tables.has_value();
-  if (pins.empty() && !mc) return;
-  ImGui::TextUnformatted("Compare: the current run, the pinned runs and the Monte Carlo");
-  const int cols = 2 + static_cast<int>(pins.size()) + (mc ? 1 : 0);
+  std::size_t pinned = 0;
+  for (const auto& p : pins_) pinned += p->ready() && p->results;
+  if (pinned == 0 && !mc) return;
+  std::string title;
+  const std::vector<CompareRun> runs = CompareRuns(now, &title);
+  ImGui::TextWrapped("%s", title.c_str());
+  const int cols = 1 + static_cast<int>(runs.size()) + (mc ? 1 : 0);
   if (!ImGui::BeginTable(
           "compare", cols,
           ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp))
     return;
   ImGui::TableSetupColumn("metric", ImGuiTableColumnFlags_WidthStretch, 2.0f);
-  // Each run's column says how far it got: a run just reset has no errors yet.
-  ImGui::TableSetupColumn(sim::Sprintf("now (%.1f s)", session_->exp().time()).c_str());
-  for (const PinnedRun* p : pins)
-    ImGui::TableSetupColumn(sim::Sprintf("pin %d (%.1f s)", p->id, p->exp->time()).c_str());
-  if (mc) ImGui::TableSetupColumn((std::to_string(mc_.seeds) + " seeds, mean ± σ").c_str());
-  ImGui::TableHeadersRow();
+  // Each run's column says how far it got (and, cut, of how long): a run just reset has no
+  // errors yet.
+  std::vector<std::string> headers = {"metric"};
+  for (const CompareRun& c : runs) headers.push_back(c.header);
+  if (mc) headers.push_back(std::to_string(mc_.seeds) + " seeds, mean ± σ");
+  for (std::size_t i = 1; i < headers.size(); ++i) ImGui::TableSetupColumn(headers[i].c_str());
+  TableHeaders(headers);
 
-  // One row: the values of each run (NaN: none), their texts, the direction.
-  auto row = [&](const std::string& label, const std::vector<double>& v,
-                 const std::vector<std::string>& text, sim::Better better,
-                 const std::string& mc_text) {
+  // One row: the values of each run (NaN: none) and the Monte Carlo's, shown in the unit of the
+  // label (angles in the window's unit) with one formatter and kDigits significant digits.
+  const bool degrees = state_.settings.degrees;
+  auto row = [&](const std::string& label, const std::vector<double>& v, sim::Better better,
+                 const sim::MetricStats* stats) {
+    const double k = ShownUnit(LabelUnit(label), degrees).scale;
     double best = std::nan("");
     int finite = 0;
     for (double x : v)
@@ -122,45 +178,42 @@ void AppUi::DrawCompareTable(const sim::Metrics& now) {
     for (double x : v) differ = differ || (std::isfinite(x) && x != best);
     ImGui::TableNextRow();
     ImGui::TableSetColumnIndex(0);
-    ImGui::TextUnformatted(label.c_str());
+    ImGui::TextUnformatted(ShownLabel(label, degrees).c_str());
     if (better != sim::Better::kNone && ImGui::IsItemHovered())
       ImGui::SetTooltip(better == sim::Better::kLower ? "lower is better" : "higher is better");
     for (std::size_t i = 0; i < v.size(); ++i) {
       ImGui::TableSetColumnIndex(1 + static_cast<int>(i));
       if (better != sim::Better::kNone && finite > 1 && differ && v[i] == best)
         ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg, ImGui::GetColorU32(kBest));
-      ImGui::TextUnformatted(text[i].c_str());
+      const std::string text = runs[i].metrics == nullptr ? "..."
+                               : std::isnan(v[i])         ? "-"
+                                                          : sim::FormatCell(v[i] * k, kDigits);
+      ImGui::TextUnformatted(text.c_str());
+      if (!runs[i].why.empty() && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", runs[i].why.c_str());
     }
     if (mc) {
       ImGui::TableSetColumnIndex(cols - 1);
-      ImGui::TextUnformatted(mc_text.c_str());
+      const std::string text = stats == nullptr || stats->n == 0
+                                   ? "-"
+                                   : sim::FormatMeanSigma(stats->mean * k, stats->std * k, kDigits);
+      ImGui::TextUnformatted(text.c_str());
     }
-  };
-  auto mean_sd = [](const sim::MetricStats& s) {
-    if (s.n == 0) return std::string("-");
-    return sim::Sprintf("%.4g", s.mean) +
-           (std::isnan(s.std) ? "" : " ± " + sim::Sprintf("%.2g", s.std));
   };
   // Headlines first.
   const auto head_now = now.Headlines();
   for (const auto& h : head_now) {
     std::vector<double> v;
-    std::vector<std::string> text;
-    auto add = [&](const std::vector<sim::Metrics::HeadlineValue>& hs) {
+    for (const CompareRun& c : runs) {
       double x = std::nan("");
-      for (const auto& o : hs)
-        if (o.label == h.label) x = o.value;
+      if (c.metrics != nullptr)
+        for (const auto& o : c.metrics->Headlines())
+          if (o.label == h.label) x = o.value;
       v.push_back(x);
-      text.push_back(std::isnan(x)      ? "-"
-                     : h.format.empty() ? sim::FormatDouble(x)
-                                        : sim::Sprintf(h.format.c_str(), x));
-    };
-    add(head_now);
-    for (const PinnedRun* p : pins) add(p->results->Headlines());
-    std::string mc_text;
-    for (const auto& [label, stats] : mc_.headlines)
-      if (label == h.label) mc_text = mean_sd(stats);
-    row(h.label, v, text, h.better, mc_text);
+    }
+    const sim::MetricStats* stats = nullptr;
+    for (const auto& [label, s] : mc_.headlines)
+      if (label == h.label) stats = &s;
+    row(h.label, v, h.better, stats);
   }
   // Then every number of the results' tables.
   for (const sim::Metrics::Table& t : now.tables())
@@ -169,21 +222,17 @@ void AppUi::DrawCompareTable(const sim::Metrics& now) {
         const std::string path = prefix.empty() ? c.path : prefix + "." + c.path;
         if (now.Find(path) == nullptr) continue;  // texts (a mode, an estimator) are not compared
         std::vector<double> v;
-        std::vector<std::string> text;
-        auto add = [&](const sim::Metrics& m) {
-          const double* x = m.Find(path);
+        for (const CompareRun& run : runs) {
+          const double* x = run.metrics ? run.metrics->Find(path) : nullptr;
           v.push_back(x ? *x : std::nan(""));
-          text.push_back(m.Cell(path, c.format));
-        };
-        add(now);
-        for (const PinnedRun* p : pins) add(*p->results);
-        std::string mc_text = "-";
+        }
+        const sim::MetricStats* stats = nullptr;
         if (mc) {
           const int m = mc_.tables->MetricIndex(path);
-          if (m >= 0 && !mc_.tables->stats.empty()) mc_text = mean_sd(mc_.tables->stats[0][m]);
+          if (m >= 0 && !mc_.tables->stats.empty()) stats = &mc_.tables->stats[0][m];
         }
         const std::string label = (row_label.empty() ? t.title : row_label) + " · " + c.header;
-        row(label, v, text, now.BetterOf(path), mc_text);
+        row(label, v, now.BetterOf(path), stats);
       }
   ImGui::EndTable();
   ImGui::Spacing();

@@ -6,6 +6,8 @@
 /// that differs from the file is marked (its label in blue, a ↺ button that reverts it), one
 /// waiting for a reset shows ↻; both live in a column of fixed width and every row has the
 /// height of a widget, so nothing in the panel moves when an edit is made.
+#include <imgui_internal.h>  // SetItemUsingMouseWheel
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -13,8 +15,10 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "app/render/display_unit.hpp"
 #include "app/render/long_text.hpp"
 #include "app/gui/ui.hpp"
+#include "app/gui/value_entry.hpp"
 #include "sim/core/number_format.hpp"
 
 namespace formsim::app {
@@ -41,17 +45,11 @@ struct RowMarks {
 
 // What the user did in a row.
 struct RowInput {
-  std::string value;  ///< the new value as text when changed
-  bool held = false;  ///< the widget is held (a slider being dragged)
+  std::string value;   ///< the new value as text when changed
+  bool held = false;   ///< the widget is held (a slider being dragged)
+  bool entry = false;  ///< Enter in the row's value entry
   bool revert = false;
 };
-
-// One row: label (with unit), widget, and the fixed-width marks column. `shown` is the value to
-// show (the one waiting for a reset, if any).
-// Angles in the unit of the window's setting: a tunable in rad (or rad/s) is shown and dragged
-// in degrees when `degrees`; the value stored and edited stays in radians.
-bool IsAngle(const sim::Param& p) { return p.tune.unit == "rad" || p.tune.unit == "rad/s"; }
-constexpr double kDegPerRad = 180.0 / 3.14159265358979323846;
 
 // ImGui asserts on slider ranges beyond half the largest value of the type.
 constexpr long long kIntSliderLimit = 1000000000LL;
@@ -74,14 +72,51 @@ std::string ValueField(const std::string& text) {
   return "";
 }
 
-RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks& marks, bool degrees) {
-  const bool as_deg = degrees && IsAngle(p) && p.kind == sim::Param::Kind::kDouble;
+// A double-click or Ctrl+click on the widget just drawn: it opens the value entry.
+bool OpensEntry() {
+  return ImGui::IsItemHovered() &&
+         (ImGui::IsMouseDoubleClicked(0) || (ImGui::IsMouseClicked(0) && ImGui::GetIO().KeyCtrl));
+}
+
+// The mouse wheel over the widget just drawn: its notches (0 none). The window under it does not
+// scroll while a field is hovered.
+int WheelNotches() {
+  if (!ImGui::IsItemHovered()) return 0;
+  ImGui::SetItemUsingMouseWheel();
+  const float w = ImGui::GetIO().MouseWheel;
+  if (w == 0.0f) return 0;
+  const int n = static_cast<int>(std::lround(w));
+  return n != 0 ? n : (w > 0 ? 1 : -1);
+}
+
+// The open value entry of a row: true when Enter was pressed (committed after the table is
+// drawn); Esc or a click elsewhere closes it, nothing applied.
+bool EntryRow(ValueEntry& entry) {
+  switch (entry.Draw()) {
+    case ValueEntry::Outcome::kNone:
+      return false;
+    case ValueEntry::Outcome::kCancel:
+      entry.Close();
+      return false;
+    case ValueEntry::Outcome::kCommit:
+      break;
+  }
+  return true;
+}
+
+// One row: label (with unit), widget, and the fixed-width marks column. `shown` is the value to
+// show (the one waiting for a reset, if any). Angles are shown in the unit of the window's
+// setting (app/render/display_unit.hpp); the value stored and edited stays in radians.
+RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks& marks,
+                  bool degrees, ValueEntry& entry) {
+  const DisplayUnit du = p.kind == sim::Param::Kind::kDouble ? ShownUnit(p.tune.unit, degrees)
+                                                              : DisplayUnit{1.0, p.tune.unit, false};
   RowInput in;
   ImGui::TableNextRow();
   ImGui::TableSetColumnIndex(0);
   ImGui::AlignTextToFramePadding();
   std::string label = p.tune.label.empty() ? p.key : p.tune.label;
-  if (!p.tune.unit.empty()) label += " [" + (as_deg ? (p.tune.unit == "rad" ? std::string("°") : std::string("°/s")) : p.tune.unit) + "]";
+  if (!du.unit.empty()) label += " [" + du.unit + "]";
   const bool colour = !marks.refusal.empty() || marks.edited;
   if (colour)
     ImGui::PushStyleColor(ImGuiCol_Text, !marks.refusal.empty() ? ImVec4(0.75f, 0.1f, 0.1f, 1)
@@ -93,7 +128,9 @@ RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks&
     std::string tip = p.key;
     if (!p.tune.help.empty()) tip += "\n" + p.tune.help;
     if (p.kind == sim::Param::Kind::kDouble || p.kind == sim::Param::Kind::kInt)
-      tip += "\nvalid: " + p.tune.ValidityText();
+      tip += "\nvalid: " + p.tune.ValidityText() +
+             "\ndouble-click or Ctrl+click: type a value (Enter applies, Esc cancels); wheel: "
+             "fine steps";
     tip += p.tune.live ? "\napplies on the next step" : "\napplies on reset";
     if (marks.edited) tip += "\nedited: the file has " + marks.loaded + " (↺ reverts)";
     if (!marks.refusal.empty()) tip += "\n\nlast edit refused: " + marks.refusal;
@@ -105,6 +142,7 @@ RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks&
   const std::string& refusal = marks.refusal;
   std::string out;
   if (!refusal.empty()) ImGui::PushStyleColor(ImGuiCol_FrameBg, ImVec4(0.95f, 0.75f, 0.75f, 1));
+  const bool typing = entry.IsOpen(p.key);
   switch (p.kind) {
     case sim::Param::Kind::kDouble: {
       double v = 0;
@@ -112,22 +150,39 @@ RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks&
       // The declared slider range lies inside the validity; a file value outside the slider
       // widens it (still valid: the range between two valid values is valid).
       double lo = std::min(p.slider_min(), v), hi = std::max(p.slider_max(), v);
-      const double k = as_deg ? kDegPerRad : 1.0;
+      const double k = du.scale;
+      if (typing) {
+        in.entry = EntryRow(entry);
+        break;
+      }
       if (!SliderFits(lo * k, hi * k)) {
         // A value beyond any slider (an unbounded tunable edited to 1e308): a text field.
         const std::string typed = ValueField(sim::FormatDouble(v * k));
         double t = 0;
         if (!typed.empty())
-          out = as_deg && sim::ParseFiniteDouble(typed, &t) ? sim::FormatDouble(t / k) : typed;
+          out = k != 1.0 && sim::ParseFiniteDouble(typed, &t) ? sim::FormatDouble(t / k) : typed;
         break;
       }
-      ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp;
+      // NoInput: ImGui's own Ctrl+click field would apply every keystroke; ours waits for Enter.
+      ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_NoInput;
       if (p.tune.log_scale && lo > 0) flags |= ImGuiSliderFlags_Logarithmic;
       double shown_v = v * k, shown_lo = lo * k, shown_hi = hi * k;
+      // The angle's unit on the slider too ("°/s", "deg²"); '%' never occurs in a unit.
+      // A unit of letters is spaced from the number ("0.3283 deg²"); a degree sign is not ("60°/s").
+      const std::string format =
+          "%.4g" + (du.angle && k != 1.0 ? (du.unit.rfind("°", 0) == 0 ? "" : " ") + du.unit
+                                         : std::string());
       const bool changed = ImGui::SliderScalar("##v", ImGuiDataType_Double, &shown_v, &shown_lo,
-                                               &shown_hi, as_deg ? "%.2f°" : "%.4g", flags);
-      if (changed && std::isfinite(shown_v))
+                                               &shown_hi, format.c_str(), flags);
+      if (OpensEntry()) {
+        entry.Open(p.key, ParamEntryText(p, shown, degrees));
+        break;
+      }
+      // A press alone (the first click of a double-click) changes nothing: the value follows
+      // the mouse once it drags.
+      if (changed && ImGui::IsMouseDragging(0) && std::isfinite(shown_v))
         out = sim::FormatDouble(std::clamp(shown_v / k, lo, hi));
+      if (const int n = WheelNotches(); n != 0 && out.empty()) out = FineStep(p, v, n, k);
       break;
     }
     case sim::Param::Kind::kInt: {
@@ -138,14 +193,24 @@ RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks&
       const long long lo = std::min(static_cast<long long>(std::max(p.slider_min(), -1e9)), v);
       const long long hi = std::max(static_cast<long long>(std::min(p.slider_max(), 1e9)), v);
       // ImGui's integer slider asserts beyond half the int range: wider ones are a text field.
+      if (typing) {
+        in.entry = EntryRow(entry);
+        break;
+      }
       if (lo < -kIntSliderLimit || hi > kIntSliderLimit || lo >= hi) {
         out = ValueField(std::to_string(v));
         break;
       }
       int iv = static_cast<int>(v);
-      if (ImGui::SliderInt("##v", &iv, static_cast<int>(lo), static_cast<int>(hi), "%d",
-                           ImGuiSliderFlags_AlwaysClamp))
-        out = std::to_string(std::clamp<long long>(iv, lo, hi));
+      const bool changed = ImGui::SliderInt("##v", &iv, static_cast<int>(lo), static_cast<int>(hi),
+                                            "%d", ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_NoInput);
+      if (OpensEntry()) {
+        entry.Open(p.key, shown);
+        break;
+      }
+      if (changed && ImGui::IsMouseDragging(0)) out = std::to_string(std::clamp<long long>(iv, lo, hi));
+      if (const int n = WheelNotches(); n != 0 && out.empty())
+        out = FineStep(p, static_cast<double>(v), n, 1.0);
       break;
     }
     case sim::Param::Kind::kBool: {
@@ -162,7 +227,7 @@ RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks&
       break;
     }
   }
-  in.held = ImGui::IsItemActive();
+  in.held = !typing && ImGui::IsItemActive();
   if (!refusal.empty()) ImGui::PopStyleColor();
   // Marks: always the same width, whatever they show.
   ImGui::TableSetColumnIndex(2);
@@ -210,6 +275,7 @@ void AppUi::DrawParamSection() {
     std::string key, value;
     bool held;
   };
+  bool committed = false;  // Enter in the value entry
   std::vector<Asked> edits;
   std::vector<std::string> reverts;
   std::vector<std::string> run_actions;
@@ -245,14 +311,20 @@ void AppUi::DrawParamSection() {
           marks.edited = session_->IsEdited(p.key);
           marks.loaded = session_->LoadedValue(p.key);
           marks.refusal = session_->refusal(p.key);
+          const std::string& shown = marks.waiting ? w->second : p.Text();
           if (p.key == state_.focus_param) {
             ImGui::SetScrollHereY(0.3f);
-            ImGui::SetKeyboardFocusHere();
+            // A number is typed into the value entry; a switch or a choice takes the keyboard.
+            const bool number =
+                p.kind == sim::Param::Kind::kDouble || p.kind == sim::Param::Kind::kInt;
+            if (!number) ImGui::SetKeyboardFocusHere();
+            else if (!state_.value_entry.IsOpen(p.key))
+              state_.value_entry.Open(p.key, ParamEntryText(p, shown, state_.settings.degrees));
             state_.focus_param.clear();
           }
-          const RowInput in =
-              ParamRow(p, marks.waiting ? w->second : p.Text(), marks, state_.settings.degrees);
+          const RowInput in = ParamRow(p, shown, marks, state_.settings.degrees, state_.value_entry);
           if (!in.value.empty()) edits.push_back({p.key, in.value, in.held});
+          committed = committed || in.entry;
           if (in.revert) reverts.push_back(p.key);
         }
         ImGui::EndTable();
@@ -267,6 +339,7 @@ void AppUi::DrawParamSection() {
   }
   // Asked for after the loop: an edit never changes the table while we iterate over it. The edits
   // of a slider held since its last edit continue that edit (one undo step).
+  if (committed) CmdFieldKey(true);
   for (const Asked& e : edits) {
     CmdEdit(e.key, e.value, e.held && state_.gesture_key == e.key);
     if (e.held) state_.gesture_key = e.key;

@@ -16,6 +16,8 @@ std::string AppUi::PinReplay(std::shared_ptr<const sim::ScenarioSource> source, 
   pin->id = next_pin_++;
   pin->origin = origin;
   pin->steps = steps;
+  pin->source = source;
+  pin->log = log;
   pin->cancel = std::make_shared<std::atomic<bool>>(false);
   auto cancel = pin->cancel;
   pin->job = std::async(std::launch::async, [source, log = std::move(log), steps, cancel]() {

@@ -16,10 +16,14 @@
 #include "app/gui/command_table.hpp"
 #include "app/gui/history_panel.hpp"
 #include "app/gui/lesson_panel.hpp"
+#include "app/gui/table_header.hpp"
 #include "app/gui/ui.hpp"
+#include "app/render/display_unit.hpp"
 #include "app/render/imgui_canvas.hpp"
 #include "app/render/label_markup.hpp"
 #include "app/render/long_text.hpp"
+#include "app/render/plot_units.hpp"
+#include "sim/core/number_format.hpp"
 
 namespace formsim::app {
 namespace {
@@ -189,7 +193,8 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
       const float avail_h = ImGui::GetContentRegionAvail().y;
       const float h = std::max(220.0f, open_count > 0 ? avail_h / std::min(open_count, 3) - 6 : 0);
       // What DecoratePlot adds: a drawn plot is kept only while it is unchanged.
-      std::string decoration = std::to_string(mc_.bands.runs) + "/" + std::to_string(mc_.bands_at);
+      std::string decoration = std::to_string(mc_.bands.runs) + "/" + std::to_string(mc_.bands_at) +
+                               (state_.settings.degrees ? "/deg" : "/rad");
       for (const auto& pin : pins_)
         if (pin->ready()) decoration += "|" + std::to_string(pin->id) + ":" + PinLabel(*pin);
       for (const std::string& id : state_.plot_log_y) decoration += "|log:" + id;
@@ -223,6 +228,7 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
           // Resolved and drawn (without the cursor, which moves every frame), and kept.
           plot.data = ResolveFigure(figures[i], exp.recorder());
           DecoratePlot(figures[i], plot.data);  // pinned runs, Monte Carlo bands
+          ShowPlotInUnits(plot.data, state_.settings.degrees);  // angles in the window's unit
           plot.data.log_y = state_.plot_log_y.count(figures[i].id) > 0;
           plot.decoration = decoration;
           const DrawMark mark = Mark(dl);
@@ -301,9 +307,23 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
         if (ImGui::BeginTable("tbl", cols,
                               ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg |
                                   ImGuiTableFlags_SizingStretchProp)) {
-          for (const auto& h : spec.header) ImGui::TableSetupColumn(h.c_str());
-          if (!spec.row_strength.empty()) ImGui::TableSetupColumn("strength");
-          ImGui::TableHeadersRow();
+          // Headers in the unit shown (angles in the window's unit), never cut mid-unit; the
+          // numbers of a column with the comparison table's formatter, in that unit.
+          std::vector<std::string> headers;
+          std::vector<double> scale;
+          for (const auto& h : spec.header) {
+            headers.push_back(ShownLabel(h, state_.settings.degrees));
+            scale.push_back(ShownUnit(LabelUnit(h), state_.settings.degrees).scale);
+            ImGui::TableSetupColumn(headers.back().c_str());
+          }
+          if (!spec.row_strength.empty()) {
+            ImGui::TableSetupColumn("strength");
+            headers.push_back("strength");
+          }
+          TableHeaders(headers);
+          // The results' own tables come first (GuiTables keeps their order).
+          const auto& result_tables = cache.results.tables();
+          const sim::Metrics::Table* metrics = t < result_tables.size() ? &result_tables[t] : nullptr;
           // Only the rows in view are laid out (a thousand links make thousands of rows).
           ImGuiListClipper clipper;
           clipper.Begin(static_cast<int>(spec.rows.size()));
@@ -312,7 +332,21 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
               ImGui::TableNextRow();
               for (std::size_t c = 0; c < spec.header.size(); ++c) {
                 ImGui::TableSetColumnIndex(static_cast<int>(c));
-                if (c < spec.rows[r].size()) ImGui::TextUnformatted(spec.rows[r][c].c_str());
+                if (c >= spec.rows[r].size()) continue;
+                // A metric from its value (not from its rounded text), another table's number
+                // from its text.
+                double x = 0;
+                const double* value = nullptr;
+                if (metrics != nullptr && c >= 1 && static_cast<std::size_t>(r) < metrics->rows.size() &&
+                    c - 1 < metrics->columns.size()) {
+                  const std::string& prefix = metrics->rows[r].second;
+                  const std::string& path = metrics->columns[c - 1].path;
+                  value = cache.results.Find(prefix.empty() ? path : prefix + "." + path);
+                }
+                const std::string& cell = spec.rows[r][c];
+                if (value == nullptr && sim::ParseFiniteDouble(cell, &x)) value = &x;
+                ImGui::TextUnformatted(value != nullptr ? sim::FormatCell(*value * scale[c], 4).c_str()
+                                                        : cell.c_str());
               }
               if (!spec.row_strength.empty()) {
                 ImGui::TableSetColumnIndex(static_cast<int>(spec.header.size()));

@@ -55,6 +55,7 @@ bool AppUi::Busy() const {
   for (const auto& p : pins_)
     if (p->job.valid()) return true;
   if (mc_.run && (!mc_.run->finished() || !mc_.tables)) return true;
+  if (span_.Busy()) return true;
   return timeline_->CatchingUp();
 }
 
@@ -107,6 +108,8 @@ RunValues AppUi::CurrentValues() const {
 
 void AppUi::DropScenarioState() {
   pins_.clear();  // each pin's destructor waits for its replay, which stops at once
+  span_.Clear();
+  state_.value_entry.Close();
   next_pin_ = 1;
   mc_ = MonteCarloState();
   timeline_->Forget();

@@ -61,6 +61,47 @@ std::string FormatScientific(double v, int digits) {
   return Sprintf("%.*f", digits - 1, m) + "e" + std::to_string(e);
 }
 
+namespace {
+
+// The decimal exponent of `v` once rounded to `digits` significant digits (9.9996 -> 1).
+int RoundedExponent(double v, int digits) {
+  int e = static_cast<int>(std::floor(std::log10(std::abs(v))));
+  const double unit = std::pow(10.0, e - digits + 1);
+  if (std::abs(std::round(v / unit) * unit) >= std::pow(10.0, e + 1)) ++e;
+  return e;
+}
+
+// Cells between 1e-4 and 1e6 are written with decimals, others with an exponent.
+bool CellIsFixed(int exponent) { return exponent >= -4 && exponent < 6; }
+
+}  // namespace
+
+std::string FormatCell(double v, int digits) {
+  if (!std::isfinite(v)) return FormatSignificant(v);
+  if (v == 0.0) return "0";
+  digits = std::clamp(digits, 1, 17);
+  if (v == std::floor(v) && std::abs(v) < 1e6) return Sprintf("%.0f", v);
+  const int e = RoundedExponent(v, digits);
+  if (!CellIsFixed(e)) return FormatScientific(v, digits);
+  return FormatFixed(v, std::max(0, digits - 1 - e));
+}
+
+std::string FormatMeanSigma(double mean, double sigma, int digits) {
+  if (!std::isfinite(sigma) || !std::isfinite(mean)) return FormatCell(mean, digits);
+  digits = std::clamp(digits, 1, 17);
+  // The decimal place of the mean's last digit (of σ's when the mean is zero).
+  const double lead = mean != 0.0 ? mean : sigma;
+  if (lead == 0.0) return "0 ± 0";
+  const int e = RoundedExponent(lead, digits);
+  if (CellIsFixed(e)) {
+    const int decimals = std::max(0, digits - 1 - e);
+    return FormatFixed(mean, decimals) + " ± " + FormatFixed(sigma, decimals);
+  }
+  const double scale = std::pow(10.0, e);
+  return "(" + FormatFixed(mean / scale, digits - 1) + " ± " + FormatFixed(sigma / scale, digits - 1) +
+         ")e" + std::to_string(e);
+}
+
 std::string FormatWholeOrShortest(double v) {
   if (v == std::floor(v) && std::abs(v) < 1e15) return std::to_string(static_cast<long long>(v));
   return FormatDouble(v);

@@ -25,6 +25,14 @@ std::string FormatFixed(double v, int decimals, bool trim = false);
 /// `digits` significant digits times a power of ten, written the way tables in papers do
 /// ("7.2e-2", "-1.30e3"); "0" for zero, %g's text when not finite.
 std::string FormatScientific(double v, int digits);
+/// A table cell: `digits` significant digits with trailing zeros kept, so a column's numbers
+/// line up and read alike ("0.007120", "12.50"); scientific in the papers' style below 1e-4 and
+/// from 1e6 on ("7.120e-5"); a whole number below 1e6 as an integer ("3", a count); "0" for
+/// zero; "nan", "inf", "-inf" when not finite.
+std::string FormatCell(double v, int digits);
+/// mean ± σ for a table cell: the mean as FormatCell gives it and σ written to the same decimal
+/// place ("0.007559 ± 0.000680", "(7.559 ± 0.680)e-5"); the mean alone when σ is not finite.
+std::string FormatMeanSigma(double mean, double sigma, int digits);
 /// A whole number as an integer ("15", "-3"), anything else as FormatDouble: ranges and
 /// defaults in help texts.
 std::string FormatWholeOrShortest(double v);

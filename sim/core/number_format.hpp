@@ -8,9 +8,11 @@ namespace formsim::sim {
 
 using control::AppendDouble;
 using control::AppendSprintf;
+using control::FormatCell;
 using control::FormatClock;
 using control::FormatDouble;
 using control::FormatFixed;
+using control::FormatMeanSigma;
 using control::FormatScientific;
 using control::FormatSignificant;
 using control::FormatWholeOrShortest;

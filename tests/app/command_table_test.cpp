@@ -53,6 +53,9 @@ std::string GoodArgs(const Command& c, AppUi& ui, const std::string& dir) {
       {"switch-formation", ""},
       {"palette", "k_l R2"},
       {"action", "switch-formation"},
+      {"field-open", "robots.R2.follow.k_l"},
+      {"field-type", "0.3"},
+      {"field-wheel", "robots.R2.follow.k_l 1"},
   };
   if (c.name == "open") return testing::Scenario("formation_traj2");
   if (c.name == "save" || c.name == "save-as") return dir + "/" + c.name + ".yaml";
@@ -197,7 +200,8 @@ TEST(CommandTable, EveryCommandRunsFromAScript) {
       EXPECT_TRUE(c.name == "undo" || c.name == "redo" || c.name == "cancel-seeds" ||
                   c.name == "branch" || c.name == "restore" || c.name == "pin-row" ||
                   c.name == "unpin" || c.name == "click" || c.name == "restore-session" ||
-                  c.name == "discard-session")
+                  c.name == "discard-session" || c.name == "field-type" ||
+                  c.name == "field-enter" || c.name == "field-escape")
           << c.name << " " << args << ": " << why;
     }
     for (int i = 0; i < 3; ++i) w.Frame();
@@ -228,7 +232,9 @@ TEST(CommandTable, EveryCommandIsFoundByThePalette) {
   EXPECT_EQ(w.ui().state().status, "tunable robots.R2.follow.k_l: type its value");
   for (int i = 0; i < 3; ++i) w.Frame();
   EXPECT_TRUE(w.ui().state().focus_param.empty()) << "the field was not drawn";
-  EXPECT_NE(ImGui::GetCurrentContext()->TempInputId, 0u)
+  // The value entry (app/gui/value_entry.hpp) is open on it and has the keyboard.
+  EXPECT_TRUE(w.ui().state().value_entry.IsOpen("robots.R2.follow.k_l"));
+  EXPECT_TRUE(ImGui::GetIO().WantTextInput)
       << "the tunable's field did not take the keyboard (active " << ImGui::GetActiveID() << ")";
 }
 

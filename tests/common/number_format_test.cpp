@@ -70,5 +70,24 @@ TEST(NumberFormat, DurationsReadAsAClock) {
   EXPECT_EQ(FormatClock(1e300), "888888:53:20");  // capped, never an overflowing conversion
 }
 
+TEST(NumberFormat, TableCellsKeepTheirDigitsAndMeanSigmaMatches) {
+  // One column, one look: the same significant digits, trailing zeros kept.
+  EXPECT_EQ(FormatCell(0.00712, 4), "0.007120");
+  EXPECT_EQ(FormatCell(7.086e-03, 4), "0.007086");
+  EXPECT_EQ(FormatCell(12.5, 4), "12.50");
+  EXPECT_EQ(FormatCell(9.99996, 4), "10.00");  // the rounding carry
+  EXPECT_EQ(FormatCell(3.0, 4), "3");          // a count
+  EXPECT_EQ(FormatCell(0.0, 4), "0");
+  EXPECT_EQ(FormatCell(7.12e-6, 4), "7.120e-6");
+  EXPECT_EQ(FormatCell(2.5e7 + 0.5, 3), "2.50e7");
+  EXPECT_EQ(FormatCell(kNan, 4), "nan");
+  // σ to the decimal place of the mean's last digit.
+  EXPECT_EQ(FormatMeanSigma(0.007559, 0.00068, 4), "0.007559 ± 0.000680");
+  EXPECT_EQ(FormatMeanSigma(12.5, 0.26, 3), "12.5 ± 0.3");
+  EXPECT_EQ(FormatMeanSigma(7.559e-6, 6.8e-7, 4), "(7.559 ± 0.680)e-6");
+  EXPECT_EQ(FormatMeanSigma(0.5, kNan, 4), "0.5000");
+  EXPECT_EQ(FormatMeanSigma(0.0, 0.0, 4), "0 ± 0");
+}
+
 }  // namespace
 }  // namespace formsim::control
