@@ -165,6 +165,21 @@ if command -v xvfb-run >/dev/null; then
     --set duration=16.3 --size 1600x900 --speed max --exit-after 202 --script "$TMP/lesson.txt" \
     >/dev/null
 fi
+# A guided lesson at 1920x1080 (README "Lessons"): lphi_time_constant at step 3 after its run,
+# and step 4's prediction judged once the run has shown its check, in the light and the
+# high-contrast theme (each window with a settings folder of its own: no progress carried over).
+if command -v xvfb-run >/dev/null; then
+  for theme in light high-contrast; do
+    printf '2 lesson-step 3\n240 screenshot %s/lesson_step3_%s.png\n' "$OUT" "$theme" >"$TMP/step3.txt"
+    printf '2 lesson-step 4\n3 lesson-predict 1\n4 lesson-action\n5 play\n240 screenshot %s/lesson_prediction_%s.png\n' \
+      "$OUT" "$theme" >"$TMP/prediction.txt"
+    for step in step3 prediction; do
+      XDG_CONFIG_HOME="$TMP/config_${step}_$theme" xvfb-run -a -s "-screen 0 1920x1080x24" "$BIN" gui \
+        --lesson lphi_time_constant --size 1920x1080 --speed max --theme "$theme" --exit-after 245 \
+        --script "$TMP/$step.txt" >/dev/null
+    done
+  done
+fi
 # Large formations (issue 15): 100 robots mid-run and their first trajectories, 1000 robots after
 # their S-turns (robots drawn as dots at this scale, a subset of trails) with the errors of all
 # 1997 links, and the window with 1000 robots.

@@ -36,6 +36,9 @@ struct CommandArg {
   std::function<std::vector<std::string>(const AppUi&)> offer;
   /// The text the menu's argument dialog starts from (the window's current value).
   std::function<std::string(const AppUi&)> initial;
+  /// The heading a value is listed under in the menu's submenu (the offer lists each group's
+  /// values together): the lessons by paper. Null: no headings.
+  std::function<std::string(const std::string&)> group;
   std::string what;       ///< what a kWord / kRest / window-chosen argument is: "a robot's name"
   bool optional = false;  ///< may be left out (only the last arguments)
   /// One line on what the argument is, for the help and the dialog.

@@ -1,38 +1,39 @@
 #pragma once
-/// \file The Lesson panel: a lesson file's text (title, goal, the equations, what to watch, what
-/// to try next) in the Lesson tab of the right-hand window, wrapped to the panel's width, with
-/// the scenario's action buttons; it registers the `lesson` row (Help/Lessons).
+/// \file The Lesson panel: a lesson file's text (title, goal, the equations) and its guided
+/// steps (app/gui/lesson_guide.hpp) in the Lesson tab of the right-hand window, wrapped to the
+/// panel's width: the step's text, its action button, its prediction and what you should see
+/// (the checks it names, live on the current run), with the scenario's action buttons. It
+/// registers the rows `lesson` (Help/Lessons), `lesson-step N`, `lesson-action` and
+/// `lesson-predict K`.
 
 #include <vector>
 
 #include "app/gui/command_table.hpp"
+#include "app/gui/lesson_guide.hpp"
 #include "app/gui/panel_context.hpp"
-#include "sim/study/lesson_checks.hpp"
 
 namespace formsim::app {
 
 class LessonPanel : public Panel {
  public:
-  explicit LessonPanel(const PanelContext& ctx) : ctx_(ctx) {}
-  /// The `lesson` row: opens a shipped lesson on its tab.
+  explicit LessonPanel(const PanelContext& ctx) : ctx_(ctx), guide_(ctx) {}
+  /// The lesson rows: open a shipped lesson, go to a step, run its action, predict.
   static std::vector<Command> Rows();
 
   const char* Name() const override { return "Lesson"; }
   /// The Lesson tab's body (the window draws the tab when the session has a lesson).
   void Draw(const Fonts& fonts) override;
 
- /// The checks measured on the current run, computed once per finished run (Results() is not
-  /// free) and kept until the run, its length or the lesson changes.
-  struct CheckCache {
-    const sim::Experiment* exp = nullptr;
-    long steps = -1;
-    const sim::LessonDef* lesson = nullptr;
-    std::vector<sim::LiveCheck> results;
-  };
+  /// The guided steps of the session's lesson.
+  LessonGuide& guide() { return guide_; }
+  const LessonGuide& guide() const { return guide_; }
 
  private:
+  void DrawStep(const Fonts& fonts);
+  void DrawAllChecks();
+
   const PanelContext& ctx_;
-  CheckCache checks_;
+  LessonGuide guide_;
 };
 
 }  // namespace formsim::app

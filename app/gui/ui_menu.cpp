@@ -108,7 +108,13 @@ void AppUi::DrawMenuItem(const Command& cmd) {
     const std::string now = arg->initial ? arg->initial(*this) : std::string();
     // Overlays are a set: each one is a check mark that adds or removes it.
     const bool overlay_set = cmd.name == "overlay";
+    std::string heading;
     for (const std::string& v : values) {
+      if (arg->group && arg->group(v) != heading) {
+        heading = arg->group(v);
+        if (&v != &values.front()) ImGui::Separator();
+        ImGui::TextDisabled("%s", heading.c_str());
+      }
       bool on = v == now;
       if (overlay_set) on = state_.overlays.count(v) > 0;
       if (ImGui::MenuItem(v.c_str(), nullptr, on))

@@ -1,5 +1,6 @@
 #include "sim/scenario/lesson.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdlib>
 #include <set>
@@ -105,7 +106,84 @@ Check ReadCheck(YamlReader& c) {
   return k;
 }
 
+// A text that must hold more than blanks.
+std::string NonEmpty(YamlReader& r, const std::string& key) {
+  const std::string s = r.RequiredString(key);
+  if (s.find_first_not_of(" \t\n") == std::string::npos) r.Fail(key, "must not be empty");
+  return s;
+}
+
+constexpr int kMaxSteps = 30, kMaxScript = 20;
+
+LessonAction ReadAction(YamlReader& a) {
+  LessonAction out;
+  out.label = NonEmpty(a, "label");
+  out.script = a.Strings("do", {});
+  if (out.script.empty() || static_cast<int>(out.script.size()) > kMaxScript)
+    a.Fail("do", "an action does 1 ... " + std::to_string(kMaxScript) + " script actions");
+  for (const std::string& line : out.script)
+    if (line.find_first_not_of(" \t") == std::string::npos || line.find('\n') != std::string::npos)
+      a.Fail("do", "a script action is one non-empty line");
+  a.Finish();
+  return out;
+}
+
+LessonPrediction ReadPrediction(YamlReader& p) {
+  LessonPrediction out;
+  out.question = NonEmpty(p, "question");
+  out.options = p.Strings("options", {});
+  if (out.options.size() < 2 || out.options.size() > 4)
+    p.Fail("options", "a prediction offers 2 ... 4 options");
+  for (std::size_t i = 0; i < out.options.size(); ++i) {
+    if (out.options[i].find_first_not_of(" \t\n") == std::string::npos) p.Fail("options", "an option is empty");
+    for (std::size_t j = 0; j < i; ++j)
+      if (out.options[j] == out.options[i]) p.Fail("options", "option '" + out.options[i] + "' is given twice");
+  }
+  const std::string answer = NonEmpty(p, "answer");
+  const auto it = std::find(out.options.begin(), out.options.end(), answer);
+  if (it == out.options.end()) p.Fail("answer", "'" + answer + "' is not one of the options");
+  out.answer = static_cast<int>(it - out.options.begin());
+  out.check = NonEmpty(p, "check");
+  if (p.Has("explain")) out.explain = NonEmpty(p, "explain");
+  p.Finish();
+  return out;
+}
+
+// A step; `ids` are the lesson's check ids.
+LessonStep ReadStep(YamlReader& s, const std::set<std::string>& ids) {
+  LessonStep out;
+  out.line = s.node().Mark().line + 1;
+  out.text = NonEmpty(s, "text");
+  for (const std::string& id : CheckReferences(out.text))
+    if (!ids.count(id)) s.Fail("text", "names check {" + id + "}, which is not among the lesson's checks");
+  if (s.Has("check")) {
+    out.check = NonEmpty(s, "check");
+    if (!ids.count(out.check)) s.Fail("check", "no check '" + out.check + "' in this lesson");
+  }
+  if (s.Has("action")) {
+    YamlReader a = s.Map("action");
+    out.action = ReadAction(a);
+  }
+  if (s.Has("predict")) {
+    YamlReader p = s.Map("predict");
+    out.predict = ReadPrediction(p);
+    if (!ids.count(out.predict.check)) p.Fail("check", "no check '" + out.predict.check + "' in this lesson");
+    for (const std::string& id : CheckReferences(out.predict.explain))
+      if (!ids.count(id)) p.Fail("explain", "names check {" + id + "}, which is not among the lesson's checks");
+  }
+  s.Finish();
+  return out;
+}
+
 }  // namespace
+
+std::vector<std::string> LessonStep::Checks() const {
+  std::vector<std::string> out;
+  if (!check.empty()) out.push_back(check);
+  for (const std::string& id : CheckReferences(text + " " + predict.explain))
+    if (std::find(out.begin(), out.end(), id) == out.end()) out.push_back(id);
+  return out;
+}
 
 const char* LessonStatName(LessonCheck::Stat s) { return kStatNames[static_cast<int>(s)]; }
 const char* LessonRelationName(LessonCheck::Relation r) { return kRelationNames[static_cast<int>(r)]; }
@@ -155,15 +233,8 @@ bool StatesAnEffect(const std::string& text) {
 LessonDef ReadLesson(YamlReader& b) {
   LessonDef l;
   l.present = true;
-  auto text = [&](const char* key) {
-    const std::string s = b.RequiredString(key);
-    if (s.find_first_not_of(" \t\n") == std::string::npos) b.Fail(key, "must not be empty");
-    return s;
-  };
-  l.title = text("title");
-  l.goal = text("goal");
-  l.watch = text("watch");
-  l.try_next = text("try_next");
+  l.title = NonEmpty(b, "title");
+  l.goal = NonEmpty(b, "goal");
   l.equations = b.Strings("equations", {});
   for (const std::string& e : l.equations)
     if (e.find_first_not_of(" \t\n") == std::string::npos) b.Fail("equations", "an equation is empty");
@@ -183,12 +254,12 @@ LessonDef ReadLesson(YamlReader& b) {
       if (*other == k.id) items[i].Fail("id", "a check cannot refer to itself");
     }
   }
-  for (const char* key : {"goal", "watch", "try_next"}) {
-    const std::string& p = key[0] == 'g' ? l.goal : key[0] == 'w' ? l.watch : l.try_next;
-    for (const std::string& id : CheckReferences(p))
-      if (!ids.count(id))
-        b.Fail(key, "names check {" + id + "}, which is not among the lesson's checks");
-  }
+  for (const std::string& id : CheckReferences(l.goal))
+    if (!ids.count(id)) b.Fail("goal", "names check {" + id + "}, which is not among the lesson's checks");
+  if (!b.Has("steps")) b.Fail("steps", "a lesson is a list of steps (steps: [{text: ...}, ...])");
+  for (YamlReader& s : b.MapList("steps")) l.steps.push_back(ReadStep(s, ids));
+  if (l.steps.empty() || static_cast<int>(l.steps.size()) > kMaxSteps)
+    b.Fail("steps", "a lesson has 1 ... " + std::to_string(kMaxSteps) + " steps");
   b.Finish();
   return l;
 }

@@ -8,9 +8,20 @@
 ///   lesson:
 ///     title: "The l-φ law and its time constant"      (required)
 ///     goal: "..."                                      (required)
-///     watch: "..."                                     (required: what to watch)
-///     try_next: "..."                                  (required: what to try next)
 ///     equations: ["l̇ = −k_l (l − l_des)", ...]          (optional, readable text / Unicode)
+///     steps:                                           (required: 1 ... 30 guided steps)
+///       - text: "Halve k_l ... τ_l doubles {tau_half}" (required)
+///         check: tau_half            (optional: the check "what you should see" shows live)
+///         action:                    (optional: a button that performs the step's edit)
+///           label: "Halve k_l and reset"
+///           do: ["edit robots.R2.follow.k_l=0.5", "reset"]   (1 ... 20 script actions,
+///                                    run through the window's command table like any edit)
+///         predict:                   (optional: asked before the run is played)
+///           question: "What happens to τ_l?"
+///           options: ["It doubles", "It halves", "It stays 1 s"]   (2 ... 4, distinct)
+///           answer: "It doubles"     (one of the options)
+///           check: tau_half          (required: the check that backs the answer)
+///           explain: "τ_l = 1/k_l doubles {tau_half}"   (optional: shown once judged)
 ///     checks:                                          (required when a paragraph states an effect)
 ///       - id: tau_l                  (required; [a-z][a-z0-9_]*, unique)
 ///         set: ["robots.R2.follow.k_l=0.5"]   (optional: the edits "try next" asks for)
@@ -26,8 +37,8 @@
 ///         less: 0.01 | greater: other_id | within: [0.9, 1.1] | equal: 0  (tolerance: 0)
 ///         seeds: 5                   (at least 5: seeds 1..N; or `all`: every seed asked for)
 ///
-/// A paragraph (goal, watch, try_next) names the checks backing its claims as `{id}`; the
-/// loader refuses a name that is no check.
+/// A paragraph (goal, a step's text) names the checks backing its claims as `{id}`; the
+/// loader refuses a name that is no check, and a step's or a prediction's `check` that is none.
 
 #include <limits>
 #include <string>
@@ -69,10 +80,39 @@ struct LessonCheck {
 const char* LessonStatName(LessonCheck::Stat s);
 const char* LessonRelationName(LessonCheck::Relation r);
 
+/// A button of a lesson step: script actions run through the window's command table.
+struct LessonAction {
+  std::string label;                ///< the button's text ("" = the step has no action)
+  std::vector<std::string> script;  ///< "edit KEY=VALUE", "reset", "pin", ... in order
+};
+
+/// A question asked before the run is played; the answer is backed by a check.
+struct LessonPrediction {
+  std::string question;              ///< "" = the step asks nothing
+  std::vector<std::string> options;  ///< 2 ... 4
+  int answer = 0;                    ///< index into options
+  std::string check;                 ///< the check that backs the answer
+  /// Shown once the prediction is judged (it may state the answer; its checks as {id}).
+  std::string explain;
+};
+
+/// One guided step of a lesson.
+struct LessonStep {
+  int line = 0;  ///< line of the step in its file (for messages)
+  std::string text;
+  std::string check;  ///< "" or the check "what you should see" shows first
+  LessonAction action;
+  LessonPrediction predict;
+  /// The checks the step shows: `check`, then those its text and its prediction's explanation
+  /// name, each once.
+  std::vector<std::string> Checks() const;
+};
+
 struct LessonDef {
   bool present = false;  ///< the scenario had a lesson: block
-  std::string title, goal, watch, try_next;
+  std::string title, goal;
   std::vector<std::string> equations;
+  std::vector<LessonStep> steps;
   std::vector<LessonCheck> checks;
   /// The check named `id`, or nullptr.
   const LessonCheck* Find(const std::string& id) const;
@@ -87,8 +127,8 @@ std::vector<std::string> CheckReferences(const std::string& paragraph);
 bool StatesAnEffect(const std::string& paragraph);
 
 /// Reads a `lesson:` block strictly (unknown or duplicate keys and empty texts are errors; a
-/// paragraph naming a missing check, a relation against a missing check, fewer than 5 seeds
-/// are errors). Throws ScenarioError naming file:line:key.
+/// paragraph or step naming a missing check, a relation against a missing check, fewer than 5
+/// seeds, a prediction whose answer is not one of its 2 ... 4 options are errors). Throws ScenarioError naming file:line:key.
 LessonDef ReadLesson(YamlReader& block);
 
 }  // namespace formsim::sim

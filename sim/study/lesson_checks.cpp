@@ -299,20 +299,69 @@ std::vector<LessonCheckResult> CheckLesson(const std::string& file, const Lesson
   return out;
 }
 
-LiveCheck MeasureOnRun(const LessonDef& lesson, const Check& check, const Experiment& exp) {
+namespace {
+
+// A value as compared between edits: numbers by value ("0.50" is "0.5"), the rest as text.
+std::string Canonical(const std::string& v) {
+  double x = 0;
+  return ParseFiniteDouble(v, &x) ? FormatDouble(x) : v;
+}
+
+// Why `run` is not the run of check `c` ("" when it is).
+std::string NotTheRunOf(const Check& c, const Experiment& exp, const RunEdits& run) {
+  std::map<std::string, std::string> want;
+  for (const std::string& e : c.sets) {
+    const auto eq = e.find('=');
+    want[e.substr(0, eq)] = Canonical(e.substr(eq + 1));
+  }
+  std::map<std::string, std::string> have;
+  for (const auto& [k, v] : run.edits) have[k] = Canonical(v);
+  if (have != want) {
+    std::string edits;
+    for (const std::string& e : c.sets) edits += (edits.empty() ? "" : ", ") + e;
+    return "{" + c.id + "} is measured on a run started with " +
+           (edits.empty() ? std::string("the lesson's own values") : edits);
+  }
+  if (run.changed_while_running) return "the run was changed while it ran; reset it (r) to measure";
+  if (c.duration > 0 && std::abs(exp.setup().duration - c.duration) > 0.5 * exp.setup().dt &&
+      !(c.source == Check::Source::kColumn && c.to <= c.duration && exp.setup().duration > c.duration))
+    return "{" + c.id + "} needs a " + Num(c.duration) + " s run";
+  return "";
+}
+
+}  // namespace
+
+double CheckNeedsTime(const LessonDef& lesson, const Check& check) {
+  const double inf = std::numeric_limits<double>::infinity();
+  std::function<double(const Check&, int)> need = [&](const Check& c, int depth) -> double {
+    double t = c.source == Check::Source::kColumn ? c.to : inf;
+    if (depth > 8) return inf;
+    for (const std::string* other : {&c.ratio_to, &c.against})
+      if (const Check* o = other->empty() ? nullptr : lesson.Find(*other))
+        t = std::max(t, need(*o, depth + 1));
+    return t;
+  };
+  return need(check, 0);
+}
+
+LiveCheck MeasureOnRun(const LessonDef& lesson, const Check& check, const Experiment& exp,
+                       const RunEdits& run) {
   LiveCheck out;
+  const double need = CheckNeedsTime(lesson, check);
+  out.ready = exp.finished() || exp.time() >= need - 0.5 * exp.setup().dt;
+  if (!out.ready) return out;
   const auto metrics = exp.Results().Scalars();
-  // The value of a check of the lesson's own run, through its ratio_to chain.
+  // The value of a check on this run, through its ratio_to chain.
   std::function<Slot(const Check&, int)> value = [&](const Check& c, int depth) -> Slot {
-    if (!c.sets.empty() || c.duration > 0) {
-      std::string edits;
-      for (const std::string& e : c.sets) edits += (edits.empty() ? "" : ", ") + e;
-      return {kNaN, "{" + c.id + "} needs " + (edits.empty() ? "a shorter run" : edits)};
-    }
+    const std::string why = NotTheRunOf(c, exp, run);
+    if (!why.empty()) return {kNaN, why};
     Slot v = Measure(c, exp, metrics);
     if (!v.error.empty() || c.ratio_to.empty()) return v;
     const Check* d = lesson.Find(c.ratio_to);
     if (d == nullptr || depth > 8) return {kNaN, "no check '" + c.ratio_to + "'"};
+    // The divisor is a check of another run (omega_ratio: L = 0.05 over the lesson's own run):
+    // only its own run measures it.
+    if (d->sets != c.sets) return {kNaN, "{" + c.id + "} compares two runs; formsim lessons check runs both"};
     const Slot dv = value(*d, depth + 1);
     if (!dv.error.empty()) return dv;
     v.raw /= dv.raw;
@@ -322,7 +371,10 @@ LiveCheck MeasureOnRun(const LessonDef& lesson, const Check& check, const Experi
   Slot rhs{check.value, ""};
   if (v.error.empty() && !check.against.empty()) {
     const Check* o = lesson.Find(check.against);
-    rhs = o != nullptr ? value(*o, 1) : Slot{kNaN, "no check '" + check.against + "'"};
+    rhs = o == nullptr ? Slot{kNaN, "no check '" + check.against + "'"}
+          : o->sets != check.sets
+              ? Slot{kNaN, "{" + check.id + "} compares two runs; formsim lessons check runs both"}
+              : value(*o, 1);
   }
   out.value = v.raw;
   out.error = !v.error.empty() ? v.error : rhs.error;

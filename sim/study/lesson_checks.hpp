@@ -6,6 +6,7 @@
 /// number of jobs.
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -50,18 +51,34 @@ bool RelationHolds(const LessonCheck& check, double value, double operand);
 /// ScenarioError / std::runtime_error when the file cannot be read.
 std::vector<LessonCheckResult> CheckLesson(const std::string& file, const LessonCheckOptions& opt);
 
-/// A check measured on one finished run (the window's current run).
+/// A check measured on one run (the window's current run).
 struct LiveCheck {
+  bool ready = false;  ///< the run has reached the time the check needs (else nothing measured)
   double value = 0.0;
   bool holds = false;
-  std::string error;  ///< the run is not the check's (it needs edits or another duration), or
-                      ///< the quantity does not exist; "" when measured
+  std::string error;  ///< the run is not the check's (it needs other edits or another duration),
+                      ///< or the quantity does not exist; "" when measured
 };
 
-/// Measures `check` of `lesson` on the finished run `exp` with the relation tested. Only a check
-/// of the lesson's own run (no edits, full duration), and comparing only with such checks, can
-/// be measured here; the others report what they need in `error`.
-LiveCheck MeasureOnRun(const LessonDef& lesson, const LessonCheck& check, const Experiment& exp);
+/// How the run measured live came about.
+struct RunEdits {
+  /// What it started with beside the lesson's file: key -> value text (--set and the window's
+  /// edits; the seed left out).
+  std::map<std::string, std::string> edits;
+  bool changed_while_running = false;  ///< edited, dragged or acted on after its start
+};
+
+/// The run time a live run must reach before `check` (with the checks it is compared with or
+/// divided by) can be measured on it: the end of its column windows; +inf: the whole run.
+double CheckNeedsTime(const LessonDef& lesson, const LessonCheck& check);
+
+/// Measures `check` of `lesson` on the run `exp` with the relation tested, once the run has
+/// reached CheckNeedsTime (or ended). A check is measured only on its own run: started with
+/// exactly the check's edits (`set`), unchanged while running, of the check's duration (a column
+/// check whose window ends by then also on a longer run: a run's first seconds do not depend on
+/// its length); the others report what they need in `error`.
+LiveCheck MeasureOnRun(const LessonDef& lesson, const LessonCheck& check, const Experiment& exp,
+                       const RunEdits& run = {});
 
 /// The relation as printed: "< 0.01", "within [0.9, 1.1] (ratio to {base})", ...
 std::string LessonRelationText(const LessonCheck& check);

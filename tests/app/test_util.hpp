@@ -22,10 +22,13 @@ namespace formsim::app::testing {
 
 /// The windows the tests start keep their crash-safe session journals (sim/session/session_journal)
 /// under the build tree, never in the user's state folder (whose unfinished sessions would put a
-/// banner into the tests' pictures). Set once, before any test runs; children inherit it.
+/// banner into the tests' pictures), and their settings (UI scale, lesson progress) there too,
+/// never in the user's. Set once, before any test runs; children inherit it.
 inline const bool kStateDirSet = [] {
   const std::string dir = std::string(FORMSIM_BINARY_DIR) + "/test_tmp/state";
   ::setenv("FORMSIM_STATE_DIR", dir.c_str(), 0);
+  const std::string config = std::string(FORMSIM_BINARY_DIR) + "/test_tmp/config";
+  ::setenv("XDG_CONFIG_HOME", config.c_str(), 1);
   return true;
 }();
 

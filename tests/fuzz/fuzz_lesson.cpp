@@ -20,8 +20,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                                                std::string(FORMSIM_SOURCE_DIR) + "/assets/lessons"),
                       {});
     // What the Lesson panel shows, without drawing it.
-    std::size_t shown = parsed.lesson.title.size() + parsed.lesson.goal.size() +
-                        parsed.lesson.watch.size() + parsed.lesson.try_next.size();
+    std::size_t shown = parsed.lesson.title.size() + parsed.lesson.goal.size();
+    for (const LessonStep& s : parsed.lesson.steps) {
+      shown += s.text.size() + s.action.label.size() + s.predict.question.size();
+      for (const std::string& o : s.predict.options) shown += o.size();
+      for (const std::string& id : s.Checks()) shown += parsed.lesson.Find(id) != nullptr;
+    }
     for (const std::string& e : parsed.lesson.equations) shown += e.size();
     (void)shown;
   } catch (const std::exception&) {

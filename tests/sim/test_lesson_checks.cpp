@@ -86,13 +86,14 @@ TEST(LessonChecks, ReferencesAndEffects) {
 
 // A lesson on the core test kind: x after 1 s on a circle of v = 1.2, ω = 0.5 is
 // sin(0.5) / 0.5 · 1.2 ≈ 1.15 m whatever the seed (the noise is in the sensor only).
-std::string WriteLesson(const std::string& name, const std::string& checks) {
+std::string WriteLesson(const std::string& name, const std::string& checks,
+                        const std::string& steps = "    - {text: \"watch the speed\"}\n") {
   const fs::path dir = fs::temp_directory_path() / "formsim_test_lesson_checks";
   fs::create_directories(dir);
   const std::string file = (dir / (name + ".yaml")).string();
   std::ofstream(file) << testkind::kScenario << "lesson:\n  title: \"Circle\"\n"
                       << "  goal: \"The robot drives 1.15 m along x {x_end} {x_ratio}.\"\n"
-                      << "  watch: \"the speed\"\n  try_next: \"reset\"\n  checks:\n"
+                      << "  steps:\n" << steps << "  checks:\n"
                       << checks;
   return file;
 }
@@ -146,6 +147,7 @@ TEST(LessonChecks, EvaluatesOverSeedsTheSameForAnyJobs) {
 // at least 12 lessons, at least two per paper.
 TEST(LessonChecks, ShippedLessonsBackEveryClaim) {
   std::map<std::string, int> per_paper;
+  int predictions = 0;
   const auto files = ShippedLessons();
   for (const std::string& file : files) {
     const YAML::Node root = LoadYamlFile(file);
@@ -155,14 +157,41 @@ TEST(LessonChecks, ShippedLessonsBackEveryClaim) {
     ++per_paper[root["type"].as<std::string>()];
     EXPECT_FALSE(l.checks.empty()) << file;
     std::set<std::string> named;
-    for (const auto& [key, text] : {std::pair<std::string, std::string>{"goal", l.goal},
-                                    {"watch", l.watch},
-                                    {"try_next", l.try_next}}) {
-      const auto refs = CheckReferences(text);
+    // Each text with the checks it names: {id}s; a step's text also by its check: keys (a
+    // prediction's text poses the question, and names its check so, not the answer).
+    struct Paragraph {
+      std::string key, text;
+      std::vector<std::string> keys;
+    };
+    std::vector<Paragraph> paragraphs = {{"goal", l.goal, {}}};
+    for (std::size_t i = 0; i < l.steps.size(); ++i) {
+      const LessonStep& s = l.steps[i];
+      std::vector<std::string> keys;
+      for (const std::string& k : {s.check, s.predict.check})
+        if (!k.empty()) keys.push_back(k);
+      paragraphs.push_back({"step " + std::to_string(i + 1), s.text, keys});
+      if (!s.predict.explain.empty())
+        paragraphs.push_back({"step " + std::to_string(i + 1) + "'s explanation", s.predict.explain, {}});
+    }
+    for (const auto& [key, text, keys] : paragraphs) {
+      auto refs = CheckReferences(text);
       named.insert(refs.begin(), refs.end());
+      refs.insert(refs.end(), keys.begin(), keys.end());
       if (StatesAnEffect(text)) {
         EXPECT_FALSE(refs.empty()) << file << ": " << key
                                    << " states an effect but names no check:\n  " << text;
+      }
+    }
+    // A guided lesson: several steps; a step's action does something; predictions exist.
+    EXPECT_GE(l.steps.size(), 3u) << file;
+    for (const LessonStep& s : l.steps) {
+      if (!s.predict.question.empty()) ++predictions;
+      // The check a step shows live is one its text names (or the answer's).
+      if (!s.check.empty()) {
+        const auto refs = CheckReferences(s.text);
+        EXPECT_TRUE(s.check == s.predict.check ||
+                    std::find(refs.begin(), refs.end(), s.check) != refs.end())
+            << file << ": step at line " << s.line << " shows {" << s.check << "}, not in its text";
       }
     }
     for (const LessonCheck& c : l.checks) {
@@ -175,8 +204,75 @@ TEST(LessonChecks, ShippedLessonsBackEveryClaim) {
     }
   }
   EXPECT_GE(files.size(), 12u);
+  EXPECT_GE(predictions, 8);
   for (const char* paper : {"formation", "agv", "inspection", "velocity"})
     EXPECT_GE(per_paper[paper], 2) << paper;
+}
+
+// Steps: each step's checks (its `check`, then those its text names, once each); a prediction's
+// answer is the index of its option.
+TEST(LessonChecks, StepsReadWithTheirChecksAndPredictions) {
+  const std::string file = WriteLesson(
+      "circle_steps", "    - {id: x_end, metric: x, within: [1.1, 1.2], seeds: 5}\n"
+                      "    - {id: x_ratio, set: [\"v=0.6\"], metric: x, ratio_to: x_end, within: [0.49, 0.51], seeds: 5}\n",
+      "    - text: \"x grows to 1.15 m {x_end}, then {x_ratio} {x_end}\"\n"
+      "      check: x_ratio\n"
+      "      action: {label: \"Halve v\", do: [\"edit v=0.6\", reset]}\n"
+      "      predict: {question: \"x?\", options: [same, half, twice], answer: half, check: x_ratio}\n"
+      "    - {text: \"that is all\"}\n");
+  const ParsedScenario p = ParseScenario(ScenarioSource::FromFile(file), {});
+  ASSERT_EQ(p.lesson.steps.size(), 2u);
+  const LessonStep& s = p.lesson.steps[0];
+  EXPECT_EQ(s.Checks(), (std::vector<std::string>{"x_ratio", "x_end"}));
+  EXPECT_EQ(s.action.label, "Halve v");
+  EXPECT_EQ(s.action.script, (std::vector<std::string>{"edit v=0.6", "reset"}));
+  EXPECT_EQ(s.predict.answer, 1);
+  EXPECT_EQ(s.predict.check, "x_ratio");
+  EXPECT_GT(s.line, 0);
+  EXPECT_TRUE(p.lesson.steps[1].Checks().empty());
+  EXPECT_TRUE(p.lesson.steps[1].predict.question.empty());
+}
+
+// A check measured live: only once the run has reached the time it needs, only on its own run
+// (the check's edits, nothing changed while running), with what it needs named otherwise.
+TEST(LessonChecks, LiveMeasurementWaitsForTheTimeAndTheRun) {
+  const std::string file = WriteLesson(
+      "circle_live",
+      "    - {id: x_end, metric: x, within: [1.1, 1.2], seeds: 5}\n"
+      "    - {id: x_ratio, set: [\"v=0.6\"], metric: x, ratio_to: x_end, within: [0.49, 0.51], seeds: 5}\n"
+      "    - {id: v_slow, set: [\"v=0.60\"], column: measured_v, stat: mean, from: 0, to: 0.5, within: [0.4, 0.8], seeds: 5}\n");
+  auto run = [&](const std::vector<Override>& o, double until) {
+    auto exp = BuildExperiment(ParseScenario(ScenarioSource::FromFile(file), o));
+    while (exp->time() < until - 1e-9 && !exp->finished()) exp->Step();
+    return exp;
+  };
+  const ParsedScenario p = ParseScenario(ScenarioSource::FromFile(file), {});
+  const LessonDef& l = p.lesson;
+  EXPECT_TRUE(std::isinf(CheckNeedsTime(l, *l.Find("x_end"))));
+  EXPECT_DOUBLE_EQ(CheckNeedsTime(l, *l.Find("v_slow")), 0.5);
+
+  const auto own = run({}, 2);
+  const LiveCheck x = MeasureOnRun(l, *l.Find("x_end"), *own);
+  EXPECT_TRUE(x.ready && x.holds) << x.error << " " << x.value;
+  // The slow check on the lesson's own run: it names the edits it needs.
+  const LiveCheck wrong = MeasureOnRun(l, *l.Find("v_slow"), *own);
+  EXPECT_TRUE(wrong.ready);
+  EXPECT_NE(wrong.error.find("started with v=0.60"), std::string::npos) << wrong.error;
+
+  RunEdits slow;
+  slow.edits["v"] = "0.6";  // "0.6" is "0.60": compared by value
+  const auto half = run({{"v", "0.6", "--set", -1}}, 0.3);
+  EXPECT_FALSE(MeasureOnRun(l, *l.Find("v_slow"), *half, slow).ready);  // t = 0.3 < 0.5
+  const auto later = run({{"v", "0.6", "--set", -1}}, 0.5);
+  const LiveCheck v = MeasureOnRun(l, *l.Find("v_slow"), *later, slow);
+  EXPECT_TRUE(v.ready && v.error.empty() && v.holds) << v.error << " " << v.value;
+  // A ratio to another run cannot be measured on one run.
+  const auto done = run({{"v", "0.6", "--set", -1}}, 2);
+  EXPECT_NE(MeasureOnRun(l, *l.Find("x_ratio"), *done, slow).error.find("compares two runs"),
+            std::string::npos);
+  slow.changed_while_running = true;
+  EXPECT_NE(MeasureOnRun(l, *l.Find("v_slow"), *later, slow).error.find("changed while it ran"),
+            std::string::npos);
 }
 
 }  // namespace
