@@ -744,7 +744,7 @@ int StudyCommands::Tune() {
       sim::WriteFileAtomic((fs::path(out) / "validation.csv").string(),
                            sim::TuneValidationCsv(*v));
       wrote.push_back("validation.csv");
-      figure(TuneValidationFigure(*v, tune_metric_), "validation.png");
+      figure(TuneValidationFigure(*v, s, r, tune_metric_), "validation.png");
       if (!tune_quiet_) std::printf("%s", sim::TuneValidationText(*v).c_str());
     }
   }

@@ -28,6 +28,29 @@ std::vector<std::string> Ticks(const sim::TuneParam& p, int cells) {
   return out;
 }
 
+// What the objective is, for titles and labels: a single metric by the label its kind declares
+// (with markup) and its unit; a weighted sum as written.
+struct ObjectiveName {
+  std::string name;  ///< title text: the label, or the expression
+  std::string unit;  ///< "m", "rad"; empty for a sum or an undeclared metric
+  std::string axis;  ///< "label [unit]", or "objective"
+};
+
+ObjectiveName NameOf(const sim::TuneSettings& s, const sim::TuneResult& r,
+                     const std::string& expr) {
+  ObjectiveName n{ExprText(expr), "", "objective"};
+  if (s.objective.size() != 1 || s.objective[0].weight != 1) return n;
+  for (const auto& [path, info] : r.info)
+    if (path == s.objective[0].path && !info.label.empty()) {
+      sim::MetricInfo plain = info;
+      plain.unit.clear();
+      n.name = plain.AxisLabel(path);  // the label with its captures filled in
+      n.unit = info.unit;
+      n.axis = info.AxisLabel(path);
+    }
+  return n;
+}
+
 }  // namespace
 
 PlotData TuneConvergenceFigure(const sim::TuneSettings& settings, const sim::TuneResult& r,
@@ -66,10 +89,11 @@ PlotData TuneConvergenceFigure(const sim::TuneSettings& settings, const sim::Tun
   }
   d.series = {each, best};
   if (!infeasible.x.empty()) d.series.insert(d.series.begin() + 1, infeasible);
+  const ObjectiveName name = NameOf(settings, r, expr);
   d.title = "formsim tune (" + settings.algorithm + ", " + std::to_string(settings.seeds.size()) +
-            " seeds): " + ExprText(expr);
+            " seeds): " + name.name;
   d.x_label = "evaluation";
-  d.y_label = log ? "log₁₀ objective" : "objective";
+  d.y_label = log ? "log₁₀ " + name.axis : name.axis;
   return d;
 }
 
@@ -94,7 +118,8 @@ PlotData TuneLandscapeFigure(const sim::TuneSettings& settings, const sim::TuneR
   d.heatmap.columns = d.heatmap.rows = cells;
   d.heatmap.values.assign(static_cast<std::size_t>(cells * cells), kNaN);
   d.heatmap.cell_values = false;
-  d.heatmap.value_label = "objective (estimated between the points)";
+  const ObjectiveName name = NameOf(settings, r, expr);
+  d.heatmap.value_label = name.axis + ", estimated between the points";
   for (int row = 0; row < cells && !f.empty(); ++row)
     for (int col = 0; col < cells; ++col) {
       const double cx = (col + 0.5) / cells, cy = (row + 0.5) / cells;
@@ -143,31 +168,36 @@ PlotData TuneLandscapeFigure(const sim::TuneSettings& settings, const sim::TuneR
   if (r.has_best()) cross("best", r.history[r.best], 5);
   d.x_tick_labels = Ticks(px, cells);
   d.y_tick_labels = Ticks(py, cells);
-  d.title = "objective landscape: " + ExprText(expr);
+  d.title = "objective landscape: " + name.name;
   d.x_label = px.key + (px.log_scale ? " (log scale)" : "");
   d.y_label = py.key + (py.log_scale ? " (log scale)" : "");
   return d;
 }
 
-PlotData TuneValidationFigure(const sim::TuneValidation& v, const std::string& expr) {
+PlotData TuneValidationFigure(const sim::TuneValidation& v, const sim::TuneSettings& settings,
+                              const sim::TuneResult& r, const std::string& expr) {
   PlotData d;
+  const ObjectiveName name = NameOf(settings, r, expr);
   PlotSeries diff, mean;
   diff.label = "best − start, each held-out run";
   diff.markers_only = true;
   diff.color = sim::PaletteColor(0);
-  double x = 0;
+  // One category per held-out run, labelled by its seed (and scenario, when there are several).
+  const bool several = v.scenarios.size() > 1;
   for (std::size_t i = 0; i < v.start.size(); ++i) {
-    x += 1;
+    const std::string seed = std::to_string(v.seeds[i % v.seeds.size()]);
+    d.x_tick_labels.push_back(several ? v.scenarios[i / v.seeds.size()] + " " + seed : seed);
     if (!std::isfinite(v.start[i]) || !std::isfinite(v.best[i])) continue;
-    diff.x.push_back(x);
+    diff.x.push_back(static_cast<double>(i));
     diff.y.push_back(v.best[i] - v.start[i]);
   }
+  const double x = static_cast<double>(v.start.size()) - 1;
   d.series.push_back(diff);
   if (std::isfinite(v.difference.mean)) {
     mean.label = "mean and its 95% CI";
     mean.color = sim::PaletteColor(1);
     mean.style_index = 1;
-    mean.x = {0.5, x + 0.5};
+    mean.x = {-0.5, x + 0.5};
     mean.y = {v.difference.mean, v.difference.mean};
     if (std::isfinite(v.difference.ci95_lo)) {
       mean.band_lo = {v.difference.ci95_lo, v.difference.ci95_lo};
@@ -176,11 +206,11 @@ PlotData TuneValidationFigure(const sim::TuneValidation& v, const std::string& e
     d.series.push_back(mean);
   }
   d.reference_lines = {0.0};
-  d.title = "held out: best − start of " + ExprText(expr) + " (better on " +
+  d.title = "held out: best − start of " + name.name + " (better on " +
             std::to_string(v.best_better) + " of " + std::to_string(v.compared) + " runs)";
-  d.x_label = v.scenarios.size() > 1 ? "held-out run (scenario by scenario, then seed)"
-                                     : "held-out run (in seed order)";
-  d.y_label = "best − start (below 0: better)";
+  d.x_label = several ? "held-out run (scenario, seed)" : "held-out seed";
+  d.y_label = "best − start" + (name.unit.empty() ? "" : " [" + name.unit + "]") +
+              " (below 0: better)";
   return d;
 }
 

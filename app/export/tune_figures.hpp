@@ -25,6 +25,11 @@ PlotData TuneLandscapeFigure(const sim::TuneSettings& settings, const sim::TuneR
                              const std::string& expr, int cells = 24);
 
 /// The paired differences best - start on the held-out runs.
-PlotData TuneValidationFigure(const sim::TuneValidation& validation, const std::string& expr);
+PlotData TuneValidationFigure(const sim::TuneValidation& validation,
+                              const sim::TuneSettings& settings, const sim::TuneResult& result,
+                              const std::string& expr);
+
+// A single-metric objective is named by the label and unit its kind declares (with markup), a
+// weighted sum by its expression.
 
 }  // namespace formsim::app

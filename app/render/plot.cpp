@@ -42,17 +42,24 @@ std::vector<double> NiceTicks(double lo, double hi, int max_ticks, double* step_
   std::vector<double> ticks;
   if (!(hi > lo) || !std::isfinite(lo) || !std::isfinite(hi)) return ticks;
   max_ticks = std::max(2, max_ticks);
-  const double raw = (hi - lo) / max_ticks;
-  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
-  const double norm = raw / mag;
-  const double step = (norm <= 1.0 ? 1.0 : norm <= 2.0 ? 2.0 : norm <= 5.0 ? 5.0 : 10.0) * mag;
-  for (double k = std::ceil(lo / step - 1e-9); k * step <= hi + 1e-9 * step; k += 1.0) {
-    double v = k * step;
-    if (std::abs(v) < 1e-12 * step) v = 0.0;  // no "-0"
-    ticks.push_back(v);
+  // A short axis can be left with one tick (±0.009 with a step of 0.01, a figure of a few
+  // centimetres): then finer steps, up to twice as many ticks, until two are in range.
+  for (int n = max_ticks;; ++n) {
+    const double raw = (hi - lo) / n;
+    const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+    const double norm = raw / mag;
+    const double step = (norm <= 1.0 ? 1.0 : norm <= 2.0 ? 2.0 : norm <= 5.0 ? 5.0 : 10.0) * mag;
+    ticks.clear();
+    for (double k = std::ceil(lo / step - 1e-9); k * step <= hi + 1e-9 * step; k += 1.0) {
+      double v = k * step;
+      if (std::abs(v) < 1e-12 * step) v = 0.0;  // no "-0"
+      ticks.push_back(v);
+    }
+    if (ticks.size() >= 2 || n >= 2 * max_ticks) {
+      if (step_out != nullptr) *step_out = step;
+      return ticks;
+    }
   }
-  if (step_out != nullptr) *step_out = step;
-  return ticks;
 }
 
 std::string FormatTick(double value, double step, int exponent) {

@@ -123,6 +123,15 @@ bool Evaluate(Context& c, TuneEvaluation& ev) {
   std::vector<double> sums;
   std::vector<std::vector<double>> constrained(s.constraints.size());
   ev.term_means.assign(s.objective.size(), 0.0);
+  // The first completed run tells what the metrics are (labels and units for the figures).
+  for (std::size_t i = 0; i < runs && c.result->info.empty(); ++i)
+    if (!recs[i]->failed())
+      for (const auto& [path, info] : recs[i]->info) {
+        bool wanted = false;
+        for (const MetricTerm& t : s.objective) wanted = wanted || t.path == path;
+        for (const TuneConstraint& k : s.constraints) wanted = wanted || k.path == path;
+        if (wanted) c.result->info.emplace_back(path, info);
+      }
   for (std::size_t i = 0; i < runs; ++i) {
     const SweepRecord& r = *recs[i];
     if (r.failed()) {

@@ -12,8 +12,10 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "sim/core/metrics.hpp"
 #include "sim/core/param_table.hpp"
 #include "sim/scenario/scenario.hpp"
 #include "sim/core/task_pool.hpp"
@@ -130,6 +132,9 @@ struct TuneResult {
   std::size_t best = 0;
   std::string stop_reason;  ///< why NLopt stopped ("budget used", "converged (x tolerance)", ...)
   std::vector<TuneStage> plan;  ///< the stages run and their budgets
+  /// What the kind declared about the objective's and the constraints' metrics (label with
+  /// markup, unit, direction), from the first completed run; for the figures' labels.
+  std::vector<std::pair<std::string, MetricInfo>> info;
   bool has_best() const { return !history.empty() && history[best].feasible(); }
 };
 

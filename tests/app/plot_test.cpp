@@ -31,6 +31,18 @@ TEST(NiceTicks, TinyAndNegativeRanges) {
   for (double v : t) EXPECT_FALSE(std::signbit(v) && v == 0.0) << "no negative zero";
 }
 
+TEST(NiceTicks, AShortAxisKeepsAtLeastTwoTicks) {
+  // ±0.009 in room for two ticks: a step of 0.01 would leave 0 alone; 0.005 gives three.
+  double step = 0;
+  const auto t = NiceTicks(-0.009, 0.009, 2, &step);
+  EXPECT_DOUBLE_EQ(step, 0.005);
+  ASSERT_EQ(t.size(), 3u);
+  EXPECT_DOUBLE_EQ(t[0], -0.005);
+  EXPECT_EQ(t[1], 0.0);
+  EXPECT_DOUBLE_EQ(t[2], 0.005);
+  EXPECT_EQ(NiceTicks(0.0, 11.0, 6).size(), 6u) << "unchanged where two fit already";
+}
+
 TEST(NiceTicks, DegenerateRangeGivesNothing) {
   EXPECT_TRUE(NiceTicks(1.0, 1.0, 5).empty());
   EXPECT_TRUE(NiceTicks(0.0, NAN, 5).empty());

@@ -516,6 +516,40 @@ TEST(TuneCli, KilledMidwayResumesToTheSameHistoryAndBestPoint) {
       << ReadText(b + ".log");
 }
 
+TEST(StudyCli, TitlesApplyToSweepTuneAndReproduceFiguresAndBadValuesAreRefused) {
+  // A tune's figures with and without titles: the same data, other pixels.
+  const std::string tune =
+      "tune formation_traj2_ukf --set duration=2 --param robots.R2.follow.k_l "
+      "--metric links.R1-R2.max_abs_error_after_settle.l --method bobyqa --budget 3 -q ";
+  const std::string full = TempDir("titles_full"), none = TempDir("titles_none");
+  ASSERT_EQ(Formsim(tune + "--titles full --out " + full, full + ".log"), 0)
+      << ReadText(full + ".log");
+  ASSERT_EQ(Formsim(tune + "--titles none --out " + none, none + ".log"), 0)
+      << ReadText(none + ".log");
+  EXPECT_EQ(ReadText(full + "/history.csv"), ReadText(none + "/history.csv"));
+  EXPECT_NE(ReadText(full + "/convergence.png"), ReadText(none + "/convergence.png"));
+  // The sweep's figure likewise.
+  const std::string sweep =
+      "sweep formation_traj2_ukf --set duration=2 --vary robots.R2.follow.k_l=0.1,0.3 "
+      "--seeds 1 -q ";
+  const std::string sf = TempDir("titles_sweep_full"), sn = TempDir("titles_sweep_none");
+  ASSERT_EQ(Formsim(sweep + "--out " + sf, sf + ".log"), 0) << ReadText(sf + ".log");
+  ASSERT_EQ(Formsim(sweep + "--titles none --out " + sn, sn + ".log"), 0) << ReadText(sn + ".log");
+  std::size_t differing = 0;
+  for (const auto& f : fs::directory_iterator(sf))
+    if (f.path().extension() == ".png")
+      differing += ReadText(f.path().string()) != ReadText(sn + "/" + f.path().filename().string());
+  EXPECT_GT(differing, 0u);
+  // A value not among full, short and none is refused before anything runs, by every command.
+  const std::string bad = TempDir("titles_bad");
+  for (const std::string& cmd :
+       {tune + "--out " + bad, sweep + "--out " + bad, std::string("reproduce formation --out ") + bad}) {
+    EXPECT_EQ(Formsim(cmd + " --titles long", bad + ".log"), 2) << cmd;
+    EXPECT_NE(ReadText(bad + ".log").find("--titles 'long'"), std::string::npos)
+        << cmd << ": " << ReadText(bad + ".log");
+  }
+}
+
 TEST(TuneCli, SeveralScenariosFoldIntoOneObjectiveAndEachGetsItsBestYaml) {
   const std::string list = TempDir("tune_list") + ".txt";
   {
@@ -592,8 +626,9 @@ TEST(TuneFigures, LandscapeIsExactAtTheEvaluationsAndValidationShowsThePairs) {
   v.difference = sim::StatsOf({-1, 0.5});
   v.compared = 2;
   v.best_better = 1;
-  const PlotData f = TuneValidationFigure(v, "m");
+  const PlotData f = TuneValidationFigure(v, s, r, "m");
   EXPECT_EQ(f.series[0].y, (std::vector<double>{-1, 0.5}));
+  EXPECT_EQ(f.x_tick_labels, (std::vector<std::string>{"6", "7"})) << "labelled by seed";
   EXPECT_EQ(f.reference_lines, (std::vector<double>{0.0}));
   EXPECT_NE(f.title.find("better on 1 of 2 runs"), std::string::npos);
 }
