@@ -456,8 +456,17 @@ std::vector<sim::ScenarioSource> TuneSources(const std::string& positional,
       names.push_back(f);
       continue;
     }
-    std::ifstream in(f.substr(1));
+    // A list is a small regular file: a folder, a device (/dev/zero) or a huge file is refused
+    // before a line of it is read.
+    const std::string list = f.substr(1);
+    std::error_code ec;
+    if (!fs::is_regular_file(list, ec))
+      throw std::runtime_error("--scenario " + f + ": the list must be a file of scenario names");
+    if (fs::file_size(list, ec) > (1u << 20))
+      throw std::runtime_error("--scenario " + f + ": the list is larger than 1 MiB");
+    std::ifstream in(list);
     if (!in) throw std::runtime_error("--scenario " + f + ": cannot read the list file");
+    const std::size_t before = names.size();
     std::string line;
     while (std::getline(in, line)) {
       const std::size_t hash = line.find('#');
@@ -466,6 +475,8 @@ std::vector<sim::ScenarioSource> TuneSources(const std::string& positional,
       if (a == std::string::npos) continue;
       names.push_back(line.substr(a, line.find_last_not_of(" \t\r") - a + 1));
     }
+    if (names.size() == before)
+      throw std::runtime_error("--scenario " + f + ": the list names no scenario");
   }
   if (names.empty()) throw std::runtime_error("formsim tune: give a scenario (or --scenario)");
   std::vector<sim::ScenarioSource> out;

@@ -577,6 +577,19 @@ TEST(TuneCli, SeveralScenariosFoldIntoOneObjectiveAndEachGetsItsBestYaml) {
   EXPECT_NE(ReadText(b + ".log").find("agv_fused.yaml"), std::string::npos) << ReadText(b + ".log");
   EXPECT_NE(ReadText(b + ".log").find("robots.R2.follow.k_l"), std::string::npos);
   EXPECT_FALSE(fs::exists(b + "/history.csv"));
+  // A list that is a device, a folder, missing or empty is refused before anything runs.
+  const std::string empty = TempDir("tune_list_empty") + ".txt";
+  { std::ofstream f(empty); f << "# nothing\n"; }
+  for (const std::string& bad : {std::string("/dev/zero"), TempDir("tune_list_dir"),
+                                 std::string("/no/such/list"), empty}) {
+    EXPECT_EQ(Formsim("tune formation_traj1 --scenario @" + bad +
+                          " --param robots.R2.follow.k_l --metric x --out " + b,
+                      b + ".log"),
+              2)
+        << bad;
+    EXPECT_NE(ReadText(b + ".log").find("--scenario @" + bad), std::string::npos)
+        << bad << ": " << ReadText(b + ".log");
+  }
 }
 
 TEST(TuneFigures, LandscapeIsExactAtTheEvaluationsAndValidationShowsThePairs) {
