@@ -1,7 +1,7 @@
 /// \file The rows of the window's command table (app/gui/command_table.hpp), assembled from the
 /// panels' rows. Each panel registers its own rows: the panel classes (app/gui/panel.hpp) in
-/// their files (FormationEditorPanel::Rows, HistoryPanel::Rows, LessonPanel::Rows,
-/// TimelinePanel::Rows); the rows
+/// their files (ComparePanel::Rows, FormationEditorPanel::Rows, HistoryPanel::Rows,
+/// LessonPanel::Rows, TimelinePanel::Rows); the rows
 /// of the parts still drawn by the window class (AppUi) are the functions below, one per part.
 /// A command's name is written once, in its row.
 ///
@@ -16,6 +16,7 @@
 #include "app/export/figure_data.hpp"
 #include "app/export/figure_export.hpp"
 #include "app/gui/command_row_makers.hpp"
+#include "app/gui/compare_panel.hpp"
 #include "app/gui/formation_editor_panel.hpp"
 #include "app/gui/history_panel.hpp"
 #include "app/gui/lesson_panel.hpp"
@@ -57,12 +58,6 @@ std::vector<std::string> TunableKeys(const AppUi& ui) {
   return out;
 }
 
-std::vector<std::string> PinIds(const AppUi& ui) {
-  std::vector<std::string> out;
-  for (const auto& p : ui.pins()) out.push_back(std::to_string(p->id));
-  return out;
-}
-
 std::vector<std::string> OverlayNames(const AppUi&) {
   std::vector<std::string> out = {"all", "none", "default"};
   for (const sim::OverlayInfo& o : sim::Overlays()) out.push_back(o.name);
@@ -95,14 +90,6 @@ std::vector<std::string> TimePlotIds(const AppUi& ui) {
 
 std::string NeedsActions(const AppUi& ui) {
   return ActionIds(ui).empty() ? "this scenario offers no actions" : "";
-}
-
-std::string NeedsSeedsRunning(const AppUi& ui) {
-  return ui.SeedsRunning() ? "" : "no Monte Carlo is running";
-}
-
-std::string NeedsPins(const AppUi& ui) {
-  return ui.pins().empty() ? "nothing is pinned" : "";
 }
 
 // A folder for figures beside the scenario's name.
@@ -432,42 +419,6 @@ std::vector<Command> PlotRows() {
   return t;
 }
 
-// Compare: the Compare section: pins and Monte Carlo seeds.
-std::vector<Command> CompareRows() {
-  std::vector<Command> t;
-  auto row = [&t](Command c) { t.push_back(std::move(c)); };
-  row({.name = "pin",
-       .menu = "Compare/Pin this run",
-       .help = "Keep the run as it stands as a reference, drawn faded and dashed",
-       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdPin(); }});
-  row({.name = "unpin",
-       .args = {Offer(Whole("N", 1, 1000000), PinIds)},
-       .menu = "Compare/Unpin",
-       .help = "Drop pin N",
-       .disabled = NeedsPins,
-       .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         return ui.CmdUnpin(static_cast<int>(a.Whole(0)));
-       }});
-  row({.name = "unpin-all",
-       .menu = "Compare/Unpin all",
-       .help = "Drop every pin",
-       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdUnpinAll(); }});
-  row({.name = "seeds",
-       .args = {Initial(Whole("N", 1, 100000),
-                        [](const AppUi& ui) { return std::to_string(ui.state().mc_seeds); })},
-       .menu = "Compare/Run N seeds…",
-       .help = "Run the current settings over seeds 1..N in the background (as formsim sweep)",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         return ui.CmdSeeds(static_cast<int>(a.Whole(0)));
-       }});
-  row({.name = "cancel-seeds",
-       .menu = "Compare/Cancel the seeds",
-       .help = "Stop the Monte Carlo under way",
-       .disabled = NeedsSeedsRunning,
-       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdCancelSeeds(); }});
-  return t;
-}
-
 // Undo: undo and redo of edits (the history's rows are HistoryPanel::Rows).
 std::vector<Command> UndoRows() {
   std::vector<Command> t;
@@ -565,7 +516,7 @@ std::vector<Command> WindowRows() {
 using RowsOf = std::vector<Command> (*)();
 const RowsOf kPanelOrder[] = {
     ScenarioRows, RunRows,      ParameterRows,               ViewRows,
-    PlotRows,     CompareRows,  HistoryPanel::Rows,          UndoRows,     TimelinePanel::Rows,
+    PlotRows,     ComparePanel::Rows, HistoryPanel::Rows,          UndoRows,     TimelinePanel::Rows,
     FormationEditorPanel::Rows, PaletteRows,                 LessonPanel::Rows,
     WindowRows,
 };

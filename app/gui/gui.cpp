@@ -17,6 +17,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "app/gui/compare_panel.hpp"
 #include "app/render/gl_api.hpp"
 #include "app/render/imgui_layer.hpp"
 #include "app/render/long_text.hpp"
@@ -316,7 +317,7 @@ int RunGui(const GuiOptions& opt) {
     }
     if (!opt.out_dir.empty()) {
       sim::WriteRunOutputs(ui.session().exp(), opt.out_dir);
-      ui.WriteMonteCarlo(opt.out_dir);
+      ui.Find<ComparePanel>()->WriteMonteCarlo(opt.out_dir);
     }
     bool session_saved = false;
     if (!opt.session_file.empty()) {

@@ -1,6 +1,8 @@
 /// \file The History panel (app/gui/history_panel.hpp): the run history, its restore, its tab.
 #include "app/gui/history_panel.hpp"
 
+#include "app/gui/compare_panel.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -306,7 +308,7 @@ std::vector<Command> HistoryPanel::Rows() {
        .menu = "Compare/Pin history row…",
        .help = "Replay history row N exactly and pin it",
        .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         return ui.CmdPinRow(static_cast<int>(a.Whole(0)));
+         return ui.Find<ComparePanel>()->CmdPinRow(static_cast<int>(a.Whole(0)));
        }});
   return t;
 }

@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "app/gui/formation_editor_panel.hpp"
+#include "app/gui/compare_panel.hpp"
 #include "app/gui/history_panel.hpp"
 #include "app/gui/lesson_panel.hpp"
 #include "app/gui/timeline_panel.hpp"
@@ -94,6 +95,9 @@ void AppUi::MakePanels() {
   auto history = std::make_unique<HistoryPanel>(ctx_);
   history_ = history.get();
   panels_.push_back(std::move(history));
+  auto compare = std::make_unique<ComparePanel>(ctx_);
+  compare_ = compare.get();
+  panels_.push_back(std::move(compare));
   panels_.push_back(std::make_unique<LessonPanel>(ctx_));
   SyncKindPanel();
 }
@@ -533,7 +537,7 @@ void AppUi::DrawControlPanel(const Fonts& fonts, bool interactive) {
   DrawRestoreBanner();
   if (ImGui::CollapsingHeader("Scenario", ImGuiTreeNodeFlags_DefaultOpen)) DrawScenarioSection();
   if (ImGui::CollapsingHeader("Run", ImGuiTreeNodeFlags_DefaultOpen)) DrawRunSection();
-  if (ImGui::CollapsingHeader("Compare", ImGuiTreeNodeFlags_DefaultOpen)) DrawTuningSection();
+  if (ImGui::CollapsingHeader("Compare", ImGuiTreeNodeFlags_DefaultOpen)) compare_->Draw(fonts);
   SyncKindPanel();  // a button above may have loaded another scenario
   if (kind_panel_) kind_panel_->Draw(fonts);
   DrawParamSection();

@@ -15,7 +15,6 @@
 
 #include "app/gui/command_table.hpp"
 #include "app/gui/panel_context.hpp"
-#include "app/gui/span_metrics.hpp"
 #include "app/gui/speed_meter.hpp"
 #include "app/render/fonts.hpp"
 #include "app/render/theme.hpp"
@@ -31,6 +30,7 @@
 
 namespace formsim::app {
 
+class ComparePanel;
 class HistoryPanel;
 class TimelinePanel;
 
@@ -60,7 +60,6 @@ struct UiState {
   char open_path[512] = "";
   char seed_text[32] = "";
   char session_path[512] = "";
-  int mc_seeds = 20;                 ///< "Run N seeds"
   std::string gesture_key;  ///< the slider held since its last edit (its edits make one undo step)
   std::string select_tab;   ///< a tab of the right-hand window to bring to front once
   std::string drag_name;  ///< robot or obstacle being dragged
@@ -175,15 +174,6 @@ class AppUi {
   std::string CmdFieldKey(bool commit);
   /// `steps` notches of the mouse wheel over tunable `key`'s slider (a fine adjustment).
   std::string CmdFieldWheel(const std::string& key, int steps);
-  /// Pins the current run as it stands: a reference drawn faded (world) and dashed (plots).
-  std::string CmdPin();
-  std::string CmdUnpin(int id);
-  std::string CmdUnpinAll();
-  /// Pins history row `number` (replayed exactly from its log).
-  std::string CmdPinRow(int number);
-  /// Runs the current settings over seeds 1..n in the background (as `formsim sweep`).
-  std::string CmdSeeds(int n);
-  std::string CmdCancelSeeds();
   /// The world view back at the live end (the Timeline panel's `live`).
   std::string CmdLive();
   // ---- Teaching: overlays, legend, help, presentation (the formation editor is the
@@ -236,8 +226,6 @@ class AppUi {
   const std::map<std::string, std::pair<ImVec2, ImVec2>>& menu_items() const { return menu_items_; }
   /// Writes every figure of the current run as SVG and PDF into `dir`.
   std::string CmdExportFigures(const std::string& dir);
-  /// A Monte Carlo ("Run N seeds") is under way.
-  bool SeedsRunning() const;
   /// True while work goes on in the background (pins replaying, a Monte Carlo, the timeline
   /// catching up): the script action `wait` holds the script until it is done.
   bool Busy() const;
@@ -246,20 +234,6 @@ class AppUi {
   const sim::SessionRecord& record() const { return record_; }
   /// With `formsim gui --session FILE`: where "Save session" writes by default.
   void SetSessionFile(const std::string& path);
-  /// Writes the tables of the finished Monte Carlo (runs.csv, aggregate.csv, as `formsim sweep`
-  /// writes them) into `dir`/montecarlo. Returns false when there is none.
-  bool WriteMonteCarlo(const std::string& dir);
-  const std::vector<std::unique_ptr<PinnedRun>>& pins() const { return pins_; }
-  /// One run's column of the comparison table.
-  struct CompareRun {
-    std::string header;                     ///< "now (9.4 of 11.0 s)", "pin 1 (9.4 s)"
-    const sim::Metrics* metrics = nullptr;  ///< over the common span; null while replayed
-    std::string why;                        ///< why there are no metrics yet
-  };
-  /// The runs of the comparison table, the live run then each ready pin, every one cut to the
-  /// common span (the shortest run's time) by an exact replay; `title` gets the table's title,
-  /// which says so. `now`: the live run's metrics over all of it.
-  std::vector<CompareRun> CompareRuns(const sim::Metrics& now, std::string* title);
 
   // ---- The panels (app/gui/panel.hpp) and what the window shares with them.
   /// The panel of type P the window has now (the kind's own panel, or one of the window's), or
@@ -290,21 +264,10 @@ class AppUi {
   void UpdateBackground();
   void StartRecording(const std::vector<sim::Override>& cli, long step);
   void DropScenarioState();  ///< pins, Monte Carlo, timeline: on loading another scenario
-  std::string PinReplay(std::shared_ptr<const sim::ScenarioSource> source, sim::RunLog log,
-                        long steps, const std::string& origin);
-  RunValues CurrentValues() const;
-  /// "pin 1: k_l 0.15 -> 0.4" (what differs from the current run).
-  std::string PinLabel(const PinnedRun& pin) const;
-  /// Adds the pinned runs and the Monte Carlo bands to a live plot of figure `fig`.
-  void DecoratePlot(const sim::FigureSpec& fig, PlotData& data);
   /// The time the plots' cursor marks: the timeline's when it is on, else the live time.
   double CursorTime() const;
   /// The experiment the world view shows: the timeline's replay, or the live run.
   const sim::Experiment& ShownExperiment() const;
-  void DrawTuningSection();
-  void DrawCompareTable(const sim::Metrics& now);
-  /// The History tab's list of the pinned runs (above the history table).
-  void DrawPinnedRuns();
   /// The kind's own panel for the experiment now: made, kept or dropped (MakeKindPanel).
   void SyncKindPanel();
   /// The context handed to the panels, then the window's own panels, made once.
@@ -342,6 +305,7 @@ class AppUi {
   PanelContext ctx_;  ///< what every panel gets of the window (refers to the members above)
   TimelinePanel* timeline_ = nullptr;  ///< one of panels_: every window has one
   HistoryPanel* history_ = nullptr;    ///< one of panels_: every window has one
+  ComparePanel* compare_ = nullptr;    ///< one of panels_: every window has one
   std::function<void(sim::Experiment&)> run_setup_;
   std::unique_ptr<sim::Session> owned_;
   sim::Session* session_ = nullptr;
@@ -351,13 +315,9 @@ class AppUi {
   bool confirm_overwrite_ = false;
   AutoFit auto_fit_;
 
-  // Tuning: pins, history, timeline, Monte Carlo, the session record.
+  // The session record (every panel notes what it does in it) and its crash-safe journal.
   sim::SessionRecord record_;
   std::string session_file_;
-  std::vector<std::unique_ptr<PinnedRun>> pins_;
-  int next_pin_ = 1;
-  MonteCarloState mc_;
-  SpanMetrics span_;  ///< runs cut to the common span of the comparison table
   std::unique_ptr<sim::SessionJournal> journal_;  ///< the window's crash-safe journal
   std::vector<sim::RecoveredSession> unfinished_;  ///< offered for restore, newest first
   bool journal_error_shown_ = false;

@@ -38,9 +38,6 @@ bool HasRequiredArgs(const Command& cmd) {
 
 }  // namespace
 
-bool AppUi::SeedsRunning() const {
-  return mc_.run && !mc_.run->finished();
-}
 
 float AppUi::DrawMenuBar() {
   if (!ImGui::BeginMainMenuBar()) return 0;

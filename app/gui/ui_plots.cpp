@@ -14,6 +14,7 @@
 
 #include "app/export/figure_data.hpp"
 #include "app/gui/command_table.hpp"
+#include "app/gui/compare_panel.hpp"
 #include "app/gui/history_panel.hpp"
 #include "app/gui/lesson_panel.hpp"
 #include "app/gui/table_header.hpp"
@@ -193,10 +194,8 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
       const float avail_h = ImGui::GetContentRegionAvail().y;
       const float h = std::max(220.0f, open_count > 0 ? avail_h / std::min(open_count, 3) - 6 : 0);
       // What DecoratePlot adds: a drawn plot is kept only while it is unchanged.
-      std::string decoration = std::to_string(mc_.bands.runs) + "/" + std::to_string(mc_.bands_at) +
-                               (state_.settings.degrees ? "/deg" : "/rad");
-      for (const auto& pin : pins_)
-        if (pin->ready()) decoration += "|" + std::to_string(pin->id) + ":" + PinLabel(*pin);
+      std::string decoration =
+          compare_->Decoration() + (state_.settings.degrees ? "/deg" : "/rad");
       for (const std::string& id : state_.plot_log_y) decoration += "|log:" + id;
       PlotStyle style;
       style.title_font = FontRole::kLabel;
@@ -227,7 +226,7 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
             plot.decoration != decoration) {
           // Resolved and drawn (without the cursor, which moves every frame), and kept.
           plot.data = ResolveFigure(figures[i], exp.recorder());
-          DecoratePlot(figures[i], plot.data);  // pinned runs, Monte Carlo bands
+          compare_->DecoratePlot(figures[i], plot.data);  // pinned runs, Monte Carlo bands
           ShowPlotInUnits(plot.data, state_.settings.degrees);  // angles in the window's unit
           plot.data.log_y = state_.plot_log_y.count(figures[i].id) > 0;
           plot.decoration = decoration;
@@ -296,7 +295,7 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
     if (!cache.tables.empty() && ImGui::BeginTabItem("Tables", nullptr, tab("Tables"))) {
       if (exp.steps() != cache.tables_steps && (paused || now - cache.tables_at >= kTableRefresh))
         refresh_tables();
-      DrawCompareTable(cache.results);
+      compare_->DrawCompareTable(cache.results);
       const std::vector<sim::TableSpec>& tables = cache.tables;
       for (std::size_t t = 0; t < tables.size(); ++t) {
         const sim::TableSpec& spec = tables[t];
@@ -367,7 +366,7 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
       ImGui::EndTabItem();
     }
     if (ImGui::BeginTabItem("History", nullptr, tab("History"))) {
-      DrawPinnedRuns();
+      compare_->DrawPinnedRuns();
       history_->Draw(fonts);
       ImGui::EndTabItem();
     }

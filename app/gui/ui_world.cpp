@@ -6,6 +6,7 @@
 
 #include "app/render/imgui_canvas.hpp"
 #include "app/render/long_text.hpp"
+#include "app/gui/compare_panel.hpp"
 #include "app/gui/timeline_panel.hpp"
 #include "app/gui/ui.hpp"
 #include "app/render/world_view.hpp"
@@ -146,9 +147,7 @@ void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool in
   opt.legend_state = &state_.legend_state;
   opt.clock = ImGui::GetTime();
   opt.degrees = state_.settings.degrees;
-  for (const auto& p : pins_)
-    if (p->ready())
-      opt.overlays.push_back({p->exp.get(), PinLabel(*p), GetTheme(state_.theme).text});
+  compare_->AddWorldOverlays(opt);  // the pins, faded
   const sim::Experiment& shown = ShownExperiment();
   if (&shown != &session_->exp()) {
     char note[64];

@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "app/export/video_writer.hpp"
+#include "app/gui/compare_panel.hpp"
 #include "app/gui/lesson_panel.hpp"
 #include "app/gui/ui_settings.hpp"
 #include "sim/scenario/scenario.hpp"
@@ -79,7 +80,7 @@ TEST(GuiLessonSteps, StepsActionsAndPredictionsThroughTheTable) {
       << g.Verdict();
   ASSERT_EQ(ui.RunScriptAction("lesson-action"), "");
   EXPECT_EQ(ui.session().EffectiveValue("robots.R2.follow.k_l"), "0.5");
-  EXPECT_EQ(ui.pins().size(), 1u);
+  EXPECT_EQ(ui.Find<ComparePanel>()->pins().size(), 1u);
   EXPECT_TRUE(ui.session().can_undo());  // the edit went the normal way: undoable
   // Not judged before the run has reached t = 4 s (the end of the check's window).
   RunTo(ui, 3.0);

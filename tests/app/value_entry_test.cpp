@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "app/export/png_writer.hpp"
+#include "app/gui/compare_panel.hpp"
 #include "app/export/video_writer.hpp"
 #include "sim/core/metrics.hpp"
 #include "sim/core/number_format.hpp"
@@ -169,12 +170,12 @@ void Settle(testing::UiWindow& w) {
 
 // The comparison's runs once every replay to the common span is done; `now` holds the live
 // run's metrics the first column points to.
-std::vector<AppUi::CompareRun> Compared(testing::UiWindow& w, sim::Metrics* now,
+std::vector<ComparePanel::CompareRun> Compared(testing::UiWindow& w, sim::Metrics* now,
                                         std::string* title) {
-  std::vector<AppUi::CompareRun> runs;
+  std::vector<ComparePanel::CompareRun> runs;
   *now = w.ui().session().exp().Results();
   for (int i = 0; i < 2000; ++i) {
-    runs = w.ui().CompareRuns(*now, title);
+    runs = w.ui().Find<ComparePanel>()->CompareRuns(*now, title);
     bool all = true;
     for (const auto& r : runs) all = all && r.metrics != nullptr;
     if (all) break;
@@ -190,8 +191,8 @@ TEST(CompareSpan, ABranchedPinIsComparedOverTheCommonSpan) {
   ASSERT_EQ(w.ui().RunScriptAction("scrub 1"), "");
   ASSERT_EQ(w.ui().RunScriptAction("branch"), "");
   Settle(w);
-  ASSERT_EQ(w.ui().pins().size(), 1u);
-  ASSERT_NEAR(w.ui().pins()[0]->exp->time(), 2.0, 1e-9);
+  ASSERT_EQ(w.ui().Find<ComparePanel>()->pins().size(), 1u);
+  ASSERT_NEAR(w.ui().Find<ComparePanel>()->pins()[0]->exp->time(), 2.0, 1e-9);
   ASSERT_NEAR(w.ui().session().exp().time(), 1.0, 1e-9);
   std::string title;
   sim::Metrics live;
@@ -203,7 +204,7 @@ TEST(CompareSpan, ABranchedPinIsComparedOverTheCommonSpan) {
   ASSERT_NE(runs[1].metrics, nullptr) << runs[1].why;
   // The branch is an exact replay: over the common span the two runs are the same run.
   const auto now = runs[0].metrics->Scalars(), pin = runs[1].metrics->Scalars();
-  const auto whole = w.ui().pins()[0]->results->Scalars();
+  const auto whole = w.ui().Find<ComparePanel>()->pins()[0]->results->Scalars();
   ASSERT_EQ(now.size(), pin.size());
   int differs_whole = 0;
   for (std::size_t i = 0; i < now.size(); ++i) {

@@ -15,6 +15,7 @@
 
 #include "app/render/imgui_layer.hpp"
 #include "app/render/offscreen_context.hpp"
+#include "app/gui/compare_panel.hpp"
 #include "app/gui/ui.hpp"
 #include "sim/scenario/scenario_files.hpp"
 #include "tests/fuzz/fuzz_lines.hpp"
@@ -54,6 +55,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     ImGui::Render();
   }
   // Background work (pins, seeds) stops with the window.
-  ui->CmdCancelSeeds();
+  ui->Find<formsim::app::ComparePanel>()->CmdCancelSeeds();
   return 0;
 }

@@ -1,4 +1,4 @@
-/// \file Comparing runs: the pinned runs drawn dashed over every live plot (one dash pattern per
+/// \file The Compare panel's comparisons (app/gui/compare_panel.hpp): the pinned runs drawn dashed over every live plot (one dash pattern per
 /// pin, a legend entry naming what differs), the Monte Carlo spread as bands (min-max light,
 /// mean ± σ darker) on every time plot, and the comparison table: the headline metrics and every
 /// number of the results' tables for the current run, each pinned run and the Monte Carlo
@@ -9,6 +9,7 @@
 
 #include "app/export/figure_data.hpp"
 #include "app/gui/table_header.hpp"
+#include "app/gui/compare_panel.hpp"
 #include "app/gui/ui.hpp"
 #include "app/render/display_unit.hpp"
 #include "app/render/label_markup.hpp"
@@ -32,8 +33,8 @@ std::string FigureKey(const sim::FigureSpec& fig) {
 
 }  // namespace
 
-void AppUi::DecoratePlot(const sim::FigureSpec& fig, PlotData& data) {
-  const sim::Color legend_ink = GetTheme(state_.theme).axis;
+void ComparePanel::DecoratePlot(const sim::FigureSpec& fig, PlotData& data) {
+  const sim::Color legend_ink = GetTheme(ctx_.state->theme).axis;
   // The spread of the Monte Carlo under each time series.
   if (data.x_is_time && mc_.bands.runs > 1) {
     for (std::size_t i = 0; i < fig.series.size(); ++i) {
@@ -92,21 +93,21 @@ void AppUi::DecoratePlot(const sim::FigureSpec& fig, PlotData& data) {
   }
 }
 
-std::vector<AppUi::CompareRun> AppUi::CompareRuns(const sim::Metrics& now, std::string* title) {
+std::vector<ComparePanel::CompareRun> ComparePanel::CompareRuns(const sim::Metrics& now, std::string* title) {
   std::vector<const PinnedRun*> pins;
   for (const auto& p : pins_)
     if (p->ready() && p->results) pins.push_back(p.get());
   // Runs of different lengths are compared over their common span: each longer run is cut to
   // it by an exact replay of its log (span_), so a pin that stops at 9.4 s is not measured
   // against 11 s of the live run.
-  const sim::Experiment& live = session_->exp();
+  const sim::Experiment& live = ctx_.session().exp();
   double span = live.time();
   for (const PinnedRun* p : pins) span = std::min(span, p->exp->time());
   constexpr double kSameTime = 1e-9;
   bool cut = false;
   // The live run is the shortest and still running: the span moves every step, so the longer
   // runs are cut to it once the run stops (paused or finished).
-  const bool moving = state_.playing && !live.finished() && live.time() <= span + kSameTime;
+  const bool moving = ctx_.state->playing && !live.finished() && live.time() <= span + kSameTime;
   std::vector<CompareRun> runs;
   auto column = [&](const std::string& name, const std::string& id, const sim::Experiment& x,
                     const sim::Metrics& whole, const std::function<SpanMetrics::Replayed()>& log) {
@@ -125,9 +126,9 @@ std::vector<AppUi::CompareRun> AppUi::CompareRuns(const sim::Metrics& now, std::
     }
     runs.push_back(std::move(c));
   };
-  column("now", "now:" + std::to_string(session_->run_id()), live, now, [this] {
-    return SpanMetrics::Replayed{std::make_shared<sim::ScenarioSource>(session_->source()),
-                                 session_->run_log()};
+  column("now", "now:" + std::to_string(ctx_.session().run_id()), live, now, [this] {
+    return SpanMetrics::Replayed{std::make_shared<sim::ScenarioSource>(ctx_.session().source()),
+                                 ctx_.session().run_log()};
   });
   for (const PinnedRun* p : pins)
     column("pin " + std::to_string(p->id), "pin:" + std::to_string(p->id), *p->exp, *p->results,
@@ -139,7 +140,7 @@ std::vector<AppUi::CompareRun> AppUi::CompareRuns(const sim::Metrics& now, std::
   return runs;
 }
 
-void AppUi::DrawCompareTable(const sim::Metrics& now) {
+void ComparePanel::DrawCompareTable(const sim::Metrics& now) {
   const bool mc = mc_.tables.has_value();
   std::size_t pinned = 0;
   for (const auto& p : pins_) pinned += p->ready() && p->results;
@@ -163,7 +164,7 @@ void AppUi::DrawCompareTable(const sim::Metrics& now) {
 
   // One row: the values of each run (NaN: none) and the Monte Carlo's, shown in the unit of the
   // label (angles in the window's unit) with one formatter and kDigits significant digits.
-  const bool degrees = state_.settings.degrees;
+  const bool degrees = ctx_.state->settings.degrees;
   auto row = [&](const std::string& label, const std::vector<double>& v, sim::Better better,
                  const sim::MetricStats* stats) {
     const double k = ShownUnit(LabelUnit(label), degrees).scale;
