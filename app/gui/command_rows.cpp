@@ -20,6 +20,7 @@
 #include "app/gui/formation_editor_panel.hpp"
 #include "app/gui/history_panel.hpp"
 #include "app/gui/lesson_panel.hpp"
+#include "app/gui/plots_panel.hpp"
 #include "app/gui/timeline_panel.hpp"
 #include "app/gui/ui.hpp"
 #include "sim/core/draw.hpp"
@@ -77,24 +78,10 @@ std::vector<std::string> ThemeList() {
   return out;
 }
 
-// The figures of the run whose y axis may be logarithmic: plots against time (not the
-// trajectories' equal-aspect plane, not bar charts).
-std::vector<std::string> TimePlotIds(const AppUi& ui) {
-  std::vector<std::string> out;
-  for (const sim::FigureSpec& f : ui.session().exp().Figures())
-    if (IsTimePlot(f)) out.push_back(f.id);
-  return out;
-}
-
 // ---- when a command can run ----
 
 std::string NeedsActions(const AppUi& ui) {
   return ActionIds(ui).empty() ? "this scenario offers no actions" : "";
-}
-
-// A folder for figures beside the scenario's name.
-std::string FiguresFolder(const AppUi& ui) {
-  return fs::path(ui.session().file()).stem().string() + "_figures";
 }
 
 // Scenario: the Scenario section: files in and out, the session and its journal.
@@ -395,30 +382,6 @@ std::vector<Command> ViewRows() {
   return t;
 }
 
-// Plots: the Plots tab: figures.
-std::vector<Command> PlotRows() {
-  std::vector<Command> t;
-  auto row = [&t](Command c) { t.push_back(std::move(c)); };
-  row({.name = "export-figures",
-       .args = {Initial(Text("DIR", "a folder to write into"), FiguresFolder)},
-       .menu = "File/Export figures…",
-       .help = "Write every figure of the current run as SVG and PDF into DIR",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdExportFigures(a.Text(0)); }});
-  row({.name = "log-y",
-       .args = {Offer(Text("PLOT", "a time plot's figure id", ArgType::kChoice), TimePlotIds),
-                Choice("on|off", {"on", "off"})},
-       .menu = "View/Log y axis of a plot…",
-       .help = "Draw a time plot's y axis in decades (values <= 0 left out, with a note)",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         if (a.Text(1) == "on")
-           ui.state().plot_log_y.insert(a.Text(0));
-         else
-           ui.state().plot_log_y.erase(a.Text(0));
-         return std::string();
-       }});
-  return t;
-}
-
 // Undo: undo and redo of edits (the history's rows are HistoryPanel::Rows).
 std::vector<Command> UndoRows() {
   std::vector<Command> t;
@@ -516,7 +479,7 @@ std::vector<Command> WindowRows() {
 using RowsOf = std::vector<Command> (*)();
 const RowsOf kPanelOrder[] = {
     ScenarioRows, RunRows,      ParameterRows,               ViewRows,
-    PlotRows,     ComparePanel::Rows, HistoryPanel::Rows,          UndoRows,     TimelinePanel::Rows,
+    PlotsPanel::Rows, ComparePanel::Rows, HistoryPanel::Rows,          UndoRows,     TimelinePanel::Rows,
     FormationEditorPanel::Rows, PaletteRows,                 LessonPanel::Rows,
     WindowRows,
 };

@@ -12,6 +12,7 @@
 #include "app/gui/panel.hpp"
 
 namespace formsim::sim {
+class Experiment;
 class Session;
 class SessionRecord;
 }  // namespace formsim::sim
@@ -23,6 +24,9 @@ struct UiState;
 struct PanelContext {
   /// The session now (loading another scenario replaces it: ask again, keep no reference).
   std::function<sim::Session&()> session;
+  /// The experiment the world view shows: the timeline's replay when it is on, else the live
+  /// run (the plots' time cursor).
+  std::function<const sim::Experiment&()> shown;
   /// The record of the session (notes of what the panels did go into it).
   sim::SessionRecord* record = nullptr;
   /// The window's options shared by the panels: the view, the theme, `playing`, the status

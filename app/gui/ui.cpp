@@ -11,6 +11,8 @@
 #include "app/gui/formation_editor_panel.hpp"
 #include "app/gui/compare_panel.hpp"
 #include "app/gui/history_panel.hpp"
+#include "app/gui/plots_panel.hpp"
+#include "app/gui/tables_panel.hpp"
 #include "app/gui/lesson_panel.hpp"
 #include "app/gui/timeline_panel.hpp"
 #include "sim/core/number_format.hpp"
@@ -83,6 +85,7 @@ void AppUi::MakePanels() {
   ctx_.record = &record_;
   ctx_.state = &state_;
   ctx_.set_status = [this](const std::string& message, bool error) { SetStatus(message, error); };
+  ctx_.shown = [this]() -> const sim::Experiment& { return ShownExperiment(); };
   ctx_.run = [this](const std::string& line) { return RunScriptAction(line); };
   ctx_.replace_run = [this](const std::string& status, const std::function<std::string()>& change) {
     return ReplaceRun(status, change);
@@ -98,6 +101,12 @@ void AppUi::MakePanels() {
   auto compare = std::make_unique<ComparePanel>(ctx_);
   compare_ = compare.get();
   panels_.push_back(std::move(compare));
+  auto plots = std::make_unique<PlotsPanel>(ctx_);
+  plots_ = plots.get();
+  panels_.push_back(std::move(plots));
+  auto tables = std::make_unique<TablesPanel>(ctx_);
+  tables_ = tables.get();
+  panels_.push_back(std::move(tables));
   panels_.push_back(std::make_unique<LessonPanel>(ctx_));
   SyncKindPanel();
 }
@@ -148,8 +157,7 @@ void AppUi::SyncScenarioFields() {
   if (session_file_.empty())
     CopyString(state_.session_path, sizeof(state_.session_path),
                fs::path(current).stem().string() + "_session.yaml");
-  state_.plot_closed.clear();
-  state_.plot_log_y.clear();
+  plots_->Clear();
   state_.follow = -1;
   state_.auto_fit = true;
   state_.fit_now = true;

@@ -32,6 +32,8 @@ namespace formsim::app {
 
 class ComparePanel;
 class HistoryPanel;
+class PlotsPanel;
+class TablesPanel;
 class TimelinePanel;
 
 /// Speeds offered by the Run panel; 0 means as fast as possible.
@@ -49,8 +51,6 @@ struct UiState {
   bool grid = true;
   bool coordinates = true;
   ThemeId theme = ThemeId::kLight;          ///< colours of the panels, the world view and the plots
-  std::map<std::string, bool> plot_closed;  ///< figure id -> hidden by the user
-  std::set<std::string> plot_log_y;         ///< figure ids drawn with a log y axis (log-y)
   bool screenshot_requested = false;
   std::string screenshot_path;  ///< where the requested screenshot goes ("" = numbered name)
   std::string status;           ///< last message for the status line
@@ -224,8 +224,6 @@ class AppUi {
   /// Where the menu bar drew each command's item in the last frame its menu was open (tests
   /// click them).
   const std::map<std::string, std::pair<ImVec2, ImVec2>>& menu_items() const { return menu_items_; }
-  /// Writes every figure of the current run as SVG and PDF into `dir`.
-  std::string CmdExportFigures(const std::string& dir);
   /// True while work goes on in the background (pins replaying, a Monte Carlo, the timeline
   /// catching up): the script action `wait` holds the script until it is done.
   bool Busy() const;
@@ -264,8 +262,6 @@ class AppUi {
   void UpdateBackground();
   void StartRecording(const std::vector<sim::Override>& cli, long step);
   void DropScenarioState();  ///< pins, Monte Carlo, timeline: on loading another scenario
-  /// The time the plots' cursor marks: the timeline's when it is on, else the live time.
-  double CursorTime() const;
   /// The experiment the world view shows: the timeline's replay, or the live run.
   const sim::Experiment& ShownExperiment() const;
   /// The kind's own panel for the experiment now: made, kept or dropped (MakeKindPanel).
@@ -292,9 +288,6 @@ class AppUi {
   void DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool interactive);
   void DrawWorldMouse(const View& view);
   void DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts);
-  /// What the plots window shows, refreshed at most ten times a second (app/gui/ui_plots.cpp).
-  struct PlotsCache;
-  std::shared_ptr<PlotsCache> plots_cache_;
   void UpdateView(ImVec2 min, ImVec2 max);
 
   std::map<std::string, std::pair<ImVec2, ImVec2>> menu_items_;
@@ -306,6 +299,8 @@ class AppUi {
   TimelinePanel* timeline_ = nullptr;  ///< one of panels_: every window has one
   HistoryPanel* history_ = nullptr;    ///< one of panels_: every window has one
   ComparePanel* compare_ = nullptr;    ///< one of panels_: every window has one
+  PlotsPanel* plots_ = nullptr;        ///< one of panels_: every window has one
+  TablesPanel* tables_ = nullptr;      ///< one of panels_: every window has one
   std::function<void(sim::Experiment&)> run_setup_;
   std::unique_ptr<sim::Session> owned_;
   sim::Session* session_ = nullptr;

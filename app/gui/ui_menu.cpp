@@ -214,30 +214,5 @@ void AppUi::DrawAbout() {
   }
 }
 
-std::string AppUi::CmdExportFigures(const std::string& dir) {
-  try {
-    sim::PrepareOutputDir(dir);
-    const sim::Experiment& exp = session_->exp();
-    const Theme& theme = GetTheme(state_.theme);
-    FigureSize size;
-    int written = 0;
-    for (const sim::FigureSpec& fig : exp.Figures()) {
-      const PlotData data = ResolveFigure(fig, exp.recorder());
-      if (!data.error.empty()) throw std::runtime_error("figure '" + fig.id + "': " + data.error);
-      const VectorFigure recorded =
-          RecordPlot(data, size.LayoutWidth(), size.LayoutHeight(), theme);
-      for (FigureFormat f : {FigureFormat::kSvg, FigureFormat::kPdf}) {
-        WriteVectorFigure(recorded, f, size, data.title,
-                          dir + "/" + fig.id + "." + FormatExtension(f));
-        ++written;
-      }
-    }
-    SetStatus("exported " + std::to_string(written) + " figure files into " + dir);
-  } catch (const std::exception& e) {
-    SetStatus(std::string("export failed: ") + e.what(), true);
-    return state_.status;
-  }
-  return "";
-}
 
 }  // namespace formsim::app

@@ -38,10 +38,6 @@ void AppUi::UpdateView(ImVec2 min, ImVec2 max) {
     v.center = robots[state_.follow]->pose().p();
 }
 
-double AppUi::CursorTime() const {
-  return ShownExperiment().time();
-}
-
 const sim::Experiment& AppUi::ShownExperiment() const {
   const sim::Experiment* replayed = timeline_->Shown();  // the timeline's time, else live
   return replayed != nullptr ? *replayed : session_->exp();
