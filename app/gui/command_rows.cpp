@@ -21,6 +21,7 @@
 #include "app/gui/history_panel.hpp"
 #include "app/gui/lesson_panel.hpp"
 #include "app/gui/plots_panel.hpp"
+#include "app/gui/run_panel.hpp"
 #include "app/gui/timeline_panel.hpp"
 #include "app/gui/ui.hpp"
 #include "sim/core/draw.hpp"
@@ -62,12 +63,6 @@ std::vector<std::string> TunableKeys(const AppUi& ui) {
 std::vector<std::string> OverlayNames(const AppUi&) {
   std::vector<std::string> out = {"all", "none", "default"};
   for (const sim::OverlayInfo& o : sim::Overlays()) out.push_back(o.name);
-  return out;
-}
-
-std::vector<std::string> SpeedNames() {
-  std::vector<std::string> out;
-  for (double s : SpeedChoices()) out.push_back(s == 0.0 ? "max" : sim::FormatDouble(s));
   return out;
 }
 
@@ -145,55 +140,6 @@ std::vector<Command> ScenarioRows() {
                                                      : std::string();
            },
        .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdDiscardSession(); }});
-  return t;
-}
-
-// Run: the Run section: play, step, reset, speed.
-std::vector<Command> RunRows() {
-  std::vector<Command> t;
-  auto row = [&t](Command c) { t.push_back(std::move(c)); };
-  row({.name = "play-pause",
-       .keys = {"space"},
-       .menu = "Run/Play or pause",
-       .help = "Play when paused, pause when playing",
-       .run = [](AppUi& ui, const CommandArgs&, Src) {
-         return ui.state().playing ? ui.CmdPause() : ui.CmdPlay();
-       }});
-  row({.name = "play",
-       .menu = "Run/Play",
-       .help = "Run (from the live end when the timeline is back)",
-       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdPlay(); }});
-  row({.name = "pause",
-       .menu = "Run/Pause",
-       .help = "Stop stepping",
-       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdPause(); }});
-  row({.name = "step",
-       .keys = {"."},
-       .menu = "Run/Step",
-       .help = "One step, then pause",
-       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdStep(); }});
-  row({.name = "reset",
-       .keys = {"r"},
-       .menu = "Run/Reset",
-       .help = "Start the run again with the current values and seed",
-       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdReset(); }});
-  row({.name = "reset-seed",
-       .args = {Initial(Text("SEED", "a seed 0 ... 18446744073709551615", ArgType::kWord),
-                        [](const AppUi& ui) { return std::string(ui.state().seed_text); })},
-       .menu = "Run/Reset with seed…",
-       .help = "Start the run again with another seed",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdResetSeed(a.Text(0)); }});
-  row({.name = "speed",
-       .args = {Initial(Choice("SPEED", SpeedNames()),
-                        [](const AppUi& ui) { return SpeedNames()[ui.state().speed_index]; })},
-       .menu = "Run/Speed",
-       .help = "Simulated seconds per second of real time (max: as fast as the frame allows)",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         const auto names = SpeedNames();
-         for (std::size_t i = 0; i < names.size(); ++i)
-           if (names[i] == a.Text(0)) ui.state().speed_index = static_cast<int>(i);
-         return std::string();
-       }});
   return t;
 }
 
@@ -478,7 +424,7 @@ std::vector<Command> WindowRows() {
 // The parts whose rows make the table, in this order (see the file's comment).
 using RowsOf = std::vector<Command> (*)();
 const RowsOf kPanelOrder[] = {
-    ScenarioRows, RunRows,      ParameterRows,               ViewRows,
+    ScenarioRows, RunPanel::Rows,      ParameterRows,               ViewRows,
     PlotsPanel::Rows, ComparePanel::Rows, HistoryPanel::Rows,          UndoRows,     TimelinePanel::Rows,
     FormationEditorPanel::Rows, PaletteRows,                 LessonPanel::Rows,
     WindowRows,

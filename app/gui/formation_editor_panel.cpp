@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "app/gui/command_row_makers.hpp"
+#include "app/gui/run_panel.hpp"
 #include "app/gui/timeline_panel.hpp"
 #include "app/gui/ui.hpp"
 #include "app/render/imgui_canvas.hpp"
@@ -87,7 +88,7 @@ std::string FormationEditorPanel::RunRestructure(const std::string& command,
     ctx_.SetStatus("formation " + command + " refused: " + err, true);
     return err;
   }
-  ctx_.state->step_budget = 0;
+  ctx_.Find<RunPanel>()->ForgetOwedTime();
   ctx_.SetStatus("formation " + command + ": done, the run goes on from here");
   return "";
 }

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "app/gui/compare_panel.hpp"
+#include "app/gui/run_panel.hpp"
 #include "app/render/gl_api.hpp"
 #include "app/render/imgui_layer.hpp"
 #include "app/render/long_text.hpp"
@@ -166,13 +167,7 @@ int RunGui(const GuiOptions& opt) {
       e.mutable_recorder().SetHistoryLimit(20000);
       if (!opt.out_dir.empty()) e.mutable_recorder().StreamTo(sim::CsvPath(opt.out_dir));
     });
-    const auto& speeds = SpeedChoices();
-    ui.state().speed_index = static_cast<int>(std::min_element(speeds.begin(), speeds.end(),
-                                                               [&](double a, double b) {
-                                                                 return std::abs(a - opt.speed) <
-                                                                        std::abs(b - opt.speed);
-                                                               }) -
-                                              speeds.begin());
+    ui.Find<RunPanel>()->SetSpeed(opt.speed);
     ui.state().playing = !opt.paused;
     {
       std::string warning;
@@ -260,7 +255,7 @@ int RunGui(const GuiOptions& opt) {
       layer.Render(fw, fh, bg.x, bg.y, bg.z);
       if (opt.timing) {
         GlFinish();  // attribute the rasterisation to this frame
-        sim_ms.push_back(ui.state().sim_ms);
+        sim_ms.push_back(ui.Find<RunPanel>()->sim_ms());
         ui_ms.push_back(1e3 * std::chrono::duration<double>(t_gl - t_ui).count());
         gl_ms.push_back(1e3 * std::chrono::duration<double>(Clock::now() - t_gl).count());
       }

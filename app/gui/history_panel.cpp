@@ -2,6 +2,7 @@
 #include "app/gui/history_panel.hpp"
 
 #include "app/gui/compare_panel.hpp"
+#include "app/gui/run_panel.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -116,8 +117,7 @@ std::string HistoryPanel::CmdRestore(int number) {
     else
       refused += (refused.empty() ? "" : "; ") + p.key + ": " + err;
   }
-  std::snprintf(ctx_.state->seed_text, sizeof(ctx_.state->seed_text), "%s",
-                std::to_string(r.seed).c_str());
+  ctx_.Find<RunPanel>()->SetSeedField(std::to_string(r.seed));
   sim::SessionEvent note;
   note.kind = sim::SessionEvent::Kind::kNote;
   note.key = "restore";

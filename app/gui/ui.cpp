@@ -12,6 +12,7 @@
 #include "app/gui/compare_panel.hpp"
 #include "app/gui/history_panel.hpp"
 #include "app/gui/plots_panel.hpp"
+#include "app/gui/run_panel.hpp"
 #include "app/gui/tables_panel.hpp"
 #include "app/gui/lesson_panel.hpp"
 #include "app/gui/timeline_panel.hpp"
@@ -22,17 +23,9 @@ namespace fs = std::filesystem;
 
 namespace formsim::app {
 
-const std::vector<double>& SpeedChoices() {
-  static const std::vector<double> kSpeeds = {0.1, 0.25, 0.5, 1.0, 2.0, 5.0, 10.0, 0.0};
-  return kSpeeds;
-}
 
 namespace {
 
-std::string SpeedLabel(double s) {
-  if (s == 0.0) return "max";
-  return sim::FormatSignificant(s) + "×";
-}
 
 void CopyString(char* dst, std::size_t n, const std::string& s) {
   std::snprintf(dst, n, "%s", s.c_str());
@@ -104,6 +97,9 @@ void AppUi::MakePanels() {
   auto plots = std::make_unique<PlotsPanel>(ctx_);
   plots_ = plots.get();
   panels_.push_back(std::move(plots));
+  auto run = std::make_unique<RunPanel>(ctx_);
+  run_ = run.get();
+  panels_.push_back(std::move(run));
   auto tables = std::make_unique<TablesPanel>(ctx_);
   tables_ = tables.get();
   panels_.push_back(std::move(tables));
@@ -153,7 +149,6 @@ void AppUi::SyncScenarioFields() {
   CopyString(state_.open_path, sizeof(state_.open_path), current);
   CopyString(state_.save_path, sizeof(state_.save_path),
              fs::path(current).stem().string() + "_tuned.yaml");
-  CopyString(state_.seed_text, sizeof(state_.seed_text), std::to_string(session_->seed()));
   if (session_file_.empty())
     CopyString(state_.session_path, sizeof(state_.session_path),
                fs::path(current).stem().string() + "_session.yaml");
@@ -161,7 +156,7 @@ void AppUi::SyncScenarioFields() {
   state_.follow = -1;
   state_.auto_fit = true;
   state_.fit_now = true;
-  state_.step_budget = 0;
+  run_->SyncScenario();
   auto_fit_.Reset();
 }
 
@@ -186,71 +181,14 @@ void AppUi::Adopt(std::unique_ptr<sim::Session> session, const std::string& mess
 
 // ---- commands ----
 
-std::string AppUi::CmdPlay() {
-  CmdLive();  // playing resumes from the live end
-  state_.playing = true;
-  return "";
+void AppUi::Advance(double wall_dt) {
+  run_->Advance(wall_dt);
 }
 
-std::string AppUi::CmdPause() {
-  state_.playing = false;
-  return "";
-}
 
-std::string AppUi::CmdStep() {
-  CmdLive();
-  state_.playing = false;
-  if (session_->exp().finished()) {
-    SetStatus("the run has reached its duration: reset (r) to run again", true);
-    return state_.status;
-  }
-  try {
-    session_->Step();
-  } catch (const std::exception& e) {
-    SetStatus(std::string("step failed: ") + e.what(), true);
-    return state_.status;
-  }
-  if (session_->exp().finished()) history_->NoteRun(session_->exp().status());
-  return "";
-}
 
-std::string AppUi::CmdReset() {
-  auto row = history_->PendingRow("reset");
-  const std::string err = session_->Reset();
-  if (!err.empty()) {
-    SetStatus(err, true);
-    return err;
-  }
-  if (row) history_->Add(std::move(*row));
-  state_.step_budget = 0;
-  CopyString(state_.seed_text, sizeof(state_.seed_text), std::to_string(session_->seed()));
-  SetStatus("reset");
-  return "";
-}
 
-std::string AppUi::CmdResetSeed(const std::string& seed_text) {
-  std::string t = seed_text;
-  t.erase(0, t.find_first_not_of(" \t"));
-  t.erase(t.find_last_not_of(" \t") + 1);
-  std::uint64_t seed = 0;
-  if (!sim::ParseUint64(t, &seed)) {
-    const std::string why =
-        "seed must be a whole number in [0, 18446744073709551615], got '" + seed_text + "'";
-    SetStatus(why, true);
-    return why;
-  }
-  auto row = history_->PendingRow("reset");
-  const std::string err = session_->Reset(seed);
-  if (!err.empty()) {
-    SetStatus(err, true);
-    return err;
-  }
-  if (row) history_->Add(std::move(*row));
-  state_.step_budget = 0;
-  CopyString(state_.seed_text, sizeof(state_.seed_text), std::to_string(seed));
-  SetStatus("reset with seed " + std::to_string(seed));
-  return "";
-}
+
 
 std::string AppUi::CmdReload() {
   auto row = history_->PendingRow("reloaded");
@@ -422,59 +360,6 @@ std::string AppUi::PressKey(const std::string& key) {
   return "";
 }
 
-void AppUi::Advance(double wall_dt) {
-  using Clock = std::chrono::steady_clock;
-  sim::Experiment& exp = session_->exp();
-  const auto t0 = Clock::now();
-  int steps = 0;
-  // While paused, drags and edits still apply at once (between steps, as always).
-  try {
-    session_->ApplyPending();
-  } catch (const std::exception& e) {
-    SetStatus(std::string("could not apply the edits: ") + e.what(), true);
-  }
-  if (state_.playing && timeline_->Active()) state_.playing = false;  // the timeline pauses
-  if (state_.playing && !exp.finished()) {
-    try {
-      const double speed = SpeedChoices()[state_.speed_index];
-      if (speed == 0.0) {
-        // As fast as possible, but leave the frame responsive: ~15 ms of stepping per frame.
-        while (!session_->exp().finished()) {
-          session_->Step();
-          if ((++steps & 7) == 0 && std::chrono::duration<double>(Clock::now() - t0).count() > 0.015)
-            break;
-        }
-        state_.step_budget = 0;
-      } else {
-        state_.step_budget = std::min(state_.step_budget + wall_dt * speed, 0.25 * speed + exp.dt());
-        while (state_.step_budget >= 0.5 * exp.dt() && !session_->exp().finished()) {
-          session_->Step();
-          ++steps;
-          state_.step_budget -= session_->exp().dt();
-          if (std::chrono::duration<double>(Clock::now() - t0).count() > 0.05) {
-            state_.step_budget = 0;  // cannot keep up: slow down rather than freeze
-            break;
-          }
-        }
-      }
-      if (session_->exp().finished()) {
-        state_.playing = false;
-        char buf[64];
-        std::snprintf(buf, sizeof buf, "finished at t = %.2f s", session_->exp().time());
-        SetStatus(buf);
-        history_->NoteRun(session_->exp().status());
-      }
-    } catch (const std::exception& e) {
-      // Nothing a step throws may end the program: stop and say what happened.
-      state_.playing = false;
-      SetStatus(std::string("the simulation stopped: ") + e.what() + " (reset to go on)", true);
-    }
-  }
-  state_.steps_last_frame = steps;
-  state_.speed_meter.Add(wall_dt, steps * session_->exp().dt(), SpeedChoices()[state_.speed_index],
-                         state_.playing && !session_->exp().finished());
-  state_.sim_ms = 1e3 * std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 void AppUi::HandleKeys() {
   ImGuiIO& io = ImGui::GetIO();
@@ -544,7 +429,7 @@ void AppUi::DrawControlPanel(const Fonts& fonts, bool interactive) {
   (void)interactive;
   DrawRestoreBanner();
   if (ImGui::CollapsingHeader("Scenario", ImGuiTreeNodeFlags_DefaultOpen)) DrawScenarioSection();
-  if (ImGui::CollapsingHeader("Run", ImGuiTreeNodeFlags_DefaultOpen)) DrawRunSection();
+  if (ImGui::CollapsingHeader("Run", ImGuiTreeNodeFlags_DefaultOpen)) run_->Draw(fonts);
   if (ImGui::CollapsingHeader("Compare", ImGuiTreeNodeFlags_DefaultOpen)) compare_->Draw(fonts);
   SyncKindPanel();  // a button above may have loaded another scenario
   if (kind_panel_) kind_panel_->Draw(fonts);
@@ -611,57 +496,7 @@ void AppUi::DrawScenarioSection() {
   }
 }
 
-void AppUi::DrawRunSection() {
-  if (ImGui::Button(state_.playing ? "Pause" : "Play", ImVec2(70, 0)))
-    state_.playing ? CmdPause() : CmdPlay();
-  ImGui::SameLine();
-  if (ImGui::Button("Step")) CmdStep();
-  ImGui::SameLine();
-  if (ImGui::Button("Reset")) CmdReset();
-  ImGui::SameLine();
-  ImGui::TextDisabled("(space . r)");
 
-  const auto& speeds = SpeedChoices();
-  ImGui::SetNextItemWidth(120);
-  int si = state_.speed_index;
-  if (ImGui::SliderInt("speed", &si, 0, static_cast<int>(speeds.size()) - 1,
-                       SpeedLabel(speeds[si]).c_str(), ImGuiSliderFlags_AlwaysClamp))
-    state_.speed_index = std::clamp(si, 0, static_cast<int>(speeds.size()) - 1);
-  DrawAchievedSpeed();
-
-  ImGui::SetNextItemWidth(120);
-  ImGui::InputText("seed", state_.seed_text, sizeof(state_.seed_text),
-                   ImGuiInputTextFlags_CharsDecimal);
-  ImGui::SameLine();
-  if (ImGui::Button("Reset with seed")) CmdResetSeed(state_.seed_text);
-
-  // Read the experiment after the buttons: a reset above has replaced it.
-  const sim::Experiment& exp = session_->exp();
-  const double dur = exp.setup().duration;
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "t = %.2f / %.1f s", exp.time(), dur);
-  ImGui::ProgressBar(static_cast<float>(std::clamp(exp.time() / dur, 0.0, 1.0)), ImVec2(-1, 0),
-                     buf);
-  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
-  ImGui::TextWrapped("%ld steps of %.3g s; last frame: %d steps, sim %.1f ms, frame %.1f ms",
-                     exp.steps(), exp.dt(), state_.steps_last_frame, state_.sim_ms,
-                     state_.frame_ms);
-  ImGui::PopStyleColor();
-}
-
-void AppUi::DrawAchievedSpeed() {
-  const std::string label = state_.speed_meter.Label();
-  if (label.empty()) return;
-  ImGui::SameLine();
-  if (state_.speed_meter.behind())
-    ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(ToImColor(GetTheme(state_.theme).error)), "%s",
-                       label.c_str());
-  else
-    ImGui::TextDisabled("%s", label.c_str());
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Simulated seconds per wall second over the last second; \"behind\": the "
-                      "simulation cannot keep up with the chosen speed");
-}
 
 void AppUi::DrawViewSection() {
   if (ImGui::Button("Fit all (f)")) {

@@ -15,7 +15,6 @@
 
 #include "app/gui/command_table.hpp"
 #include "app/gui/panel_context.hpp"
-#include "app/gui/speed_meter.hpp"
 #include "app/render/fonts.hpp"
 #include "app/render/theme.hpp"
 #include "app/gui/tuning_state.hpp"
@@ -33,16 +32,13 @@ namespace formsim::app {
 class ComparePanel;
 class HistoryPanel;
 class PlotsPanel;
+class RunPanel;
 class TablesPanel;
 class TimelinePanel;
-
-/// Speeds offered by the Run panel; 0 means as fast as possible.
-const std::vector<double>& SpeedChoices();
 
 /// State of the interface that is not simulation state.
 struct UiState {
   bool playing = true;
-  int speed_index = 3;  ///< into SpeedChoices(), 3 = 1x
   View view;
   bool auto_fit = true;    ///< keep everything in view until the user pans or zooms
   bool whole_run = false;  ///< auto-fit shows everything since the start (else: tracks)
@@ -58,14 +54,11 @@ struct UiState {
   double status_time = 0;  ///< ImGui's clock when the status was set
   char save_path[512] = "";
   char open_path[512] = "";
-  char seed_text[32] = "";
   char session_path[512] = "";
   std::string gesture_key;  ///< the slider held since its last edit (its edits make one undo step)
   std::string select_tab;   ///< a tab of the right-hand window to bring to front once
   std::string drag_name;  ///< robot or obstacle being dragged
-  double sim_ms = 0, frame_ms = 0;
-  SpeedMeter speed_meter;  ///< the achieved speed and whether the run is behind the chosen one
-  int steps_last_frame = 0;
+  double frame_ms = 0;  ///< the last frame, as the window measured it
 
   // Teaching (app/gui/ui_teach.cpp).
   std::set<std::string> overlays = DefaultSceneOverlays();  ///< of the scene (View panel)
@@ -77,7 +70,6 @@ struct UiState {
   PresentationCamera camera;  ///< view-only: frames and follows the formation (app/render/camera)
   LegendState legend_state;   ///< the world legend's corner and whether it is collapsed
   UiSettings settings;   ///< UI scale and angle unit, kept between runs
-  double step_budget = 0;  ///< simulated seconds owed to real time
 
   // The command table's window parts (app/gui/ui_menu.cpp, app/gui/ui_palette.cpp).
   bool quit_requested = false;  ///< `quit`: the window closes after this frame
@@ -138,12 +130,6 @@ class AppUi {
 
   // ---- Commands: what buttons, keys and scripts do. Each returns "" or why it was refused,
   // and leaves a message in the status line. None of them can end the program.
-  std::string CmdPlay();
-  std::string CmdPause();
-  std::string CmdStep();
-  std::string CmdReset();
-  /// Reset with a seed given as text (0 ... 2^64 - 1).
-  std::string CmdResetSeed(const std::string& seed_text);
   /// Re-reads the current file from disk (tuned values are dropped).
   std::string CmdReload();
   /// Loads a shipped scenario by name, or a path.
@@ -273,15 +259,12 @@ class AppUi {
   void SyncScenarioFields();
   void DrawControlPanel(const Fonts& fonts, bool interactive);
   void DrawScenarioSection();
-  void DrawRunSection();
   void DrawViewSection();
   void DrawOverlayToggles();
   /// The help overlay (keys and mouse) over the world view.
   void DrawHelpOverlay(ImVec2 min, ImVec2 max);
   /// Presentation mode's small bar of buttons, top right of the world view.
   void DrawPresentationBar(ImVec2 min, ImVec2 max);
-  /// The achieved speed beside the speed field (red and "behind" when it cannot keep up).
-  void DrawAchievedSpeed();
   void SaveSettings();
   void DrawParamSection();
   void DrawMessagesSection();
@@ -300,6 +283,7 @@ class AppUi {
   HistoryPanel* history_ = nullptr;    ///< one of panels_: every window has one
   ComparePanel* compare_ = nullptr;    ///< one of panels_: every window has one
   PlotsPanel* plots_ = nullptr;        ///< one of panels_: every window has one
+  RunPanel* run_ = nullptr;            ///< one of panels_: every window has one
   TablesPanel* tables_ = nullptr;      ///< one of panels_: every window has one
   std::function<void(sim::Experiment&)> run_setup_;
   std::unique_ptr<sim::Session> owned_;

@@ -8,6 +8,7 @@
 #include <functional>
 
 #include "app/render/imgui_canvas.hpp"
+#include "app/gui/run_panel.hpp"
 #include "app/gui/ui.hpp"
 #include "sim/core/number_format.hpp"
 
@@ -141,16 +142,16 @@ void AppUi::DrawPresentationBar(ImVec2 min, ImVec2 max) {
   ImGui::Begin("##present", nullptr,
                ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
                    ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings);
-  if (ImGui::Button(state_.playing ? "Pause" : "Play")) state_.playing ? CmdPause() : CmdPlay();
+  if (ImGui::Button(state_.playing ? "Pause" : "Play")) RunScriptAction("play-pause");
   ImGui::SameLine();
-  if (ImGui::Button("Reset")) CmdReset();
+  if (ImGui::Button("Reset")) RunScriptAction("reset");
   ImGui::SameLine();
   if (ImGui::Button("Legend")) state_.legend = !state_.legend;
   ImGui::SameLine();
   if (ImGui::Button("Help")) state_.help = !state_.help;
   ImGui::SameLine();
   if (ImGui::Button("Exit presentation")) CmdPresent(false);
-  DrawAchievedSpeed();
+  run_->DrawAchievedSpeed();
   ImGui::End();
 }
 

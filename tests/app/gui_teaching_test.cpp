@@ -37,7 +37,7 @@ TEST(GuiTeaching, KeyNSwitchesToTheNextFormation) {
   AppUi ui(std::make_unique<sim::Session>(Scenario("formation_switching"),
                                           std::vector<sim::Override>{{"switching.schedule", "[]", "--set", -1}}));
   ui.state().playing = true;
-  ui.state().speed_index = 6;  // 10x: a 2 s transition lasts about 12 frames
+  ASSERT_EQ(ui.RunScriptAction("speed 10"), "");  // a 2 s transition lasts about 12 frames
   auto frame = [&](char key) {
     ImGuiIO& io = ImGui::GetIO();
     if (key != 0) io.AddInputCharacter(key);
