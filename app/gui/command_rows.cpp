@@ -22,6 +22,7 @@
 #include "app/gui/lesson_panel.hpp"
 #include "app/gui/plots_panel.hpp"
 #include "app/gui/run_panel.hpp"
+#include "app/gui/scenario_panel.hpp"
 #include "app/gui/timeline_panel.hpp"
 #include "app/gui/ui.hpp"
 #include "sim/core/draw.hpp"
@@ -41,12 +42,6 @@ using Src = CommandSource;
 using namespace rows;
 
 // ---- what the window offers now ----
-
-std::vector<std::string> ShippedNames(const AppUi&) {
-  std::vector<std::string> out;
-  for (const std::string& f : sim::ShippedScenarios()) out.push_back(fs::path(f).stem().string());
-  return out;
-}
 
 std::vector<std::string> ActionIds(const AppUi& ui) {
   std::vector<std::string> out;
@@ -79,42 +74,10 @@ std::string NeedsActions(const AppUi& ui) {
   return ActionIds(ui).empty() ? "this scenario offers no actions" : "";
 }
 
-// Scenario: the Scenario section: files in and out, the session and its journal.
-std::vector<Command> ScenarioRows() {
+// Session: the session record and its journal (app/gui/ui_session.cpp, ui_journal.cpp).
+std::vector<Command> SessionRows() {
   std::vector<Command> t;
   auto row = [&t](Command c) { t.push_back(std::move(c)); };
-  row({.name = "open",
-       .args = {Initial(Text("PATH", "a scenario file's path"),
-                        [](const AppUi& ui) { return std::string(ui.state().open_path); })},
-       .menu = "File/Open…",
-       .help = "Open a scenario file (the current run stays when it cannot be read)",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdOpen(a.Text(0)); }});
-  row({.name = "load",
-       .args = {Offer(Text("SCENARIO", "a shipped scenario's name, or a path"), ShippedNames)},
-       .menu = "File/Load shipped",
-       .help = "Load a shipped scenario by name (or a file by path)",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdLoad(a.Text(0)); }});
-  row({.name = "reload",
-       .menu = "File/Reload from disk",
-       .help = "Read the scenario file again, dropping the tuned values",
-       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdReload(); }});
-  row({.name = "save",
-       .args = {Optional(Text("PATH", "a file to write"))},
-       .menu = "File/Save",
-       .help =
-           "Save the tuned scenario (to PATH, else to the Save field's file); a script overwrites",
-       .run = [](AppUi& ui, const CommandArgs& a, Src s) {
-         const std::string path = a.Has(0) ? a.Text(0) : std::string(ui.state().save_path);
-         return ui.CmdSave(path, s == Src::kScript);
-       }});
-  row({.name = "save-as",
-       .args = {Initial(Text("PATH", "a file to write"),
-                        [](const AppUi& ui) { return std::string(ui.state().save_path); })},
-       .menu = "File/Save as…",
-       .help = "Save the tuned scenario to PATH (asks before overwriting; a script overwrites)",
-       .run = [](AppUi& ui, const CommandArgs& a, Src s) {
-         return ui.CmdSave(a.Text(0), s == Src::kScript);
-       }});
   row({.name = "save-session",
        .args = {Initial(Text("PATH", "a session file to write"),
                         [](const AppUi& ui) { return std::string(ui.state().session_path); })},
@@ -424,7 +387,7 @@ std::vector<Command> WindowRows() {
 // The parts whose rows make the table, in this order (see the file's comment).
 using RowsOf = std::vector<Command> (*)();
 const RowsOf kPanelOrder[] = {
-    ScenarioRows, RunPanel::Rows,      ParameterRows,               ViewRows,
+    ScenarioPanel::Rows, SessionRows, RunPanel::Rows,      ParameterRows,               ViewRows,
     PlotsPanel::Rows, ComparePanel::Rows, HistoryPanel::Rows,          UndoRows,     TimelinePanel::Rows,
     FormationEditorPanel::Rows, PaletteRows,                 LessonPanel::Rows,
     WindowRows,

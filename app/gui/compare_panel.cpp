@@ -48,11 +48,6 @@ void ComparePanel::Note(const std::string& key, const std::string& value) {
   ctx_.record->Add(note);
 }
 
-std::string ComparePanel::Refuse(const std::string& why) {
-  ctx_.SetStatus(why, true);
-  return why;
-}
-
 std::string ComparePanel::PinReplay(std::shared_ptr<const sim::ScenarioSource> source, sim::RunLog log,
                              long steps, const std::string& origin) {
   auto pin = std::make_unique<PinnedRun>();

@@ -94,8 +94,6 @@ class ComparePanel : public Panel {
                         long steps, const std::string& origin);
   /// A note in the session record (pin, unpin, seeds) at the live run's step.
   void Note(const std::string& key, const std::string& value);
-  /// Shows `why` in red in the status line and returns it.
-  std::string Refuse(const std::string& why);
 
   const PanelContext& ctx_;
   std::vector<std::unique_ptr<PinnedRun>> pins_;

@@ -18,10 +18,10 @@ namespace formsim::app {
 
 std::string ComparePanel::CmdSeeds(int n) {
   if (mc_.run && !mc_.run->finished()) {
-    return Refuse("seeds: a Monte Carlo is running (cancel it first)");
+    return ctx_.Refuse("seeds: a Monte Carlo is running (cancel it first)");
   }
   if (n < 1) {
-    return Refuse("seeds: give at least 1 seed");
+    return ctx_.Refuse("seeds: give at least 1 seed");
   }
   // What a reset would run with, without the seed: the seeds are the Monte Carlo's.
   std::vector<sim::Override> sets;
@@ -41,7 +41,7 @@ std::string ComparePanel::CmdSeeds(int n) {
     mc_.run = std::make_unique<sim::MonteCarlo>(ctx_.session().source(), sets, seeds, threads);
   } catch (const std::exception& e) {
     mc_ = MonteCarloState();
-    return Refuse(std::string("seeds: ") + e.what());
+    return ctx_.Refuse(std::string("seeds: ") + e.what());
   }
   mc_.seeds = n;
   mc_.values = values;
@@ -54,7 +54,7 @@ std::string ComparePanel::CmdSeeds(int n) {
 
 std::string ComparePanel::CmdCancelSeeds() {
   if (!mc_.run || mc_.run->finished()) {
-    return Refuse("cancel-seeds: no Monte Carlo is running");
+    return ctx_.Refuse("cancel-seeds: no Monte Carlo is running");
   }
   mc_.run->Cancel();
   ctx_.SetStatus("Monte Carlo: cancelling (the runs under way stop at their next step)");

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "app/gui/command_row_makers.hpp"
+#include "app/gui/scenario_panel.hpp"
 #include "app/gui/ui.hpp"
 #include "app/render/fonts.hpp"
 #include "app/render/long_text.hpp"
@@ -128,7 +129,7 @@ std::vector<Command> LessonPanel::Rows() {
        .menu = "Help/Lessons",
        .help = "Open a lesson (listed by paper): its scenario, with its steps in the Lesson tab",
        .run = [](AppUi& ui, const CommandArgs& a, CommandSource) {
-         const std::string err = ui.CmdOpen(sim::ResolveLesson(a.Text(0)));
+         const std::string err = ui.Find<ScenarioPanel>()->CmdOpen(sim::ResolveLesson(a.Text(0)));
          if (err.empty()) ui.state().select_tab = "lesson";
          return err;
        }});

@@ -32,6 +32,11 @@ struct PanelContext {
   /// The window's options shared by the panels: the view, the theme, `playing`, the status
   /// text, the slider gesture (app/gui/ui.hpp).
   UiState* state = nullptr;
+  /// Replaces the session by `session` (a scenario loaded), keeping the old one's history;
+  /// `message` goes to the status line.
+  std::function<void(std::unique_ptr<sim::Session> session, const std::string& message)> adopt;
+  /// The session's scenario changed in place (reloaded): the panels follow its file and kind.
+  std::function<void()> scenario_changed;
   /// The status line's message (an error in red, also over the world view).
   std::function<void(const std::string& message, bool error)> set_status;
   /// Runs one script action "ACTION [ARGS]" through the command table (a command of another
@@ -47,6 +52,11 @@ struct PanelContext {
 
   void SetStatus(const std::string& message, bool error = false) const {
     set_status(message, error);
+  }
+  /// Shows `why` in red in the status line and returns it (a command's refusal).
+  std::string Refuse(const std::string& why) const {
+    set_status(why, true);
+    return why;
   }
 
   /// The panel of type P the window has now, or null.

@@ -44,10 +44,6 @@ std::vector<std::string> SpeedNames() {
   return out;
 }
 
-std::string Refuse(const PanelContext& ctx, const std::string& why) {
-  ctx.SetStatus(why, true);
-  return why;
-}
 
 }  // namespace
 
@@ -66,12 +62,12 @@ std::string RunPanel::CmdStep() {
   ctx_.run("live");
   ctx_.state->playing = false;
   if (ctx_.session().exp().finished()) {
-    return Refuse(ctx_, "the run has reached its duration: reset (r) to run again");
+    return ctx_.Refuse("the run has reached its duration: reset (r) to run again");
   }
   try {
     ctx_.session().Step();
   } catch (const std::exception& e) {
-    return Refuse(ctx_, std::string("step failed: ") + e.what());
+    return ctx_.Refuse(std::string("step failed: ") + e.what());
   }
   if (ctx_.session().exp().finished()) ctx_.Find<HistoryPanel>()->NoteRun(ctx_.session().exp().status());
   return "";

@@ -13,6 +13,7 @@
 #include "app/gui/history_panel.hpp"
 #include "app/gui/plots_panel.hpp"
 #include "app/gui/run_panel.hpp"
+#include "app/gui/scenario_panel.hpp"
 #include "app/gui/tables_panel.hpp"
 #include "app/gui/lesson_panel.hpp"
 #include "app/gui/timeline_panel.hpp"
@@ -31,26 +32,13 @@ void CopyString(char* dst, std::size_t n, const std::string& s) {
   std::snprintf(dst, n, "%s", s.c_str());
 }
 
-// What the scenario list offers: the shipped scenarios, then the lessons.
-std::vector<std::string> ShippedAndLessons() {
-  std::vector<std::string> out = sim::ShippedScenarios();
-  for (std::string& f : sim::ShippedLessons()) out.push_back(std::move(f));
-  return out;
-}
 
-// A list entry's name: its stem, lessons marked as such.
-std::string ListName(const std::string& file) {
-  const fs::path p(file);
-  const std::string stem = p.stem().string();
-  return p.parent_path().filename() == "lessons" ? "lesson: " + stem : stem;
-}
 
 }  // namespace
 
 AppUi::AppUi(std::unique_ptr<sim::Session> session) : owned_(std::move(session)) {
   session_ = owned_.get();
   MakePanels();
-  shipped_ = ShippedAndLessons();
   SyncScenarioFields();
   StartRecording(session_->cli_overrides(), 0);
   history_->LoadFor(session_->file());
@@ -58,7 +46,6 @@ AppUi::AppUi(std::unique_ptr<sim::Session> session) : owned_(std::move(session))
 
 AppUi::AppUi(sim::Session& borrowed) : session_(&borrowed) {
   MakePanels();
-  shipped_ = ShippedAndLessons();
   SyncScenarioFields();
   StartRecording(session_->cli_overrides(), 0);
   history_->LoadFor(session_->file());
@@ -79,6 +66,13 @@ void AppUi::MakePanels() {
   ctx_.state = &state_;
   ctx_.set_status = [this](const std::string& message, bool error) { SetStatus(message, error); };
   ctx_.shown = [this]() -> const sim::Experiment& { return ShownExperiment(); };
+  ctx_.adopt = [this](std::unique_ptr<sim::Session> session, const std::string& message) {
+    Adopt(std::move(session), message);
+  };
+  ctx_.scenario_changed = [this] {
+    SyncScenarioFields();
+    SyncKindPanel();  // the file may now hold another kind
+  };
   ctx_.run = [this](const std::string& line) { return RunScriptAction(line); };
   ctx_.replace_run = [this](const std::string& status, const std::function<std::string()>& change) {
     return ReplaceRun(status, change);
@@ -97,6 +91,9 @@ void AppUi::MakePanels() {
   auto plots = std::make_unique<PlotsPanel>(ctx_);
   plots_ = plots.get();
   panels_.push_back(std::move(plots));
+  auto scenario = std::make_unique<ScenarioPanel>(ctx_);
+  scenario_ = scenario.get();
+  panels_.push_back(std::move(scenario));
   auto run = std::make_unique<RunPanel>(ctx_);
   run_ = run.get();
   panels_.push_back(std::move(run));
@@ -141,14 +138,7 @@ void AppUi::SetStatus(const std::string& message, bool error) {
 // Per-scenario fields of the interface, after a load or reload.
 void AppUi::SyncScenarioFields() {
   const std::string current = session_->file();
-  // The loaded file's entry, or none (-1) for a file of the user's.
-  shipped_index_ = -1;
-  for (std::size_t i = 0; i < shipped_.size(); ++i)
-    if (fs::path(shipped_[i]).filename() == fs::path(current).filename())
-      shipped_index_ = static_cast<int>(i);
-  CopyString(state_.open_path, sizeof(state_.open_path), current);
-  CopyString(state_.save_path, sizeof(state_.save_path),
-             fs::path(current).stem().string() + "_tuned.yaml");
+  scenario_->SyncScenario();
   if (session_file_.empty())
     CopyString(state_.session_path, sizeof(state_.session_path),
                fs::path(current).stem().string() + "_session.yaml");
@@ -190,73 +180,9 @@ void AppUi::Advance(double wall_dt) {
 
 
 
-std::string AppUi::CmdReload() {
-  auto row = history_->PendingRow("reloaded");
-  const std::string err = session_->Reload();
-  if (!err.empty()) {
-    SetStatus(err, true);
-    return err;
-  }
-  if (row) history_->Add(std::move(*row));
-  SyncScenarioFields();
-  SyncKindPanel();  // the file may now hold another kind
-  SetStatus("reloaded " + session_->file());
-  return "";
-}
 
-std::string AppUi::CmdLoad(const std::string& name_or_path) {
-  std::string file;
-  try {
-    file = sim::ResolveScenario(name_or_path);
-  } catch (const std::exception& e) {
-    SetStatus(std::string("cannot load: ") + e.what(), true);
-    return state_.status;
-  }
-  return CmdOpen(file);
-}
 
-std::string AppUi::CmdOpen(const std::string& path) {
-  // Copy first: `path` may refer to state that the new session replaces.
-  const std::string file = path;
-  try {
-    Adopt(std::make_unique<sim::Session>(file, std::vector<sim::Override>{}), "loaded " + file);
-  } catch (const std::exception& e) {
-    SetStatus(std::string("cannot load, the current scenario stays: ") + e.what(), true);
-    return state_.status;
-  }
-  return "";
-}
 
-std::string AppUi::CmdSave(const std::string& path, bool overwrite) {
-  if (path.empty()) {
-    SetStatus("save: give a file name", true);
-    return state_.status;
-  }
-  try {
-    std::string note;
-    if (session_->Save(path, overwrite, &note) == sim::Session::SaveResult::kNeedsConfirmation) {
-      confirm_overwrite_ = true;
-      SetStatus(path + " exists: confirm to overwrite");
-      return "";
-    }
-    std::string also;
-    if (!history_->history().empty()) {
-      // The history goes beside the scenario and comes back when it is opened.
-      const std::string hist = sim::RunHistory::PathFor(path);
-      try {
-        history_->history().Save(hist);
-        also = ", history in " + hist;
-      } catch (const std::exception& e) {
-        also = "; the history was not saved: " + std::string(e.what());
-      }
-    }
-    SetStatus("saved " + path + (note.empty() ? "" : " (" + note + ")") + also);
-  } catch (const std::exception& e) {
-    SetStatus(std::string("save failed: ") + e.what(), true);
-    return state_.status;
-  }
-  return "";
-}
 
 std::string AppUi::CmdEdit(const std::string& key, const std::string& value, bool continues_drag) {
   const std::string err = session_->Edit(key, value, "GUI edit", continues_drag);
@@ -428,7 +354,7 @@ void AppUi::Draw(ImVec2 display, const Fonts& fonts, bool interactive) {
 void AppUi::DrawControlPanel(const Fonts& fonts, bool interactive) {
   (void)interactive;
   DrawRestoreBanner();
-  if (ImGui::CollapsingHeader("Scenario", ImGuiTreeNodeFlags_DefaultOpen)) DrawScenarioSection();
+  if (ImGui::CollapsingHeader("Scenario", ImGuiTreeNodeFlags_DefaultOpen)) scenario_->Draw(fonts);
   if (ImGui::CollapsingHeader("Run", ImGuiTreeNodeFlags_DefaultOpen)) run_->Draw(fonts);
   if (ImGui::CollapsingHeader("Compare", ImGuiTreeNodeFlags_DefaultOpen)) compare_->Draw(fonts);
   SyncKindPanel();  // a button above may have loaded another scenario
@@ -438,63 +364,6 @@ void AppUi::DrawControlPanel(const Fonts& fonts, bool interactive) {
   DrawMessagesSection();
 }
 
-void AppUi::DrawScenarioSection() {
-  const sim::ExperimentSetup& setup = session_->exp().setup();
-  LongTextWrapped("name", setup.name, 300);  // texts of any length (app/render/long_text.hpp)
-  if (!setup.description.empty()) {
-    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
-    LongTextWrapped("description", setup.description);
-    ImGui::PopStyleColor();
-  }
-  if (!shipped_.empty()) {
-    const std::string preview =
-        shipped_index_ >= 0 ? ListName(shipped_[shipped_index_]) : std::string("(a file of yours)");
-    ImGui::SetNextItemWidth(-70);
-    if (ImGui::BeginCombo("##shipped", preview.c_str())) {
-      for (std::size_t i = 0; i < shipped_.size(); ++i) {
-        const std::string name = ListName(shipped_[i]);
-        if (ImGui::Selectable(name.c_str(), static_cast<int>(i) == shipped_index_))
-          shipped_index_ = static_cast<int>(i);
-      }
-      ImGui::EndCombo();
-    }
-    ImGui::SameLine();
-    if (ImGui::Button("Load") && shipped_index_ >= 0) CmdOpen(shipped_[shipped_index_]);
-  }
-  ImGui::SetNextItemWidth(-70);
-  ImGui::InputText("##open", state_.open_path, sizeof(state_.open_path));
-  ImGui::SameLine();
-  if (ImGui::Button("Open")) CmdOpen(state_.open_path);
-  if (ImGui::Button("Reload file")) CmdReload();
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Reload from disk, dropping the tuned values");
-
-  ImGui::SetNextItemWidth(-70);
-  ImGui::InputText("##save", state_.save_path, sizeof(state_.save_path));
-  ImGui::SameLine();
-  if (ImGui::Button("Save")) CmdSave(state_.save_path, false);
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Write the scenario with the tuned values: the file's own text, comments\n"
-                      "and layout, with only the changed values rewritten");
-  if (confirm_overwrite_) ImGui::OpenPopup("Overwrite?");
-  if (ImGui::BeginPopupModal("Overwrite?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-    const bool shipped = sim::Session::IsShipped(state_.save_path);
-    ImGui::Text("%s already exists%s.", state_.save_path,
-                shipped ? " and is a shipped scenario" : "");
-    ImGui::Text("Overwrite it?");
-    if (ImGui::Button("Overwrite")) {
-      confirm_overwrite_ = false;
-      CmdSave(state_.save_path, true);
-      ImGui::CloseCurrentPopup();
-    }
-    ImGui::SameLine();
-    if (ImGui::Button("Cancel")) {
-      confirm_overwrite_ = false;
-      SetStatus("not saved");
-      ImGui::CloseCurrentPopup();
-    }
-    ImGui::EndPopup();
-  }
-}
 
 
 

@@ -33,6 +33,7 @@ class ComparePanel;
 class HistoryPanel;
 class PlotsPanel;
 class RunPanel;
+class ScenarioPanel;
 class TablesPanel;
 class TimelinePanel;
 
@@ -52,8 +53,6 @@ struct UiState {
   std::string status;           ///< last message for the status line
   bool status_is_error = false;
   double status_time = 0;  ///< ImGui's clock when the status was set
-  char save_path[512] = "";
-  char open_path[512] = "";
   char session_path[512] = "";
   std::string gesture_key;  ///< the slider held since its last edit (its edits make one undo step)
   std::string select_tab;   ///< a tab of the right-hand window to bring to front once
@@ -130,14 +129,6 @@ class AppUi {
 
   // ---- Commands: what buttons, keys and scripts do. Each returns "" or why it was refused,
   // and leaves a message in the status line. None of them can end the program.
-  /// Re-reads the current file from disk (tuned values are dropped).
-  std::string CmdReload();
-  /// Loads a shipped scenario by name, or a path.
-  std::string CmdLoad(const std::string& name_or_path);
-  /// Opens a scenario file by path.
-  std::string CmdOpen(const std::string& path);
-  /// Saves the tuned scenario; without `overwrite` an existing file asks for confirmation.
-  std::string CmdSave(const std::string& path, bool overwrite);
   /// `continues_drag`: the same slider is still held since its last edit (one undo step).
   std::string CmdEdit(const std::string& key, const std::string& value,
                       bool continues_drag = false);
@@ -258,7 +249,6 @@ class AppUi {
   void Adopt(std::unique_ptr<sim::Session> session, const std::string& message);
   void SyncScenarioFields();
   void DrawControlPanel(const Fonts& fonts, bool interactive);
-  void DrawScenarioSection();
   void DrawViewSection();
   void DrawOverlayToggles();
   /// The help overlay (keys and mouse) over the world view.
@@ -284,14 +274,12 @@ class AppUi {
   ComparePanel* compare_ = nullptr;    ///< one of panels_: every window has one
   PlotsPanel* plots_ = nullptr;        ///< one of panels_: every window has one
   RunPanel* run_ = nullptr;            ///< one of panels_: every window has one
+  ScenarioPanel* scenario_ = nullptr;  ///< one of panels_: every window has one
   TablesPanel* tables_ = nullptr;      ///< one of panels_: every window has one
   std::function<void(sim::Experiment&)> run_setup_;
   std::unique_ptr<sim::Session> owned_;
   sim::Session* session_ = nullptr;
   UiState state_;
-  std::vector<std::string> shipped_;
-  int shipped_index_ = 0;
-  bool confirm_overwrite_ = false;
   AutoFit auto_fit_;
 
   // The session record (every panel notes what it does in it) and its crash-safe journal.
