@@ -20,6 +20,7 @@
 #include "app/gui/formation_editor_panel.hpp"
 #include "app/gui/history_panel.hpp"
 #include "app/gui/lesson_panel.hpp"
+#include "app/gui/parameters_panel.hpp"
 #include "app/gui/plots_panel.hpp"
 #include "app/gui/run_panel.hpp"
 #include "app/gui/scenario_panel.hpp"
@@ -43,18 +44,6 @@ using namespace rows;
 
 // ---- what the window offers now ----
 
-std::vector<std::string> ActionIds(const AppUi& ui) {
-  std::vector<std::string> out;
-  for (const sim::ActionSpec& a : ui.session().exp().Actions()) out.push_back(a.id);
-  return out;
-}
-
-std::vector<std::string> TunableKeys(const AppUi& ui) {
-  std::vector<std::string> out;
-  for (const sim::Param& p : ui.session().params().all()) out.push_back(p.key);
-  return out;
-}
-
 std::vector<std::string> OverlayNames(const AppUi&) {
   std::vector<std::string> out = {"all", "none", "default"};
   for (const sim::OverlayInfo& o : sim::Overlays()) out.push_back(o.name);
@@ -69,10 +58,6 @@ std::vector<std::string> ThemeList() {
 }
 
 // ---- when a command can run ----
-
-std::string NeedsActions(const AppUi& ui) {
-  return ActionIds(ui).empty() ? "this scenario offers no actions" : "";
-}
 
 // Session: the session record and its journal (app/gui/ui_session.cpp, ui_journal.cpp).
 std::vector<Command> SessionRows() {
@@ -103,69 +88,6 @@ std::vector<Command> SessionRows() {
                                                      : std::string();
            },
        .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdDiscardSession(); }});
-  return t;
-}
-
-// Parameters: the Parameters section: tunables and the scenario's actions.
-std::vector<Command> ParameterRows() {
-  std::vector<Command> t;
-  auto row = [&t](Command c) { t.push_back(std::move(c)); };
-  row({.name = "edit",
-       .args = {Offer(Text("KEY=VALUE", "a tunable's key, '=', and its new value"), TunableKeys)},
-       .menu = "Run/Edit a value…",
-       .help = "Change a tunable, checked as the loader would (live, or at the next reset)",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         const std::string& kv = a.Text(0);
-         const auto eq = kv.find('=');
-         if (eq == std::string::npos || eq == 0)
-           return "edit: KEY=VALUE expects a tunable's key, '=', and its new value, got '" +
-                  kv.substr(0, 80) + "'";
-         return ui.CmdEdit(kv.substr(0, eq), kv.substr(eq + 1));
-       }});
-  row({.name = "revert",
-       .args = {Offer(Text("KEY", "a tunable's key", ArgType::kWord), TunableKeys)},
-       .menu = "Run/Revert a value…",
-       .help = "Edit a tunable back to its value in the file (with --set)",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdRevert(a.Text(0)); }});
-  // The value entry, as the mouse and keyboard drive it (app/gui/value_entry.hpp).
-  auto needs_field = [](const AppUi& ui) {
-    return ui.state().value_entry.key().empty() ? std::string("no value field is open") : "";
-  };
-  row({.name = "field-open",
-       .args = {Offer(Text("KEY", "a tunable's key (a number)", ArgType::kWord), TunableKeys)},
-       .help = "Open the text entry of a tunable's field, as a double-click or Ctrl+click does",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdFieldOpen(a.Text(0)); },
-       .script_only = true});
-  row({.name = "field-type",
-       .args = {Text("TEXT", "characters to type")},
-       .help = "Type into the open field (nothing is applied until Enter)",
-       .disabled = needs_field,
-       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdFieldType(a.Text(0)); },
-       .script_only = true});
-  row({.name = "field-enter",
-       .help = "Enter in the open field: apply the value typed, or show why it is refused",
-       .disabled = needs_field,
-       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdFieldKey(true); },
-       .script_only = true});
-  row({.name = "field-escape",
-       .help = "Esc in the open field: close it, nothing applied",
-       .disabled = needs_field,
-       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdFieldKey(false); },
-       .script_only = true});
-  row({.name = "field-wheel",
-       .args = {Offer(Text("KEY", "a tunable's key (a number)", ArgType::kWord), TunableKeys),
-                Whole("STEPS", -1000, 1000)},
-       .help = "Turn the mouse wheel over a tunable's field: STEPS fine steps up (or down)",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         return ui.CmdFieldWheel(a.Text(0), static_cast<int>(a.Whole(1)));
-       },
-       .script_only = true});
-  row({.name = "action",
-       .args = {Offer(Text("ID", "an action of the scenario", ArgType::kWord), ActionIds)},
-       .menu = "Run/Scenario action",
-       .help = "Run an action the scenario offers (e.g. reload_rules), between two steps",
-       .disabled = NeedsActions,
-       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdAction(a.Text(0)); }});
   return t;
 }
 
@@ -291,31 +213,6 @@ std::vector<Command> ViewRows() {
   return t;
 }
 
-// Undo: undo and redo of edits (the history's rows are HistoryPanel::Rows).
-std::vector<Command> UndoRows() {
-  std::vector<Command> t;
-  auto row = [&t](Command c) { t.push_back(std::move(c)); };
-  row({.name = "undo",
-       .keys = {"Ctrl+Z"},
-       .menu = "Compare/Undo",
-       .help = "Undo the last edit or formation change",
-       .disabled =
-           [](const AppUi& ui) {
-             return ui.session().can_undo() ? std::string() : std::string("nothing to undo");
-           },
-       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdUndo(); }});
-  row({.name = "redo",
-       .keys = {"Ctrl+Y", "Ctrl+Shift+Z"},
-       .menu = "Compare/Redo",
-       .help = "Redo what was undone",
-       .disabled =
-           [](const AppUi& ui) {
-             return ui.session().can_redo() ? std::string() : std::string("nothing to redo");
-           },
-       .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdRedo(); }});
-  return t;
-}
-
 // Palette: the command palette.
 std::vector<Command> PaletteRows() {
   std::vector<Command> t;
@@ -387,8 +284,8 @@ std::vector<Command> WindowRows() {
 // The parts whose rows make the table, in this order (see the file's comment).
 using RowsOf = std::vector<Command> (*)();
 const RowsOf kPanelOrder[] = {
-    ScenarioPanel::Rows, SessionRows, RunPanel::Rows,      ParameterRows,               ViewRows,
-    PlotsPanel::Rows, ComparePanel::Rows, HistoryPanel::Rows,          UndoRows,     TimelinePanel::Rows,
+    ScenarioPanel::Rows, SessionRows, RunPanel::Rows,      ParametersPanel::Rows,               ViewRows,
+    PlotsPanel::Rows, ComparePanel::Rows, HistoryPanel::Rows,          ParametersPanel::UndoRows,     TimelinePanel::Rows,
     FormationEditorPanel::Rows, PaletteRows,                 LessonPanel::Rows,
     WindowRows,
 };

@@ -1,3 +1,4 @@
+#include "app/gui/parameters_panel.hpp"
 #include "app/gui/formation_editor_panel.hpp"
 
 #include <algorithm>
@@ -449,7 +450,7 @@ std::vector<Command> FormationEditorPanel::Rows() {
        .help = "Switch to the next formation shape, or the named one",
        .disabled = NeedsSwitching,
        .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         return ui.CmdAction(a.Has(0) ? "switch-formation:" + a.Text(0)
+         return ui.Find<ParametersPanel>()->CmdAction(a.Has(0) ? "switch-formation:" + a.Text(0)
                                       : std::string("switch-formation"));
        }});
   return t;

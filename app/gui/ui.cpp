@@ -11,6 +11,7 @@
 #include "app/gui/formation_editor_panel.hpp"
 #include "app/gui/compare_panel.hpp"
 #include "app/gui/history_panel.hpp"
+#include "app/gui/parameters_panel.hpp"
 #include "app/gui/plots_panel.hpp"
 #include "app/gui/run_panel.hpp"
 #include "app/gui/scenario_panel.hpp"
@@ -94,6 +95,9 @@ void AppUi::MakePanels() {
   auto scenario = std::make_unique<ScenarioPanel>(ctx_);
   scenario_ = scenario.get();
   panels_.push_back(std::move(scenario));
+  auto parameters = std::make_unique<ParametersPanel>(ctx_);
+  parameters_ = parameters.get();
+  panels_.push_back(std::move(parameters));
   auto run = std::make_unique<RunPanel>(ctx_);
   run_ = run.get();
   panels_.push_back(std::move(run));
@@ -184,18 +188,7 @@ void AppUi::Advance(double wall_dt) {
 
 
 
-std::string AppUi::CmdEdit(const std::string& key, const std::string& value, bool continues_drag) {
-  const std::string err = session_->Edit(key, value, "GUI edit", continues_drag);
-  if (!err.empty()) SetStatus("edit " + key + "=" + value + " refused: " + err, true);
-  return err;
-}
 
-std::string AppUi::CmdAction(const std::string& id) {
-  const std::string err = session_->Action(id);
-  if (!err.empty()) SetStatus(err, true);
-  else SetStatus("action " + id);
-  return err;
-}
 
 std::string AppUi::CmdScreenshot(const std::string& path) {
   state_.screenshot_requested = true;
@@ -203,34 +196,8 @@ std::string AppUi::CmdScreenshot(const std::string& path) {
   return "";
 }
 
-std::string AppUi::CmdUndo() {
-  const std::string text = session_->UndoText();
-  const std::string err = session_->Undo();
-  SetStatus(err.empty() ? "undo " + text : err, !err.empty() && session_->can_undo());
-  return err;
-}
 
-std::string AppUi::CmdRedo() {
-  const std::string text = session_->RedoText();
-  const std::string err = session_->Redo();
-  SetStatus(err.empty() ? "redo " + text : err, !err.empty() && session_->can_redo());
-  return err;
-}
 
-std::string AppUi::CmdRevert(const std::string& key) {
-  const std::string loaded = session_->LoadedValue(key);
-  if (loaded.empty()) {
-    const std::string why = "revert: no tunable '" + key + "'";
-    SetStatus(why, true);
-    return why;
-  }
-  const std::string err = session_->Edit(key, loaded, "revert");
-  if (!err.empty())
-    SetStatus("revert " + key + " refused: " + err, true);
-  else
-    SetStatus("reverted " + key + " to " + loaded);
-  return err;
-}
 
 std::string AppUi::RunScriptAction(const std::string& line) {
   std::string action, args;
@@ -294,7 +261,7 @@ void AppUi::HandleKeys() {
   // does a key in the frame between a double-click opening a value entry and its taking the
   // keyboard.
   if (io.WantTextInput || io.WantCaptureKeyboard || ImGui::IsAnyItemActive() ||
-      state_.value_entry.DrawnThisFrame())
+      parameters_->EntryDrawnThisFrame())
     return;
   if (io.KeyCtrl) {
     // The window's backend (GLFW) indexes letter keys by their upper-case ASCII code.
@@ -359,7 +326,7 @@ void AppUi::DrawControlPanel(const Fonts& fonts, bool interactive) {
   if (ImGui::CollapsingHeader("Compare", ImGuiTreeNodeFlags_DefaultOpen)) compare_->Draw(fonts);
   SyncKindPanel();  // a button above may have loaded another scenario
   if (kind_panel_) kind_panel_->Draw(fonts);
-  DrawParamSection();
+  parameters_->Draw(fonts);
   if (ImGui::CollapsingHeader("View")) DrawViewSection();
   DrawMessagesSection();
 }

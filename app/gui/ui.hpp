@@ -19,7 +19,6 @@
 #include "app/render/theme.hpp"
 #include "app/gui/tuning_state.hpp"
 #include "app/gui/ui_settings.hpp"
-#include "app/gui/value_entry.hpp"
 #include "app/render/camera.hpp"
 #include "app/render/view.hpp"
 #include "app/render/world_view.hpp"
@@ -31,6 +30,7 @@ namespace formsim::app {
 
 class ComparePanel;
 class HistoryPanel;
+class ParametersPanel;
 class PlotsPanel;
 class RunPanel;
 class ScenarioPanel;
@@ -79,8 +79,6 @@ struct UiState {
   int palette_selected = 0;
   std::vector<std::string> recent_commands;  ///< newest first, run from the menu or palette
   std::string open_menu;                     ///< `menu NAME`: a top-level menu to open once
-  std::string focus_param;                   ///< a tunable whose field takes the keyboard once
-  ValueEntry value_entry;                    ///< the tunable whose value is being typed
   /// The argument dialog of a command run from the menu or palette (none: "").
   std::string dialog_command;
   char dialog_args[3][1024] = {};
@@ -129,28 +127,6 @@ class AppUi {
 
   // ---- Commands: what buttons, keys and scripts do. Each returns "" or why it was refused,
   // and leaves a message in the status line. None of them can end the program.
-  /// `continues_drag`: the same slider is still held since its last edit (one undo step).
-  std::string CmdEdit(const std::string& key, const std::string& value,
-                      bool continues_drag = false);
-  std::string CmdAction(const std::string& id);
-  /// Asks for a screenshot of the next frame (the window writes it).
-  std::string CmdScreenshot(const std::string& path);
-  /// Undo / redo the last edit (Ctrl+Z / Ctrl+Y), through the normal edit path.
-  std::string CmdUndo();
-  std::string CmdRedo();
-  /// Edits `key` back to its value in the file (with the command line's --set).
-  std::string CmdRevert(const std::string& key);
-  /// The value entry of tunable `key` (a number), as a double-click on its slider opens it: its
-  /// section opens and the field takes the keyboard on the next frame.
-  std::string CmdFieldOpen(const std::string& key);
-  /// Types `text` into the open field, character by character as the keyboard does (through
-  /// ImGui's input queue: taken by the field that has the keyboard in the next frame).
-  std::string CmdFieldType(const std::string& text);
-  /// Enter (`commit`: the text typed is applied, or refused with the loader's reason and the
-  /// field stays open, red) or Esc (closed, nothing applied) in the open field.
-  std::string CmdFieldKey(bool commit);
-  /// `steps` notches of the mouse wheel over tunable `key`'s slider (a fine adjustment).
-  std::string CmdFieldWheel(const std::string& key, int steps);
   /// The world view back at the live end (the Timeline panel's `live`).
   std::string CmdLive();
   // ---- Teaching: overlays, legend, help, presentation (the formation editor is the
@@ -168,6 +144,8 @@ class AppUi {
   std::string CmdAngleUnit(const std::string& unit);
   /// Writes the session record (everything done so far, with steps) to `path`.
   std::string CmdSaveSession(const std::string& path);
+  /// Asks for a screenshot of the next frame (the window writes it).
+  std::string CmdScreenshot(const std::string& path);
   // ---- Crash-safe sessions (app/gui/ui_journal.cpp): the journal of the record and its restore.
   /// Journals the record from now on into a new journal in `dir` (sim::JournalDir()), flushed
   /// at every event, so a crash leaves a session `formsim replay` reproduces.
@@ -256,7 +234,6 @@ class AppUi {
   /// Presentation mode's small bar of buttons, top right of the world view.
   void DrawPresentationBar(ImVec2 min, ImVec2 max);
   void SaveSettings();
-  void DrawParamSection();
   void DrawMessagesSection();
   void DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool interactive);
   void DrawWorldMouse(const View& view);
@@ -272,6 +249,7 @@ class AppUi {
   TimelinePanel* timeline_ = nullptr;  ///< one of panels_: every window has one
   HistoryPanel* history_ = nullptr;    ///< one of panels_: every window has one
   ComparePanel* compare_ = nullptr;    ///< one of panels_: every window has one
+  ParametersPanel* parameters_ = nullptr;  ///< one of panels_: every window has one
   PlotsPanel* plots_ = nullptr;        ///< one of panels_: every window has one
   RunPanel* run_ = nullptr;            ///< one of panels_: every window has one
   ScenarioPanel* scenario_ = nullptr;  ///< one of panels_: every window has one

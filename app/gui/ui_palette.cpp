@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 
+#include "app/gui/parameters_panel.hpp"
 #include "app/gui/ui.hpp"
 
 namespace formsim::app {
@@ -142,7 +143,7 @@ void AppUi::DrawPalette(ImVec2 display) {
   const PaletteEntry e = entries[chosen];
   state_.palette = false;
   if (e.tunable) {
-    state_.focus_param = e.name;
+    parameters_->Focus(e.name);
     state_.present = false;  // the field is in the left-hand panel
     SetStatus("tunable " + e.name + ": type its value");
     return;

@@ -3,6 +3,7 @@
 /// background work of the panels: pin replays, the Monte Carlo (Compare), the timeline.
 #include <filesystem>
 
+#include "app/gui/parameters_panel.hpp"
 #include "app/gui/compare_panel.hpp"
 #include "app/gui/history_panel.hpp"
 #include "app/gui/timeline_panel.hpp"
@@ -54,7 +55,7 @@ void AppUi::UpdateBackground() {
 
 void AppUi::DropScenarioState() {
   compare_->Clear();
-  state_.value_entry.Close();
+  parameters_->Clear();
   timeline_->Forget();
   history_->Forget();
 }

@@ -2,6 +2,7 @@
 // command is reachable three ways (a click on its menu item, the palette, `--script`), runs in
 // a window (an OSMesa context, in-process; under ASan in the sanitizer suite), refuses bad
 // arguments naming the argument; keys, F1 help and the README's table come from the same rows.
+#include "app/gui/parameters_panel.hpp"
 #include "app/gui/command_table.hpp"
 
 #include <gtest/gtest.h>
@@ -237,9 +238,9 @@ TEST(CommandTable, EveryCommandIsFoundByThePalette) {
   EXPECT_FALSE(w.ui().state().palette);
   EXPECT_EQ(w.ui().state().status, "tunable robots.R2.follow.k_l: type its value");
   for (int i = 0; i < 3; ++i) w.Frame();
-  EXPECT_TRUE(w.ui().state().focus_param.empty()) << "the field was not drawn";
+  EXPECT_FALSE(w.ui().Find<ParametersPanel>()->FocusPending()) << "the field was not drawn";
   // The value entry (app/gui/value_entry.hpp) is open on it and has the keyboard.
-  EXPECT_TRUE(w.ui().state().value_entry.IsOpen("robots.R2.follow.k_l"));
+  EXPECT_EQ(w.ui().Find<ParametersPanel>()->EntryKey(), "robots.R2.follow.k_l");
   EXPECT_TRUE(ImGui::GetIO().WantTextInput)
       << "the tunable's field did not take the keyboard (active " << ImGui::GetActiveID() << ")";
 }

@@ -9,6 +9,7 @@
 #include <functional>
 #include <map>
 
+#include "app/gui/parameters_panel.hpp"
 #include "app/render/imgui_layer.hpp"
 #include "app/render/offscreen_context.hpp"
 #include "app/gui/ui.hpp"
@@ -55,7 +56,7 @@ TEST(GuiKeys, TypingIntoAFieldNeverTriggersAShortcut) {
 TEST(GuiKeys, CtrlZAndCtrlYUndoAndRedoEdits) {
   Window w;
   const std::string key = "robots.R2.follow.k_l";
-  ASSERT_EQ(w.ui().CmdEdit(key, "0.4"), "");
+  ASSERT_EQ(w.ui().Find<ParametersPanel>()->CmdEdit(key, "0.4"), "");
   w.Frame();
   w.Frame([&](ImGuiIO& io) {
     io.MousePos = ImVec2(kW / 2, kH / 2);
@@ -89,9 +90,9 @@ TEST(GuiKeys, NothingInTheParameterPanelMovesWhenAnEditIsMade) {
   for (const auto& [p, id] : before) widgets += id != 0;
   ASSERT_GT(widgets, 20);
   // A live edit, an edit waiting for a reset (↻), both marked edited (↺).
-  ASSERT_EQ(w.ui().CmdEdit("robots.R2.follow.k_l", "0.4"), "");
-  ASSERT_EQ(w.ui().CmdEdit("formation.settle_time", "0.5"), "");
-  ASSERT_EQ(w.ui().CmdEdit("robots.R3.follow.k_l", "0.3"), "");
+  ASSERT_EQ(w.ui().Find<ParametersPanel>()->CmdEdit("robots.R2.follow.k_l", "0.4"), "");
+  ASSERT_EQ(w.ui().Find<ParametersPanel>()->CmdEdit("formation.settle_time", "0.5"), "");
+  ASSERT_EQ(w.ui().Find<ParametersPanel>()->CmdEdit("robots.R3.follow.k_l", "0.3"), "");
   w.Frame();
   EXPECT_TRUE(w.ui().session().IsEdited("formation.settle_time"));
   const auto after = probe();
@@ -100,7 +101,7 @@ TEST(GuiKeys, NothingInTheParameterPanelMovesWhenAnEditIsMade) {
     EXPECT_EQ(after.at(p), id) << "the widget at (" << p.first << ", " << p.second << ") moved";
   }
   // And back: reverting puts the marks away without moving anything either.
-  ASSERT_EQ(w.ui().CmdRevert("formation.settle_time"), "");
+  ASSERT_EQ(w.ui().Find<ParametersPanel>()->CmdRevert("formation.settle_time"), "");
   w.Frame();
   const auto reverted = probe();
   for (const auto& [p, id] : before) {

@@ -5,6 +5,7 @@
 // - in-process with synthetic mouse input: a double-click on a slider opens the entry and does
 //   not set the value under the mouse;
 // - the comparison table cuts runs of different lengths to their common span (a branched pin).
+#include "app/gui/parameters_panel.hpp"
 #include "app/gui/value_entry.hpp"
 
 #include <gtest/gtest.h>
@@ -109,7 +110,7 @@ TEST(ValueEntry, ADoubleClickOnASliderOpensTheEntryAndSetsNothing) {
     press(false);
     press(true);
     press(false);
-    opened = w.ui().state().value_entry.key();
+    opened = w.ui().Find<ParametersPanel>()->EntryKey();
   }
   ASSERT_FALSE(opened.empty()) << "no double-click opened a field";
   EXPECT_FALSE(w.ui().session().can_undo()) << "the double-click made an edit";
@@ -126,16 +127,16 @@ TEST(ValueEntry, ADoubleClickOnASliderOpensTheEntryAndSetsNothing) {
   w.Frame([](ImGuiIO& io) { io.KeysDown[13] = true; });  // Enter (the window's key map)
   w.Frame();
   EXPECT_EQ(w.ui().session().EffectiveValue(opened), "0.5");
-  EXPECT_FALSE(w.ui().state().value_entry.IsOpen(opened));
+  EXPECT_NE(w.ui().Find<ParametersPanel>()->EntryKey(), opened);
   // Esc closes it with nothing applied.
   ImGui::GetIO().KeyMap[ImGuiKey_Escape] = 27;
-  ASSERT_EQ(w.ui().CmdFieldOpen(opened), "");
+  ASSERT_EQ(w.ui().Find<ParametersPanel>()->CmdFieldOpen(opened), "");
   w.Frame();
   w.Frame();
   w.Frame([](ImGuiIO& io) { io.AddInputCharacter('9'); });
   w.Frame([](ImGuiIO& io) { io.KeysDown[27] = true; });
   w.Frame();
-  EXPECT_FALSE(w.ui().state().value_entry.IsOpen(opened));
+  EXPECT_NE(w.ui().Find<ParametersPanel>()->EntryKey(), opened);
   EXPECT_EQ(w.ui().session().EffectiveValue(opened), "0.5");
 }
 

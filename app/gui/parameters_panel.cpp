@@ -1,4 +1,4 @@
-/// \file The generic parameter panel: every tunable of the scenario's ParamTable (declared once,
+/// \file The Parameters panel (app/gui/parameters_panel.hpp), drawn: every tunable of the scenario's ParamTable (declared once,
 /// where the scenario reader reads it), grouped by its group path ("Gains/R2" -> header
 /// "Gains", node "R2"), plus the experiment's action buttons. Widgets never write the
 /// experiment: they ask the session for an edit, which checks it against the whole scenario and
@@ -17,9 +17,15 @@
 
 #include "app/render/display_unit.hpp"
 #include "app/render/long_text.hpp"
+#include "app/gui/command_row_makers.hpp"
+#include "app/gui/parameters_panel.hpp"
 #include "app/gui/ui.hpp"
 #include "app/gui/value_entry.hpp"
+#include "sim/session/session.hpp"
 #include "sim/core/number_format.hpp"
+
+// Each row names only the fields it sets; the others keep their defaults on purpose.
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
 
 namespace formsim::app {
 namespace {
@@ -248,11 +254,28 @@ RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks&
   return in;
 }
 
+// What the rows offer: the tunables, the scenario's actions.
+std::vector<std::string> TunableKeys(const AppUi& ui) {
+  std::vector<std::string> out;
+  for (const sim::Param& p : ui.session().params().all()) out.push_back(p.key);
+  return out;
+}
+
+std::vector<std::string> ActionIds(const AppUi& ui) {
+  std::vector<std::string> out;
+  for (const sim::ActionSpec& a : ui.session().exp().Actions()) out.push_back(a.id);
+  return out;
+}
+
+std::string NeedsActions(const AppUi& ui) {
+  return ActionIds(ui).empty() ? "this scenario offers no actions" : "";
+}
+
 }  // namespace
 
-void AppUi::DrawParamSection() {
-  const auto& params = session_->params().all();
-  const auto actions = session_->exp().Actions();
+void ParametersPanel::Draw(const Fonts&) {
+  const auto& params = ctx_.session().params().all();
+  const auto actions = ctx_.session().exp().Actions();
   // Groups in order of first appearance; within a head group, sub-groups likewise. One pass
   // over the parameters (a thousand robots declare tens of thousands in thousands of groups).
   std::vector<std::string> heads;
@@ -279,11 +302,11 @@ void AppUi::DrawParamSection() {
   std::vector<Asked> edits;
   std::vector<std::string> reverts;
   std::vector<std::string> run_actions;
-  const auto waiting = session_->waiting_for_reset();
+  const auto waiting = ctx_.session().waiting_for_reset();
   for (const std::string& h : heads) {
     const std::string header = (h.empty() ? std::string("Parameters") : Shorten(h, 120)) + "###grp_" + h;
     // The palette asked for a tunable: open the way to its field.
-    const sim::Param* focus = state_.focus_param.empty() ? nullptr : session_->params().Find(state_.focus_param);
+    const sim::Param* focus = focus_param_.empty() ? nullptr : ctx_.session().params().Find(focus_param_);
     if (focus != nullptr && Head(focus->tune.group) == h) ImGui::SetNextItemOpen(true);
     if (!ImGui::CollapsingHeader(header.c_str(), ImGuiTreeNodeFlags_DefaultOpen)) continue;
     // Sub-groups start open unless there are many (one per robot of a swarm).
@@ -308,21 +331,21 @@ void AppUi::DrawParamSection() {
           const auto w = waiting.find(p.key);
           RowMarks marks;
           marks.waiting = w != waiting.end();
-          marks.edited = session_->IsEdited(p.key);
-          marks.loaded = session_->LoadedValue(p.key);
-          marks.refusal = session_->refusal(p.key);
+          marks.edited = ctx_.session().IsEdited(p.key);
+          marks.loaded = ctx_.session().LoadedValue(p.key);
+          marks.refusal = ctx_.session().refusal(p.key);
           const std::string& shown = marks.waiting ? w->second : p.Text();
-          if (p.key == state_.focus_param) {
+          if (p.key == focus_param_) {
             ImGui::SetScrollHereY(0.3f);
             // A number is typed into the value entry; a switch or a choice takes the keyboard.
             const bool number =
                 p.kind == sim::Param::Kind::kDouble || p.kind == sim::Param::Kind::kInt;
             if (!number) ImGui::SetKeyboardFocusHere();
-            else if (!state_.value_entry.IsOpen(p.key))
-              state_.value_entry.Open(p.key, ParamEntryText(p, shown, state_.settings.degrees));
-            state_.focus_param.clear();
+            else if (!value_entry_.IsOpen(p.key))
+              value_entry_.Open(p.key, ParamEntryText(p, shown, ctx_.state->settings.degrees));
+            focus_param_.clear();
           }
-          const RowInput in = ParamRow(p, shown, marks, state_.settings.degrees, state_.value_entry);
+          const RowInput in = ParamRow(p, shown, marks, ctx_.state->settings.degrees, value_entry_);
           if (!in.value.empty()) edits.push_back({p.key, in.value, in.held});
           committed = committed || in.entry;
           if (in.revert) reverts.push_back(p.key);
@@ -341,11 +364,144 @@ void AppUi::DrawParamSection() {
   // of a slider held since its last edit continue that edit (one undo step).
   if (committed) CmdFieldKey(true);
   for (const Asked& e : edits) {
-    CmdEdit(e.key, e.value, e.held && state_.gesture_key == e.key);
-    if (e.held) state_.gesture_key = e.key;
+    CmdEdit(e.key, e.value, e.held && ctx_.state->gesture_key == e.key);
+    if (e.held) ctx_.state->gesture_key = e.key;
   }
   for (const auto& key : reverts) CmdRevert(key);
   for (const auto& id : run_actions) CmdAction(id);
+}
+
+std::string ParametersPanel::CmdEdit(const std::string& key, const std::string& value, bool continues_drag) {
+  const std::string err = ctx_.session().Edit(key, value, "GUI edit", continues_drag);
+  if (!err.empty()) ctx_.SetStatus("edit " + key + "=" + value + " refused: " + err, true);
+  return err;
+}
+
+std::string ParametersPanel::CmdAction(const std::string& id) {
+  const std::string err = ctx_.session().Action(id);
+  if (!err.empty()) ctx_.SetStatus(err, true);
+  else ctx_.SetStatus("action " + id);
+  return err;
+}
+
+std::string ParametersPanel::CmdUndo() {
+  const std::string text = ctx_.session().UndoText();
+  const std::string err = ctx_.session().Undo();
+  ctx_.SetStatus(err.empty() ? "undo " + text : err, !err.empty() && ctx_.session().can_undo());
+  return err;
+}
+
+std::string ParametersPanel::CmdRedo() {
+  const std::string text = ctx_.session().RedoText();
+  const std::string err = ctx_.session().Redo();
+  ctx_.SetStatus(err.empty() ? "redo " + text : err, !err.empty() && ctx_.session().can_redo());
+  return err;
+}
+
+std::string ParametersPanel::CmdRevert(const std::string& key) {
+  const std::string loaded = ctx_.session().LoadedValue(key);
+  if (loaded.empty()) {
+    const std::string why = "revert: no tunable '" + key + "'";
+    ctx_.SetStatus(why, true);
+    return why;
+  }
+  const std::string err = ctx_.session().Edit(key, loaded, "revert");
+  if (!err.empty())
+    ctx_.SetStatus("revert " + key + " refused: " + err, true);
+  else
+    ctx_.SetStatus("reverted " + key + " to " + loaded);
+  return err;
+}
+
+std::vector<Command> ParametersPanel::Rows() {
+  using namespace rows;
+  using Src = CommandSource;
+  auto panel = [](AppUi& ui) { return ui.Find<ParametersPanel>(); };
+  std::vector<Command> t;
+  auto row = [&t](Command c) { t.push_back(std::move(c)); };
+  row({.name = "edit",
+       .args = {Offer(Text("KEY=VALUE", "a tunable's key, '=', and its new value"), TunableKeys)},
+       .menu = "Run/Edit a value…",
+       .help = "Change a tunable, checked as the loader would (live, or at the next reset)",
+       .run = [panel](AppUi& ui, const CommandArgs& a, Src) {
+         const std::string& kv = a.Text(0);
+         const auto eq = kv.find('=');
+         if (eq == std::string::npos || eq == 0)
+           return "edit: KEY=VALUE expects a tunable's key, '=', and its new value, got '" +
+                  kv.substr(0, 80) + "'";
+         return panel(ui)->CmdEdit(kv.substr(0, eq), kv.substr(eq + 1));
+       }});
+  row({.name = "revert",
+       .args = {Offer(Text("KEY", "a tunable's key", ArgType::kWord), TunableKeys)},
+       .menu = "Run/Revert a value…",
+       .help = "Edit a tunable back to its value in the file (with --set)",
+       .run = [panel](AppUi& ui, const CommandArgs& a, Src) { return panel(ui)->CmdRevert(a.Text(0)); }});
+  // The value entry, as the mouse and keyboard drive it (app/gui/value_entry.hpp).
+  auto needs_field = [](const AppUi& ui) {
+    return ui.Find<ParametersPanel>()->EntryKey().empty() ? std::string("no value field is open") : "";
+  };
+  row({.name = "field-open",
+       .args = {Offer(Text("KEY", "a tunable's key (a number)", ArgType::kWord), TunableKeys)},
+       .help = "Open the text entry of a tunable's field, as a double-click or Ctrl+click does",
+       .run = [panel](AppUi& ui, const CommandArgs& a, Src) { return panel(ui)->CmdFieldOpen(a.Text(0)); },
+       .script_only = true});
+  row({.name = "field-type",
+       .args = {Text("TEXT", "characters to type")},
+       .help = "Type into the open field (nothing is applied until Enter)",
+       .disabled = needs_field,
+       .run = [panel](AppUi& ui, const CommandArgs& a, Src) { return panel(ui)->CmdFieldType(a.Text(0)); },
+       .script_only = true});
+  row({.name = "field-enter",
+       .help = "Enter in the open field: apply the value typed, or show why it is refused",
+       .disabled = needs_field,
+       .run = [panel](AppUi& ui, const CommandArgs&, Src) { return panel(ui)->CmdFieldKey(true); },
+       .script_only = true});
+  row({.name = "field-escape",
+       .help = "Esc in the open field: close it, nothing applied",
+       .disabled = needs_field,
+       .run = [panel](AppUi& ui, const CommandArgs&, Src) { return panel(ui)->CmdFieldKey(false); },
+       .script_only = true});
+  row({.name = "field-wheel",
+       .args = {Offer(Text("KEY", "a tunable's key (a number)", ArgType::kWord), TunableKeys),
+                Whole("STEPS", -1000, 1000)},
+       .help = "Turn the mouse wheel over a tunable's field: STEPS fine steps up (or down)",
+       .run = [panel](AppUi& ui, const CommandArgs& a, Src) {
+         return panel(ui)->CmdFieldWheel(a.Text(0), static_cast<int>(a.Whole(1)));
+       },
+       .script_only = true});
+  row({.name = "action",
+       .args = {Offer(Text("ID", "an action of the scenario", ArgType::kWord), ActionIds)},
+       .menu = "Run/Scenario action",
+       .help = "Run an action the scenario offers (e.g. reload_rules), between two steps",
+       .disabled = NeedsActions,
+       .run = [panel](AppUi& ui, const CommandArgs& a, Src) { return panel(ui)->CmdAction(a.Text(0)); }});
+  return t;
+}
+
+std::vector<Command> ParametersPanel::UndoRows() {
+  using Src = CommandSource;
+  auto panel = [](AppUi& ui) { return ui.Find<ParametersPanel>(); };
+  std::vector<Command> t;
+  auto row = [&t](Command c) { t.push_back(std::move(c)); };
+  row({.name = "undo",
+       .keys = {"Ctrl+Z"},
+       .menu = "Compare/Undo",
+       .help = "Undo the last edit or formation change",
+       .disabled =
+           [](const AppUi& ui) {
+             return ui.session().can_undo() ? std::string() : std::string("nothing to undo");
+           },
+       .run = [panel](AppUi& ui, const CommandArgs&, Src) { return panel(ui)->CmdUndo(); }});
+  row({.name = "redo",
+       .keys = {"Ctrl+Y", "Ctrl+Shift+Z"},
+       .menu = "Compare/Redo",
+       .help = "Redo what was undone",
+       .disabled =
+           [](const AppUi& ui) {
+             return ui.session().can_redo() ? std::string() : std::string("nothing to redo");
+           },
+       .run = [panel](AppUi& ui, const CommandArgs&, Src) { return panel(ui)->CmdRedo(); }});
+  return t;
 }
 
 }  // namespace formsim::app

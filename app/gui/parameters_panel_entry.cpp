@@ -1,9 +1,12 @@
-/// \file The value entry's commands (app/gui/value_entry.hpp): what a double-click, the keyboard
+/// \file The Parameters panel's value entry commands (app/gui/value_entry.hpp): what a double-click, the keyboard
 /// and the mouse wheel do to a tunable's field, for scripts and the command table. The field
 /// itself is drawn by the Parameters section (app/gui/ui_params.cpp).
 #include <imgui.h>
 
+#include "app/gui/parameters_panel.hpp"
 #include "app/gui/ui.hpp"
+#include "app/render/display_unit.hpp"
+#include "sim/session/session.hpp"
 #include "sim/core/number_format.hpp"
 
 namespace formsim::app {
@@ -26,38 +29,38 @@ const sim::Param* NumberParam(const sim::Session& s, const std::string& action,
 
 }  // namespace
 
-std::string AppUi::CmdFieldOpen(const std::string& key) {
+std::string ParametersPanel::CmdFieldOpen(const std::string& key) {
   std::string why;
-  const sim::Param* p = NumberParam(*session_, "field-open", key, &why);
+  const sim::Param* p = NumberParam(ctx_.session(), "field-open", key, &why);
   if (p == nullptr) {
-    SetStatus(why, true);
+    ctx_.SetStatus(why, true);
     return why;
   }
-  state_.value_entry.Open(
-      key, ParamEntryText(*p, session_->EffectiveValue(key), state_.settings.degrees));
-  state_.focus_param = key;  // opens its section and scrolls to it
+  value_entry_.Open(
+      key, ParamEntryText(*p, ctx_.session().EffectiveValue(key), ctx_.state->settings.degrees));
+  focus_param_ = key;  // opens its section and scrolls to it
   return "";
 }
 
-std::string AppUi::CmdFieldType(const std::string& text) {
-  if (state_.value_entry.key().empty()) {
+std::string ParametersPanel::CmdFieldType(const std::string& text) {
+  if (value_entry_.key().empty()) {
     const std::string why = "field-type: no value field is open (field-open KEY first)";
-    SetStatus(why, true);
+    ctx_.SetStatus(why, true);
     return why;
   }
   ImGui::GetIO().AddInputCharactersUTF8(text.c_str());
   return "";
 }
 
-std::string AppUi::CmdFieldKey(bool commit) {
-  if (state_.value_entry.key().empty()) {
+std::string ParametersPanel::CmdFieldKey(bool commit) {
+  if (value_entry_.key().empty()) {
     const std::string why = std::string(commit ? "field-enter" : "field-escape") +
                             ": no value field is open (field-open KEY first)";
-    SetStatus(why, true);
+    ctx_.SetStatus(why, true);
     return why;
   }
-  ValueEntry& entry = state_.value_entry;
-  const sim::Param* p = session_->params().Find(entry.key());
+  ValueEntry& entry = value_entry_;
+  const sim::Param* p = ctx_.session().params().Find(entry.key());
   if (!commit || p == nullptr || entry.Unchanged()) {
     entry.Close();  // Esc, or Enter on the text it opened with: nothing applied
     return "";
@@ -65,7 +68,7 @@ std::string AppUi::CmdFieldKey(bool commit) {
   // Applied once, or refused with the loader's reason: the field stays open and red, and
   // nothing is applied.
   const double scale = p->kind == sim::Param::Kind::kDouble
-                           ? ShownUnit(p->tune.unit, state_.settings.degrees).scale
+                           ? ShownUnit(p->tune.unit, ctx_.state->settings.degrees).scale
                            : 1.0;
   const std::string err = CmdEdit(entry.key(), entry.StoredText(scale));
   if (err.empty())
@@ -75,17 +78,17 @@ std::string AppUi::CmdFieldKey(bool commit) {
   return err;
 }
 
-std::string AppUi::CmdFieldWheel(const std::string& key, int steps) {
+std::string ParametersPanel::CmdFieldWheel(const std::string& key, int steps) {
   std::string why;
-  const sim::Param* p = NumberParam(*session_, "field-wheel", key, &why);
+  const sim::Param* p = NumberParam(ctx_.session(), "field-wheel", key, &why);
   if (p == nullptr) {
-    SetStatus(why, true);
+    ctx_.SetStatus(why, true);
     return why;
   }
   double v = p->value;
-  sim::ParseFiniteDouble(session_->EffectiveValue(key), &v);
+  sim::ParseFiniteDouble(ctx_.session().EffectiveValue(key), &v);
   const double scale = p->kind == sim::Param::Kind::kDouble
-                           ? ShownUnit(p->tune.unit, state_.settings.degrees).scale
+                           ? ShownUnit(p->tune.unit, ctx_.state->settings.degrees).scale
                            : 1.0;
   return CmdEdit(key, FineStep(*p, v, steps, scale));
 }
