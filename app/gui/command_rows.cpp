@@ -25,6 +25,7 @@
 #include "app/gui/run_panel.hpp"
 #include "app/gui/scenario_panel.hpp"
 #include "app/gui/timeline_panel.hpp"
+#include "app/gui/view_panel.hpp"
 #include "app/gui/ui.hpp"
 #include "sim/core/draw.hpp"
 #include "sim/core/number_format.hpp"
@@ -43,19 +44,6 @@ using Src = CommandSource;
 using namespace rows;
 
 // ---- what the window offers now ----
-
-std::vector<std::string> OverlayNames(const AppUi&) {
-  std::vector<std::string> out = {"all", "none", "default"};
-  for (const sim::OverlayInfo& o : sim::Overlays()) out.push_back(o.name);
-  return out;
-}
-
-std::vector<std::string> ThemeList() {
-  std::vector<std::string> out;
-  for (ThemeId id : {ThemeId::kLight, ThemeId::kDark, ThemeId::kPrint, ThemeId::kHighContrast})
-    out.push_back(GetTheme(id).name);
-  return out;
-}
 
 // ---- when a command can run ----
 
@@ -88,128 +76,6 @@ std::vector<Command> SessionRows() {
                                                      : std::string();
            },
        .run = [](AppUi& ui, const CommandArgs&, Src) { return ui.CmdDiscardSession(); }});
-  return t;
-}
-
-// View: the View section and the world view: camera, theme, overlays, legend, help, screenshots.
-std::vector<Command> ViewRows() {
-  std::vector<Command> t;
-  auto row = [&t](Command c) { t.push_back(std::move(c)); };
-  row({.name = "screenshot",
-       .args = {Optional(Text("PATH", "a PNG file to write"))},
-       .keys = {"s"},
-       .menu = "File/Screenshot",
-       .help = "Write the window as a PNG (to PATH, else a numbered name)",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         return ui.CmdScreenshot(a.Has(0) ? a.Text(0) : "");
-       }});
-  row({.name = "present",
-       .args = {OnOff()},
-       .keys = {"p"},
-       .key_args = "toggle",
-       .menu = "View/Presentation mode",
-       .help = "The world view fills the window, for a lecture room (Esc leaves)",
-       .checked = [](const AppUi& ui) { return ui.state().present; },
-       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdPresent(a.On(0)); }});
-  row({.name = "frame-formation",
-       .args = {OnOff()},
-       .key_args = "toggle",
-       .menu = "View/Frame the formation",
-       .help = "The camera frames the robots and their recent trails and follows them (always on "
-               "in presentation mode; zooming by hand pauses it until fit)",
-       .checked = [](const AppUi& ui) { return ui.state().frame_formation; },
-       .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         ui.state().frame_formation = a.On(0);
-         ui.state().camera.Fit();
-         return std::string();
-       }});
-  row({.name = "theme",
-       .args = {Initial(
-           Choice("NAME", ThemeList()),
-           [](const AppUi& ui) { return std::string(GetTheme(ui.state().theme).name); })},
-       .menu = "View/Theme",
-       .help = "Colours of the panels, the world view and the plots",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         ui.state().theme = ParseTheme(a.Text(0));
-         if (ImGui::GetCurrentContext() != nullptr) ApplyImGuiTheme(GetTheme(ui.state().theme));
-         return std::string();
-       }});
-  row({.name = "ui-scale",
-       .args = {Initial(
-           Offer(Real("SCALE", kMinUiScale, kMaxUiScale),
-                 [](const AppUi&) {
-                   return std::vector<std::string>{"1", "1.25", "1.5", "2", "2.5", "3"};
-                 }),
-           [](const AppUi& ui) { return sim::FormatDouble(ui.state().settings.ui_scale); })},
-       .menu = "View/UI scale",
-       .help = "Fonts and line widths, kept between runs",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdUiScale(a.Real(0)); }});
-  row({.name = "angle-unit",
-       .args = {Initial(Choice("UNIT", {"deg", "rad"}),
-                        [](const AppUi& ui) {
-                          return std::string(ui.state().settings.degrees ? "deg" : "rad");
-                        })},
-       .menu = "View/Angle unit",
-       .help = "Show angles in degrees or radians (stored values stay radians)",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdAngleUnit(a.Text(0)); }});
-  row({.name = "overlay",
-       .args = {Offer(Text("LIST", "overlay names, comma-separated (all, none, default, -NAME)"),
-                      OverlayNames)},
-       .menu = "View/Overlays",
-       .help = "What the law sees, drawn over the scene: applied to the overlays shown now",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdOverlay(a.Text(0)); }});
-  row({.name = "legend",
-       .args = {OnOff()},
-       .keys = {"l"},
-       .key_args = "toggle",
-       .menu = "View/Legend",
-       .help = "A legend of every mark in the world view",
-       .checked = [](const AppUi& ui) { return ui.state().legend; },
-       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdLegend(a.On(0)); }});
-  row({.name = "follow",
-       .args = {Initial(
-           Offer(Text("ROBOT", "a robot's name, or nobody", ArgType::kChoice), RobotNames),
-           [](const AppUi& ui) {
-             const auto names = RobotNames(ui);
-             const int f = ui.state().follow;
-             return f >= 0 && f + 1 < static_cast<int>(names.size()) ? names[f + 1] : names[0];
-           })},
-       .menu = "View/Follow",
-       .help = "Keep a robot in the middle of the world view (nobody: fit)",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         const auto names = RobotNames(ui);
-         for (std::size_t i = 0; i < names.size(); ++i)
-           if (names[i] == a.Text(0)) ui.state().follow = static_cast<int>(i) - 1;
-         ui.state().auto_fit = ui.state().follow < 0;
-         ui.state().fit_now = ui.state().follow < 0;
-         return std::string();
-       }});
-  row({.name = "fit",
-       .keys = {"f"},
-       .menu = "View/Fit everything",
-       .help = "Fit everything in view (and stop following)",
-       .run = [](AppUi& ui, const CommandArgs&, Src) {
-         ui.state().fit_now = true;
-         ui.state().camera.Fit();
-         ui.state().follow = -1;
-         return std::string();
-       }});
-  row({.name = "tab",
-       .args = {Choice("NAME", {"plots", "tables", "history", "summary", "lesson"})},
-       .menu = "View/Show tab",
-       .help = "Bring a tab of the right-hand window to the front",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         ui.state().select_tab = a.Text(0);
-         return std::string();
-       }});
-  row({.name = "help",
-       .args = {OnOff()},
-       .keys = {"F1", "?"},
-       .key_args = "toggle",
-       .menu = "Help/Keys and mouse",
-       .help = "The help overlay: every key and mouse gesture",
-       .checked = [](const AppUi& ui) { return ui.state().help; },
-       .run = [](AppUi& ui, const CommandArgs& a, Src) { return ui.CmdHelp(a.On(0)); }});
   return t;
 }
 
@@ -255,7 +121,7 @@ std::vector<Command> WindowRows() {
          else if (Panel* open = ui.PanelToDismiss())
            return open->Dismiss();  // the formation editor stops editing
          else if (s.present)
-           return ui.CmdPresent(false);
+           return ui.Find<ViewPanel>()->CmdPresent(false);
          return std::string();
        }});
   row({.name = "menu",
@@ -284,7 +150,7 @@ std::vector<Command> WindowRows() {
 // The parts whose rows make the table, in this order (see the file's comment).
 using RowsOf = std::vector<Command> (*)();
 const RowsOf kPanelOrder[] = {
-    ScenarioPanel::Rows, SessionRows, RunPanel::Rows,      ParametersPanel::Rows,               ViewRows,
+    ScenarioPanel::Rows, SessionRows, RunPanel::Rows,      ParametersPanel::Rows,               ViewPanel::Rows,
     PlotsPanel::Rows, ComparePanel::Rows, HistoryPanel::Rows,          ParametersPanel::UndoRows,     TimelinePanel::Rows,
     FormationEditorPanel::Rows, PaletteRows,                 LessonPanel::Rows,
     WindowRows,

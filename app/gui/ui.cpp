@@ -18,6 +18,7 @@
 #include "app/gui/tables_panel.hpp"
 #include "app/gui/lesson_panel.hpp"
 #include "app/gui/timeline_panel.hpp"
+#include "app/gui/view_panel.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/scenario/scenario_files.hpp"
 
@@ -101,6 +102,9 @@ void AppUi::MakePanels() {
   auto run = std::make_unique<RunPanel>(ctx_);
   run_ = run.get();
   panels_.push_back(std::move(run));
+  auto view = std::make_unique<ViewPanel>(ctx_);
+  view_ = view.get();
+  panels_.push_back(std::move(view));
   auto tables = std::make_unique<TablesPanel>(ctx_);
   tables_ = tables.get();
   panels_.push_back(std::move(tables));
@@ -294,8 +298,8 @@ void AppUi::Draw(ImVec2 display, const Fonts& fonts, bool interactive) {
   if (state_.present) {
     // Presentation: the world view fills the window; a small bar keeps the essentials.
     DrawWorldWindow(ImVec2(0, 0), display, fonts, interactive);
-    DrawPresentationBar(ImVec2(0, 0), display);
-    if (state_.help) DrawHelpOverlay(ImVec2(0, 0), display);
+    view_->DrawPresentationBar(ImVec2(0, 0), display);
+    if (state_.help) view_->DrawHelpOverlay(ImVec2(0, 0), display);
     overlays();
     return;
   }
@@ -314,7 +318,7 @@ void AppUi::Draw(ImVec2 display, const Fonts& fonts, bool interactive) {
 
   DrawWorldWindow(ImVec2(left_w, top), ImVec2(mid_w, h), fonts, interactive);
   DrawPlotsWindow(ImVec2(left_w + mid_w, top), ImVec2(display.x - left_w - mid_w, h), fonts);
-  if (state_.help) DrawHelpOverlay(ImVec2(left_w, top), ImVec2(left_w + mid_w, display.y));
+  if (state_.help) view_->DrawHelpOverlay(ImVec2(left_w, top), ImVec2(left_w + mid_w, display.y));
   overlays();
 }
 
@@ -327,62 +331,13 @@ void AppUi::DrawControlPanel(const Fonts& fonts, bool interactive) {
   SyncKindPanel();  // a button above may have loaded another scenario
   if (kind_panel_) kind_panel_->Draw(fonts);
   parameters_->Draw(fonts);
-  if (ImGui::CollapsingHeader("View")) DrawViewSection();
+  if (ImGui::CollapsingHeader("View")) view_->Draw(fonts);
   DrawMessagesSection();
 }
 
 
 
 
-void AppUi::DrawViewSection() {
-  if (ImGui::Button("Fit all (f)")) {
-    state_.fit_now = true;
-    state_.follow = -1;
-  }
-  ImGui::SameLine();
-  ImGui::Checkbox("auto-fit", &state_.auto_fit);
-  ImGui::SameLine();
-  ImGui::Checkbox("whole run", &state_.whole_run);
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip(
-        "auto-fit keeps everything seen since the start in view\n(off: follows the robots)");
-  const auto& robots = session_->exp().world().robots();
-  std::string preview = state_.follow >= 0 && state_.follow < static_cast<int>(robots.size())
-                            ? robots[state_.follow]->name()
-                            : "nobody";
-  ImGui::SetNextItemWidth(140);
-  if (ImGui::BeginCombo("follow", preview.c_str())) {
-    if (ImGui::Selectable("nobody", state_.follow < 0)) state_.follow = -1;
-    for (std::size_t i = 0; i < robots.size(); ++i)
-      if (ImGui::Selectable(robots[i]->name().c_str(), state_.follow == static_cast<int>(i))) {
-        state_.follow = static_cast<int>(i);
-        state_.auto_fit = false;
-      }
-    ImGui::EndCombo();
-  }
-  float zoom = static_cast<float>(state_.view.scale);
-  ImGui::SetNextItemWidth(140);
-  if (ImGui::SliderFloat("px per m", &zoom, 2.0f, 2000.0f, "%.0f", ImGuiSliderFlags_Logarithmic)) {
-    state_.view.scale = std::max(0.5f, zoom);
-    state_.auto_fit = false;
-  }
-  ImGui::Checkbox("grid", &state_.grid);
-  ImGui::SameLine();
-  ImGui::Checkbox("coordinates", &state_.coordinates);
-  ImGui::SetNextItemWidth(140);
-  if (ImGui::BeginCombo("theme", GetTheme(state_.theme).name)) {
-    for (ThemeId id : {ThemeId::kLight, ThemeId::kDark, ThemeId::kPrint, ThemeId::kHighContrast})
-      if (ImGui::Selectable(GetTheme(id).name, id == state_.theme)) {
-        state_.theme = id;
-        ApplyImGuiTheme(GetTheme(id));
-      }
-    ImGui::EndCombo();
-  }
-  if (ImGui::Button("Screenshot (s)")) state_.screenshot_requested = true;
-  ImGui::TextDisabled("wheel: zoom, right-drag: pan,\nleft-drag a robot or obstacle while paused");
-  ImGui::Separator();
-  DrawOverlayToggles();
-}
 
 void AppUi::DrawMessagesSection() {
   const auto& rejected = session_->rejected();

@@ -35,6 +35,7 @@ class PlotsPanel;
 class RunPanel;
 class ScenarioPanel;
 class TablesPanel;
+class ViewPanel;
 class TimelinePanel;
 
 /// State of the interface that is not simulation state.
@@ -129,19 +130,6 @@ class AppUi {
   // and leaves a message in the status line. None of them can end the program.
   /// The world view back at the live end (the Timeline panel's `live`).
   std::string CmdLive();
-  // ---- Teaching: overlays, legend, help, presentation (the formation editor is the
-  // formation kind's own panel, app/gui/formation_editor_panel.hpp).
-  /// Overlays of the scene: "NAME,..." as --overlay (all, none, default, -NAME), applied to the
-  /// ones shown now.
-  std::string CmdOverlay(const std::string& list);
-  std::string CmdLegend(bool on);
-  std::string CmdHelp(bool on);
-  /// Presentation mode: panels hidden, the world view fills the window.
-  std::string CmdPresent(bool on);
-  /// UI scale (fonts and line widths) 1 ... 3, kept between runs.
-  std::string CmdUiScale(double scale);
-  /// Angles shown in degrees or radians ("deg" / "rad"), kept between runs.
-  std::string CmdAngleUnit(const std::string& unit);
   /// Writes the session record (everything done so far, with steps) to `path`.
   std::string CmdSaveSession(const std::string& path);
   /// Asks for a screenshot of the next frame (the window writes it).
@@ -227,13 +215,6 @@ class AppUi {
   void Adopt(std::unique_ptr<sim::Session> session, const std::string& message);
   void SyncScenarioFields();
   void DrawControlPanel(const Fonts& fonts, bool interactive);
-  void DrawViewSection();
-  void DrawOverlayToggles();
-  /// The help overlay (keys and mouse) over the world view.
-  void DrawHelpOverlay(ImVec2 min, ImVec2 max);
-  /// Presentation mode's small bar of buttons, top right of the world view.
-  void DrawPresentationBar(ImVec2 min, ImVec2 max);
-  void SaveSettings();
   void DrawMessagesSection();
   void DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool interactive);
   void DrawWorldMouse(const View& view);
@@ -254,6 +235,7 @@ class AppUi {
   RunPanel* run_ = nullptr;            ///< one of panels_: every window has one
   ScenarioPanel* scenario_ = nullptr;  ///< one of panels_: every window has one
   TablesPanel* tables_ = nullptr;      ///< one of panels_: every window has one
+  ViewPanel* view_ = nullptr;          ///< one of panels_: every window has one
   std::function<void(sim::Experiment&)> run_setup_;
   std::unique_ptr<sim::Session> owned_;
   sim::Session* session_ = nullptr;
