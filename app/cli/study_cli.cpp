@@ -23,6 +23,7 @@
 #include "sim/core/run_output.hpp"
 #include "sim/scenario/scenario_files.hpp"
 #include "sim/scenario/scenario_save.hpp"
+#include "sim/study/scenario_set.hpp"
 #include "sim/study/sweep.hpp"
 #include "sim/study/sweep_tables.hpp"
 #include "sim/study/tune.hpp"
@@ -93,10 +94,12 @@ int CheckJobs(int jobs, const std::string& flag) {
   return jobs;
 }
 
-std::uint64_t ParseSampleSeed(const std::string& text) {
+// A 64-bit seed flag's value, read here rather than by CLI11 (which wrapped values beyond
+// 2^64-1 silently).
+std::uint64_t ParseSeedFlag(const std::string& text, const std::string& flag) {
   std::uint64_t v = 0;
   if (!sim::ParseUint64(text, &v))
-    throw std::runtime_error("--sample-seed '" + text + "': expected an integer in 0 ... 2^64-1");
+    throw std::runtime_error(flag + " '" + text + "': expected an integer in 0 ... 2^64-1");
   return v;
 }
 
@@ -112,8 +115,7 @@ int WriteSweepOutputs(const sim::SweepDefinition& def, const std::vector<sim::Sw
                       const std::string& out, std::string metric, SweepBand band, TitleMode titles,
                       bool figures, bool quiet) {
   const sim::SweepTables tables = sim::BuildSweepTables(def, records);
-  sim::WriteSweepTables(out, tables);
-  std::vector<std::string> wrote = {"runs.csv", "aggregate.csv"};
+  std::vector<std::string> wrote = sim::WriteSweepTables(out, tables);
   int rc = 0;
   if (figures && !tables.metrics.empty()) {
     if (metric.empty()) metric = tables.metrics[sim::DefaultMetric(tables)];
@@ -130,8 +132,11 @@ int WriteSweepOutputs(const sim::SweepDefinition& def, const std::vector<sim::Sw
       wrote.push_back(ranking);
       PlotData fig;
       const bool single = SweepFigure(def, tables, records, m, &fig, band);
-      std::vector<PlotData> panels =
-          single ? std::vector<PlotData>{} : SweepPanels(def, tables, m, band);
+      int columns = 2;
+      std::vector<PlotData> panels;
+      if (!single)
+        panels = def.MultiScenario() ? SweepScenarioPanels(def, tables, records, m, band, &columns)
+                                     : SweepPanels(def, tables, m, band);
       fig.title = TitleFor(fig.title, titles);
       for (PlotData& p : panels) p.title = TitleFor(p.title, titles);
       if (single || !panels.empty()) {
@@ -140,7 +145,7 @@ int WriteSweepOutputs(const sim::SweepDefinition& def, const std::vector<sim::Sw
           if (single)
             WriteFigurePng(fig, (fs::path(out) / name).string());
           else
-            WritePanelsPng(panels, (fs::path(out) / name).string());
+            WritePanelsPng(panels, (fs::path(out) / name).string(), 640, 440, columns);
           wrote.push_back(name);
         } catch (const std::exception& e) {
           std::fprintf(stderr,
@@ -177,6 +182,12 @@ StudyCommands::StudyCommands(CLI::App& app) {
   sweep_ = app.add_subcommand("sweep",
                               "Run a scenario for every combination of varied tunables and seeds");
   sweep_->add_option("scenario", scenario_, "Scenario name (see `formsim list`) or YAML path");
+  sweep_
+      ->add_option("--scenario", scenarios_,
+                   "One more scenario, repeatable, or @FILE (one per line): every scenario runs "
+                   "every point and seed; each must have every --vary key. The tables get a "
+                   "scenario column and aggregate_over_scenarios.csv")
+      ->take_all();
   sweep_
       ->add_option("--vary", vary_,
                    "KEY=SPEC: a list 0.1,0.2,0.4 (names for enums, 'all'), a range LO:HI:N, "
@@ -278,13 +289,14 @@ int StudyCommands::Run() {
 }
 
 int StudyCommands::Sweep() {
-  if (scenario_.empty())
+  if (scenario_.empty() && scenarios_.empty())
     throw std::runtime_error(
         "formsim sweep: give a scenario (or `sweep collect DIR... --out DIR`)");
   const SweepBand band = ParseSweepBand(band_);  // refused before anything runs
   const TitleMode titles = ParseTitleMode(titles_, "--titles");
-  const std::string file = sim::ResolveScenario(scenario_);
-  const sim::ScenarioSource source = sim::ScenarioSource::FromFile(file);
+  const std::vector<sim::ScenarioSource> sources =
+      sim::ReadScenarioSet(scenario_, scenarios_, "formsim sweep");
+  const std::string file = sources.front().file();
   // Given but empty (`--seeds ''`) is refused, never read as "the scenario's seed".
   const std::vector<std::uint64_t> seeds =
       sweep_->count("--seeds") == 0 ? std::vector<std::uint64_t>{} : sim::ParseSeeds(seeds_);
@@ -295,10 +307,14 @@ int StudyCommands::Sweep() {
   if (one_run && run_ < 0)
     throw std::runtime_error("--run " + std::to_string(run_) +
                              ": a run number is 0 or more (runs are numbered 0 ... N-1)");
-  const sim::SweepDefinition def =
-      sim::DefineSweep(source, sim::CliOverrides(sets_, -1), vary_, seeds,
-                       ParseSampleSeed(sample_seed_), static_cast<std::size_t>(max_runs_));
-  const std::string out = out_.empty() ? "out/sweep_" + fs::path(file).stem().string() : out_;
+  const sim::SweepDefinition def = sim::DefineSweep(
+      sources, sim::CliOverrides(sets_, -1), vary_, seeds,
+      ParseSeedFlag(sample_seed_, "--sample-seed"), static_cast<std::size_t>(max_runs_));
+  const std::string out = !out_.empty() ? out_
+                          : sources.size() == 1
+                              ? "out/sweep_" + sim::ScenarioStem(sources[0])
+                              : "out/sweep_" + sim::ScenarioStem(sources[0]) + "_" +
+                                    std::to_string(sources.size()) + "_scenarios";
   int shard_k = 1, shard_n = 1;
   if (!shard_.empty()) sim::ParseShard(shard_, &shard_k, &shard_n);
   const int jobs = CheckJobs(jobs_, "--jobs");
@@ -317,7 +333,7 @@ int StudyCommands::Sweep() {
       return 0;
     }
     InstallStopSignals();
-    const auto rec = sim::RunSweepRun(source, def, r, [] { return StopSignal() != 0; });
+    const auto rec = sim::RunSweepRun(sources, def, r, [] { return StopSignal() != 0; });
     if (!rec) return 128 + StopSignal();
     sim::WriteRecord(out, def, *rec);
     sim::SyncFileSystem(out);
@@ -329,7 +345,13 @@ int StudyCommands::Sweep() {
 
   if (print_jobs_) {
     sim::WriteManifest(out, def);
-    std::string common = ShellWord(SelfExe()) + " sweep " + ShellWord(fs::absolute(file).string());
+    // The scenarios by absolute path (a list file may change or move; the lines must not).
+    std::string common = ShellWord(SelfExe()) + " sweep";
+    if (sources.size() == 1)
+      common += " " + ShellWord(fs::absolute(file).string());
+    else
+      for (const sim::ScenarioSource& src : sources)
+        common += " --scenario " + ShellWord(fs::absolute(src.file()).string());
     for (const std::string& v : vary_) common += " --vary " + ShellWord(v);
     for (const std::string& s : sets_) common += " --set " + ShellWord(s);
     if (!seeds_.empty()) common += " --seeds " + ShellWord(seeds_);
@@ -353,7 +375,15 @@ int StudyCommands::Sweep() {
   RemoveDamaged(out, mine, quiet_);
   const std::vector<std::size_t> pending = sim::PendingRuns(out, mine);
   if (!quiet_) {
-    std::printf("sweep of %s: %zu point%s x %zu seed%s = %zu runs", file.c_str(), def.points.size(),
+    if (sources.size() == 1) {
+      std::printf("sweep of %s: ", file.c_str());
+    } else {
+      std::vector<std::string> names;
+      for (const sim::ScenarioSource& src : sources) names.push_back(sim::ScenarioStem(src));
+      std::printf("sweep of %zu scenarios (%s): %zu scenarios x ", sources.size(),
+                  Join(names, ", ").c_str(), sources.size());
+    }
+    std::printf("%zu point%s x %zu seed%s = %zu runs", def.points.size(),
                 def.points.size() == 1 ? "" : "s", def.seeds.size(),
                 def.seeds.size() == 1 ? "" : "s", def.runs());
     if (shard_n > 1) std::printf(", shard %d/%d: %zu runs", shard_k, shard_n, mine.size());
@@ -367,7 +397,7 @@ int StudyCommands::Sweep() {
   RunsBar bar(!quiet_, pending.size());
   const double t0 = Now();
   const sim::SweepProgress progress = sim::RunSweep(
-      source, def, pending, pool,
+      sources, def, pending, pool,
       [&](const sim::SweepRecord& rec, const sim::SweepProgress& p) {
         sim::WriteRecord(out, def, rec);
         bar.Update(p.done, p.failed);
@@ -444,51 +474,6 @@ int StudyCommands::Collect() {
 }
 
 namespace {
-
-// The positional scenario and every --scenario, with @FILE read as a list (one name or path per
-// line, # comments); a scenario named twice is refused.
-std::vector<sim::ScenarioSource> TuneSources(const std::string& positional,
-                                             const std::vector<std::string>& flags) {
-  std::vector<std::string> names;
-  if (!positional.empty()) names.push_back(positional);
-  for (const std::string& f : flags) {
-    if (f.empty() || f[0] != '@') {
-      names.push_back(f);
-      continue;
-    }
-    // A list is a small regular file: a folder, a device (/dev/zero) or a huge file is refused
-    // before a line of it is read.
-    const std::string list = f.substr(1);
-    std::error_code ec;
-    if (!fs::is_regular_file(list, ec))
-      throw std::runtime_error("--scenario " + f + ": the list must be a file of scenario names");
-    if (fs::file_size(list, ec) > (1u << 20))
-      throw std::runtime_error("--scenario " + f + ": the list is larger than 1 MiB");
-    std::ifstream in(list);
-    if (!in) throw std::runtime_error("--scenario " + f + ": cannot read the list file");
-    const std::size_t before = names.size();
-    std::string line;
-    while (std::getline(in, line)) {
-      const std::size_t hash = line.find('#');
-      if (hash != std::string::npos) line.resize(hash);
-      const std::size_t a = line.find_first_not_of(" \t\r");
-      if (a == std::string::npos) continue;
-      names.push_back(line.substr(a, line.find_last_not_of(" \t\r") - a + 1));
-    }
-    if (names.size() == before)
-      throw std::runtime_error("--scenario " + f + ": the list names no scenario");
-  }
-  if (names.empty()) throw std::runtime_error("formsim tune: give a scenario (or --scenario)");
-  std::vector<sim::ScenarioSource> out;
-  std::set<std::string> seen;
-  for (const std::string& n : names) {
-    const std::string file = sim::ResolveScenario(n);
-    if (!seen.insert(fs::absolute(file).lexically_normal().string()).second)
-      throw std::runtime_error("--scenario " + n + ": named twice");
-    out.push_back(sim::ScenarioSource::FromFile(file));
-  }
-  return out;
-}
 
 // The evaluations recorded in `out` for --resume (none for a new tune). A folder holding a tune
 // is refused without --resume, and with it when its manifest is another tune's.
@@ -576,7 +561,8 @@ class TuneHistoryFile {
 
 int StudyCommands::Tune() {
   const TitleMode titles = ParseTitleMode(tune_titles_, "--titles");  // before anything runs
-  const std::vector<sim::ScenarioSource> sources = TuneSources(tune_scenario_, tune_scenarios_);
+  const std::vector<sim::ScenarioSource> sources =
+      sim::ReadScenarioSet(tune_scenario_, tune_scenarios_, "formsim tune");
   const sim::ScenarioSource& source = sources.front();
   const std::string file = source.file();
   sim::TuneSettings s;
@@ -596,7 +582,7 @@ int StudyCommands::Tune() {
                                          : sim::ParseSeeds(tune_seeds_);
   s.budget = budget_;
   s.algorithm = algorithm_;
-  s.search_seed = search_seed_;
+  s.search_seed = ParseSeedFlag(search_seed_, "--search-seed");
   if (budget_ < 1 || budget_ > 100000) throw std::runtime_error("--budget must be in 1 ... 100000");
   // Everything refused before anything runs: the plan, the holdout seeds.
   const std::vector<sim::TuneStage> plan =

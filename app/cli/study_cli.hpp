@@ -33,6 +33,7 @@ class StudyCommands {
 
   // sweep
   std::string scenario_;
+  std::vector<std::string> scenarios_;  ///< --scenario A --scenario B (@FILE: a list)
   std::vector<std::string> vary_, sets_;
   std::string seeds_;
   std::string sample_seed_ = "1";
@@ -63,7 +64,7 @@ class StudyCommands {
   std::vector<std::string> constraints_;
   std::string algorithm_ = sim::kDefaultTuneMethod;
   std::string tune_titles_ = "full";
-  std::uint64_t search_seed_ = 1;
+  std::string search_seed_ = "1";  ///< --search-seed, read by ParseSeedFlag
   int budget_ = 60;
   int tune_jobs_ = 0;
   bool tune_quiet_ = false;

@@ -85,6 +85,88 @@ std::string MeanLabel(SweepBand band, const std::string& over) {
                                     : "mean " + SweepBandText(band) + " over " + over;
 }
 
+// Scenario s of a sweep over several, as a sweep of it alone: its definition (its run numbers
+// keep their places), its rows of the tables and its records.
+struct ScenarioPart {
+  sim::SweepDefinition def;
+  sim::SweepTables tables;
+  std::vector<sim::SweepRecord> records;
+};
+
+ScenarioPart PartOf(const sim::SweepDefinition& def, const sim::SweepTables& t,
+                    const std::vector<sim::SweepRecord>& records, std::size_t s) {
+  ScenarioPart part{def, {}, {}};
+  part.def.scenarios = {def.scenarios[s]};
+  part.tables.metrics = t.metrics;
+  part.tables.info = t.info;
+  part.tables.settings = t.settings;
+  for (std::size_t e = 0; e < t.points.size(); ++e) {
+    if (t.scenarios[e] != s) continue;
+    part.tables.points.push_back(t.points[e]);
+    part.tables.scenarios.push_back(0);
+    part.tables.runs.push_back(t.runs[e]);
+    part.tables.failed.push_back(t.failed[e]);
+    part.tables.stats.push_back(t.stats[e]);
+  }
+  for (const sim::SweepRecord& r : records)
+    if (def.ScenarioOf(r.run) == s) part.records.push_back(r);
+  return part;
+}
+
+// The figure of a sweep over several scenarios with no varied key (the metric per seed, a
+// series per scenario) or one (the mean and band against the key, a series per scenario, each
+// seed as a dot of its colour).
+bool ScenarioSeriesFigure(const sim::SweepDefinition& def, const sim::SweepTables& t,
+                          const std::vector<sim::SweepRecord>& records, int m, PlotData* out,
+                          SweepBand band) {
+  if (def.axes.size() > 1) return false;
+  PlotData d;
+  d.y_label = sim::MetricAxisLabel(t, m);
+  const std::string metric = MetricName(t, m);
+  std::vector<PlotSeries> means, dots;
+  for (std::size_t s = 0; s < def.scenarios.size(); ++s) {
+    const ScenarioPart part = PartOf(def, t, records, s);
+    PlotData one;
+    if (!SweepFigure(part.def, part.tables, part.records, m, &one, band)) return false;
+    // One scenario's figure: [mean, each seed] for one key, [each seed] for none.
+    PlotSeries mean = one.series.front(), seeds = one.series.back();
+    mean.label = def.scenarios[s].Name();
+    mean.color = sim::PaletteColor(static_cast<int>(s));
+    mean.style_index = static_cast<int>(s);
+    seeds.color = sim::PaletteColor(static_cast<int>(s)).WithAlpha(0.6f);
+    seeds.style_index = static_cast<int>(s);
+    seeds.label.clear();
+    if (def.axes.empty()) {
+      means.push_back(mean);  // the seeds' dots are the series
+    } else {
+      means.push_back(mean);
+      dots.push_back(seeds);
+    }
+    d.x_tick_labels = one.x_tick_labels;
+    d.x_margin = one.x_margin;
+    d.x_label = one.x_label;
+  }
+  d.series = dots;
+  d.series.insert(d.series.end(), means.begin(), means.end());  // the lines over the dots
+  if (!def.axes.empty()) {
+    // A key in grey (no data): what the line, its band and the dots of every scenario are.
+    const sim::Color grey{0.45f, 0.45f, 0.45f, 1.0f};
+    PlotSeries line, dot;
+    line.label = MeanLabel(band, SeedsText(def));
+    line.color = grey;
+    dot.label = "each seed";
+    dot.markers_only = true;
+    dot.color = grey.WithAlpha(0.6f);
+    d.series.push_back(line);
+    d.series.push_back(dot);
+  }
+  d.title = def.axes.empty()
+                ? metric + " per seed of " + std::to_string(def.scenarios.size()) + " scenarios"
+                : metric + " against " + def.axes[0].key;
+  *out = d;
+  return true;
+}
+
 }  // namespace
 
 SweepBand ParseSweepBand(const std::string& text) {
@@ -112,6 +194,7 @@ bool SweepFigure(const sim::SweepDefinition& def, const sim::SweepTables& t,
                  const std::vector<sim::SweepRecord>& records, int m, PlotData* out,
                  SweepBand band) {
   if (m < 0 || m >= static_cast<int>(t.metrics.size())) return false;
+  if (def.MultiScenario()) return ScenarioSeriesFigure(def, t, records, m, out, band);
   const std::string& path = t.metrics[m];
   const std::string metric = MetricName(t, m);
   PlotData d;
@@ -278,6 +361,31 @@ std::vector<PlotData> SweepPanels(const sim::SweepDefinition& def, const sim::Sw
     // The metric is the y axis' title; the panel's title names the key (long titles are cut).
     d.title = (random ? "random samples: " : "small multiples: ") + a.key;
     panels.push_back(std::move(d));
+  }
+  return panels;
+}
+
+std::vector<PlotData> SweepScenarioPanels(const sim::SweepDefinition& def,
+                                          const sim::SweepTables& t,
+                                          const std::vector<sim::SweepRecord>& records, int m,
+                                          SweepBand band, int* columns) {
+  std::vector<PlotData> panels;
+  if (!def.MultiScenario() || m < 0 || m >= static_cast<int>(t.metrics.size())) return panels;
+  for (std::size_t s = 0; s < def.scenarios.size(); ++s) {
+    const ScenarioPart part = PartOf(def, t, records, s);
+    std::vector<PlotData> mine;
+    PlotData one;
+    if (SweepFigure(part.def, part.tables, part.records, m, &one, band))
+      mine.push_back(std::move(one));
+    else
+      mine = SweepPanels(part.def, part.tables, m, band);
+    // Panels of keys: a scenario to a row; one figure each: the scenarios side by side.
+    *columns = mine.size() == 1 ? std::min<int>(3, static_cast<int>(def.scenarios.size()))
+                                : std::max(1, static_cast<int>(mine.size()));
+    for (PlotData& p : mine) {
+      p.title = def.scenarios[s].Name() + ": " + p.title;
+      panels.push_back(std::move(p));
+    }
   }
   return panels;
 }

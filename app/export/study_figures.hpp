@@ -8,6 +8,9 @@
 ///   random samples of two or more keys, grids of three or more: panels (SweepPanels), one per
 ///                          varied key: each point's mean against the key, coloured by the
 ///                          metric, and for grid keys the mean over the other keys with its band
+/// A sweep over several scenarios draws each scenario in its colour, named by its stem in the
+/// legend: with no varied key or one, one figure (a series per scenario); otherwise the figure
+/// or panels above for each scenario, one scenario to a row (SweepScenarioPanels).
 /// (The tune's figures: app/export/tune_figures.hpp.)
 
 #include <string>
@@ -42,6 +45,15 @@ bool SweepFigure(const sim::SweepDefinition& def, const sim::SweepTables& tables
 /// each value). Empty when SweepFigure draws the sweep (or `m` is no metric).
 std::vector<PlotData> SweepPanels(const sim::SweepDefinition& def, const sim::SweepTables& tables,
                                   int m, SweepBand band = SweepBand::kCi95);
+
+/// A sweep over several scenarios that SweepFigure does not draw (two grid keys or more, or
+/// random samples of two or more): for each scenario the figure or panels a sweep of it alone
+/// would get, each title starting with the scenario's name, one scenario to a row of `*columns`
+/// panels. Empty for a sweep of one scenario (or when `m` is no metric).
+std::vector<PlotData> SweepScenarioPanels(const sim::SweepDefinition& def,
+                                          const sim::SweepTables& tables,
+                                          const std::vector<sim::SweepRecord>& records, int m,
+                                          SweepBand band, int* columns);
 
 /// Renders `panels` headless into one PNG, `columns` panels to a row, each panel_width x
 /// panel_height pixels. Throws std::runtime_error when it cannot be written.

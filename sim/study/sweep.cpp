@@ -1,6 +1,8 @@
 #include "sim/study/sweep.hpp"
 
 #include <mutex>
+#include <stdexcept>
+#include <string>
 
 #include "sim/core/run_output.hpp"
 
@@ -33,19 +35,38 @@ std::optional<SweepRecord> RunScenarioOnce(const ScenarioSource& source,
   return rec;
 }
 
+std::optional<SweepRecord> RunSweepRun(const std::vector<ScenarioSource>& sources,
+                                       const SweepDefinition& def, std::size_t run,
+                                       const std::function<bool()>& stop,
+                                       const RunInspector& inspect) {
+  if (sources.size() != def.scenarios.size())
+    throw std::runtime_error("the sweep has " + std::to_string(def.scenarios.size()) +
+                             " scenarios, " + std::to_string(sources.size()) + " were given");
+  std::function<void(const Experiment&)> see;
+  if (inspect) see = [&](const Experiment& exp) { inspect(run, exp); };
+  std::optional<SweepRecord> rec =
+      RunScenarioOnce(sources[def.ScenarioOf(run)], def.RunOverrides(run), stop, see);
+  if (rec) rec->run = run;
+  return rec;
+}
+
 std::optional<SweepRecord> RunSweepRun(const ScenarioSource& source, const SweepDefinition& def,
                                        std::size_t run, const std::function<bool()>& stop,
                                        const RunInspector& inspect) {
-  std::function<void(const Experiment&)> see;
-  if (inspect) see = [&](const Experiment& exp) { inspect(run, exp); };
-  std::optional<SweepRecord> rec = RunScenarioOnce(source, def.RunOverrides(run), stop, see);
-  if (rec) rec->run = run;
-  return rec;
+  return RunSweepRun(std::vector<ScenarioSource>{source}, def, run, stop, inspect);
 }
 
 SweepProgress RunSweep(
     const ScenarioSource& source, const SweepDefinition& def, const std::vector<std::size_t>& runs,
     TaskPool& pool, const std::function<void(const SweepRecord&, const SweepProgress&)>& on_record,
+    const std::function<bool()>& stop, const RunInspector& inspect) {
+  return RunSweep(std::vector<ScenarioSource>{source}, def, runs, pool, on_record, stop, inspect);
+}
+
+SweepProgress RunSweep(
+    const std::vector<ScenarioSource>& sources, const SweepDefinition& def,
+    const std::vector<std::size_t>& runs, TaskPool& pool,
+    const std::function<void(const SweepRecord&, const SweepProgress&)>& on_record,
     const std::function<bool()>& stop, const RunInspector& inspect) {
   SweepProgress progress;
   progress.total = runs.size();
@@ -53,7 +74,7 @@ SweepProgress RunSweep(
   pool.ForEach(
       runs.size(),
       [&](std::size_t i) {
-        const std::optional<SweepRecord> rec = RunSweepRun(source, def, runs[i], stop, inspect);
+        const std::optional<SweepRecord> rec = RunSweepRun(sources, def, runs[i], stop, inspect);
         if (!rec) return;
         std::lock_guard<std::mutex> lock(mu);
         ++progress.done;

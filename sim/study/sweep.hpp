@@ -29,7 +29,14 @@ std::optional<SweepRecord> RunScenarioOnce(
     const std::function<bool()>& stop = {},
     const std::function<void(const Experiment&)>& inspect = {});
 
-/// Run `run` of `def` (RunScenarioOnce with the run's overrides).
+/// Run `run` of `def` (RunScenarioOnce of its scenario, sources[def.ScenarioOf(run)], with the
+/// run's overrides). `sources` are the sweep's scenarios in order (throws when their number is
+/// not the definition's).
+std::optional<SweepRecord> RunSweepRun(const std::vector<ScenarioSource>& sources,
+                                       const SweepDefinition& def, std::size_t run,
+                                       const std::function<bool()>& stop = {},
+                                       const RunInspector& inspect = {});
+/// A sweep of one scenario.
 std::optional<SweepRecord> RunSweepRun(const ScenarioSource& source, const SweepDefinition& def,
                                        std::size_t run, const std::function<bool()>& stop = {},
                                        const RunInspector& inspect = {});
@@ -45,6 +52,12 @@ struct SweepProgress {
 /// are serialised; completion order varies, the records do not). Runs abandoned because
 /// `stop()` turned true are not handed over. Returns the final progress. `inspect` sees each
 /// finished experiment (on the worker that ran it) before its record is handed over.
+SweepProgress RunSweep(
+    const std::vector<ScenarioSource>& sources, const SweepDefinition& def,
+    const std::vector<std::size_t>& runs, TaskPool& pool,
+    const std::function<void(const SweepRecord&, const SweepProgress&)>& on_record,
+    const std::function<bool()>& stop = {}, const RunInspector& inspect = {});
+/// A sweep of one scenario.
 SweepProgress RunSweep(
     const ScenarioSource& source, const SweepDefinition& def, const std::vector<std::size_t>& runs,
     TaskPool& pool, const std::function<void(const SweepRecord&, const SweepProgress&)>& on_record,

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <limits>
 #include <set>
 #include <stdexcept>
@@ -12,6 +13,7 @@
 #include "sim/core/number_format.hpp"
 #include "sim/core/rng.hpp"
 #include "sim/core/sha256.hpp"
+#include "sim/study/scenario_set.hpp"
 
 namespace formsim::sim {
 namespace {
@@ -143,6 +145,29 @@ struct AxisBuilder {
   }
 };
 
+// Every scenario after the first has every varied key, of the same kind, and takes every value.
+void CheckOtherScenarios(const std::vector<ScenarioSource>& sources,
+                         const std::vector<Override>& sets, const ParamTable& first,
+                         const std::vector<SweepAxis>& axes) {
+  if (sources.size() < 2) return;
+  std::vector<const Param*> keys;
+  for (const SweepAxis& a : axes) keys.push_back(first.Find(a.key));
+  CheckScenarioKeys(sources, sets, keys, "--vary");
+  for (std::size_t i = 1; i < sources.size(); ++i) {
+    const ParsedScenario parsed = ParseScenario(sources[i], sets);
+    for (const SweepAxis& a : axes) {
+      const Param& p = *parsed.params.Find(a.key);
+      for (const std::string& v : a.values) {
+        std::string canonical;
+        const std::string why = p.Parse(v, &canonical);
+        if (!why.empty())
+          throw ScenarioError("--scenario " + sources[i].file(), a.key,
+                              "value '" + v + "' of --vary " + a.key + "=" + a.spec + ": " + why);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 double SweepAxis::Numeric(std::size_t i) const {
@@ -173,6 +198,10 @@ bool SweepDefinition::IsGrid() const {
   return true;
 }
 
+std::string SweepScenario::Name() const {
+  return std::filesystem::path(file).stem().string();
+}
+
 void SweepDefinition::Finish() {
   // Factors in the order of the axes: each list or range is one, all random axes together are
   // one (placed where the first of them is). The first factor varies slowest.
@@ -197,7 +226,8 @@ void SweepDefinition::Finish() {
   for (const Factor& f : factors) {
     if (f.size == 0) throw std::runtime_error("a sweep axis without values");
     total = SaturatingProduct(total, f.size);
-    if (SaturatingProduct(total, std::max<std::size_t>(1, seeds.size())) > kMaxSweepRuns)
+    if (SaturatingProduct(SaturatingProduct(total, std::max<std::size_t>(1, seeds.size())),
+                          std::max<std::size_t>(1, scenarios.size())) > kMaxSweepRuns)
       throw std::runtime_error("the sweep would have more than " + std::to_string(kMaxSweepRuns) +
                                " runs; vary fewer values");
   }
@@ -210,8 +240,9 @@ void SweepDefinition::Finish() {
       for (std::size_t a : factors[f].axes) points[p][a] = i;
     }
   }
-  // The identity: the scenario's text (by hash), the overrides, the values and the seeds.
-  std::string what = "formsim sweep\nscenario " + scenario_sha256 + "\n";
+  // The identity: the scenarios' texts (by hash), the overrides, the values and the seeds.
+  std::string what = "formsim sweep\n";
+  for (const SweepScenario& s : scenarios) what += "scenario " + s.sha256 + "\n";
   for (const Override& o : sets) what += "set " + o.key + "=" + o.value + "\n";
   for (const SweepAxis& a : axes) {
     what += "axis " + a.key + (a.random ? " random" : "") + "\n";
@@ -326,23 +357,35 @@ std::size_t CountSweepRuns(const ParamTable& params, const std::vector<std::stri
 SweepDefinition DefineSweep(const ScenarioSource& source, const std::vector<Override>& sets,
                             const std::vector<std::string>& vary, std::vector<std::uint64_t> seeds,
                             std::uint64_t sample_seed, std::size_t max_runs) {
+  return DefineSweep(std::vector<ScenarioSource>{source}, sets, vary, std::move(seeds), sample_seed,
+                     max_runs);
+}
+
+SweepDefinition DefineSweep(const std::vector<ScenarioSource>& sources,
+                            const std::vector<Override>& sets, const std::vector<std::string>& vary,
+                            std::vector<std::uint64_t> seeds, std::uint64_t sample_seed,
+                            std::size_t max_runs) {
+  if (sources.empty()) throw std::runtime_error("a sweep needs a scenario");
+  const ScenarioSource& source = sources.front();
   const ParsedScenario base = ParseScenario(source, sets);
   // The size first, from the specs alone: a sweep of 10^18 runs is refused before a value of it
   // is built (building a million values of one axis already takes a while).
   max_runs = std::min(max_runs, kMaxSweepRuns);
-  const std::size_t runs = CountSweepRuns(base.params, vary, seeds.size());
+  const std::size_t runs =
+      SaturatingProduct(CountSweepRuns(base.params, vary, seeds.size()), sources.size());
   if (runs > max_runs)
     throw std::runtime_error(
         "the sweep has " +
         (runs == std::numeric_limits<std::size_t>::max() ? "more than " + std::to_string(runs)
                                                          : std::to_string(runs)) +
-        " runs (points x seeds), more than " + std::to_string(max_runs) +
+        (sources.size() > 1 ? " runs (scenarios x points x seeds), more than "
+                            : " runs (points x seeds), more than ") +
+        std::to_string(max_runs) +
         (max_runs < kMaxSweepRuns ? "; vary fewer values, or allow it with --max-runs N (N <= " +
                                         std::to_string(kMaxSweepRuns) + ")"
                                   : ", the most formsim plans; vary fewer values"));
   SweepDefinition def;
-  def.scenario = source.file();
-  def.scenario_sha256 = source.sha256();
+  for (const ScenarioSource& s : sources) def.scenarios.push_back({s.file(), s.sha256()});
   def.sets = sets;
   def.sample_seed = sample_seed;
   def.seeds = seeds.empty() ? std::vector<std::uint64_t>{base.setup.seed} : std::move(seeds);
@@ -430,6 +473,7 @@ SweepDefinition DefineSweep(const ScenarioSource& source, const std::vector<Over
       def.axes[r.axis].values = r.builder.axis.values;
     }
   }
+  CheckOtherScenarios(sources, sets, base.params, def.axes);
   def.Finish();
   return def;
 }

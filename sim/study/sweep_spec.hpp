@@ -1,8 +1,9 @@
 #pragma once
-/// \file What a sweep runs: `--vary KEY=SPEC` axes expanded into values, the parameter points
-/// (every combination), the seeds, and so the numbered list of runs. Run r is point
-/// r / seeds, seed r % seeds; the numbering depends only on the definition, never on how or
-/// where the runs are executed, so shards, resumed sweeps and job lists all agree on it.
+/// \file What a sweep runs: its scenarios, `--vary KEY=SPEC` axes expanded into values, the
+/// parameter points (every combination), the seeds, and so the numbered list of runs. Run r is
+/// scenario r / (points x seeds), point (r / seeds) % points, seed r % seeds (one scenario: point
+/// r / seeds); the numbering depends only on the definition, never on how or where the runs are
+/// executed, so shards, resumed sweeps and job lists all agree on it.
 ///
 /// SPEC is a list (`0.1,0.2,0.4`, `truth,raw,ukf`, `all` for every choice of an enum or flag),
 /// a linear range `LO:HI:N`, a log range `log:LO:HI:N`, or `random:N` (`random:N:LO:HI`):
@@ -41,10 +42,18 @@ struct SweepAxis {
   double Numeric(std::size_t i) const;
 };
 
-/// A sweep: a scenario, fixed overrides, the axes, the seeds and the points they make.
+/// One scenario of a sweep.
+struct SweepScenario {
+  std::string file;    ///< the scenario file as given (for messages and job lines)
+  std::string sha256;  ///< of its text: a sweep is tied to one text of each scenario
+  /// Its name in the tables and figures: the file's stem (ScenarioStem).
+  std::string Name() const;
+};
+
+/// A sweep: its scenarios, fixed overrides, the axes, the seeds and the points they make. Every
+/// scenario runs every point with every seed.
 struct SweepDefinition {
-  std::string scenario;         ///< the scenario file as given (for messages and job lines)
-  std::string scenario_sha256;  ///< of its text: a sweep is tied to one text of the scenario
+  std::vector<SweepScenario> scenarios;  ///< at least one; several: a `scenario` column
   std::vector<Override> sets;   ///< --set overrides applied to every run
   std::vector<SweepAxis> axes;
   std::vector<std::uint64_t> seeds;
@@ -53,8 +62,11 @@ struct SweepDefinition {
   std::vector<std::vector<std::size_t>> points;
   std::string id;  ///< SHA-256 of everything that defines the runs (not of file paths)
 
-  std::size_t runs() const { return points.size() * seeds.size(); }
-  std::size_t PointOf(std::size_t run) const { return run / seeds.size(); }
+  std::size_t runs() const { return scenarios.size() * points.size() * seeds.size(); }
+  /// True for a sweep over more than one scenario (its tables get a `scenario` column).
+  bool MultiScenario() const { return scenarios.size() > 1; }
+  std::size_t ScenarioOf(std::size_t run) const { return run / (points.size() * seeds.size()); }
+  std::size_t PointOf(std::size_t run) const { return (run / seeds.size()) % points.size(); }
   std::uint64_t SeedOf(std::size_t run) const { return seeds[run % seeds.size()]; }
   /// The value of axis `a` at point `p` as YAML text.
   const std::string& Value(std::size_t p, std::size_t a) const {
@@ -83,11 +95,19 @@ std::vector<std::uint64_t> ParseSeeds(const std::string& text, const std::string
 std::size_t CountSweepRuns(const ParamTable& params, const std::vector<std::string>& vary,
                            std::size_t seed_count);
 
-/// Builds a sweep of `source` with fixed `sets`. `vary` holds "KEY=SPEC" strings; every key must
-/// be a tunable of the scenario (with `sets` applied) and every value valid for it. Empty
+/// Builds a sweep of `sources` (one or more scenarios) with fixed `sets`. `vary` holds
+/// "KEY=SPEC" strings; every key must be a tunable of the first scenario (with `sets` applied)
+/// and every value valid for it; every other scenario must have each key as a tunable of the same
+/// kind (CheckScenarioKeys) for which every value is valid too. Empty
 /// `seeds`: the scenario's own seed. A sweep of more than `max_runs` runs (at most
 /// kMaxSweepRuns) is refused before any value is built, with its run count. Throws
-/// ScenarioError naming the --vary argument, std::runtime_error for the run count.
+/// ScenarioError naming the --vary argument (or `--scenario FILE` and the key),
+/// std::runtime_error for the run count.
+SweepDefinition DefineSweep(const std::vector<ScenarioSource>& sources,
+                            const std::vector<Override>& sets, const std::vector<std::string>& vary,
+                            std::vector<std::uint64_t> seeds, std::uint64_t sample_seed = 1,
+                            std::size_t max_runs = kDefaultMaxSweepRuns);
+/// One scenario.
 SweepDefinition DefineSweep(const ScenarioSource& source, const std::vector<Override>& sets,
                             const std::vector<std::string>& vary, std::vector<std::uint64_t> seeds,
                             std::uint64_t sample_seed = 1,

@@ -136,8 +136,13 @@ const char* KindName(Param::Kind k) {
 
 // Why two definitions of a sweep differ, in words.
 std::string Difference(const SweepDefinition& a, const SweepDefinition& b) {
-  if (a.scenario_sha256 != b.scenario_sha256)
-    return "the scenario's text differs (" + a.scenario + " vs " + b.scenario + ")";
+  if (a.scenarios.size() != b.scenarios.size())
+    return "the scenarios differ (" + std::to_string(a.scenarios.size()) + " vs " +
+           std::to_string(b.scenarios.size()) + ")";
+  for (std::size_t i = 0; i < a.scenarios.size(); ++i)
+    if (a.scenarios[i].sha256 != b.scenarios[i].sha256)
+      return "the scenario's text differs (" + a.scenarios[i].file + " vs " + b.scenarios[i].file +
+             ")";
   if (a.axes.size() != b.axes.size()) return "the varied keys differ";
   for (std::size_t i = 0; i < a.axes.size(); ++i) {
     if (a.axes[i].key != b.axes[i].key)
@@ -193,8 +198,10 @@ std::string RecordPath(const std::string& dir, std::size_t run) {
 std::string ManifestText(const SweepDefinition& def) {
   std::string t = std::string(kManifestHead) + "\n";
   t += "id " + def.id + "\n";
-  t += "scenario " + Esc(def.scenario) + "\n";
-  t += "scenario_sha256 " + def.scenario_sha256 + "\n";
+  for (const SweepScenario& sc : def.scenarios) {
+    t += "scenario " + Esc(sc.file) + "\n";
+    t += "scenario_sha256 " + sc.sha256 + "\n";
+  }
   t += "sample_seed " + std::to_string(def.sample_seed) + "\n";
   t += "seeds";
   for (std::uint64_t s : def.seeds) t += " " + std::to_string(s);
@@ -231,10 +238,11 @@ SweepDefinition ParseManifest(const std::string& text, const std::string& where)
       id = f[1];
     } else if (k == "scenario") {
       need(2);
-      def.scenario = f[1];
+      def.scenarios.push_back({f[1], ""});  // one line pair per scenario, in order
     } else if (k == "scenario_sha256") {
       need(2);
-      def.scenario_sha256 = f[1];
+      if (def.scenarios.empty()) in.Fail("'scenario_sha256' before any 'scenario'");
+      def.scenarios.back().sha256 = f[1];
     } else if (k == "sample_seed") {
       need(2);
       def.sample_seed = in.Uint(f[1]);
@@ -277,6 +285,7 @@ SweepDefinition ParseManifest(const std::string& text, const std::string& where)
   }
   if (!ended) in.Fail("incomplete manifest (no 'end' line)");
   if (def.seeds.empty()) in.Fail("no seeds");
+  if (def.scenarios.empty()) in.Fail("no scenario");
   for (const SweepAxis& a : def.axes)
     if (a.values.empty()) in.Fail("axis " + a.key + " has no values");
   try {

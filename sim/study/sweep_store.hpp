@@ -1,9 +1,9 @@
 #pragma once
-/// \file A sweep on disk. `DIR/sweep.manifest` holds the definition (axes with their values,
-/// seeds, overrides, the scenario's hash), so shards, resumed sweeps, job lines and `collect`
-/// check that they belong to the same sweep and can rebuild the tables without the scenario.
-/// Each finished run is one file `DIR/runs/NNNNNN.run`, written atomically (temporary file,
-/// rename): a run is recorded whole or not at all, and a record is never written twice by a
+/// \file A sweep on disk. `DIR/sweep.manifest` holds the definition (its scenarios, axes with their
+/// values, seeds, overrides, each scenario's hash), so shards, resumed sweeps, job lines and
+/// `collect` check that they belong to the same sweep and can rebuild the tables without the
+/// scenario. Each finished run is one file `DIR/runs/NNNNNN.run`, written atomically (temporary
+/// file, rename): a run is recorded whole or not at all, and a record is never written twice by a
 /// resumed sweep. Records are synced to disk together when a sweep ends (one fsync per record
 /// would cost as much as the run). Both are small line-based texts ("name value", values escaped),
 /// with every number as its shortest round-trip text.

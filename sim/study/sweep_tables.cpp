@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <stdexcept>
@@ -21,6 +22,16 @@ void AppendNumberOrEmpty(std::string& out, double v) {
   if (!std::isnan(v)) AppendDouble(out, v);
 }
 
+// ",n,mean,std,...": one metric's statistics as aggregate.csv writes them.
+void AppendStats(std::string& out, const MetricStats& s) {
+  out += "," + std::to_string(s.n);
+  for (double v :
+       {s.mean, s.std, s.min, s.max, s.median, s.q05, s.q95, s.sem, s.ci95_lo, s.ci95_hi}) {
+    out += ',';
+    AppendNumberOrEmpty(out, v);
+  }
+}
+
 }  // namespace
 
 const std::vector<std::string>& AggregateSuffixes() {
@@ -30,6 +41,56 @@ const std::vector<std::string>& AggregateSuffixes() {
 }
 
 namespace {
+
+// aggregate_over_scenarios.csv: per point, the statistics over every completed run of every
+// scenario (the scenarios in order, each in seed order), from the values of each entry.
+void BuildPooled(const SweepDefinition& def,
+                 const std::vector<std::vector<std::vector<double>>>& values, SweepTables* t) {
+  std::vector<std::size_t> order;  // pooled entry of each point, in point order
+  std::vector<std::size_t> slot(def.points.size(), SIZE_MAX);
+  for (std::size_t e = 0; e < t->points.size(); ++e)
+    if (slot[t->points[e]] == SIZE_MAX) {
+      slot[t->points[e]] = 0;
+      order.push_back(t->points[e]);
+    }
+  std::sort(order.begin(), order.end());
+  for (std::size_t i = 0; i < order.size(); ++i) slot[order[i]] = i;
+  SweepPooled& pooled = t->pooled;
+  pooled.points = order;
+  pooled.scenarios.assign(order.size(), 0);
+  pooled.runs.assign(order.size(), 0);
+  pooled.failed.assign(order.size(), 0);
+  std::vector<std::vector<std::vector<double>>> all(
+      order.size(), std::vector<std::vector<double>>(t->metrics.size()));
+  // Entries come in run order: scenario by scenario, so each point's values are in scenario order.
+  for (std::size_t e = 0; e < t->points.size(); ++e) {
+    const std::size_t i = slot[t->points[e]];
+    ++pooled.scenarios[i];
+    pooled.runs[i] += t->runs[e];
+    pooled.failed[i] += t->failed[e];
+    for (std::size_t c = 0; c < t->metrics.size(); ++c)
+      all[i][c].insert(all[i][c].end(), values[e][c].begin(), values[e][c].end());
+  }
+  std::string& csv = pooled.csv;
+  csv = "point";
+  for (const SweepAxis& a : def.axes) csv += "," + CsvField(a.key);
+  csv += ",scenarios,runs,failed";
+  for (const std::string& m : t->metrics)
+    for (const std::string& s : AggregateSuffixes()) csv += "," + CsvField(m + s);
+  csv += "\n";
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    csv += std::to_string(order[i]);
+    for (std::size_t a = 0; a < def.axes.size(); ++a) csv += "," + CsvField(def.Value(order[i], a));
+    csv += "," + std::to_string(pooled.scenarios[i]) + "," + std::to_string(pooled.runs[i]) + "," +
+           std::to_string(pooled.failed[i]);
+    pooled.stats.emplace_back();
+    for (std::size_t c = 0; c < t->metrics.size(); ++c) {
+      pooled.stats.back().push_back(StatsOf(all[i][c]));
+      AppendStats(csv, pooled.stats.back().back());
+    }
+    csv += "\n";
+  }
+}
 
 std::string Short(double v) {
   return std::isnan(v) ? "-" : FormatSignificant(v, 4);
@@ -82,6 +143,8 @@ SweepTables BuildSweepTables(const SweepDefinition& def, std::vector<SweepRecord
   // runs.csv
   std::string& csv = t.runs_csv;
   csv = "run";
+  const bool multi = def.MultiScenario();
+  if (multi) csv += ",scenario";
   for (const SweepAxis& a : def.axes) csv += "," + CsvField(a.key);
   csv += ",seed";
   for (const std::string& m : t.metrics) csv += "," + CsvField(m);
@@ -91,6 +154,7 @@ SweepTables BuildSweepTables(const SweepDefinition& def, std::vector<SweepRecord
   for (const SweepRecord& r : records) {
     const std::size_t p = def.PointOf(r.run);
     csv += std::to_string(r.run);
+    if (multi) csv += "," + CsvField(def.scenarios[def.ScenarioOf(r.run)].Name());
     for (std::size_t a = 0; a < def.axes.size(); ++a) csv += "," + CsvField(def.Value(p, a));
     csv += "," + std::to_string(def.SeedOf(r.run));
     std::fill(row.begin(), row.end(), kNaN);
@@ -109,15 +173,19 @@ SweepTables BuildSweepTables(const SweepDefinition& def, std::vector<SweepRecord
     csv += "," + CsvField(r.status) + "," + CsvField(r.message) + "\n";
   }
 
-  // Statistics per point over its completed runs, in seed order.
+  // Statistics per point (per scenario and point) over its completed runs, in seed order.
   std::vector<std::vector<std::vector<double>>> values;  // [entry][metric] -> values
   // [entry][setting]: the completed runs' common value ("" when they differ or none has it).
   std::vector<std::vector<std::string>> setting_text;
   std::vector<std::vector<bool>> setting_seen;
+  std::size_t last_cell = 0;
   for (const SweepRecord& r : records) {
-    const std::size_t p = def.PointOf(r.run);
-    if (t.points.empty() || t.points.back() != p) {
-      t.points.push_back(p);
+    // A cell: one point of one scenario (the point itself for one scenario).
+    const std::size_t cell = r.run / def.seeds.size();
+    if (t.points.empty() || last_cell != cell) {
+      last_cell = cell;
+      t.points.push_back(def.PointOf(r.run));
+      t.scenarios.push_back(def.ScenarioOf(r.run));
       t.runs.push_back(0);
       t.failed.push_back(0);
       values.emplace_back(t.metrics.size());
@@ -144,6 +212,7 @@ SweepTables BuildSweepTables(const SweepDefinition& def, std::vector<SweepRecord
   }
   std::string& agg = t.aggregate_csv;
   agg = "point";
+  if (multi) agg += ",scenario";
   for (const SweepAxis& a : def.axes) agg += "," + CsvField(a.key);
   agg += ",runs,failed";
   for (const std::string& m : t.metrics)
@@ -153,22 +222,18 @@ SweepTables BuildSweepTables(const SweepDefinition& def, std::vector<SweepRecord
   for (std::size_t e = 0; e < t.points.size(); ++e) {
     const std::size_t p = t.points[e];
     agg += std::to_string(p);
+    if (multi) agg += "," + CsvField(def.scenarios[t.scenarios[e]].Name());
     for (std::size_t a = 0; a < def.axes.size(); ++a) agg += "," + CsvField(def.Value(p, a));
     agg += "," + std::to_string(t.runs[e]) + "," + std::to_string(t.failed[e]);
     t.stats.emplace_back();
     for (std::size_t c = 0; c < t.metrics.size(); ++c) {
-      const MetricStats s = StatsOf(values[e][c]);
-      t.stats.back().push_back(s);
-      agg += "," + std::to_string(s.n);
-      for (double v : {s.mean, s.std, s.min, s.max, s.median, s.q05, s.q95, s.sem, s.ci95_lo,
-                       s.ci95_hi}) {
-        agg += ',';
-        AppendNumberOrEmpty(agg, v);
-      }
+      t.stats.back().push_back(StatsOf(values[e][c]));
+      AppendStats(agg, t.stats.back().back());
     }
     for (const std::string& text : setting_text[e]) agg += "," + text;
     agg += "\n";
   }
+  if (multi) BuildPooled(def, values, &t);
   return t;
 }
 
@@ -198,9 +263,15 @@ std::size_t DefaultMetric(const SweepTables& t) {
 }
 
 std::string RankingText(const SweepDefinition& def, const SweepTables& t, int m) {
-  std::vector<std::size_t> order(t.points.size());
+  // Several scenarios: the points ranked by their statistics over every scenario and seed.
+  const bool multi = def.MultiScenario();
+  const std::vector<std::size_t>& points = multi ? t.pooled.points : t.points;
+  const std::vector<std::size_t>& runs = multi ? t.pooled.runs : t.runs;
+  const std::vector<std::size_t>& failed = multi ? t.pooled.failed : t.failed;
+  const std::vector<std::vector<MetricStats>>& stats = multi ? t.pooled.stats : t.stats;
+  std::vector<std::size_t> order(points.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  auto mean = [&](std::size_t e) { return m >= 0 ? t.stats[e][m].mean : kNaN; };
+  auto mean = [&](std::size_t e) { return m >= 0 ? stats[e][m].mean : kNaN; };
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     const double x = mean(a), y = mean(b);
     if (std::isnan(x) || std::isnan(y)) return !std::isnan(x) && std::isnan(y);
@@ -214,10 +285,10 @@ std::string RankingText(const SweepDefinition& def, const SweepTables& t, int m)
   for (std::size_t k = 0; k < order.size(); ++k) {
     const std::size_t e = order[k];
     std::vector<std::string> r = {std::to_string(k + 1)};
-    for (std::size_t a = 0; a < def.axes.size(); ++a) r.push_back(def.Value(t.points[e], a));
-    r.push_back(std::to_string(t.runs[e]));
-    r.push_back(std::to_string(t.failed[e]));
-    const MetricStats s = m >= 0 ? t.stats[e][m] : MetricStats{};
+    for (std::size_t a = 0; a < def.axes.size(); ++a) r.push_back(def.Value(points[e], a));
+    r.push_back(std::to_string(runs[e]));
+    r.push_back(std::to_string(failed[e]));
+    const MetricStats s = m >= 0 ? stats[e][m] : MetricStats{};
     r.push_back(std::to_string(s.n));
     for (double v : {s.mean, s.std, s.min, s.max}) r.push_back(Short(v));
     rows.push_back(r);
@@ -227,7 +298,10 @@ std::string RankingText(const SweepDefinition& def, const SweepTables& t, int m)
     for (std::size_t c = 0; c < r.size(); ++c) width[c] = std::max(width[c], r[c].size());
   std::string out = "points sorted by the mean of " +
                     (m >= 0 ? t.metrics[m] : std::string("(no metric)")) +
-                    " over the seeds, smallest first\n";
+                    (multi ? " over every scenario and seed (" +
+                                 std::to_string(def.scenarios.size()) + " scenarios)"
+                           : std::string(" over the seeds")) +
+                    ", smallest first\n";
   for (const auto& r : rows) {
     std::string line;
     for (std::size_t c = 0; c < r.size(); ++c) {
@@ -245,9 +319,12 @@ std::string MetricAxisLabel(const SweepTables& t, int m) {
   return m < static_cast<int>(t.info.size()) ? t.info[m].AxisLabel(t.metrics[m]) : t.metrics[m];
 }
 
-void WriteSweepTables(const std::string& dir, const SweepTables& t) {
+std::vector<std::string> WriteSweepTables(const std::string& dir, const SweepTables& t) {
   WriteFileAtomic((fs::path(dir) / "runs.csv").string(), t.runs_csv);
   WriteFileAtomic((fs::path(dir) / "aggregate.csv").string(), t.aggregate_csv);
+  if (t.pooled.csv.empty()) return {"runs.csv", "aggregate.csv"};
+  WriteFileAtomic((fs::path(dir) / kPooledCsv).string(), t.pooled.csv);
+  return {"runs.csv", "aggregate.csv", kPooledCsv};
 }
 
 std::string SimilarMetrics(const std::vector<std::string>& metrics, const std::string& name) {

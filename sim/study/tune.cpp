@@ -12,6 +12,7 @@
 
 #include "sim/core/number_format.hpp"
 #include "sim/study/metric_stats.hpp"
+#include "sim/study/scenario_set.hpp"
 #include "sim/study/sweep.hpp"
 #include "sim/study/sweep_tables.hpp"
 
@@ -514,17 +515,12 @@ TuneOver ParseTuneOver(const std::string& text) {
 }
 
 void CheckTunedKeys(const std::vector<ScenarioSource>& sources, const TuneSettings& s) {
-  for (std::size_t i = 1; i < sources.size(); ++i) {
-    const ParsedScenario parsed = ParseScenario(sources[i], s.sets);
-    for (const TuneParam& p : s.params) {
-      const Param* q = parsed.params.Find(p.key);
-      if (q == nullptr || q->kind != Param::Kind::kDouble)
-        throw ScenarioError("--scenario " + sources[i].file(), p.key,
-                            q == nullptr ? "this scenario has no such tunable (every scenario "
-                                           "of a tune must have every tuned key)"
-                                         : "not a real-valued tunable in this scenario");
-    }
-  }
+  if (sources.size() < 2) return;
+  const ParsedScenario first = ParseScenario(sources[0], s.sets);
+  std::vector<const Param*> keys;
+  for (const TuneParam& p : s.params)
+    if (const Param* q = first.params.Find(p.key)) keys.push_back(q);
+  CheckScenarioKeys(sources, s.sets, keys, "tuned");
 }
 
 std::vector<Override> TuneOverrides(const TuneSettings& s, const std::vector<double>& values) {

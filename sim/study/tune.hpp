@@ -103,8 +103,9 @@ struct TuneSettings {
   TuneOver over;                  ///< the fold of the runs of an evaluation
 };
 
-/// Checks that every scenario after the first has each tuned key as a real-valued tunable
-/// (the bounds are the first scenario's). Throws ScenarioError naming --scenario and the key.
+/// Checks that every scenario after the first has each tuned key as a tunable of the kind it
+/// has in the first (the bounds are the first scenario's): CheckScenarioKeys. Throws
+/// ScenarioError naming --scenario and the key.
 void CheckTunedKeys(const std::vector<ScenarioSource>& sources, const TuneSettings& s);
 
 /// One evaluation: a point, the mean of each term's metric over the runs (every scenario times

@@ -20,6 +20,7 @@
 #include "sim/study/tune.hpp"
 #include "sim/study/tune_history.hpp"
 #include "sim/study/tune_validation.hpp"
+#include "sweep_test_util.hpp"
 #include "test_kind.hpp"
 
 namespace formsim::sim {
@@ -27,23 +28,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-ScenarioSource Circle() {
-  return ScenarioSource::FromText(testkind::kScenario, "circle.yaml", "");
-}
+using sweeptest::Circle;
+using sweeptest::ErrorOf;
 
 std::string Dir(const std::string& name) {
   const fs::path p = fs::temp_directory_path() / ("formsim_test_sweep_" + name);
   fs::remove_all(p);
   return p.string();
-}
-
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
 }
 
 TEST(ParseSeeds, RangesListsAndErrors) {
