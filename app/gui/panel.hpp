@@ -6,10 +6,10 @@
 /// record, the view options and theme, the status line, the command runner, ReplaceRun, the
 /// other panels) and wires them into its layout; it owns no panel's state.
 ///
-/// Panels so far: the Compare (app/gui/compare_panel.hpp), the Formation editor (app/gui/formation_editor_panel.hpp, the formation
-/// kind's own panel, created only when the experiment exposes formation::FormationEditing), the
-/// Timeline (app/gui/timeline_panel.hpp), the History (app/gui/history_panel.hpp) and the
-/// Lesson (app/gui/lesson_panel.hpp).
+/// The panels: Scenario, Run, Parameters, View, Plots, Tables, Compare, History, Timeline,
+/// Lesson (app/gui/*_panel.hpp), and the Formation editor (app/gui/formation_editor_panel.hpp,
+/// the formation kind's own panel, created only when the experiment exposes
+/// formation::FormationEditing). docs/ARCHITECTURE.md has a table of what each owns.
 
 #include <string>
 

@@ -1,6 +1,6 @@
 /// \file The Parameters panel's value entry commands (app/gui/value_entry.hpp): what a double-click, the keyboard
 /// and the mouse wheel do to a tunable's field, for scripts and the command table. The field
-/// itself is drawn by the Parameters section (app/gui/ui_params.cpp).
+/// itself is drawn by the Parameters panel (app/gui/parameters_panel.cpp).
 #include <imgui.h>
 
 #include "app/gui/parameters_panel.hpp"

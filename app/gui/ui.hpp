@@ -60,7 +60,7 @@ struct UiState {
   std::string drag_name;  ///< robot or obstacle being dragged
   double frame_ms = 0;  ///< the last frame, as the window measured it
 
-  // Teaching (app/gui/ui_teach.cpp).
+  // View options, shared: set by the View panel (app/gui/view_panel.hpp), read by the world view.
   std::set<std::string> overlays = DefaultSceneOverlays();  ///< of the scene (View panel)
   bool legend = true;    ///< a legend of every mark drawn in the world view
   bool help = false;     ///< the help overlay (F1)
