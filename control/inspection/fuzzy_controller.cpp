@@ -165,6 +165,31 @@ void FuzzyController::LoadText(const std::string& fll, const std::string& origin
   origin_ = origin;
   rules_ = std::move(rules);
   variables_ = std::move(vars);
+  unscaled_inputs_.assign(variables_.begin(), variables_.begin() + 2);
+  ScaleInputCurves();
+}
+
+void FuzzyController::SetInputScales(double s_scale, double dphi_scale) {
+  if (!(std::isfinite(s_scale) && s_scale > 0.0) ||
+      !(std::isfinite(dphi_scale) && dphi_scale > 0.0))
+    throw std::invalid_argument("fuzzy input scales must be finite and > 0");
+  scale_[0] = s_scale;
+  scale_[1] = dphi_scale;
+  ScaleInputCurves();
+}
+
+// The inputs' curves and ranges in the controller's units: the terms as written, stretched.
+void FuzzyController::ScaleInputCurves() {
+  for (std::size_t i = 0; i < unscaled_inputs_.size() && i < variables_.size(); ++i) {
+    const FuzzyVariableInfo& base = unscaled_inputs_[i];
+    FuzzyVariableInfo& v = variables_[i];
+    const double k = scale_[i];
+    v.min = base.min * k;
+    v.max = base.max * k;
+    for (std::size_t t = 0; t < v.terms.size(); ++t)
+      for (std::size_t j = 0; j < v.terms[t].x.size(); ++j)
+        v.terms[t].x[j] = base.terms[t].x[j] * k;
+  }
 }
 
 void FuzzyController::SampleOutputSets() {
@@ -193,8 +218,9 @@ FuzzyOutputs FuzzyController::Process(double s, double dphi_deg) {
     if (!std::isfinite(x)) return 0.5 * (v->getMinimum() + v->getMaximum());
     return std::clamp(x, v->getMinimum(), v->getMaximum());
   };
-  in_s->setValue(clamp_in(in_s, s));
-  in_d->setValue(clamp_in(in_d, dphi_deg));
+  // The scales stretch the terms: a term evaluated at s / k is the term stretched by k at s.
+  in_s->setValue(clamp_in(in_s, s / scale_[0]));
+  in_d->setValue(clamp_in(in_d, dphi_deg / scale_[1]));
   engine_->process();
   const double u1 = engine_->getOutputVariable("u1")->getValue();
   const double u2 = engine_->getOutputVariable("u2")->getValue();
@@ -205,8 +231,8 @@ FuzzyOutputs FuzzyController::Process(double s, double dphi_deg) {
     for (const fl::Rule* r : engine_->getRuleBlock(b)->rules())
       if (k < rules_.size()) rules_[k++].strength = r->getActivationDegree();
   for (auto& v : variables_) {
-    if (v.name == "s") v.value = in_s->getValue();
-    if (v.name == "dphi") v.value = in_d->getValue();
+    if (v.name == "s") v.value = in_s->getValue() * scale_[0];
+    if (v.name == "dphi") v.value = in_d->getValue() * scale_[1];
   }
   if (!std::isfinite(u1) || !std::isfinite(u2) || !std::isfinite(u3)) {
     out.ok = false;  // no rule fired: stop and go straight

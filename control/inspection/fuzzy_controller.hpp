@@ -75,19 +75,31 @@ class FuzzyController {
   /// are the stop command (u1 = u2 = 0, u3 = mid-range).
   FuzzyOutputs Process(double s, double dphi_deg);
 
+  /// Scaling factors of the inputs (the classical normalisation gains of a fuzzy controller):
+  /// the universe and every term of `s` (and of `dphi`) stretched by `s_scale` (`dphi_scale`),
+  /// so a term that peaks at 0.04 m with s_scale = 1 peaks at 0.08 m with s_scale = 2. It is
+  /// exact for every term shape: the engine sees s / s_scale. 1 = the rule base as written;
+  /// kept across reloads. Throws std::invalid_argument unless both are finite and > 0.
+  void SetInputScales(double s_scale, double dphi_scale);
+  double s_scale() const { return scale_[0]; }
+  double dphi_scale() const { return scale_[1]; }
+
   /// The rules with their firing strengths from the last Process().
   const std::vector<FuzzyRuleInfo>& rules() const { return rules_; }
-  /// Inputs s, dphi and outputs u1, u2, u3 with their (original) membership functions and the
-  /// values of the last Process().
+  /// Inputs s, dphi and outputs u1, u2, u3 with their membership functions (the inputs' as
+  /// stretched by the input scales, in metres and degrees) and the values of the last Process().
   const std::vector<FuzzyVariableInfo>& variables() const { return variables_; }
   double u3_center() const;
 
  private:
   void SampleOutputSets();
+  void ScaleInputCurves();
   std::unique_ptr<fl::Engine> engine_;
   std::string origin_;
   std::vector<FuzzyRuleInfo> rules_;
   std::vector<FuzzyVariableInfo> variables_;
+  std::vector<FuzzyVariableInfo> unscaled_inputs_;  ///< s, dphi as written (scale 1)
+  double scale_[2] = {1.0, 1.0};                    ///< s_scale, dphi_scale
 };
 
 }  // namespace formsim::control::inspection

@@ -138,7 +138,10 @@ Fix Localise(const std::vector<PostSighting>& sightings, const TrilaterationDef&
     for (int j = i + 1; j < static_cast<int>(sightings.size()); ++j) {
       if (sightings[j].range > def.max_range) continue;
       const double spread = std::abs(SignedSpread(sightings[i], sightings[j]));
-      pairs.push_back({i, j, std::sin(spread)});
+      const double quality = def.pair == PairChoice::kNearest
+                                 ? -std::max(sightings[i].range, sightings[j].range)
+                                 : std::sin(spread);
+      pairs.push_back({i, j, quality});
     }
   }
   if (pairs.empty()) return best;

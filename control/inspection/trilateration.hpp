@@ -23,8 +23,15 @@ struct PostSighting {
   double bearing = 0.0;  ///< scan angle, clockwise from the forward axis, rad
 };
 
+/// Which pair of posts in view a fix is computed from first.
+enum class PairChoice {
+  kBestAngle,  ///< the rays closest to 90° apart (the smallest dilution of precision)
+  kNearest,    ///< the two nearest posts (the pair whose farther post is nearest)
+};
+
 /// Acceptance limits of a two-post fix.
 struct TrilaterationDef {
+  PairChoice pair = PairChoice::kBestAngle;  ///< the order in which pairs are tried
   double range_tolerance = 0.10;     ///< circles may miss each other by this much (noise), m
   double min_subtended = Rad(20.0);  ///< angle between the two rays must lie in [this, π − this]
   double angle_tolerance = Rad(4.0);  ///< |measured − map-predicted| angle between the rays, rad
@@ -69,9 +76,10 @@ Fix TrilaterateTwoPosts(const PostSighting& s1, const PostSighting& s2,
 /// Returns NaN when the triangle is degenerate.
 double HeadingFromScanAngles(const PostSighting& s1, const PostSighting& s2);
 
-/// The best fix from all sightings: pairs within range are tried from the best geometry
-/// (angle between the rays closest to 90°) down, and the first consistent pair is used.
-/// With no consistent pair, the status of the best-geometry pair is returned.
+/// The best fix from all sightings: pairs within range are tried in the order `def.pair` says
+/// (best geometry: the angle between the rays closest to 90° first; nearest: the pair whose
+/// farther post is nearest first) and the first consistent pair is used. With no consistent
+/// pair, the status of the first pair tried is returned.
 Fix Localise(const std::vector<PostSighting>& sightings,
              const TrilaterationDef& def = DefaultTrilaterationDef());
 

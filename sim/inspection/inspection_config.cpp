@@ -19,6 +19,11 @@ namespace formsim::sim::inspection {
 using control::inspection::AzimuthDirection;
 using control::inspection::Rad;
 
+const std::vector<std::string>& PairChoiceNames() {
+  static const std::vector<std::string> names = {"best_angle", "nearest"};
+  return names;
+}
+
 const std::vector<std::string>& NavSourceNames() {
   static const std::vector<std::string> names = {"kalman", "classical", "raw", "dead_reckoning",
                                                  "truth"};
@@ -28,6 +33,7 @@ const std::vector<std::string>& NavSourceNames() {
 control::inspection::TrilaterationDef InspectionConfig::Trilateration() const {
   control::inspection::TrilaterationDef def;
   def.range_tolerance = range_tolerance;
+  def.pair = static_cast<control::inspection::PairChoice>(pair_choice);
   def.min_subtended = Rad(min_subtended_deg);
   def.angle_tolerance = Rad(angle_tolerance_deg);
   def.max_range = max_range;
@@ -127,8 +133,15 @@ InspectionConfig ReadInspectionConfig(YamlReader& root, const ExperimentSetup& s
   {
     YamlReader p = root.Map("posts");
     c.post_radius = p.Double("radius", c.post_radius, Tune().In(1e-3, 1.0));
-    c.post_spacing = p.Double("spacing", c.post_spacing, length);
-    c.post_side_offset = p.Double("side_offset", c.post_side_offset, length);
+    // The layout applies on reset: the posts are bodies of the world built then.
+    const std::string gp = "Localisation/posts";
+    c.post_spacing = p.Real("spacing", c.post_spacing,
+                            Tune("post spacing", "m").In(1e-3, 1e3).Slider(1.0, 18.0).Group(gp).OnReset()
+                                .Help("Distance between two posts along each side of the route"));
+    c.post_side_offset =
+        p.Real("side_offset", c.post_side_offset,
+               Tune("post side offset", "m").In(1e-3, 1e3).Slider(0.5, 6.0).Group(gp).OnReset()
+                   .Help("Distance of the post rows from the route's centre line"));
     c.post_stagger = p.Bool("stagger", c.post_stagger);
     c.turn_outer = p.Int("turn_outer", c.turn_outer, Tune().In(0, kMaxTurnPosts));
     c.turn_inner = p.Int("turn_inner", c.turn_inner, Tune().In(0, kMaxTurnPosts));
@@ -211,6 +224,10 @@ InspectionConfig ReadInspectionConfig(YamlReader& root, const ExperimentSetup& s
                             Tune("min beams per post").AtLeast(1).AtMost(10000).Slider(1, 10).Group(g));
     c.max_range = l.Real("max_range", c.max_range,
                          Tune("max post range", "m").Above(0).AtMost(1e3).Slider(1.0, 30.0).Group(g));
+    c.pair_choice = l.Pick("pair", PairChoiceNames(), c.pair_choice,
+                           Tune("fix from the pair").Group(g).Help(
+                               "best_angle: the two posts whose rays cross closest to 90° (the "
+                               "smallest dilution of precision); nearest: the two nearest posts"));
     c.min_subtended_deg =
         l.Real("min_subtended_deg", c.min_subtended_deg,
                Tune("min angle between posts", "deg").Above(0).Below(90).Slider(1.0, 89.0).Group(g));
@@ -290,6 +307,15 @@ InspectionConfig ReadInspectionConfig(YamlReader& root, const ExperimentSetup& s
     } catch (const std::exception& e) {
       f.Fail("file", e.what());
     }
+    const std::string gf = "Gains/fuzzy";
+    c.fuzzy_s_scale = f.Real("s_scale", c.fuzzy_s_scale,
+                             Tune("offset term scale").In(1e-3, 1e3).Slider(0.1, 10.0, kLog).Group(gf)
+                                 .Help("Stretches the universe and every term of the input s: 2 doubles "
+                                       "the width of every offset term (1 = the rule base as written)"));
+    c.fuzzy_dphi_scale = f.Real("dphi_scale", c.fuzzy_dphi_scale,
+                                Tune("heading term scale").In(1e-3, 1e3).Slider(0.1, 10.0, kLog).Group(gf)
+                                    .Help("Stretches the universe and every term of the input dphi "
+                                          "(1 = the rule base as written)"));
     f.Finish();
   }
   {

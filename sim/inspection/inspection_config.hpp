@@ -10,16 +10,21 @@
 ///   obstacles, patches, world: the shared blocks (equipment cabinets, slippery ground)
 ///   robot:        {name, start: {lateral, along, heading_deg}, body: {...}, drive: {...}}
 ///   laser:        LaserScannerDef          odometry: WheelOdometryDef
-///   localisation: {min_beams, cluster_jump, span_tolerance, fit_tolerance, gate,
+///   localisation: {min_beams, cluster_jump, span_tolerance, fit_tolerance, gate, pair,
 ///                  range_tolerance, min_subtended_deg, angle_tolerance_deg, max_range}
+///                 pair: best_angle (default) | nearest, the pair of posts a fix is tried from
+///                 first
 ///   estimation:   {controller_source: kalman|classical|raw|dead_reckoning|truth,
 ///                  kalman: {q_per_m, q_per_s, r, p0, nis_gate, reacquire_after},
 ///                  classical: {limit_step, limit_rate, mean_window, reacquire_after},
 ///                  heading: {limit_deg, mean_window, reacquire_after}}
 ///   control:      {rate_hz, feedforward}
-///   fuzzy:        {file}   the FLL rule base, relative to the scenario's folder (Save rewrites
-///                 it); it is loaded and checked by the reader. Reloading it during a run is
-///                 the experiment's action "reload_rules", not a key.
+///   fuzzy:        {file, s_scale, dphi_scale}   the FLL rule base, relative to the scenario's
+///                 folder (Save rewrites it); it is loaded and checked by the reader. Reloading
+///                 it during a run is the experiment's action "reload_rules", not a key. The
+///                 scales (default 1, live) stretch the universe and every term of the input s
+///                 (dphi): the classical scaling factors of a fuzzy controller, see
+///                 FuzzyController::SetInputScales.
 ///   metrics:      {lateral_bound, transient_m}
 /// Every number has a hard validity (Tune) that keeps the run finite: lengths within
 /// [1e-3, 1e3] m, coordinates within ±1e3 m (also of the robot body and the obstacles, which
@@ -51,6 +56,8 @@ struct InspectionPost {
 /// Where the controller's (and the post identification's) pose estimate comes from.
 enum class NavSource { kKalman, kClassical, kRaw, kDeadReckoning, kTruth };
 const std::vector<std::string>& NavSourceNames();
+/// The YAML names of control::inspection::PairChoice, in its order.
+const std::vector<std::string>& PairChoiceNames();
 
 struct InspectionConfig {
   // World: floor, the user's obstacles (cabinets...) and patches (the posts are added).
@@ -80,6 +87,7 @@ struct InspectionConfig {
   // Localisation.
   control::inspection::PostDetectorDef detector;
   double range_tolerance = 0.10;
+  int pair_choice = 0;  ///< index into PairChoiceNames()
   double min_subtended_deg = 20.0;
   double angle_tolerance_deg = 4.0;
   double max_range = 12.0;
@@ -96,8 +104,10 @@ struct InspectionConfig {
   int control_every = 20;  ///< world steps per control period
   int laser_every = 2;     ///< world steps per scan
   bool feedforward = true;
-  std::string fuzzy_file;  ///< resolved path
-  std::string fuzzy_text;  ///< the rule base as read (and checked) by the reader
+  std::string fuzzy_file;         ///< resolved path
+  std::string fuzzy_text;         ///< the rule base as read (and checked) by the reader
+  double fuzzy_s_scale = 1.0;     ///< stretch of the s terms (1 = as written)
+  double fuzzy_dphi_scale = 1.0;  ///< stretch of the dphi terms (1 = as written)
   // Metrics.
   double lateral_bound = 0.3;  ///< |true lateral offset| allowed after the transient, m
   double transient_m = 6.0;    ///< start transient excluded from the tracking metrics, m of route

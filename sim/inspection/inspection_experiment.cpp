@@ -87,6 +87,7 @@ void InspectionExperiment::Configure() {
   classic_.Configure(cfg_.limit, cfg_.mean_window);
   heading_.SetDef(cfg_.Heading());
   tri_ = cfg_.Trilateration();
+  fuzzy_.SetInputScales(cfg_.fuzzy_s_scale, cfg_.fuzzy_dphi_scale);
   control_rate_ = MultiRate(cfg_.control_every);
   laser_rate_ = MultiRate(cfg_.laser_every);
 }

@@ -18,9 +18,11 @@
 ///
 /// Live tuning: the vehicle scales, noise, localisation and filter settings, the control rate
 /// and the controller's source are tunables (YAML paths as keys, see inspection_config.hpp);
-/// only the post survey error waits for a reset. The action "reload_rules" re-reads the FLL file
-/// between two steps (the GUI's "Reload rule base (FLL)" button); success raises the event
-/// "fuzzy_reloaded", a bad file the event "fuzzy_reload_failed", and the old rule base stays.
+/// only the post layout (spacing, side offset) and survey error wait for a reset. The fuzzy
+/// input scales (fuzzy.s_scale, fuzzy.dphi_scale) apply live. The action "reload_rules"
+/// re-reads the FLL file between two steps (the GUI's "Reload rule base (FLL)" button);
+/// success raises the event "fuzzy_reloaded", a bad file the event "fuzzy_reload_failed", and
+/// the old rule base stays.
 ///
 /// Recorder channels (declared in DeclareChannels; an empty cell means "no value in this row"):
 ///   t; true_x true_y true_heading_deg (the tracked point, paper convention);

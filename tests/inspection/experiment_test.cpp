@@ -251,6 +251,13 @@ TEST(InspectionExperiment, TunablesKeepTheirKeysLabelsGroupsAndSliders) {
       {"estimation.classical.mean_window", "Estimation/classical", "mean window", "", 1, 50, false, true},
       {"estimation.heading.limit_deg", "Estimation/heading", "heading limit", "deg", 0.5, 45, false, true},
       {"estimation.heading.mean_window", "Estimation/heading", "heading mean window", "", 1, 50, false, true},
+      // Added for the lessons: the post layout (on reset), the pair a fix uses, the fuzzy
+      // input scales.
+      {"posts.spacing", "Localisation/posts", "post spacing", "m", 1, 18, false, false},
+      {"posts.side_offset", "Localisation/posts", "post side offset", "m", 0.5, 6, false, false},
+      {"localisation.pair", "Localisation/laser", "fix from the pair", "", NAN, NAN, false, true},
+      {"fuzzy.s_scale", "Gains/fuzzy", "offset term scale", "", 0.1, 10, true, true},
+      {"fuzzy.dphi_scale", "Gains/fuzzy", "heading term scale", "", 0.1, 10, true, true},
   };
   const ParsedScenario parsed = ParseScenario(ScenarioSource::FromFile(kRoute), {});
   // Beyond the kind's own: the floor's μ and each patch's μ, declared by the shared readers.
@@ -304,6 +311,36 @@ TEST(InspectionExperiment, LiveEditsApplyBetweenStepsAndTheSurveyWaitsForAReset)
   EXPECT_EQ(s.Reset(), "");
   EXPECT_EQ(AsInspection(s.exp()).config().survey_sigma, 0.1);
   EXPECT_EQ(AsInspection(s.exp()).config().control_rate_hz, 10.0);
+}
+
+// The post layout waits for a reset (the posts are bodies) and is checked as the loader checks
+// it; the fuzzy input scales and the pair choice apply between two steps.
+TEST(InspectionExperiment, PostLayoutOnResetFuzzyScalesAndPairLive) {
+  Session s(kRoute, {"duration=6", "posts.omit=[]"}, -1);
+  for (int k = 0; k < 50; ++k) s.Step();
+  const std::size_t posts = AsInspection(s.exp()).config().posts.size();
+  EXPECT_EQ(s.Edit("posts.spacing", "6"), "");
+  EXPECT_EQ(s.Edit("posts.side_offset", "2.5"), "");
+  s.Step();
+  EXPECT_EQ(AsInspection(s.exp()).config().posts.size(), posts);
+  EXPECT_EQ(s.waiting_for_reset().count("posts.spacing"), 1u);
+  EXPECT_EQ(s.Reset(), "");
+  const auto& c = AsInspection(s.exp()).config();
+  EXPECT_LT(c.posts.size(), posts);
+  EXPECT_EQ(c.post_spacing, 6.0);
+  EXPECT_DOUBLE_EQ(c.posts.front().position.x, c.route_start.x - 2.5);
+  // The identification gate must stay below half the spacing; a post must not touch the path.
+  EXPECT_NE(s.Edit("posts.spacing", "1").find("below half the post spacing"), std::string::npos);
+  EXPECT_NE(s.Edit("posts.side_offset", "0.05").find("must exceed the post radius"), std::string::npos);
+  EXPECT_NE(s.Edit("fuzzy.s_scale", "0").find("must be in [0.001, 1000]"), std::string::npos);
+  EXPECT_NE(s.Edit("localisation.pair", "farthest").find("nearest"), std::string::npos);
+  // Live: the controller's rule base sees the stretched terms from the next decision on.
+  EXPECT_EQ(s.Edit("fuzzy.s_scale", "4"), "");
+  EXPECT_EQ(s.Edit("localisation.pair", "nearest"), "");
+  s.Step();
+  auto& x = AsInspection(s.exp());
+  EXPECT_EQ(x.fuzzy().s_scale(), 4.0);
+  EXPECT_EQ(x.config().Trilateration().pair, formsim::control::inspection::PairChoice::kNearest);
 }
 
 // The controller's source is a live choice: every estimator runs and is recorded from the start,

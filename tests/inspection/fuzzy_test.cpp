@@ -249,6 +249,38 @@ TEST(Fuzzy, CorrectsTowardsThePathOnEachSide) {
   EXPECT_GT(fc.Process(-0.02, 0.0).u3, 360.0 + 63.0);
 }
 
+// An input scale stretches the terms: the controller scaled by k at k·s decides exactly as the
+// unscaled one at s, the curves and ranges it reports are stretched, and reloading keeps it.
+TEST(Fuzzy, InputScalesStretchTheTerms) {
+  ins::FuzzyController plain, scaled;
+  plain.LoadFile(kFll);
+  scaled.LoadFile(kFll);
+  scaled.SetInputScales(4.0, 0.5);
+  for (double s : {-0.3, -0.02, 0.0, 0.013, 0.07, 0.25})
+    for (double d : {-12.0, -3.0, 0.0, 5.0}) {
+      const auto a = plain.Process(s, d), b = scaled.Process(4.0 * s, 0.5 * d);
+      EXPECT_EQ(a.u1, b.u1);
+      EXPECT_EQ(a.u2, b.u2);
+      EXPECT_EQ(a.u3, b.u3);
+    }
+  // The turn's 63 servo units now need four times the offset.
+  EXPECT_LT(scaled.Process(-0.02, 0.0).u3, 360.0 + 63.0);
+  EXPECT_GT(scaled.Process(-0.08, 0.0).u3, 360.0 + 63.0);
+  const auto& sv = scaled.variables()[0];
+  const auto& pv = plain.variables()[0];
+  ASSERT_EQ(sv.name, "s");
+  EXPECT_DOUBLE_EQ(sv.max, 4.0 * pv.max);
+  EXPECT_DOUBLE_EQ(sv.terms[0].x.back(), 4.0 * pv.terms[0].x.back());
+  scaled.Process(0.1, 1.0);
+  EXPECT_DOUBLE_EQ(sv.value, 0.1);
+  EXPECT_DOUBLE_EQ(scaled.variables()[1].value, 1.0);
+  scaled.LoadFile(kFll);
+  EXPECT_EQ(scaled.s_scale(), 4.0);
+  EXPECT_DOUBLE_EQ(scaled.variables()[0].max, 4.0 * pv.max);
+  EXPECT_THROW(scaled.SetInputScales(0.0, 1.0), std::invalid_argument);
+  EXPECT_THROW(scaled.SetInputScales(1.0, NAN), std::invalid_argument);
+}
+
 TEST(Fuzzy, MirrorSymmetricAndWithinTheOutputRanges) {
   ins::FuzzyController fc;
   fc.LoadFile(kFll);

@@ -126,6 +126,35 @@ TEST(Trilateration, LocalisePicksTheBestGeometry) {
   EXPECT_NEAR(fix.position.y, p.y, 1e-9);
 }
 
+// The nearest pair is tried first when asked, even where a farther pair crosses at 90°; a
+// nearest pair in line with the robot gives way to the next one.
+TEST(Trilateration, LocaliseCanPreferTheNearestPair) {
+  const Vec2 p{3.3, 5.0};
+  const double heading = 0.1;
+  // 0 and 1 are the nearest (1.6 and 2.2 m, 139° apart); 0 and 2 cross at 90°, 2 is 4 m off.
+  std::vector<ins::PostSighting> s = {See(p, heading, {2.0, 4.0}, 0),
+                                      See(p, heading, {5.496, 4.87}, 1),
+                                      See(p, heading, {0.86, 8.17}, 2)};
+  ins::TrilaterationDef def;
+  def.pair = ins::PairChoice::kNearest;
+  const ins::Fix nearest = ins::Localise(s, def);
+  ASSERT_TRUE(nearest.ok());
+  EXPECT_EQ(nearest.sighting_a, 0);
+  EXPECT_EQ(nearest.sighting_b, 1);
+  EXPECT_NEAR(nearest.position.x, p.x, 1e-9);
+  EXPECT_NEAR(nearest.position.y, p.y, 1e-9);
+  const ins::Fix best = ins::Localise(s);
+  ASSERT_TRUE(best.ok());
+  EXPECT_TRUE(best.sighting_a == 2 || best.sighting_b == 2);
+  // Posts left and right of the robot at the same distance: 180° apart, poor geometry; the
+  // next nearest pair is used.
+  s = {See(p, heading, {2.0, 5.0}, 0), See(p, heading, {4.6, 5.0}, 1),
+       See(p, heading, {4.6, 8.0}, 2)};
+  const ins::Fix abeam = ins::Localise(s, def);
+  ASSERT_TRUE(abeam.ok());
+  EXPECT_EQ(abeam.sighting_b, 2);
+}
+
 // Eq. 4 on a turn agrees with the route geometry: radius offset, heading error, heading.
 TEST(Trilateration, TurnGeometryMatchesTheRoute) {
   const ins::Route route = ins::Route::UShape({3.3, 2.0}, 18.0, 2.5, true);
