@@ -81,34 +81,17 @@ void AppUi::MakePanels() {
   };
   ctx_.panels = &panels_;
   ctx_.kind_panel = &kind_panel_;
-  auto timeline = std::make_unique<TimelinePanel>(ctx_);
-  timeline_ = timeline.get();
-  panels_.push_back(std::move(timeline));
-  auto history = std::make_unique<HistoryPanel>(ctx_);
-  history_ = history.get();
-  panels_.push_back(std::move(history));
-  auto compare = std::make_unique<ComparePanel>(ctx_);
-  compare_ = compare.get();
-  panels_.push_back(std::move(compare));
-  auto plots = std::make_unique<PlotsPanel>(ctx_);
-  plots_ = plots.get();
-  panels_.push_back(std::move(plots));
-  auto scenario = std::make_unique<ScenarioPanel>(ctx_);
-  scenario_ = scenario.get();
-  panels_.push_back(std::move(scenario));
-  auto parameters = std::make_unique<ParametersPanel>(ctx_);
-  parameters_ = parameters.get();
-  panels_.push_back(std::move(parameters));
-  auto run = std::make_unique<RunPanel>(ctx_);
-  run_ = run.get();
-  panels_.push_back(std::move(run));
-  auto view = std::make_unique<ViewPanel>(ctx_);
-  view_ = view.get();
-  panels_.push_back(std::move(view));
-  auto tables = std::make_unique<TablesPanel>(ctx_);
-  tables_ = tables.get();
-  panels_.push_back(std::move(tables));
-  panels_.push_back(std::make_unique<LessonPanel>(ctx_));
+  // The window's panels, in the order Esc asks them (PanelToDismiss).
+  timeline_ = AddPanel<TimelinePanel>();
+  history_ = AddPanel<HistoryPanel>();
+  compare_ = AddPanel<ComparePanel>();
+  plots_ = AddPanel<PlotsPanel>();
+  scenario_ = AddPanel<ScenarioPanel>();
+  parameters_ = AddPanel<ParametersPanel>();
+  run_ = AddPanel<RunPanel>();
+  view_ = AddPanel<ViewPanel>();
+  tables_ = AddPanel<TablesPanel>();
+  AddPanel<LessonPanel>();
   SyncKindPanel();
 }
 

@@ -211,6 +211,14 @@ class AppUi {
   void SyncKindPanel();
   /// The context handed to the panels, then the window's own panels, made once.
   void MakePanels();
+  /// Makes a panel of type P with the window's context and keeps it.
+  template <class P>
+  P* AddPanel() {
+    auto panel = std::make_unique<P>(ctx_);
+    P* raw = panel.get();
+    panels_.push_back(std::move(panel));
+    return raw;
+  }
   /// Replaces the session after a successful load (keeps view options, resets per-run state).
   void Adopt(std::unique_ptr<sim::Session> session, const std::string& message);
   void SyncScenarioFields();
