@@ -17,7 +17,9 @@ PKGS=("${DEMO_PKGS[@]}"
       parallel slurm-wlm munge  # the sweep's GNU parallel and single-node Slurm tests
       poppler-utils libxml2-utils   # PDF and SVG checks
       pybind11-dev python3-pybind11 python3-dev python3-numpy  # the Python module (python/)
-      python3-pandas python3-pytest)                           # ... its to_pandas and tests
+      python3-pandas python3-pytest python3-distributed        # ... to_pandas, tests, Dask
+      jupyter-nbconvert python3-ipykernel python3-nbformat     # ... the notebooks, executed
+      python3-scipy python3-matplotlib)                        #     by the tests
 if [ "${1:-}" = "demo" ]; then PKGS=("${DEMO_PKGS[@]}"); fi
 missing=()
 for p in "${PKGS[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done

@@ -16,6 +16,9 @@ same summary as ``formsim run NAME --seed S --set key=value``.
 Needs Debian's interpreter /usr/bin/python3 (with python3-numpy; python3-pandas for
 to_pandas) and ``PYTHONPATH=<build>/python`` (or ``cmake --install``); see the README.
 
+``formsim.sweep(...)`` runs a sweep as ``formsim sweep`` does (same runs.csv and aggregate.csv),
+``formsim.dask.sweep(client, ...)`` maps its runs over a dask.distributed cluster.
+
 Every refused input raises :class:`Error` (a ``ValueError``) with the loader's reason; a run
 that stops at a non-finite value raises :class:`NumericalFault`, which carries the results up
 to the fault.
@@ -24,5 +27,7 @@ to the fault.
 from formsim._core import Error
 from formsim._sim import NumericalFault, Sim, Tunable, load, not_sampled
 from formsim._listing import lessons, scenarios, version
+from formsim._sweep import SweepResult, sweep
 
-__all__ = ["Error", "NumericalFault", "Sim", "Tunable", "load", "not_sampled", "scenarios", "lessons", "version"]
+__all__ = ["Error", "NumericalFault", "Sim", "Tunable", "load", "not_sampled", "scenarios", "lessons", "version",
+           "sweep", "SweepResult"]

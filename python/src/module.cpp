@@ -10,6 +10,7 @@
 
 #include "python/src/errors.hpp"
 #include "python/src/session_binding.hpp"
+#include "python/src/sweep_binding.hpp"
 #include "sim/core/provenance.hpp"
 #include "sim/scenario/scenario_files.hpp"
 
@@ -36,6 +37,7 @@ PYBIND11_MODULE(_core, m) {
   m.doc() = "The C++ side of formsim (use the package formsim, not this module).";
   formsim::python::RegisterErrors(m);
   formsim::python::BindSession(m);
+  formsim::python::BindSweep(m);
   m.def(
       "scenarios",
       [] { return List(formsim::sim::ShippedScenarios(), &formsim::sim::DescribeScenario); },

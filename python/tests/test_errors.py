@@ -92,7 +92,7 @@ def test_wrong_argument_types(args):
     (K_PHI, {"a": 1}, K_PHI),
     (K_PHI, "x" * 70000, K_PHI),
     (7, 1.0, "key"),
-])
+], ids=["unknown", "nan", "inf", "negative", "text", "list", "dict", "70k-text", "int-key"])
 def test_refused_edit_leaves_the_sim_unchanged(key, value, words):
     sim = formsim.load(SCENARIO, set={"duration": 0.5})
     sim.step(10)
