@@ -8,7 +8,8 @@
                                     seeds=range(1, 6), out="out/sweep")
     result.aggregate        # a DataFrame; out/sweep/aggregate.csv is formsim sweep's file
 
-On several machines: start ``dask scheduler`` on one and ``dask worker tcp://HOST:8786`` on
+In a script, create the LocalCluster under ``if __name__ == "__main__":`` (its worker processes
+import the script again). On several machines: start ``dask scheduler`` on one and ``dask worker tcp://HOST:8786`` on
 each (with the same formsim build importable: PYTHONPATH=<build>/python for /usr/bin/python3),
 then ``Client("tcp://HOST:8786")`` and the same call. The scenario's text travels with the
 plan, so workers need no copy of it; files a scenario names (a fuzzy rule base) must exist at
