@@ -52,7 +52,7 @@ std::string Run(const std::string& file, const std::string& text, const std::str
                 std::size_t run) {
   const sim::ScenarioSource source = Source(file, text);
   const sim::SweepDefinition def = sim::ParseManifest(manifest, "sweep manifest");
-  if (def.scenario_sha256 != source.sha256())
+  if (def.scenarios.size() != 1 || def.scenarios[0].sha256 != source.sha256())
     throw std::runtime_error(
         "sweep_run: the scenario text is not the one the sweep was defined on");
   if (run >= def.runs())
