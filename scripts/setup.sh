@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages formsim needs that are not installed yet. Idempotent; run as root.
-#   scripts/setup.sh        everything: the build, the tests, the sanitizers, the cluster tests
+#   scripts/setup.sh        everything: the build, the tests, the sanitizers, the cluster tests,
+#                           the Python module
 #   scripts/setup.sh demo   only what building `formsim` and running the headless demo need
 set -euo pipefail
 # Building formsim and running it headless.
@@ -14,7 +15,11 @@ PKGS=("${DEMO_PKGS[@]}"
       xvfb xauth ffmpeg         # the window's tests under Xvfb; video export
       clang libclang-rt-14-dev  # clang: the sanitizer build and the libFuzzer harnesses
       parallel slurm-wlm munge  # the sweep's GNU parallel and single-node Slurm tests
-      poppler-utils libxml2-utils)  # PDF and SVG checks
+      poppler-utils libxml2-utils   # PDF and SVG checks
+      pybind11-dev python3-pybind11 python3-dev python3-numpy  # the Python module (python/)
+      python3-pandas python3-pytest python3-distributed        # ... to_pandas, tests, Dask
+      jupyter-nbconvert python3-ipykernel python3-nbformat     # ... the notebooks, executed
+      python3-scipy python3-matplotlib)                        #     by the tests
 if [ "${1:-}" = "demo" ]; then PKGS=("${DEMO_PKGS[@]}"); fi
 missing=()
 for p in "${PKGS[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done

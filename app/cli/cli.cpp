@@ -189,16 +189,8 @@ int RunCommand(RunOptions opt) {
 
 int ListCommand() {
   for (const auto& file : sim::ShippedScenarios()) {
-    const std::string stem = std::filesystem::path(file).stem().string();
-    std::string type = "?", description;
-    try {
-      YAML::Node root = sim::LoadYamlFile(file);
-      if (root["type"]) type = root["type"].as<std::string>();
-      if (root["description"]) description = root["description"].as<std::string>();
-    } catch (const std::exception& e) {
-      description = std::string("(unreadable: ") + e.what() + ")";
-    }
-    std::printf("%-34s %-11s %s\n", stem.c_str(), type.c_str(), description.c_str());
+    const sim::ScenarioListing s = sim::DescribeScenario(file);
+    std::printf("%-34s %-11s %s\n", s.name.c_str(), s.type.c_str(), s.description.c_str());
   }
   // Lessons: scenarios with a text (formsim gui --lesson NAME); run and sweep take them by name.
   // Grouped by the paper they teach (the scenario's type), in the order of the kinds.
@@ -206,16 +198,8 @@ int ListCommand() {
   if (!lessons.empty()) std::printf("\nlessons (formsim gui --lesson NAME), by paper:\n");
   std::map<std::string, std::vector<std::pair<std::string, std::string>>> by_paper;
   for (const auto& file : lessons) {
-    const std::string stem = std::filesystem::path(file).stem().string();
-    std::string title, type = "?";
-    try {
-      YAML::Node root = sim::LoadYamlFile(file);
-      if (root["type"]) type = root["type"].as<std::string>();
-      if (root["lesson"] && root["lesson"]["title"]) title = root["lesson"]["title"].as<std::string>();
-    } catch (const std::exception& e) {
-      title = std::string("(unreadable: ") + e.what() + ")";
-    }
-    by_paper[type].emplace_back(stem, title);
+    const sim::ScenarioListing l = sim::DescribeLesson(file);
+    by_paper[l.type].emplace_back(l.name, l.description);
   }
   for (const auto& [paper, list] : by_paper) {
     std::printf("  %s:\n", paper.c_str());

@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "sim/core/yaml_reader.hpp"
+
 namespace fs = std::filesystem;
 
 namespace formsim::sim {
@@ -70,6 +72,35 @@ std::string ResolveScenario(const std::string& name) {
   else
     msg += "; `formsim list` shows the shipped ones";
   throw std::runtime_error(msg);
+}
+
+namespace {
+// Reads type and the one-line text at `path` (a list of keys) of `file`.
+ScenarioListing Describe(const std::string& file, const std::vector<const char*>& path) {
+  ScenarioListing out{fs::path(file).stem().string(), "?", ""};
+  try {
+    YAML::Node root = LoadYamlFile(file);
+    if (root["type"]) out.type = root["type"].as<std::string>();
+    // reset(), not operator=: assigning a YAML::Node writes into the node it refers to.
+    YAML::Node node = root;
+    for (const char* key : path) {
+      if (!node[key]) return out;
+      node.reset(node[key]);
+    }
+    out.description = node.as<std::string>();
+  } catch (const std::exception& e) {
+    out.description = std::string("(unreadable: ") + e.what() + ")";
+  }
+  return out;
+}
+}  // namespace
+
+ScenarioListing DescribeScenario(const std::string& file) {
+  return Describe(file, {"description"});
+}
+
+ScenarioListing DescribeLesson(const std::string& file) {
+  return Describe(file, {"lesson", "title"});
 }
 
 }  // namespace formsim::sim

@@ -25,4 +25,16 @@ std::vector<std::string> ShippedLessons();
 /// std::runtime_error listing the shipped lessons when nothing matches.
 std::string ResolveLesson(const std::string& name_or_path);
 
+/// One line of `formsim list` (and of the Python module's scenarios() and lessons()).
+struct ScenarioListing {
+  std::string name;         ///< the file's stem: what `formsim run NAME` takes
+  std::string type;         ///< the experiment kind, "?" when the file does not say
+  std::string description;  ///< a scenario's `description`, a lesson's `lesson.title`; when
+                            ///< the file cannot be read: "(unreadable: reason)"
+};
+/// The listing of a scenario file (`description:`).
+ScenarioListing DescribeScenario(const std::string& file);
+/// The listing of a lesson file (`lesson: title:`).
+ScenarioListing DescribeLesson(const std::string& file);
+
 }  // namespace formsim::sim

@@ -1,7 +1,8 @@
 # The direction of dependencies (docs/ARCHITECTURE.md), checked on every #include:
 #   control knows nothing of sim or app; sim knows nothing of app;
 #   sim's shared floors: core <- scenario <- session, study; the kinds (sim/<kind>) sit above all four;
-#   app/render (canvas, plots, themes, GL) knows nothing of the window, export or the CLI.
+#   app/render (canvas, plots, themes, GL) knows nothing of the window, export or the CLI;
+#   the Python module (python/) uses sim only: no GL, ImGui or CLI code.
 # Run: cmake -DSOURCE_DIR=<repo> -P include_floors.cmake. Fails listing every offending line.
 if(NOT SOURCE_DIR)
   message(FATAL_ERROR "SOURCE_DIR not set")
@@ -29,7 +30,8 @@ set(_rules
   "sim/scenario;sim/(session|study|${_kind_alt})/"
   "sim/session;sim/(study|${_kind_alt})/"
   "sim/study;sim/(session|${_kind_alt})/"
-  "app/render;app/(gui|export|cli)/")
+  "app/render;app/(gui|export|cli)/"
+  "python;app/")
 
 set(_bad)
 set(_checked 0)
