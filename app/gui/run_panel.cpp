@@ -74,13 +74,9 @@ std::string RunPanel::CmdStep() {
 }
 
 std::string RunPanel::CmdReset() {
-  auto row = ctx_.Find<HistoryPanel>()->PendingRow("reset");
-  const std::string err = ctx_.session().Reset();
-  if (!err.empty()) {
-    ctx_.SetStatus(err, true);
-    return err;
-  }
-  if (row) ctx_.Find<HistoryPanel>()->Add(std::move(*row));
+  // The run replaced keeps its history row (PanelContext::replace_run).
+  const std::string err = ctx_.replace_run("reset", [&] { return ctx_.session().Reset(); });
+  if (!err.empty()) return ctx_.Refuse(err);
   step_budget_ = 0;
   CopyString(seed_text_, sizeof seed_text_, std::to_string(ctx_.session().seed()));
   ctx_.SetStatus("reset");
@@ -98,13 +94,9 @@ std::string RunPanel::CmdResetSeed(const std::string& seed_text) {
     ctx_.SetStatus(why, true);
     return why;
   }
-  auto row = ctx_.Find<HistoryPanel>()->PendingRow("reset");
-  const std::string err = ctx_.session().Reset(seed);
-  if (!err.empty()) {
-    ctx_.SetStatus(err, true);
-    return err;
-  }
-  if (row) ctx_.Find<HistoryPanel>()->Add(std::move(*row));
+  // The run replaced keeps its history row (PanelContext::replace_run).
+  const std::string err = ctx_.replace_run("reset", [&] { return ctx_.session().Reset(seed); });
+  if (!err.empty()) return ctx_.Refuse(err);
   step_budget_ = 0;
   CopyString(seed_text_, sizeof seed_text_, std::to_string(seed));
   ctx_.SetStatus("reset with seed " + std::to_string(seed));

@@ -60,13 +60,9 @@ void ScenarioPanel::SyncScenario() {
 }
 
 std::string ScenarioPanel::CmdReload() {
-  auto row = ctx_.Find<HistoryPanel>()->PendingRow("reloaded");
-  const std::string err = ctx_.session().Reload();
-  if (!err.empty()) {
-    ctx_.SetStatus(err, true);
-    return err;
-  }
-  if (row) ctx_.Find<HistoryPanel>()->Add(std::move(*row));
+  // The run replaced keeps its history row (PanelContext::replace_run).
+  const std::string err = ctx_.replace_run("reloaded", [&] { return ctx_.session().Reload(); });
+  if (!err.empty()) return ctx_.Refuse(err);
   ctx_.scenario_changed();
   ctx_.SetStatus("reloaded " + ctx_.session().file());
   return "";
