@@ -133,6 +133,15 @@ std::vector<Command> WindowRows() {
              return std::string();
            },
        .script_only = true});
+  row({.name = "layout-report",
+       .args = {Text("PATH", "a JSON file to write")},
+       .help = "Write what the layout cut off in this frame (window, UI scale, clipped text) as JSON",
+       .run =
+           [](AppUi& ui, const CommandArgs& a, Src) {
+             ui.state().layout_report_path = a.Text(0);
+             return std::string();
+           },
+       .script_only = true});
   row({.name = "wait",
        .help = "Hold the script until pins, a Monte Carlo or the timeline have finished",
        .run = [](AppUi&, const CommandArgs&, Src) { return std::string(); },

@@ -7,10 +7,13 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 
 #include "app/gui/formation_editor_panel.hpp"
 #include "app/gui/compare_panel.hpp"
 #include "app/gui/history_panel.hpp"
+#include "app/gui/layout_audit.hpp"
+#include "sim/core/json.hpp"
 #include "app/gui/parameters_panel.hpp"
 #include "app/gui/plots_panel.hpp"
 #include "app/gui/run_panel.hpp"
@@ -284,6 +287,7 @@ void AppUi::Draw(ImVec2 display, const Fonts& fonts, bool interactive) {
     view_->DrawPresentationBar(ImVec2(0, 0), display);
     if (state_.help) view_->DrawHelpOverlay(ImVec2(0, 0), display);
     overlays();
+    WriteLayoutReport(display);
     return;
   }
   const float top = DrawMenuBar();
@@ -303,6 +307,32 @@ void AppUi::Draw(ImVec2 display, const Fonts& fonts, bool interactive) {
   DrawPlotsWindow(ImVec2(left_w + mid_w, top), ImVec2(display.x - left_w - mid_w, h), fonts);
   if (state_.help) view_->DrawHelpOverlay(ImVec2(left_w, top), ImVec2(left_w + mid_w, display.y));
   overlays();
+  WriteLayoutReport(display);
+}
+
+void AppUi::WriteLayoutReport(ImVec2 display) {
+  if (state_.layout_report_path.empty()) return;
+  const std::string path = state_.layout_report_path;
+  state_.layout_report_path.clear();
+  sim::Json report = sim::Json::Object();
+  sim::Json window = sim::Json::Array();
+  window.Push(sim::Json(static_cast<double>(display.x)));
+  window.Push(sim::Json(static_cast<double>(display.y)));
+  report["window"] = window;
+  report["ui_scale"] = sim::Json(static_cast<double>(state_.settings.ui_scale));
+  sim::Json clipped = sim::Json::Array();
+  for (const ClippedText& c : FindClippedText()) {
+    sim::Json e = sim::Json::Object();
+    e["widget"] = sim::Json(c.widget);
+    e["text"] = sim::Json(c.text);
+    e["available"] = sim::Json(static_cast<double>(c.available));
+    e["needed"] = sim::Json(static_cast<double>(c.needed));
+    clipped.Push(e);
+  }
+  report["clipped"] = clipped;
+  std::ofstream f(path);
+  f << report.Dump() << "\n";
+  if (!f) SetStatus("layout-report: cannot write " + path, true);
 }
 
 void AppUi::DrawControlPanel(const Fonts& fonts, bool interactive) {

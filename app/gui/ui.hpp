@@ -72,6 +72,7 @@ struct UiState {
   UiSettings settings;   ///< UI scale and angle unit, kept between runs
 
   // The command table's window parts (app/gui/ui_menu.cpp, app/gui/ui_palette.cpp).
+  std::string layout_report_path;  ///< `layout-report`: written at the end of the next frame
   bool quit_requested = false;  ///< `quit`: the window closes after this frame
   bool about = false;           ///< the About box
   bool palette = false;         ///< the command palette (Ctrl+K)
@@ -193,6 +194,8 @@ class AppUi {
 
  private:
   void HandleKeys();
+  /// `layout-report`: what this frame cut off, as JSON.
+  void WriteLayoutReport(ImVec2 display);
   /// The menu bar, generated from the command table; returns its height.
   float DrawMenuBar();
   void DrawMenuItem(const Command& cmd);
