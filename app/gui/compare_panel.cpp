@@ -4,6 +4,8 @@
 /// edits, and goes when unpinned or when another scenario is loaded.
 #include "app/gui/compare_panel.hpp"
 
+#include "app/gui/flow_layout.hpp"
+
 #include <imgui.h>
 
 #include <algorithm>
@@ -182,12 +184,14 @@ void ComparePanel::Draw(const Fonts&) {
     ImGui::SetTooltip(
         "Keep this run as a reference: dashed in every plot, faded in the world\n"
         "view, a column of the comparison table");
-  ImGui::SameLine();
+  SameLineIfFits(ButtonWidth("Unpin all"));
   ImGui::BeginDisabled(pins_.empty());
   if (ImGui::Button("Unpin all")) CmdUnpinAll();
   ImGui::EndDisabled();
-  ImGui::SameLine();
-  ImGui::TextDisabled("%zu pinned (History tab)", pins_.size());
+  char pinned[48];
+  std::snprintf(pinned, sizeof pinned, "%zu pinned (History tab)", pins_.size());
+  SameLineIfFits(TextWidth(pinned));
+  ImGui::TextDisabled("%s", pinned);
 
   // Monte Carlo: the count, Run or Cancel, and a bar that is always there.
   const bool running = mc_.run && !mc_.run->finished();
@@ -195,16 +199,16 @@ void ComparePanel::Draw(const Fonts&) {
   ImGui::BeginDisabled(running);
   ImGui::InputInt("##seeds", &mc_seeds_, 1, 10);
   mc_seeds_ = std::clamp(mc_seeds_, 1, 100000);
-  ImGui::SameLine();
   char run_label[48];
   std::snprintf(run_label, sizeof run_label, "Run %d seeds", mc_seeds_);
+  SameLineIfFits(ButtonWidth(run_label));
   if (ImGui::Button(run_label)) CmdSeeds(mc_seeds_);
   ImGui::EndDisabled();
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip(
         "The current settings over seeds 1..N in the background: bands on every\n"
         "time plot, mean ± σ in the comparison table (as formsim sweep --seeds 1..N)");
-  ImGui::SameLine();
+  SameLineIfFits(ButtonWidth("Cancel"));
   ImGui::BeginDisabled(!running);
   if (ImGui::Button("Cancel")) CmdCancelSeeds();
   ImGui::EndDisabled();
@@ -229,15 +233,17 @@ void ComparePanel::Draw(const Fonts&) {
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip("Ctrl+Z: %s",
                       ctx_.session().can_undo() ? ctx_.session().UndoText().c_str() : "nothing");
-  ImGui::SameLine();
+  SameLineIfFits(ButtonWidth("Redo"));
   ImGui::BeginDisabled(!ctx_.session().can_redo());
   if (ImGui::Button("Redo")) ctx_.run("redo");
   ImGui::EndDisabled();
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip("Ctrl+Y: %s",
                       ctx_.session().can_redo() ? ctx_.session().RedoText().c_str() : "nothing");
-  ImGui::SameLine();
-  ImGui::TextDisabled("%d edits since loading", ctx_.session().accepted_edits());
+  char edits[48];
+  std::snprintf(edits, sizeof edits, "%d edits since loading", ctx_.session().accepted_edits());
+  SameLineIfFits(TextWidth(edits));
+  ImGui::TextDisabled("%s", edits);
 
   ImGui::SetNextItemWidth(-110);
   ImGui::InputText("##session", ctx_.state->session_path, sizeof(ctx_.state->session_path));

@@ -49,14 +49,43 @@ std::vector<Glyph> Glyphs(const ImDrawList& dl,
     const ImDrawVert& c = dl.VtxBuffer[i + 2];
     const ImDrawVert& d = dl.VtxBuffer[i + 3];
     const AtlasGlyph& ag = it->second;
-    if (b.uv.x != ag.u1 || b.uv.y != a.uv.y || c.uv.x != ag.u1 || c.uv.y != ag.v1 ||
-        d.uv.x != a.uv.x || d.uv.y != ag.v1)
+    // (A glyph trimmed at a clip edge keeps its top-left UV but ends short of U1.)
+    if (b.uv.x > ag.u1 || b.uv.x <= a.uv.x || b.uv.y != a.uv.y || c.uv.x != b.uv.x ||
+        c.uv.y != d.uv.y || d.uv.x != a.uv.x || d.uv.y > ag.v1 || d.uv.y <= a.uv.y)
       continue;
     if (!(c.pos.x > a.pos.x && c.pos.y > a.pos.y)) continue;
     out.push_back({a.pos.x, a.pos.y, c.pos.x, c.pos.y, ag.code});
     i += 3;
   }
   return out;
+}
+
+// The vertical bands (top, bottom) of the triangles drawn past `right` by the commands clipped
+// at the window's edge: a button, checkbox or text that starts or runs past it. ImGui drops
+// glyphs wholly outside the clip rectangle but keeps frames, so a cut item leaves a triangle.
+std::vector<std::pair<float, float>> BandsPast(const ImDrawList& dl, float right) {
+  std::vector<std::pair<float, float>> bands;
+  for (const ImDrawCmd& cmd : dl.CmdBuffer) {
+    if (cmd.UserCallback || std::abs(cmd.ClipRect.z - right) > 1.0f) continue;
+    for (unsigned k = 0; k + 2 < cmd.ElemCount; k += 3) {
+      float x1 = -1e30f, y0 = 1e30f, y1 = -1e30f;
+      for (unsigned v = 0; v < 3; ++v) {
+        const ImDrawVert& p = dl.VtxBuffer[cmd.VtxOffset + dl.IdxBuffer[cmd.IdxOffset + k + v]];
+        x1 = std::max(x1, p.pos.x), y0 = std::min(y0, p.pos.y), y1 = std::max(y1, p.pos.y);
+      }
+      if (x1 > right + 1.0f && y1 > y0) bands.push_back({y0, y1});
+    }
+  }
+  // Merged where they overlap: one band per cut line.
+  std::sort(bands.begin(), bands.end());
+  std::vector<std::pair<float, float>> merged;
+  for (const auto& b : bands) {
+    if (!merged.empty() && b.first <= merged.back().second)
+      merged.back().second = std::max(merged.back().second, b.second);
+    else
+      merged.push_back(b);
+  }
+  return merged;
 }
 
 }  // namespace
@@ -68,41 +97,30 @@ std::vector<ClippedText> FindClippedText() {
   for (ImGuiWindow* w : g.Windows) {
     if (!w->Active || w->Hidden || w->ScrollbarX) continue;
     if (w->Flags & (ImGuiWindowFlags_Tooltip | ImGuiWindowFlags_AlwaysAutoResize)) continue;
-    const float right = w->InnerClipRect.Max.x;
-    const float overflow = w->DC.CursorMaxPos.x - right;
-    // The glyphs cut at the right edge, grouped by line.
-    // Glyphs of a line differ in their tops and bottoms (ascenders, descenders): a line is the
-    // glyphs whose vertical middles lie within half a glyph's height of its first one.
-    std::vector<Glyph> all = Glyphs(*w->DrawList, by_uv);
-    std::sort(all.begin(), all.end(), [](const Glyph& a, const Glyph& b) {
-      return a.y0 + a.y1 < b.y0 + b.y1;
-    });
-    std::map<float, std::vector<Glyph>> lines;
-    float line_mid = -1e30f;
-    for (const Glyph& gl : all) {
-      const float mid = 0.5f * (gl.y0 + gl.y1);
-      if (mid - line_mid > 0.5f * (gl.y1 - gl.y0)) line_mid = mid;
-      lines[line_mid].push_back(gl);
-    }
-    for (auto& [y, glyphs] : lines) {
-      bool cut = false;
-      for (const Glyph& gl : glyphs) cut = cut || (gl.x1 > right + 0.5f && gl.x0 < right);
-      if (!cut && !(overflow > 0.5f && !glyphs.empty() &&
-                    std::max_element(glyphs.begin(), glyphs.end(),
-                                     [](const Glyph& a, const Glyph& b) { return a.x1 < b.x1; })
-                            ->x1 > right - 2))
-        continue;
-      std::sort(glyphs.begin(), glyphs.end(), [](const Glyph& a, const Glyph& b) { return a.x0 < b.x0; });
-      ClippedText c;
-      c.widget = std::string(w->Name) + " @y" + std::to_string(static_cast<int>(y - w->Pos.y));
-      float prev = glyphs.front().x0;
+    const float left = w->InnerClipRect.Min.x, right = w->InnerClipRect.Max.x;
+    // Only a window whose items reach past its visible width has anything cut.
+    // (ImGui rounds item sizes: a pixel over is not a cut.)
+    if (w->DC.CursorMaxPos.x <= right + 1.5f) continue;
+    const std::vector<Glyph> glyphs = Glyphs(*w->DrawList, by_uv);
+    for (const auto& [top, bottom] : BandsPast(*w->DrawList, right)) {
+      if (bottom < w->InnerClipRect.Min.y || top > w->InnerClipRect.Max.y) continue;  // not shown
+      // The line's text as it shows: the glyphs whose middles lie in the band, left to right.
+      std::vector<Glyph> line;
       for (const Glyph& gl : glyphs) {
+        const float mid = 0.5f * (gl.y0 + gl.y1);
+        if (mid >= top && mid <= bottom) line.push_back(gl);
+      }
+      std::sort(line.begin(), line.end(), [](const Glyph& a, const Glyph& b) { return a.x0 < b.x0; });
+      ClippedText c;
+      c.widget = std::string(w->Name) + " @y" + std::to_string(static_cast<int>(top - w->Pos.y));
+      float prev = line.empty() ? 0 : line.front().x0;
+      for (const Glyph& gl : line) {
         if (gl.x0 - prev > 0.5f * (gl.y1 - gl.y0)) c.text += ' ';
         AppendUtf8(c.text, gl.code);
         prev = gl.x1;
       }
-      c.available = right - w->InnerClipRect.Min.x;
-      c.needed = std::max(c.available, w->DC.CursorMaxPos.x - w->InnerClipRect.Min.x);
+      c.available = right - left;
+      c.needed = w->DC.CursorMaxPos.x - left;
       out.push_back(std::move(c));
     }
   }

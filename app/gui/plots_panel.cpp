@@ -1,5 +1,7 @@
 #include "app/gui/plots_panel.hpp"
 
+#include "app/gui/flow_layout.hpp"
+
 #include <imgui.h>
 
 #include <algorithm>
@@ -155,17 +157,23 @@ void PlotsPanel::Draw(const Fonts& fonts) {
   };
   // Toggles for each figure, then the open ones stacked (scrolling when they do not fit).
   for (std::size_t i = 0; i < figures.size(); ++i) {
-    if (i > 0) ImGui::SameLine();
     bool open = is_open(figures[i]);
     const std::string id = figures[i].id + "##toggle";
+    if (i > 0) SameLineIfFits(CheckboxWidth(id.c_str()));
     if (ImGui::Checkbox(id.c_str(), &open)) closed_[figures[i].id] = !open;
-    if (ImGui::GetContentRegionAvail().x < 120 && i + 1 < figures.size()) ImGui::NewLine();
   }
   ImGui::BeginChild("plot_list", ImVec2(0, 0), false);
   int open_count = 0;
   for (const auto& f : figures) open_count += is_open(f);
   const float avail_h = ImGui::GetContentRegionAvail().y;
-  const float h = std::max(220.0f, open_count > 0 ? avail_h / std::min(open_count, 3) - 6 : 0);
+  // Plots reflow into as many columns as fit at kMinPlotWidth each; up to three rows share the
+  // height, more scroll.
+  const float gap = ImGui::GetStyle().ItemSpacing.x;
+  const float full_w = ImGui::GetContentRegionAvail().x;
+  const int cols = std::max(1, static_cast<int>((full_w + gap) / (kMinPlotWidth + gap)));
+  const float w = std::max(1.0f, std::floor((full_w - static_cast<float>(cols - 1) * gap) / cols));
+  const int plot_rows = (open_count + cols - 1) / cols;
+  const float h = std::max(220.0f, plot_rows > 0 ? avail_h / std::min(plot_rows, 3) - 6 : 0);
   // What DecoratePlot adds: a drawn plot is kept only while it is unchanged.
   std::string decoration =
       compare->Decoration() + (ctx_.state->settings.degrees ? "/deg" : "/rad");
@@ -178,8 +186,7 @@ void PlotsPanel::Draw(const Fonts& fonts) {
   style.padding = 6;
   style.theme = &GetTheme(ctx_.state->theme);
   ImGuiCanvas canvas(ImGui::GetWindowDrawList(), fonts);
-  for (std::size_t i = 0; i < figures.size(); ++i) {
-    if (!is_open(figures[i])) continue;
+  auto draw_cell = [&](std::size_t i) {
     // A time plot's log-y toggle on a line of its own above it (the log-y command).
     if (IsTimePlot(figures[i])) {
       bool log_y = LogY(figures[i].id);
@@ -187,10 +194,9 @@ void PlotsPanel::Draw(const Fonts& fonts) {
         ctx_.run("log-y " + figures[i].id + (log_y ? " on" : " off"));
     }
     const ImVec2 p0 = ImGui::GetCursorScreenPos();
-    const float w = ImGui::GetContentRegionAvail().x;
     const ImVec2 p1(p0.x + w, p0.y + h);
     ImGui::Dummy(ImVec2(w, h));
-    if (!ImGui::IsItemVisible()) continue;  // scrolled away: skip the work
+    if (!ImGui::IsItemVisible()) return;  // scrolled away: skip the work
     ImDrawList* dl = ImGui::GetWindowDrawList();
     CachedPlot& plot = cache.plots[figures[i].id];
     const bool moved = p0.x != plot.p0.x || p0.y != plot.p0.y || p1.x != plot.p1.x || p1.y != plot.p1.y;
@@ -249,6 +255,14 @@ void PlotsPanel::Draw(const Fonts& fonts) {
         ImGui::EndTooltip();
       }
     }
+  };
+  int cell = 0;
+  for (std::size_t i = 0; i < figures.size(); ++i) {
+    if (!is_open(figures[i])) continue;
+    if (cell++ % cols != 0) ImGui::SameLine();
+    ImGui::BeginGroup();
+    draw_cell(i);
+    ImGui::EndGroup();
   }
   ImGui::EndChild();
 }

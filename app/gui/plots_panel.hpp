@@ -28,8 +28,12 @@ class PlotsPanel : public Panel {
   /// export-figures (File menu), log-y (View menu).
   static std::vector<Command> Rows();
 
+  /// The narrowest a plot is drawn, in font units: its ticks and legend stay readable.
+  static constexpr float kMinPlotWidth = 320.0f;
+
   const char* Name() const override { return "Plots"; }
-  /// The Plots tab: the toggles, then the open plots stacked (scrolling when they do not fit).
+  /// The Plots tab: the toggles (wrapping), then the open plots in as many columns as fit at
+  /// kMinPlotWidth, scrolling when they do not fit.
   void Draw(const Fonts& fonts) override;
 
   /// Writes every figure of the current run as SVG and PDF into `dir`.

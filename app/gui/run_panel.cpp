@@ -1,5 +1,7 @@
 #include "app/gui/run_panel.hpp"
 
+#include "app/gui/flow_layout.hpp"
+
 #include <imgui.h>
 
 #include <algorithm>
@@ -160,12 +162,11 @@ void RunPanel::Advance(double wall_dt) {
 void RunPanel::Draw(const Fonts&) {
   if (ImGui::Button(ctx_.state->playing ? "Pause" : "Play", ImVec2(70, 0)))
     ctx_.state->playing ? CmdPause() : CmdPlay();
-  ImGui::SameLine();
+  SameLineIfFits(ButtonWidth("Step"));
   if (ImGui::Button("Step")) CmdStep();
-  ImGui::SameLine();
+  SameLineIfFits(ButtonWidth("Reset"));
   if (ImGui::Button("Reset")) CmdReset();
-  ImGui::SameLine();
-  ImGui::TextDisabled("(space . r)");
+  if (SameLineIfFits(TextWidth("(space . r)"))) ImGui::TextDisabled("(space . r)");
 
   const auto& speeds = SpeedChoices();
   ImGui::SetNextItemWidth(120);
@@ -178,7 +179,7 @@ void RunPanel::Draw(const Fonts&) {
   ImGui::SetNextItemWidth(120);
   ImGui::InputText("seed", seed_text_, sizeof seed_text_,
                    ImGuiInputTextFlags_CharsDecimal);
-  ImGui::SameLine();
+  SameLineIfFits(ButtonWidth("Reset with seed"));
   if (ImGui::Button("Reset with seed")) CmdResetSeed(seed_text_);
 
   // Read the experiment after the buttons: a reset above has replaced it.
@@ -198,7 +199,7 @@ void RunPanel::Draw(const Fonts&) {
 void RunPanel::DrawAchievedSpeed() {
   const std::string label = speed_meter_.Label();
   if (label.empty()) return;
-  ImGui::SameLine();
+  SameLineIfFits(TextWidth(label.c_str()));
   if (speed_meter_.behind())
     ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(ToImColor(GetTheme(ctx_.state->theme).error)), "%s",
                        label.c_str());

@@ -1,5 +1,7 @@
 #include "app/gui/timeline_panel.hpp"
 
+#include "app/gui/flow_layout.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -127,14 +129,25 @@ void TimelinePanel::Draw(const Fonts&) {
   ImGui::SetCursorScreenPos(ImVec2(min.x + 6, min.y + 4));
   ImGui::PushID("timeline");
   const ImGuiStyle& st = ImGui::GetStyle();
-  auto button_w = [&](const char* s) { return ImGui::CalcTextSize(s).x + 2 * st.FramePadding.x; };
-  // A narrow view keeps room for the slider with shorter labels.
-  const bool narrow = max.x - min.x < 560;
-  const char* branch = narrow ? "Branch" : "Branch from here";
-  const char* pin = narrow ? "pin" : "pin original";
-  const float buttons = button_w("Live") + button_w(branch) + ImGui::GetFrameHeight() +
-                        st.ItemInnerSpacing.x + ImGui::CalcTextSize(pin).x + 3 * st.ItemSpacing.x;
-  ImGui::SetNextItemWidth(std::max(60.0f, max.x - min.x - buttons - 14));
+  // A narrow view keeps room for the slider with shorter labels: the first set that leaves the
+  // slider 100 px (the last one, the checkbox without its text, else).
+  struct Labels {
+    const char* branch;
+    const char* pin;
+  };
+  constexpr Labels kLabels[] = {{"Branch from here", "pin original"}, {"Branch", "pin"}, {"Branch", "##pin"}};
+  const float room = max.x - min.x - 6 - 8;  // the cursor starts 6 in; 8 kept free at the right
+  Labels labels = kLabels[2];
+  float slider = 60;
+  for (const Labels& l : kLabels) {
+    const float buttons = ButtonWidth("Live") + ButtonWidth(l.branch) + CheckboxWidth(l.pin) +
+                          3 * st.ItemSpacing.x;
+    labels = l, slider = room - buttons;
+    if (slider >= 100) break;
+  }
+  const char* branch = labels.branch;
+  const char* pin = labels.pin;
+  ImGui::SetNextItemWidth(std::max(40.0f, slider));
   float t = static_cast<float>(tl_.active ? tl_.target * live.dt() : live.time());
   const float end = static_cast<float>(std::max(live.time(), live.dt()));
   char fmt[64];

@@ -291,10 +291,21 @@ void AppUi::Draw(ImVec2 display, const Fonts& fonts, bool interactive) {
     return;
   }
   const float top = DrawMenuBar();
+  const float h = std::max(1.0f, display.y - top);
+  // Narrow (in font units: 1280x800 at UI scale 1.5 is 853 wide): two columns, the control
+  // panel a tab beside the plots, so that the world view keeps more than a third of the width.
+  if (display.x < kNarrowLayoutWidth) {
+    const float left_w = std::clamp(display.x * 0.42f, 300.0f, 420.0f);
+    DrawPlotsWindow(ImVec2(0, top), ImVec2(left_w, h), fonts, true);
+    DrawWorldWindow(ImVec2(left_w, top), ImVec2(display.x - left_w, h), fonts, interactive);
+    if (state_.help) view_->DrawHelpOverlay(ImVec2(left_w, top), display);
+    overlays();
+    WriteLayoutReport(display);
+    return;
+  }
   const float left_w = std::clamp(display.x * 0.24f, 290.0f, 400.0f);
   const float right_w = std::clamp(display.x * 0.34f, 340.0f, 640.0f);
   const float mid_w = std::max(200.0f, display.x - left_w - right_w);
-  const float h = std::max(1.0f, display.y - top);
 
   ImGui::SetNextWindowPos(ImVec2(0, top));
   ImGui::SetNextWindowSize(ImVec2(left_w, h));
@@ -314,12 +325,17 @@ void AppUi::WriteLayoutReport(ImVec2 display) {
   if (state_.layout_report_path.empty()) return;
   const std::string path = state_.layout_report_path;
   state_.layout_report_path.clear();
+  // The window in pixels: the layout itself is in font units (pixels over the UI scale).
+  const double scale = ImGui::GetIO().DisplayFramebufferScale.x;
   sim::Json report = sim::Json::Object();
   sim::Json window = sim::Json::Array();
-  window.Push(sim::Json(static_cast<double>(display.x)));
-  window.Push(sim::Json(static_cast<double>(display.y)));
+  window.Push(sim::Json(std::round(display.x * scale)));
+  window.Push(sim::Json(std::round(display.y * scale)));
   report["window"] = window;
   report["ui_scale"] = sim::Json(static_cast<double>(state_.settings.ui_scale));
+  report["layout"] = sim::Json(state_.present                     ? "presentation"
+                               : display.x < kNarrowLayoutWidth ? "narrow"
+                                                                 : "three columns");
   sim::Json clipped = sim::Json::Array();
   for (const ClippedText& c : FindClippedText()) {
     sim::Json e = sim::Json::Object();
@@ -330,6 +346,9 @@ void AppUi::WriteLayoutReport(ImVec2 display) {
     clipped.Push(e);
   }
   report["clipped"] = clipped;
+  report["world_labels"] = sim::Json(static_cast<double>(world_report_.labels));
+  report["overlapping_labels"] = sim::Json(static_cast<double>(world_report_.overlapping_labels));
+  report["formation_fraction"] = sim::Json(world_report_.formation_fraction);
   std::ofstream f(path);
   f << report.Dump() << "\n";
   if (!f) SetStatus("layout-report: cannot write " + path, true);

@@ -101,6 +101,9 @@ std::string AboutText();
 
 class AppUi {
  public:
+  /// Below this width in font units (the window's pixels over the UI scale) the window has two
+  /// columns: the tabs with the control panel as the first, and the world view.
+  static constexpr float kNarrowLayoutWidth = 900.0f;
   explicit AppUi(std::unique_ptr<sim::Session> session);
   /// Borrows a session owned by the caller (headless --ui frames); loading another scenario
   /// then makes the interface own the new one.
@@ -196,6 +199,7 @@ class AppUi {
   void HandleKeys();
   /// `layout-report`: what this frame cut off, as JSON.
   void WriteLayoutReport(ImVec2 display);
+  WorldViewReport world_report_;  ///< what the last world view drawing placed
   /// The menu bar, generated from the command table; returns its height.
   float DrawMenuBar();
   void DrawMenuItem(const Command& cmd);
@@ -229,7 +233,9 @@ class AppUi {
   void DrawMessagesSection();
   void DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool interactive);
   void DrawWorldMouse(const View& view);
-  void DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts);
+  /// The tabbed window (Lesson, Plots, Tables, History, Summary); `with_controls`: the control
+  /// panel as its first tab (the narrow layout).
+  void DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool with_controls = false);
   void UpdateView(ImVec2 min, ImVec2 max);
 
   std::map<std::string, std::pair<ImVec2, ImVec2>> menu_items_;

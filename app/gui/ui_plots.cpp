@@ -1,5 +1,6 @@
 /// \file The right-hand window: a tab for each panel shown there (Lesson, Plots, Tables,
-/// History, Summary), the tab a script asks for (`tab NAME`) brought to the front once.
+/// History, Summary), the tab a script asks for (`tab NAME`) brought to the front once. In the
+/// narrow layout it is the left-hand window and its first tab holds the control panel.
 #include <cctype>
 
 #include "app/gui/compare_panel.hpp"
@@ -11,7 +12,7 @@
 
 namespace formsim::app {
 
-void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
+void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool with_controls) {
   ImGui::SetNextWindowPos(pos);
   ImGui::SetNextWindowSize(size);
   ImGui::Begin("Plots###plots", nullptr,
@@ -26,6 +27,12 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts) {
     return select ? ImGuiTabItemFlags_SetSelected : ImGuiTabItemFlags_None;
   };
   if (ImGui::BeginTabBar("tabs")) {
+    if (with_controls && ImGui::BeginTabItem("Controls", nullptr, tab("Controls"))) {
+      ImGui::BeginChild("controls");
+      DrawControlPanel(fonts, true);
+      ImGui::EndChild();
+      ImGui::EndTabItem();
+    }
     // A lesson file's text comes first (formsim gui --lesson NAME opens on it).
     if (session_->lesson().present && ImGui::BeginTabItem("Lesson", nullptr, tab("Lesson"))) {
       if (auto* lesson = Find<LessonPanel>()) lesson->Draw(fonts);

@@ -143,6 +143,7 @@ void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool in
   opt.legend_state = &state_.legend_state;
   opt.clock = ImGui::GetTime();
   opt.degrees = state_.settings.degrees;
+  opt.report = &world_report_;
   compare_->AddWorldOverlays(opt);  // the pins, faded
   const sim::Experiment& shown = ShownExperiment();
   if (&shown != &session_->exp()) {

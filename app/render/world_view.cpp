@@ -136,6 +136,7 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
     if (r >= 3.0f) bodies.push_back(ImVec4(c.x - r, c.y - r, c.x + r, c.y + r));
   }
   for (const Vec2& p : focus.trails) avoid.trails.push_back(view.ToScreen(p));
+  const std::size_t robot_boxes = bodies.size();  // the entries after them are not robots
   // Scene labels also keep off what the view draws over them: the time and caption (top left),
   // the scale bar (bottom right) and the grid's coordinates (bottom and left edges).
   {
@@ -155,6 +156,14 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
   CanvasDrawSink sink(cv, view, th, FontRole::kSmall);
   sink.SetOverlays(opt.scene_overlays);
   sink.SetAnglesInDegrees(opt.degrees);
+  // The legend as last drawn (it moves at most once a second): labels keep off it too.
+  const bool has_legend_box = opt.legend && opt.legend_state &&
+                              opt.legend_state->box_max.x > opt.legend_state->box_min.x;
+  if (has_legend_box) {
+    const LegendState& ls = *opt.legend_state;
+    bodies.push_back(ImVec4(ls.box_min.x, ls.box_min.y, ls.box_max.x, ls.box_max.y));
+  }
+  const std::vector<ImVec4> keep_clear = bodies;
   sink.SetKeepClear(std::move(bodies));
   exp.Draw(sink);
   for (const WorldOverlay& o : opt.overlays) {
@@ -162,6 +171,24 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
     o.exp->DrawOverlay(faded);
   }
   sink.FlushLabels();
+  if (opt.report) {
+    // Counted from the boxes as drawn, not from what the placement meant to do.
+    auto overlap = [](const ImVec4& a, const ImVec4& b) {
+      return a.x < b.z && b.x < a.z && a.y < b.w && b.y < a.w;
+    };
+    const auto& placed = sink.placed_labels();
+    int n = 0;
+    for (std::size_t i = 0; i < placed.size(); ++i) {
+      bool hit = false;
+      for (std::size_t j = 0; j < placed.size() && !hit; ++j) hit = j != i && overlap(placed[i], placed[j]);
+      for (std::size_t k = 0; k < robot_boxes && !hit; ++k) hit = overlap(placed[i], keep_clear[k]);
+      if (has_legend_box && !hit) hit = overlap(placed[i], keep_clear.back());
+      n += hit;
+    }
+    opt.report->labels = static_cast<int>(placed.size());
+    opt.report->overlapping_labels = n;
+    opt.report->formation_fraction = FormationFraction(view, focus);
+  }
 
   // Coordinates of the major grid lines along the bottom and left edges, in metres.
   if (opt.grid && opt.coordinates) {

@@ -20,6 +20,13 @@ struct WorldOverlay {
   sim::Color color;   ///< of its legend entry
 };
 
+/// What a drawing of the world view placed, for the layout report (issue 24 item 5).
+struct WorldViewReport {
+  int labels = 0;               ///< scene labels drawn
+  int overlapping_labels = 0;   ///< drawn labels that overlap another drawn label or a robot body
+  double formation_fraction = 0;  ///< FormationFraction() of the robots in this view
+};
+
 struct WorldViewOptions {
   bool grid = true;
   bool scale_bar = true;
@@ -34,6 +41,7 @@ struct WorldViewOptions {
   LegendState* legend_state = nullptr;  ///< the legend's corner and collapse between frames
   double clock = 0.0;                   ///< seconds, for the legend's once-a-second corner choice
   bool degrees = true;  ///< angles in the scene's labels in degrees (else radians)
+  WorldViewReport* report = nullptr;  ///< when set, filled with what this drawing placed
 };
 
 /// The overlays on by default (sim::Overlays()).
