@@ -15,11 +15,17 @@ namespace {
 struct AtlasGlyph {
   float u1, v1;
   unsigned code;
+  float x0, x1, advance;  ///< the glyph's box and advance in font pixels
+  float space;            ///< the advance of its font's space
 };
 std::map<std::pair<float, float>, AtlasGlyph> GlyphsByUv() {
   std::map<std::pair<float, float>, AtlasGlyph> out;
-  for (const ImFont* font : ImGui::GetIO().Fonts->Fonts)
-    for (const ImFontGlyph& g : font->Glyphs) out[{g.U0, g.V0}] = {g.U1, g.V1, g.Codepoint};
+  for (const ImFont* font : ImGui::GetIO().Fonts->Fonts) {
+    const ImFontGlyph* sp = font->FindGlyphNoFallback(' ');
+    const float space = sp ? sp->AdvanceX : 0.5f * font->FontSize;
+    for (const ImFontGlyph& g : font->Glyphs)
+      out[{g.U0, g.V0}] = {g.U1, g.V1, g.Codepoint, g.X0, g.X1, g.AdvanceX, space};
+  }
   return out;
 }
 
@@ -33,6 +39,7 @@ void AppendUtf8(std::string& s, unsigned c) {
 struct Glyph {
   float x0, y0, x1, y1;
   unsigned code;
+  float pen, next, space;  ///< on screen: where its pen started and moved to, a space's width
 };
 
 std::vector<Glyph> Glyphs(const ImDrawList& dl,
@@ -54,16 +61,22 @@ std::vector<Glyph> Glyphs(const ImDrawList& dl,
         c.uv.y != d.uv.y || d.uv.x != a.uv.x || d.uv.y > ag.v1 || d.uv.y <= a.uv.y)
       continue;
     if (!(c.pos.x > a.pos.x && c.pos.y > a.pos.y)) continue;
-    out.push_back({a.pos.x, a.pos.y, c.pos.x, c.pos.y, ag.code});
+    // The quad's scale over the atlas glyph (a glyph trimmed at the left edge has none).
+    const float scale = ag.x1 > ag.x0 && b.uv.x == ag.u1 ? (c.pos.x - a.pos.x) / (ag.x1 - ag.x0) : 1;
+    const float pen = a.pos.x - ag.x0 * scale;
+    out.push_back({a.pos.x, a.pos.y, c.pos.x, c.pos.y, ag.code, pen, pen + ag.advance * scale,
+                   ag.space * scale});
     i += 3;
   }
   return out;
 }
 
-// The vertical bands (top, bottom) of the triangles drawn past `right` by the commands clipped
-// at the window's edge: a button, checkbox or text that starts or runs past it. ImGui drops
-// glyphs wholly outside the clip rectangle but keeps frames, so a cut item leaves a triangle.
-std::vector<std::pair<float, float>> BandsPast(const ImDrawList& dl, float right) {
+// The vertical bands (top, bottom) of the triangles that the commands clipped at the window's
+// edge `right` drew past `work_right`, the right end of its content region (where full-width
+// items end; the strip between them is padding no laid-out item reaches). ImGui drops glyphs
+// wholly outside the clip rectangle, so a checkbox whose label starts past the edge leaves only
+// its box, ending in that strip.
+std::vector<std::pair<float, float>> BandsPast(const ImDrawList& dl, float right, float work_right) {
   std::vector<std::pair<float, float>> bands;
   for (const ImDrawCmd& cmd : dl.CmdBuffer) {
     if (cmd.UserCallback || std::abs(cmd.ClipRect.z - right) > 1.0f) continue;
@@ -73,7 +86,7 @@ std::vector<std::pair<float, float>> BandsPast(const ImDrawList& dl, float right
         const ImDrawVert& p = dl.VtxBuffer[cmd.VtxOffset + dl.IdxBuffer[cmd.IdxOffset + k + v]];
         x1 = std::max(x1, p.pos.x), y0 = std::min(y0, p.pos.y), y1 = std::max(y1, p.pos.y);
       }
-      if (x1 > right + 1.0f && y1 > y0) bands.push_back({y0, y1});
+      if (x1 > work_right + 1.0f && y1 > y0) bands.push_back({y0, y1});  // 1: anti-aliasing
     }
   }
   // Merged where they overlap: one band per cut line.
@@ -102,7 +115,7 @@ std::vector<ClippedText> FindClippedText() {
     // (ImGui rounds item sizes: a pixel over is not a cut.)
     if (w->DC.CursorMaxPos.x <= right + 1.5f) continue;
     const std::vector<Glyph> glyphs = Glyphs(*w->DrawList, by_uv);
-    for (const auto& [top, bottom] : BandsPast(*w->DrawList, right)) {
+    for (const auto& [top, bottom] : BandsPast(*w->DrawList, right, w->WorkRect.Max.x)) {
       if (bottom < w->InnerClipRect.Min.y || top > w->InnerClipRect.Max.y) continue;  // not shown
       // The line's text as it shows: the glyphs whose middles lie in the band, left to right.
       std::vector<Glyph> line;
@@ -113,11 +126,13 @@ std::vector<ClippedText> FindClippedText() {
       std::sort(line.begin(), line.end(), [](const Glyph& a, const Glyph& b) { return a.x0 < b.x0; });
       ClippedText c;
       c.widget = std::string(w->Name) + " @y" + std::to_string(static_cast<int>(top - w->Pos.y));
-      float prev = line.empty() ? 0 : line.front().x0;
+      // A gap of half a space or more between one glyph's advance and the next one's pen is a
+      // space (or the gap between two widgets).
+      float prev = line.empty() ? 0 : line.front().pen;
       for (const Glyph& gl : line) {
-        if (gl.x0 - prev > 0.5f * (gl.y1 - gl.y0)) c.text += ' ';
+        if (gl.pen - prev > 0.5f * gl.space) c.text += ' ';
         AppendUtf8(c.text, gl.code);
-        prev = gl.x1;
+        prev = gl.next;
       }
       c.available = right - left;
       c.needed = w->DC.CursorMaxPos.x - left;

@@ -63,6 +63,7 @@ std::string GoodArgs(const Command& c, AppUi& ui, const std::string& dir) {
   if (c.name == "save-session") return dir + "/session.yaml";
   if (c.name == "screenshot") return dir + "/shot.png";
   if (c.name == "export-figures") return dir + "/figures";
+  if (c.name == "layout-report") return dir + "/layout.json";
   if (const auto f = kFree.find(c.name); f != kFree.end()) return f->second;
   std::string args;
   for (const CommandArg& a : c.args) {

@@ -1,0 +1,142 @@
+// Layouts that fit (issue 24 item 5):
+// - the audit behind `layout-report` finds a button and a checkbox cut at a window's right edge,
+//   with the text that shows, and nothing in a window where everything fits;
+// - through --script under Xvfb, at 1920x1080 with UI scale 2, 1280x800 with 1.5 and 3840x2160
+//   with 2, in the normal window and in presentation mode: nothing is clipped, no world label
+//   overlaps another label, a robot or the legend, and in presentation mode the formation fills
+//   at least half of the view's shorter side.
+#include "app/gui/layout_audit.hpp"
+
+#include <gtest/gtest.h>
+#include <imgui.h>
+#include <yaml-cpp/yaml.h>
+
+#include <fstream>
+#include <functional>
+
+#include "app/export/video_writer.hpp"
+#include "app/render/imgui_layer.hpp"
+#include "app/render/offscreen_context.hpp"
+#include "tests/app/test_util.hpp"
+
+namespace formsim::app {
+namespace {
+
+using testing::Binary;
+using testing::ReadText;
+using testing::RunShell;
+using testing::TempDir;
+
+// One frame of a fixed 150-px window holding `items`; the audit runs before Render, as the
+// window's layout-report does.
+std::vector<ClippedText> AuditWindow(const std::function<void()>& items) {
+  std::vector<ClippedText> cut;
+  OffscreenContext ctx(640, 480);
+  ImGuiLayer layer;
+  for (int frame = 0; frame < 2; ++frame) {  // the first frame sizes the new window
+    layer.NewHeadlessFrame(640, 480, 1.0f / 60.0f);
+    ImGui::SetNextWindowPos(ImVec2(0, 0));
+    ImGui::SetNextWindowSize(ImVec2(150, 300));
+    ImGui::Begin("narrow", nullptr,
+                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoScrollbar);
+    items();
+    ImGui::End();
+    cut = FindClippedText();
+    ImGui::Render();
+  }
+  return cut;
+}
+
+TEST(LayoutAudit, FindsAButtonAndACheckboxRowCutAtTheRightEdge) {
+  bool on = true;
+  const auto cut = AuditWindow([&] {
+    ImGui::Button("fits");
+    ImGui::Button("Reset with this seed now");
+    ImGui::Checkbox("one", &on);
+    ImGui::SameLine();
+    ImGui::Checkbox("two", &on);
+    ImGui::SameLine();
+    ImGui::Checkbox("three", &on);  // its box fits, its label starts past the edge
+    ImGui::SameLine();
+    ImGui::Checkbox("four", &on);  // wholly past the edge: not drawn at all
+    ImGui::Text("short text");
+  });
+  ASSERT_EQ(cut.size(), 2u);
+  EXPECT_EQ(cut[0].text.rfind("Reset with this", 0), 0u) << cut[0].text;
+  EXPECT_EQ(cut[1].text, "one two") << "the text that shows";
+  for (const ClippedText& c : cut) {
+    EXPECT_EQ(c.widget.rfind("narrow", 0), 0u) << c.widget;
+    EXPECT_LT(c.available, c.needed);
+  }
+}
+
+TEST(LayoutAudit, FindsNothingWhenEverythingFits) {
+  bool on = true;
+  const auto cut = AuditWindow([&] {
+    ImGui::Button("Reset");
+    ImGui::Checkbox("one", &on);
+    ImGui::TextWrapped("A long text that wraps to the window's width is never cut at its edge.");
+  });
+  EXPECT_TRUE(cut.empty()) << cut.front().widget << ": " << cut.front().text;
+}
+
+struct Size {
+  int width, height;
+  const char* scale;
+};
+
+class LayoutReport : public ::testing::TestWithParam<std::tuple<Size, bool>> {};
+
+TEST_P(LayoutReport, NothingClippedNoLabelsOverlapAndPresentationFramesTheFormation) {
+  if (FindOnPath("xvfb-run").empty()) GTEST_SKIP() << "xvfb-run not installed";
+  const auto [size, present] = GetParam();
+  const std::string dir = TempDir(std::string("layout_report_") + size.scale + "_" +
+                                  std::to_string(size.width) + (present ? "_p" : "_n"));
+  std::ofstream script(dir + "/script.txt");
+  script << "1 ui-scale " << size.scale << "\n"
+         << "2 present " << (present ? "on" : "off") << "\n"
+         << "3 overlay all\n"
+         << "24 layout-report " << dir << "/report.json\n"
+         << "25 screenshot " << dir << "/shot.png\n"
+         << "26 quit\n";
+  script.close();
+  const std::string screen = std::to_string(size.width) + "x" + std::to_string(size.height);
+  const int rc = RunShell("FORMSIM_STATE_DIR=" + dir + " XDG_CONFIG_HOME=" + dir +
+                              " xvfb-run -a -s '-screen 0 " + screen + "x24' " + Binary() +
+                              " gui formation_traj2_ukf --size " + screen + " --script " + dir +
+                              "/script.txt",
+                          dir + "/log.txt");
+  ASSERT_EQ(rc, 0) << ReadText(dir + "/log.txt");
+  const YAML::Node r = YAML::LoadFile(dir + "/report.json");  // JSON is YAML
+  EXPECT_EQ(r["window"][0].as<int>(), size.width);
+  EXPECT_EQ(r["window"][1].as<int>(), size.height);
+  EXPECT_EQ(r["ui_scale"].as<double>(), std::stod(size.scale));
+  EXPECT_EQ(r["layout"].as<std::string>(), present ? "presentation"
+                                           : size.width / std::stod(size.scale) < 900 ? "narrow"
+                                                                                      : "three columns");
+  for (const auto& c : r["clipped"])
+    ADD_FAILURE() << "clipped in " << c["widget"].as<std::string>() << ": '"
+                  << c["text"].as<std::string>() << "' (" << c["available"].as<double>()
+                  << " of " << c["needed"].as<double>() << " px)";
+  EXPECT_GT(r["world_labels"].as<int>(), 5) << "the overlays' labels are drawn";
+  EXPECT_EQ(r["overlapping_labels"].as<int>(), 0);
+  const double fill = r["formation_fraction"].as<double>();
+  if (present)
+    EXPECT_GE(fill, 0.5);
+  else
+    EXPECT_GT(fill, 0.1);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Sizes, LayoutReport,
+    ::testing::Combine(::testing::Values(Size{1920, 1080, "2"}, Size{1280, 800, "1.5"},
+                                         Size{3840, 2160, "2"}),
+                       ::testing::Bool()),
+    [](const auto& info) {
+      const Size s = std::get<0>(info.param);
+      return std::to_string(s.width) + "x" + std::to_string(s.height) +
+             (std::get<1>(info.param) ? "_presentation" : "_normal");
+    });
+
+}  // namespace
+}  // namespace formsim::app
