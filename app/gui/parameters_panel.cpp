@@ -280,14 +280,16 @@ void ParametersPanel::Draw(const Fonts&) {
   // over the parameters (a thousand robots declare tens of thousands in thousands of groups).
   std::vector<std::string> heads;
   std::unordered_map<std::string, std::vector<std::string>> tails;
-  std::unordered_set<std::string> seen;
+  std::unordered_set<std::string> seen, seen_pairs;
   std::unordered_map<std::string, std::vector<const sim::Param*>> members;
   auto note_group = [&](const std::string& g) {
     if (!seen.insert(g).second) return;
     const std::string h = Head(g), t = Tail(g);
     const auto [it, fresh] = tails.try_emplace(h);
     if (fresh) heads.push_back(h);
-    if (std::find(it->second.begin(), it->second.end(), t) == it->second.end()) it->second.push_back(t);
+    // A set, not a search of the head's list: a swarm's head has a thousand sub-groups, and a
+    // linear search made this quadratic (most of the window's build time at 1000 robots).
+    if (seen_pairs.insert(h + '\n' + t).second) it->second.push_back(t);
   };
   for (const auto& p : params) {
     note_group(p.tune.group);

@@ -309,8 +309,11 @@ void AppUi::Draw(ImVec2 display, const Fonts& fonts, bool interactive) {
 
   ImGui::SetNextWindowPos(ImVec2(0, top));
   ImGui::SetNextWindowSize(ImVec2(left_w, h));
+  // No background of its own: the frame is cleared to the window colour first (a software
+  // rasteriser then shades a third of the screen less).
   ImGui::Begin("formsim", nullptr,
-               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoBackground);
   DrawControlPanel(fonts, interactive);
   ImGui::End();
 

@@ -17,7 +17,7 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool wi
   ImGui::SetNextWindowSize(size);
   ImGui::Begin("Plots###plots", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
-                   ImGuiWindowFlags_NoTitleBar);
+                   ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoBackground);  // as "formsim"
   // A tab asked for by a script (`tab history`) comes to the front once.
   auto tab = [&](const char* name) {
     std::string lower = name;

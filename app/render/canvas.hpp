@@ -41,6 +41,9 @@ class Canvas {
 
   /// Axis-aligned rectangle filled, corners rounded by `rounding` pixels.
   virtual void FillRect(ImVec2 min, ImVec2 max, sim::Color color, float rounding = 0) = 0;
+  /// An opaque background under everything drawn after it: the same pixels as FillRect, which a
+  /// GL canvas may produce more cheaply (a scissored clear instead of a shaded quad).
+  virtual void FillBackground(ImVec2 min, ImVec2 max, sim::Color color) { FillRect(min, max, color); }
   /// Rectangle outline drawn inside [min, max].
   virtual void StrokeRect(ImVec2 min, ImVec2 max, sim::Color color, float width,
                           float rounding = 0) = 0;

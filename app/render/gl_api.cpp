@@ -1,5 +1,7 @@
 #include "app/render/gl_api.hpp"
 
+#include <imgui.h>
+
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -45,6 +47,16 @@ void LoadGl(GlGetProcAddress get_proc, const char* context_name) {
 void GlClear(int width, int height, float r, float g, float b) {
   glViewport(0, 0, width, height);
   glClearColor(r, g, b, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+}
+
+void GlClearRect(int x, int y, int width, int height, std::uint32_t rgba) {
+  if (width <= 0 || height <= 0) return;
+  auto channel = [rgba](int shift) { return static_cast<float>((rgba >> shift) & 0xFF) / 255.0f; };
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(x, y, width, height);
+  glClearColor(channel(IM_COL32_R_SHIFT), channel(IM_COL32_G_SHIFT), channel(IM_COL32_B_SHIFT),
+               channel(IM_COL32_A_SHIFT));
   glClear(GL_COLOR_BUFFER_BIT);
 }
 

@@ -17,6 +17,10 @@ void LoadGl(GlGetProcAddress get_proc, const char* context_name);
 
 /// Sets the viewport to the framebuffer and clears it with an sRGB colour in [0, 1].
 void GlClear(int width, int height, float r, float g, float b);
+/// Clears the rectangle of `width` x `height` pixels whose bottom-left corner is (x, y) (GL's
+/// window coordinates) to `rgba` (ImGui's packed colour), with the scissor test on. The next
+/// draw sets its own scissor.
+void GlClearRect(int x, int y, int width, int height, std::uint32_t rgba);
 /// Waits until every GL command has finished (the OSMesa buffer is then complete).
 void GlFinish();
 /// Reads the current framebuffer as RGBA, top row first.

@@ -1,5 +1,7 @@
 #include "app/render/imgui_canvas.hpp"
 
+#include "app/render/gl_api.hpp"
+
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
@@ -48,6 +50,48 @@ ImGuiCanvas::ImGuiCanvas(ImDrawList* list, const Fonts& fonts) : dl_(list), font
 
 void ImGuiCanvas::FillRect(ImVec2 min, ImVec2 max, sim::Color color, float rounding) {
   dl_->AddRectFilled(min, max, ToImColor(color), rounding);
+}
+
+namespace {
+
+// The clear behind FillBackground: the command's clip rectangle (the background's rectangle,
+// on whole pixels) cleared to the colour packed into the callback's data.
+void ClearRectCallback(const ImDrawList*, const ImDrawCmd* cmd) {
+  const ImDrawData* dd = ImGui::GetDrawData();
+  const ImVec2 off = dd->DisplayPos, sc = dd->FramebufferScale;
+  const int fb_h = static_cast<int>(dd->DisplaySize.y * sc.y);
+  const int x0 = static_cast<int>((cmd->ClipRect.x - off.x) * sc.x);
+  const int y0 = static_cast<int>((cmd->ClipRect.y - off.y) * sc.y);
+  const int x1 = static_cast<int>((cmd->ClipRect.z - off.x) * sc.x);
+  const int y1 = static_cast<int>((cmd->ClipRect.w - off.y) * sc.y);
+  const auto rgba = static_cast<std::uint32_t>(reinterpret_cast<std::uintptr_t>(cmd->UserCallbackData));
+  GlClearRect(x0, fb_h - y1, x1 - x0, y1 - y0, rgba);
+}
+
+bool OnWholePixels(ImVec2 p, float scale) {
+  return std::floor(p.x * scale) == p.x * scale && std::floor(p.y * scale) == p.y * scale;
+}
+
+}  // namespace
+
+void ImGuiCanvas::FillBackground(ImVec2 min, ImVec2 max, sim::Color color) {
+  // The rectangle as the quad would be clipped: the current clip rectangle, all on whole
+  // framebuffer pixels (else the quad's edge pixels could differ from the clear's).
+  const ImVec4 clip = dl_->_CmdHeader.ClipRect;
+  const ImVec2 lo(std::max(min.x, clip.x), std::max(min.y, clip.y));
+  const ImVec2 hi(std::min(max.x, clip.z), std::min(max.y, clip.w));
+  const float scale = ImGui::GetIO().DisplayFramebufferScale.x;
+  const ImU32 col = ToImColor(color);
+  if (!clear_backgrounds_ || (col >> IM_COL32_A_SHIFT) != 0xFF || !(hi.x > lo.x && hi.y > lo.y) ||
+      ImGui::GetIO().DisplayFramebufferScale.y != scale || !OnWholePixels(min, scale) ||
+      !OnWholePixels(max, scale) || !OnWholePixels(ImVec2(clip.x, clip.y), scale) ||
+      !OnWholePixels(ImVec2(clip.z, clip.w), scale)) {
+    FillRect(min, max, color, 0);
+    return;
+  }
+  dl_->PushClipRect(lo, hi, false);
+  dl_->AddCallback(ClearRectCallback, reinterpret_cast<void*>(static_cast<std::uintptr_t>(col)));
+  dl_->PopClipRect();
 }
 
 void ImGuiCanvas::StrokeRect(ImVec2 min, ImVec2 max, sim::Color color, float width,

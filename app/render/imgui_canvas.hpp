@@ -23,6 +23,10 @@ class ImGuiCanvas : public Canvas {
   ImGuiCanvas(ImDrawList* list, const Fonts& fonts);
 
   void FillRect(ImVec2 min, ImVec2 max, sim::Color color, float rounding) override;
+  /// On whole framebuffer pixels, a draw callback that clears the rectangle (scissored) to the
+  /// colour: llvmpipe runs the textured fragment shader for every pixel of a quad, while a
+  /// clear is a fill. The pixels are the same (tested); elsewhere a FillRect.
+  void FillBackground(ImVec2 min, ImVec2 max, sim::Color color) override;
   void StrokeRect(ImVec2 min, ImVec2 max, sim::Color color, float width, float rounding) override;
   void Polyline(const ImVec2* pts, int n, const Stroke& stroke, bool closed) override;
   void FillPolygon(const ImVec2* pts, int n, sim::Color color) override;
@@ -47,7 +51,12 @@ class ImGuiCanvas : public Canvas {
     max = dl_->GetClipRectMax();
   }
 
+ /// FillBackground as a clear (true) or always as a quad (false: a draw list that is not rendered
+  /// by the GL backend, or kept and appended again later).
+  void SetClearBackgrounds(bool on) { clear_backgrounds_ = on; }
+
  private:
+  bool clear_backgrounds_ = true;
   /// Runs `draw`, then turns what it added 90° counter-clockwise about `center`.
   void DrawRotated(ImVec2 center, const std::function<void()>& draw);
   void DashedPolyline(const ImVec2* pts, int n, ImU32 col, float width, const LineDash& dash);

@@ -93,7 +93,7 @@ void FrameWorldView(const sim::Experiment& exp, float width, float height, View&
 void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, const Theme& th,
                    const WorldViewOptions& opt) {
   cv.PushClip(view.min, view.max);
-  cv.FillRect(view.min, view.max, th.background);
+  cv.FillBackground(view.min, view.max, th.background);
   const Vec2 wlo = view.ToWorld(ImVec2(view.min.x, view.max.y));
   const Vec2 whi = view.ToWorld(ImVec2(view.max.x, view.min.y));
   const double major = GridStep(view.scale, 70.0);

@@ -1,0 +1,71 @@
+// A world view's background is cleared (a scissored glClear in a draw callback) instead of
+// shaded as a quad, for software GL (issue 24 item 9). The pixels must be the ones the quad gave:
+// rendered both ways, with a clip rectangle cutting the background, in every theme colour, with
+// lines and text drawn over it, at UI scale 1 and 2.
+#include <gtest/gtest.h>
+#include <imgui.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "app/render/gl_api.hpp"
+#include "app/render/imgui_canvas.hpp"
+#include "app/render/imgui_layer.hpp"
+#include "app/render/offscreen_context.hpp"
+#include "app/render/theme.hpp"
+
+namespace formsim::app {
+namespace {
+
+std::vector<std::uint8_t> Render(ImGuiLayer& layer, int w, int h, float scale, bool clear,
+                                 sim::Color bg, int* callbacks) {
+  layer.NewHeadlessFrame(w, h, 1.0f / 60.0f);
+  ImGui::Begin("v", nullptr, ImGuiWindowFlags_NoBackground | ImGuiWindowFlags_NoDecoration);
+  ImGui::End();
+  ImDrawList* dl = ImGui::GetBackgroundDrawList();
+  ImGuiCanvas cv(dl, layer.fonts());
+  cv.SetClearBackgrounds(clear);
+  cv.FillRect(ImVec2(0, 0), ImVec2(400, 300), sim::Color{0.9f, 0.9f, 0.9f, 1}, 0);
+  // Whole pixels, clipped on the right and the bottom by the canvas clip.
+  cv.PushClip(ImVec2(20, 10), ImVec2(300, 250));
+  cv.FillBackground(ImVec2(10, 20), ImVec2(380, 290), bg);
+  cv.Line(ImVec2(0, 0), ImVec2(400, 300), Stroke(sim::Color{0.1f, 0.3f, 0.8f, 1}, 2.5f));
+  cv.Text(ImVec2(40, 40), FontRole::kLabel, sim::Color{0, 0, 0, 1}, "R1 l 0.300 m");
+  cv.FillRect(ImVec2(100, 100), ImVec2(160, 140), sim::Color{1, 0.5f, 0, 0.5f}, 4);
+  cv.PopClip();
+  // Not on whole pixels: drawn as a quad either way.
+  cv.FillBackground(ImVec2(310.5f, 20.25f), ImVec2(390, 120), bg);
+  *callbacks = 0;
+  for (const ImDrawCmd& cmd : dl->CmdBuffer) *callbacks += cmd.UserCallback != nullptr;
+  const int fw = static_cast<int>(w * scale), fh = static_cast<int>(h * scale);
+  layer.Render(fw, fh, 0.2f, 0.2f, 0.2f);
+  return GlReadRgba(fw, fh);
+}
+
+TEST(FillBackground, ClearGivesTheQuadsPixels) {
+  for (const float scale : {1.0f, 2.0f}) {
+    const int w = 400, h = 300;
+    OffscreenContext ctx(static_cast<int>(w * scale), static_cast<int>(h * scale));
+    ImGuiLayer layer;
+    if (scale != 1.0f) layer.SetFontScale(scale);
+    for (const char* name : {"light", "dark", "print", "high-contrast"}) {
+      const sim::Color bg = GetTheme(ParseTheme(name)).background;
+      int quad_clears = -1, clears = -1;
+      const auto quad = Render(layer, w, h, scale, false, bg, &quad_clears);
+      const auto cleared = Render(layer, w, h, scale, true, bg, &clears);
+      EXPECT_EQ(quad_clears, 0);
+      EXPECT_EQ(clears, 1) << "the whole-pixel background is a clear, the other a quad";
+      ASSERT_EQ(quad.size(), cleared.size());
+      std::size_t differ = 0;
+      for (std::size_t i = 0; i < quad.size(); ++i) differ += quad[i] != cleared[i];
+      EXPECT_EQ(differ, 0u) << name << " at scale " << scale;
+      // The background is there (not the frame's clear colour) inside the clip.
+      const std::size_t at = (static_cast<std::size_t>(200 * scale) * static_cast<std::size_t>(w * scale) +
+                              static_cast<std::size_t>(250 * scale)) * 4;
+      EXPECT_EQ(cleared[at], static_cast<std::uint8_t>(bg.r * 255 + 0.5f)) << name;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace formsim::app
