@@ -28,6 +28,7 @@
 #include "sim/study/sweep_tables.hpp"
 #include "sim/study/tune.hpp"
 #include "sim/study/tune_history.hpp"
+#include "sim/study/tune_request.hpp"
 #include "sim/study/tune_validation.hpp"
 
 namespace fs = std::filesystem;
@@ -561,37 +562,26 @@ class TuneHistoryFile {
 
 int StudyCommands::Tune() {
   const TitleMode titles = ParseTitleMode(tune_titles_, "--titles");  // before anything runs
-  const std::vector<sim::ScenarioSource> sources =
-      sim::ReadScenarioSet(tune_scenario_, tune_scenarios_, "formsim tune");
-  const sim::ScenarioSource& source = sources.front();
-  const std::string file = source.file();
-  sim::TuneSettings s;
-  s.sets = sim::CliOverrides(tune_sets_, -1);
-  s.over = sim::ParseTuneOver(over_);
-  const sim::ParsedScenario base = sim::ParseScenario(source, s.sets);
-  for (const std::string& p : params_) {
-    s.params.push_back(sim::ParseTuneParam(p, base.params));
-    for (std::size_t i = 0; i + 1 < s.params.size(); ++i)
-      if (s.params[i].key == s.params.back().key)
-        throw std::runtime_error("--param " + p + ": tuned twice");
-  }
-  sim::CheckTunedKeys(sources, s);
-  s.objective = sim::ParseMetricExpr(tune_metric_);
-  for (const std::string& c : constraints_) s.constraints.push_back(sim::ParseTuneConstraint(c));
-  s.seeds = tune_->count("--seeds") == 0 ? std::vector<std::uint64_t>{base.setup.seed}
-                                         : sim::ParseSeeds(tune_seeds_);
-  s.budget = budget_;
-  s.algorithm = algorithm_;
-  s.search_seed = ParseSeedFlag(search_seed_, "--search-seed");
-  if (budget_ < 1 || budget_ > 100000) throw std::runtime_error("--budget must be in 1 ... 100000");
-  // Everything refused before anything runs: the plan, the holdout seeds.
-  const std::vector<sim::TuneStage> plan =
-      sim::PlanTune(s.algorithm, static_cast<int>(s.params.size()), s.budget);
-  std::vector<std::uint64_t> holdout;
-  if (tune_->count("--holdout") > 0) {
-    holdout = sim::ParseSeeds(holdout_, "--holdout");
-    sim::CheckHoldout(holdout, s.seeds);
-  }
+  sim::TuneRequest request;
+  request.scenario = tune_scenario_;
+  request.scenarios = tune_scenarios_;
+  request.sets = tune_sets_;
+  request.over = over_;
+  request.params = params_;
+  request.metric = tune_metric_;
+  request.constraints = constraints_;
+  if (tune_->count("--seeds") > 0) request.seeds = tune_seeds_;
+  request.budget = budget_;
+  request.algorithm = algorithm_;
+  request.search_seed = ParseSeedFlag(search_seed_, "--search-seed");
+  if (tune_->count("--holdout") > 0) request.holdout = holdout_;
+  // Everything refused before anything runs: the settings, the plan, the holdout seeds.
+  const sim::TuneDefinition def = sim::DefineTune(request);
+  const std::vector<sim::ScenarioSource>& sources = def.sources;
+  const std::string file = sources.front().file();
+  const sim::TuneSettings& s = def.settings;
+  const std::vector<sim::TuneStage>& plan = def.plan;
+  const std::vector<std::uint64_t>& holdout = def.holdout;
   const int jobs = CheckJobs(tune_jobs_, "--jobs");
   const std::string out =
       tune_out_.empty() ? "out/tune_" + fs::path(file).stem().string() : tune_out_;

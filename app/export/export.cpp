@@ -7,8 +7,8 @@
 #include <memory>
 #include <stdexcept>
 
-#include "app/export/figure_data.hpp"
 #include "app/export/gif_writer.hpp"
+#include "app/export/pictures.hpp"
 #include "app/gui/offscreen_renderer.hpp"
 #include "app/export/png_writer.hpp"
 #include "app/gui/ui.hpp"
@@ -376,10 +376,7 @@ ExportStats RunWithExport(sim::Session& session, const ExportOptions& opt,
       const sim::FigureSpec& fig = figures[i];
       try {
         report("figure " + std::to_string(i + 1) + "/" + std::to_string(figures.size()));
-        PlotData data = ResolveFigure(fig, exp.recorder());
-        if (!data.error.empty()) throw std::runtime_error("figure '" + fig.id + "': " + data.error);
-        data.title = TitleFor(data.title, opt.titles);
-        data.log_y = opt.log_y.count(fig.id) > 0;
+        const PlotData data = ExportedPlot(fig, exp.recorder(), opt.titles, opt.log_y.count(fig.id) > 0);
         const std::string stem = opt.plots_dir + "/" + fig.id + ".";
         for (FigureFormat f : opt.plot_formats) {
           if (f == FigureFormat::kPng) {

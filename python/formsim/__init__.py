@@ -17,7 +17,10 @@ Needs Debian's interpreter /usr/bin/python3 (with python3-numpy; python3-pandas 
 to_pandas) and ``PYTHONPATH=<build>/python`` (or ``cmake --install``); see the README.
 
 ``formsim.sweep(...)`` runs a sweep as ``formsim sweep`` does (same runs.csv and aggregate.csv),
-``formsim.dask.sweep(client, ...)`` maps its runs over a dask.distributed cluster.
+``formsim.dask.sweep(client, ...)`` maps its runs over a dask.distributed cluster, and
+``formsim.tune(...)`` optimises tunables as ``formsim tune`` does (same history.csv).
+``Sim.render(...)`` and ``Sim.figure(...)`` draw the world view and the figures in memory, as
+``formsim run --snapshot`` and ``--plots`` draw them.
 
 Every refused input raises :class:`Error` (a ``ValueError``) with the loader's reason; a run
 that stops at a non-finite value raises :class:`NumericalFault`, which carries the results up
@@ -28,6 +31,7 @@ from formsim._core import Error
 from formsim._sim import NumericalFault, Sim, Tunable, load, not_sampled
 from formsim._listing import lessons, scenarios, version
 from formsim._sweep import SweepResult, sweep
+from formsim._tune import TuneResult, tune
 
 __all__ = ["Error", "NumericalFault", "Sim", "Tunable", "load", "not_sampled", "scenarios", "lessons", "version",
-           "sweep", "SweepResult"]
+           "sweep", "SweepResult", "tune", "TuneResult"]

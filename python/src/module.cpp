@@ -9,8 +9,12 @@
 #include <vector>
 
 #include "python/src/errors.hpp"
+#ifdef FORMSIM_PYTHON_PICTURES
+#include "python/src/render_binding.hpp"
+#endif
 #include "python/src/session_binding.hpp"
 #include "python/src/sweep_binding.hpp"
+#include "python/src/tune_binding.hpp"
 #include "sim/core/provenance.hpp"
 #include "sim/scenario/scenario_files.hpp"
 
@@ -38,6 +42,10 @@ PYBIND11_MODULE(_core, m) {
   formsim::python::RegisterErrors(m);
   formsim::python::BindSession(m);
   formsim::python::BindSweep(m);
+  formsim::python::BindTune(m);
+#ifdef FORMSIM_PYTHON_PICTURES
+  formsim::python::BindRender(m);
+#endif
   m.def(
       "scenarios",
       [] { return List(formsim::sim::ShippedScenarios(), &formsim::sim::DescribeScenario); },

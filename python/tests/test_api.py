@@ -171,3 +171,46 @@ def test_run_releases_the_gil_and_ctrl_c_stops_it():
     assert 0 < sim.time < 100000 and sim.status == "running"
     steps = sim.steps
     assert sim.step(5) == 5 and sim.steps == steps + 5  # the run goes on from where it stopped
+
+
+def test_default_seed_is_the_scenarios_own_as_formsim_run(formsim_bin, tmp_path):
+    # Why load's seed defaults to None rather than 1: agv_fused declares seed 7, and formsim run
+    # without --seed runs seed 7.
+    import json
+
+    subprocess.run([formsim_bin, "run", "agv_fused", "--set", "duration=0.1", "--out",
+                    str(tmp_path), "--quiet"], check=True, capture_output=True)
+    cli_seed = json.loads((tmp_path / "summary.json").read_text())["seed"]
+    sim = formsim.load("agv_fused", set={"duration": 0.1})
+    assert sim.seed == cli_seed == 7
+    sim.run()
+    assert sim.summary()["seed"] == 7
+
+
+def test_timeseries_is_a_view_that_later_steps_leave_alone():
+    sim = formsim.load(SCENARIO, set={"duration": 2})
+    sim.run(until=0.5)
+    ts = sim.timeseries()
+    again = sim.timeseries()
+    assert np.shares_memory(ts["t"], again["t"])  # no copy per call
+    assert ts["t"].base is ts[sim.columns()[-1]].base  # one buffer for every column
+    assert not ts["t"].flags.writeable  # the recorder's rows: read-only
+    with pytest.raises(ValueError):
+        ts["t"][0] = 1.0
+    kept = {k: np.array(v) for k, v in ts.items()}
+    sim.run()  # more rows: the recorder grows, or moves on to a new buffer
+    later = sim.timeseries()
+    assert len(later["t"]) > len(ts["t"])
+    sim.reset(seed=5)
+    sim.run(until=0.3)
+    del sim, later, again  # the recorder that made them is gone
+    import gc
+
+    gc.collect()
+    for k, v in ts.items():
+        assert np.array_equal(v.view(np.uint64), kept[k].view(np.uint64)), k
+    df = formsim.load(SCENARIO, set={"duration": 0.2})
+    df.run()
+    frame = df.to_pandas()
+    frame.loc[0, "t"] = -1.0  # to_pandas is a writable copy
+    assert df.timeseries()["t"][0] == 0.0

@@ -234,17 +234,32 @@ void Recorder::Sample() {
   // The history keeps every stride-th sampled row; when full it drops every second row.
   if (sampled_++ % stride_ != 0) return;
   if (limit_ > 0 && rows_ >= limit_) {
+    Unshare(data_->capacity());  // the rows are rewritten in place
+    std::vector<double>& d = *data_;
     std::size_t kept = 0;
     for (std::size_t r = 0; r < rows_; r += 2, ++kept)
-      std::copy(data_.begin() + r * n, data_.begin() + (r + 1) * n, data_.begin() + kept * n);
+      std::copy(d.begin() + r * n, d.begin() + (r + 1) * n, d.begin() + kept * n);
     rows_ = kept;
-    data_.resize(rows_ * n);
+    d.resize(rows_ * n);
     stride_ *= 2;
     if ((sampled_ - 1) % stride_ != 0) return;
   }
-  if (data_.size() + n > data_.capacity()) Grow();
-  data_.insert(data_.end(), scratch_.begin(), scratch_.end());
+  if (data_->size() + n > data_->capacity()) {
+    Grow();
+    // Full and shared: a new buffer, as the vector's own doubling would make.
+    if (data_->size() + n > data_->capacity())
+      Unshare(std::max(2 * data_->capacity(), data_->size() + n));
+  }
+  data_->insert(data_->end(), scratch_.begin(), scratch_.end());
   ++rows_;
+}
+
+void Recorder::Unshare(std::size_t capacity) {
+  if (data_.use_count() == 1) return;
+  auto own = std::make_shared<std::vector<double>>();
+  own->reserve(std::max(capacity, data_->size()));
+  own->assign(data_->begin(), data_->end());
+  data_ = std::move(own);
 }
 
 void Recorder::Grow() {
@@ -254,7 +269,10 @@ void Recorder::Grow() {
   if (limit_ > 0) rows = std::min(rows, limit_);
   // Beyond the expected rows, or too many to reserve at once: the vector's own doubling.
   if (rows <= rows_ || rows * n * sizeof(double) > kMaxReserve) return;
-  data_.reserve(rows * n);
+  if (data_.use_count() > 1)
+    Unshare(rows * n);  // a reserve would move the rows a SharedRows() holder reads
+  else
+    data_->reserve(rows * n);
 }
 
 void Recorder::SetHistoryLimit(std::size_t max_rows) {
@@ -266,7 +284,7 @@ void Recorder::AppendRow(std::string& line, std::size_t r) const {
   const std::size_t at = line.size();
   line.resize(at + n * kMaxCell + 1);
   line.resize(
-      static_cast<std::size_t>(FormatRow(&data_[r * n], n, line.data() + at) - line.data()));
+      static_cast<std::size_t>(FormatRow(&(*data_)[r * n], n, line.data() + at) - line.data()));
 }
 
 void Recorder::StreamTo(const std::string& path) {

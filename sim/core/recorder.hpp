@@ -90,7 +90,12 @@ class Recorder {
   std::size_t rows() const { return rows_; }
   std::size_t columns() const { return names_.size(); }
   const std::vector<std::string>& names() const { return names_; }
-  double At(std::size_t row, int column) const { return data_[row * names_.size() + column]; }
+  double At(std::size_t row, int column) const { return (*data_)[row * names_.size() + column]; }
+  /// The rows in memory, rows() x columns() row-major, as a buffer shared with the caller that
+  /// stays valid and unchanged however the recording goes on: a row that needs more room, or a
+  /// decimation, moves the history to a new buffer instead of changing this one, and the buffer
+  /// outlives the recorder. (The Python module hands these rows out as numpy views.)
+  std::shared_ptr<const std::vector<double>> SharedRows() const { return data_; }
   /// Copies one column out.
   std::vector<double> Series(int column) const;
 
@@ -110,6 +115,9 @@ class Recorder {
   void StopWriter();
   /// Room for one more row of history (see ExpectRows).
   void Grow();
+  /// Moves the history to a buffer of its own with room for `capacity` values, when a
+  /// SharedRows() holder still reads the current one (copy on write).
+  void Unshare(std::size_t capacity);
   struct Group {
     int first = 0, count = 1;
     std::function<void(double*)> fill;
@@ -117,7 +125,7 @@ class Recorder {
   std::vector<std::string> names_;
   std::unordered_map<std::string, int> index_;  ///< name -> column, so setup stays linear
   std::vector<Group> groups_;
-  std::vector<double> data_;
+  std::shared_ptr<std::vector<double>> data_ = std::make_shared<std::vector<double>>();
   std::size_t rows_ = 0;
   std::size_t sampled_ = 0;
   std::size_t limit_ = 0;          ///< rows kept in memory at most (0: all)

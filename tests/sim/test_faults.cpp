@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -101,6 +102,44 @@ TEST(Recorder, StreamsEveryRowWhileKeepingABoundedHistory) {
   while (std::getline(in, line)) ++lines;
   EXPECT_EQ(lines, 2002u);
   EXPECT_FALSE(std::filesystem::exists(CsvPath(dir) + ".tmp"));
+}
+
+// The rows handed out by SharedRows (the Python module's views) never change, whether the
+// recorder goes on into reserved room, grows past it, halves its history, or is destroyed.
+TEST(Recorder, SharedRowsStayUnchangedAsTheRecordingGoesOn) {
+  // Bit for bit (a not-sampled cell is a NaN, unequal to itself under ==).
+  auto same = [](const std::vector<double>& a, const std::vector<double>& b) {
+    return a.size() <= b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+  };
+  auto e = LoadExperimentFromText(testkind::kScenario, "a.yaml", {"duration=20"});
+  for (int i = 0; i < 100; ++i) e->Step();
+  const Recorder& rec = e->recorder();
+  const std::shared_ptr<const std::vector<double>> early = rec.SharedRows();
+  const std::vector<double> early_copy = *early;
+  const double* early_data = early->data();
+  const std::size_t cols = rec.columns();
+  ASSERT_EQ(early_copy.size(), rec.rows() * cols);
+  EXPECT_EQ(rec.SharedRows()->data(), early_data) << "no copy while nothing moved";
+  while (!e->finished()) e->Step();  // past the reserved room? either way the rows hold
+  EXPECT_EQ(early->data(), early_data);
+  EXPECT_TRUE(same(early_copy, *early));
+  EXPECT_GT(rec.rows(), early_copy.size() / cols);
+  EXPECT_TRUE(same(early_copy, *rec.SharedRows())) << "the run went on from the same rows";
+
+  // A history that halves itself rewrites its rows in a buffer of its own.
+  auto d = LoadExperimentFromText(testkind::kScenario, "a.yaml", {"duration=20"});
+  d->mutable_recorder().SetHistoryLimit(64);
+  for (int i = 0; i < 600; ++i) d->Step();  // 64 rows kept, well before the next halving
+  const auto before = d->recorder().SharedRows();
+  const std::vector<double> before_copy = *before;
+  while (!d->finished()) d->Step();
+  EXPECT_GT(d->recorder().history_stride(), 1u);
+  EXPECT_TRUE(same(before_copy, *before));
+  EXPECT_FALSE(same(before_copy, *d->recorder().SharedRows())) << "the history was halved";
+  e.reset();
+  d.reset();  // the recorders are gone; their shared rows are not
+  EXPECT_TRUE(same(early_copy, *early));
+  EXPECT_TRUE(same(before_copy, *before));
 }
 
 TEST(Recorder, FiniteCheckSeesEveryKindOfNonFiniteValueAndSkipsNotSampled) {
