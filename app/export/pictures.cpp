@@ -92,12 +92,13 @@ std::string FigureBytes(const sim::Experiment& exp, const std::string& name,
   if (spec == nullptr)
     throw std::runtime_error("figure '" + name + "': no such figure (the figures of " +
                              exp.setup().name + " now: " + (names.empty() ? "none" : names) + ")");
+  // Vector figures too: the drawing code may share state with an ImGui frame being drawn.
+  std::lock_guard<std::mutex> lock(PictureMutex());
   const PlotData data = ExportedPlot(*spec, exp.recorder(), TitleMode::kFull, false);
   const FigureSize size;  // --plot-size's default, 960x600 px
   const int w = size.LayoutWidth(), h = size.LayoutHeight();
   if (f == FigureFormat::kSvg) return SvgDocument(RecordPlot(data, w, h, th), size, data.title);
   if (f == FigureFormat::kPdf) return PdfDocument(RecordPlot(data, w, h, th), size, data.title);
-  std::lock_guard<std::mutex> lock(PictureMutex());
   OffscreenRenderer renderer(w, h, th);
   renderer.SetScale(static_cast<float>(size.LayoutScale()));  // 96 dpi
   const std::vector<std::uint8_t>& px = renderer.RenderFigure(data, w, h);
