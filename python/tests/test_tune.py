@@ -44,3 +44,17 @@ def test_tune_refuses_what_the_cli_refuses(kwargs, words):
     with pytest.raises(formsim.Error) as e:
         formsim.tune(SCENARIO, **args)
     assert words in str(e.value)
+
+
+def test_ctrl_c_ends_a_tune_after_its_evaluation():
+    import _thread
+    import threading
+    import time
+
+    threading.Timer(0.3, _thread.interrupt_main).start()  # Ctrl-C after 0.3 s
+    t0 = time.perf_counter()
+    with pytest.raises(KeyboardInterrupt):
+        # A global method that searches until its budget (it cannot end before the Ctrl-C).
+        formsim.tune(SCENARIO, params=[PARAM], metric=METRIC, budget=100000, method="isres",
+                     seeds=range(1, 21), set={"duration": 2}, jobs=1)
+    assert time.perf_counter() - t0 < 30  # not the 100000 evaluations
