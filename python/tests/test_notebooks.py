@@ -1,6 +1,7 @@
 """docs/notebooks executed with `jupyter nbconvert --execute` (Debian's python3 kernel): they run
 without error, and their key numbers are what formsim computes when asked again here."""
 
+import hashlib
 import json
 import math
 import os
@@ -55,6 +56,13 @@ def test_teaching_notebook(tmp_path):
     assert k["status"] == "completed" and k["steps"] == sim.steps and k["time"] == sim.time
     assert k["robots"] == ["R1", "R2", "R3"]
     assert k["frames"] == math.ceil(sim.duration / 2.0)
+    # The frames are formsim's world view at those times: the same pixels drawn again here.
+    assert k["pictures"] == k["frames"] and k["picture_shape"] == [320, 480, 3]
+    again = formsim.load("formation_traj2_ukf")
+    again.run(until=k["picture_time"])
+    assert again.time == k["picture_time"]
+    px = again.render(480, 320)
+    assert hashlib.sha256(px.tobytes()).hexdigest() == k["picture_sha256"]
     ts = sim.timeseries()
     after = ts["t"] >= 5.0
     assert k["rms_e_l_m"] == float(np.sqrt(np.mean(ts["R1-R2.e_l"][after] ** 2)))
