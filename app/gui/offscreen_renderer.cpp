@@ -48,12 +48,7 @@ void OffscreenRenderer::Begin() {
 
 const std::vector<std::uint8_t>& OffscreenRenderer::End(sim::Color clear) {
   const double t1 = Now();
-  // Cleared to the colour ImGui would draw (8 bits a channel), so that a fill of it left out by
-  // ImGuiCanvas::SetClearedTo gives the same pixels.
-  const ImU32 c = ToImColor(clear);
-  auto channel = [c](int shift) { return static_cast<float>((c >> shift) & 0xFF) / 255.0f; };
-  layer_.Render(ctx_.width(), ctx_.height(), channel(IM_COL32_R_SHIFT), channel(IM_COL32_G_SHIFT),
-                channel(IM_COL32_B_SHIFT));
+  layer_.Render(ctx_.width(), ctx_.height(), clear.r, clear.g, clear.b);
   ctx_.Finish();
   const double t2 = Now();
   times_.build += t1 - t_begin_;
@@ -80,7 +75,6 @@ const std::vector<std::uint8_t>& OffscreenRenderer::RenderWorldAs(const sim::Exp
   opt.legend_state = &legend_state_;
   opt.clock = exp.time();  // frames of a run: the corner moves at most once a simulated second
   ImGuiCanvas canvas(ImGui::GetBackgroundDrawList(), layer_.fonts());
-  if (skip_cleared_fill_) canvas.SetClearedTo(ToImColor(theme_.background));
   DrawWorldView(canvas, view, exp, theme_, opt);
   return End(theme_.background);
 }
@@ -98,7 +92,6 @@ const std::vector<std::uint8_t>& OffscreenRenderer::RenderFigure(const PlotData&
   Resize(width, height);
   Begin();
   ImGuiCanvas canvas(ImGui::GetBackgroundDrawList(), layer_.fonts());
-  if (skip_cleared_fill_) canvas.SetClearedTo(ToImColor(theme_.background));
   last_layout_ =
       DrawPlot(canvas, ImVec2(0, 0), ImVec2(static_cast<float>(width), static_cast<float>(height)),
                data, FigureStyle(theme_));

@@ -64,10 +64,6 @@ class OffscreenRenderer {
     legend_ = legend;
   }
   const RenderTimes& times() const { return times_; }
-  /// On (the default): the background rectangle of the world view and of figures is not drawn
-  /// over the frame already cleared to it (ImGuiCanvas::SetClearedTo). Off draws it, for the
-  /// test that shows both give the same pixels.
-  void SetSkipClearedFill(bool on) { skip_cleared_fill_ = on; }
   /// Axes and legend of the last RenderFigure (for tests), logical pixels.
   const PlotLayout& last_plot_layout() const { return last_layout_; }
 
@@ -82,7 +78,6 @@ class OffscreenRenderer {
   ImGuiLayer layer_;
   int logical_w_, logical_h_;
   RenderTimes times_;
-  bool skip_cleared_fill_ = true;
   PlotLayout last_layout_;
   double t_begin_ = 0;
 };

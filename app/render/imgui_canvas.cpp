@@ -49,12 +49,7 @@ ImGuiCanvas::ImGuiCanvas(ImDrawList* list, const Fonts& fonts) : dl_(list), font
 }
 
 void ImGuiCanvas::FillRect(ImVec2 min, ImVec2 max, sim::Color color, float rounding) {
-  const ImU32 col = ToImColor(color);
-  // Over a target still holding only its clear colour, an opaque fill of that colour is a no-op.
-  if (col == cleared_to_ && (col & IM_COL32_A_MASK) == IM_COL32_A_MASK && rounding <= 0 &&
-      dl_->VtxBuffer.Size == 0)
-    return;
-  dl_->AddRectFilled(min, max, col, rounding);
+  dl_->AddRectFilled(min, max, ToImColor(color), rounding);
 }
 
 namespace {

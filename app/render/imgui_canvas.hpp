@@ -50,11 +50,6 @@ class ImGuiCanvas : public Canvas {
     min = dl_->GetClipRectMin();
     max = dl_->GetClipRectMax();
   }
-  /// Says that the target is cleared to `color` (opaque) before the list is drawn: a square-
-  /// cornered FillRect of exactly that colour drawn before anything else is then left out. It
-  /// would change no pixel, yet a full-frame blended rectangle is about a third of the software
-  /// rasteriser's time per exported frame.
-  void SetClearedTo(ImU32 color) { cleared_to_ = color; }
 
  /// FillBackground as a clear (true) or always as a quad (false: a draw list that is not rendered
   /// by the GL backend, or kept and appended again later).
@@ -67,7 +62,6 @@ class ImGuiCanvas : public Canvas {
   void DashedPolyline(const ImVec2* pts, int n, ImU32 col, float width, const LineDash& dash);
   ImDrawList* dl_;
   const Fonts& fonts_;
-  ImU32 cleared_to_ = 0;  ///< 0 (transparent): nothing known about the target
 };
 
 }  // namespace formsim::app
