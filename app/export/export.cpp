@@ -242,7 +242,7 @@ ExportStats RunWithExport(sim::Session& session, const ExportOptions& opt,
         if (!opt.frames_dir.empty()) {
           char name[32];
           std::snprintf(name, sizeof(name), "/frame_%05ld.png", main_clock.next);
-          std::vector<std::uint8_t> copy(px);
+          std::vector<std::uint8_t> copy = pool.Copy(px);
           st.copy += Now() - t1;
           pool.Submit(opt.frames_dir + name, renderer.width(), renderer.height(), std::move(copy));
         }

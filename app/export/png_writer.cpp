@@ -1,16 +1,14 @@
 #include "app/export/png_writer.hpp"
 
-#include <cerrno>
-#include <cstring>
-#include <filesystem>
-
 #include <stb_image.h>
 #include <zlib.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <stdexcept>
 
 namespace formsim::app {
@@ -32,51 +30,75 @@ void Chunk(std::vector<std::uint8_t>& out, const char* type, const std::uint8_t*
   PutU32(out, static_cast<std::uint32_t>(crc32(0, out.data() + start, static_cast<uInt>(n + 4))));
 }
 
+// One deflate stream and its buffers per thread, reset between images: each frame would
+// otherwise allocate (and the kernel zero) megabytes.
+struct Deflater {
+  Deflater() {
+    // Level 2 with memLevel 7 (a 32 k-entry hash): on our frames 7 % less CPU than memLevel 8
+    // for 0.3 % more bytes. libdeflate was measured too (issue 28): its level 1 takes 1.6x the
+    // CPU of this on our long runs of zeros (it hashes every byte inside a match), its
+    // higher levels more.
+    if (deflateInit2(&zs, 2, Z_DEFLATED, 15, 7, Z_DEFAULT_STRATEGY) != Z_OK)
+      throw std::runtime_error("zlib deflateInit failed");
+  }
+  ~Deflater() { deflateEnd(&zs); }
+  Deflater(const Deflater&) = delete;
+  Deflater& operator=(const Deflater&) = delete;
+  z_stream zs{};
+  std::vector<std::uint8_t> raw, z;  ///< filtered rows, compressed stream
+};
+
+// Buffers larger than this (a 4K picture or more) are let go after use.
+constexpr std::size_t kKeepBytes = std::size_t{64} << 20;
+
 }  // namespace
 
-// PNG through zlib: every row with the "up" filter and deflate level 2. For our pictures (flat
-// backgrounds, thin lines) this is 2-3x faster than stb_image_write's encoder at a similar size,
-// which matters when frames are exported at 30 fps.
+// PNG with every row under the "up" filter (our pictures are flat backgrounds and thin lines:
+// rows repeat) compressed by zlib at level 2: 2-3x faster than stb_image_write's encoder at a
+// similar size, which matters when frames are exported at 30 fps.
 std::vector<std::uint8_t> EncodePng(int width, int height, const std::uint8_t* rgba, double dpi) {
+  thread_local Deflater d;
   const std::size_t n = static_cast<std::size_t>(width) * height;
   bool opaque = true;
   for (std::size_t i = 0; i < n && opaque; ++i) opaque = rgba[4 * i + 3] == 255;
   const int comp = opaque ? 3 : 4;  // RGB when nothing is transparent: 25 % less to compress
   const std::size_t stride = static_cast<std::size_t>(width) * comp;
-  std::vector<std::uint8_t> raw((stride + 1) * height);
-  std::vector<std::uint8_t> row(stride), prev(stride, 0);
+  std::vector<std::uint8_t>& raw = d.raw;
+  raw.resize((stride + 1) * height);
   for (int y = 0; y < height; ++y) {
     const std::uint8_t* src = rgba + static_cast<std::size_t>(y) * width * 4;
-    if (opaque) {
+    const std::uint8_t* above = y > 0 ? src - static_cast<std::size_t>(width) * 4 : nullptr;
+    std::uint8_t* out = &raw[y * (stride + 1)];
+    out[0] = 2;  // filter type "up": the difference to the pixel above (row 0: to zero)
+    ++out;
+    if (above == nullptr) {
+      for (int x = 0; x < width; ++x)
+        for (int c = 0; c < comp; ++c) out[comp * x + c] = src[4 * x + c];
+    } else if (opaque) {
       for (int x = 0; x < width; ++x) {
-        row[3 * x] = src[4 * x];
-        row[3 * x + 1] = src[4 * x + 1];
-        row[3 * x + 2] = src[4 * x + 2];
+        out[3 * x] = static_cast<std::uint8_t>(src[4 * x] - above[4 * x]);
+        out[3 * x + 1] = static_cast<std::uint8_t>(src[4 * x + 1] - above[4 * x + 1]);
+        out[3 * x + 2] = static_cast<std::uint8_t>(src[4 * x + 2] - above[4 * x + 2]);
       }
     } else {
-      std::memcpy(row.data(), src, stride);
+      for (std::size_t i = 0; i < stride; ++i)
+        out[i] = static_cast<std::uint8_t>(src[i] - above[i]);
     }
-    std::uint8_t* out = &raw[y * (stride + 1)];
-    out[0] = 2;  // filter type "up"
-    for (std::size_t i = 0; i < stride; ++i)
-      out[1 + i] = static_cast<std::uint8_t>(row[i] - prev[i]);
-    std::swap(row, prev);
   }
-  std::vector<std::uint8_t> z(compressBound(static_cast<uLong>(raw.size())));
-  z_stream zs{};
-  if (deflateInit2(&zs, 2, Z_DEFLATED, 15, 8, Z_DEFAULT_STRATEGY) != Z_OK)
-    throw std::runtime_error("zlib deflateInit failed");
+
+  z_stream& zs = d.zs;
+  if (deflateReset(&zs) != Z_OK) throw std::runtime_error("zlib deflateReset failed");
+  d.z.resize(deflateBound(&zs, static_cast<uLong>(raw.size())));
   zs.next_in = raw.data();
   zs.avail_in = static_cast<uInt>(raw.size());
-  zs.next_out = z.data();
-  zs.avail_out = static_cast<uInt>(z.size());
+  zs.next_out = d.z.data();
+  zs.avail_out = static_cast<uInt>(d.z.size());
   const int rc = deflate(&zs, Z_FINISH);
   const std::size_t zn = zs.total_out;
-  deflateEnd(&zs);
   if (rc != Z_STREAM_END) throw std::runtime_error("zlib deflate failed");
 
   std::vector<std::uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
-  png.reserve(zn + 64);
+  png.reserve(zn + 80);
   std::vector<std::uint8_t> ihdr;
   PutU32(ihdr, static_cast<std::uint32_t>(width));
   PutU32(ihdr, static_cast<std::uint32_t>(height));
@@ -90,7 +112,11 @@ std::vector<std::uint8_t> EncodePng(int width, int height, const std::uint8_t* r
     phys.push_back(1);  // unit: metre
     Chunk(png, "pHYs", phys.data(), phys.size());
   }
-  Chunk(png, "IDAT", z.data(), zn);
+  Chunk(png, "IDAT", d.z.data(), zn);
+  if (raw.capacity() > kKeepBytes) {
+    std::vector<std::uint8_t>().swap(raw);
+    std::vector<std::uint8_t>().swap(d.z);
+  }
   Chunk(png, "IEND", nullptr, 0);
   return png;
 }
@@ -161,6 +187,19 @@ void PngPool::Submit(std::string path, int width, int height, std::vector<std::u
   cv_.notify_one();
 }
 
+std::vector<std::uint8_t> PngPool::Copy(const std::vector<std::uint8_t>& rgba) {
+  std::vector<std::uint8_t> out;
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    if (!spare_.empty()) {
+      out = std::move(spare_.back());
+      spare_.pop_back();
+    }
+  }
+  out.assign(rgba.begin(), rgba.end());
+  return out;
+}
+
 void PngPool::Wait() {
   std::unique_lock<std::mutex> lock(mu_);
   idle_.wait(lock, [&] { return (queue_.empty() && busy_ == 0) || !error_.empty(); });
@@ -200,6 +239,7 @@ void PngPool::Work() {
       std::lock_guard<std::mutex> lock(mu_);
       --busy_;
       encode_ += secs;
+      if (spare_.size() < max_queued_) spare_.push_back(std::move(job.px));
       if (err.empty())
         ++written_;
       else if (error_.empty())

@@ -35,6 +35,9 @@ class PngPool {
 
   /// Queues an image; blocks while the queue is full. Rethrows a worker's earlier error.
   void Submit(std::string path, int width, int height, std::vector<std::uint8_t> rgba);
+  /// A copy of `rgba` in the buffer of an image already written, when there is one: a new
+  /// megabyte-sized buffer per frame costs page faults.
+  std::vector<std::uint8_t> Copy(const std::vector<std::uint8_t>& rgba);
   /// Waits until everything queued is written. Rethrows the first worker error.
   void Wait();
   int threads() const { return static_cast<int>(workers_.size()); }
@@ -53,6 +56,7 @@ class PngPool {
   void Work();
   std::vector<std::thread> workers_;
   std::deque<Job> queue_;
+  std::vector<std::vector<std::uint8_t>> spare_;  ///< buffers of written images, for Copy
   mutable std::mutex mu_;
   std::condition_variable cv_, space_, idle_;
   std::size_t max_queued_;

@@ -93,9 +93,13 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, double 
       frame_bytes_(static_cast<std::size_t>(width) * height * 4) {
   CheckAvailable(path, width, height);
   std::signal(SIGPIPE, SIG_IGN);  // a dying ffmpeg becomes a write error, not a crash
+  // x264's "ultrafast" preset (issue 28): on formation_traj2 at 1280x720 it encodes with a third
+  // of the CPU of "veryfast" (9 vs 28 ms a frame), at the same quality (SSIM 0.991 vs 0.986, PSNR
+  // 39.3 vs 37.7 dB against the PNG frames) in 3x the bytes (12 vs 4 Mbit/s). Only it leaves the
+  // rendering enough of two cores for 150 frames/s.
   std::ostringstream cmd;
   cmd << "ffmpeg -y -loglevel error -f rawvideo -pix_fmt rgba -s " << width << "x" << height
-      << " -r " << fps << " -i - -c:v libx264 -preset veryfast -crf 20 -pix_fmt yuv420p "
+      << " -r " << fps << " -i - -c:v libx264 -preset ultrafast -crf 20 -pix_fmt yuv420p "
       << "-movflags +faststart -f " << Muxer(Extension(path)) << " " << ShellQuote(partial_);
   pipe_ = popen(cmd.str().c_str(), "w");
   if (pipe_ == nullptr) throw std::runtime_error("cannot start ffmpeg for " + path);
