@@ -17,21 +17,22 @@ namespace portable {
 typedef double V __attribute__((vector_size(16)));
 using M = decltype(V{} < V{});
 constexpr int W = 2;
+#define FORMSIM_LANE_FN inline __attribute__((always_inline))
 #include "control/formation/link_predict_lanes.inc"
+#undef FORMSIM_LANE_FN
 }  // namespace portable
 
-#pragma GCC push_options
-#pragma GCC target("avx2")
 namespace avx2 {
 typedef double V __attribute__((vector_size(32)));
 using M = decltype(V{} < V{});
 constexpr int W = 4;
+#define FORMSIM_LANE_FN inline __attribute__((always_inline, target("avx2")))
 #include "control/formation/link_predict_lanes.inc"
-void Run(Lanes& l) {
+#undef FORMSIM_LANE_FN
+__attribute__((target("avx2"))) void Run(Lanes& l) {
   RunLanes(l, 0);
 }
 }  // namespace avx2
-#pragma GCC pop_options
 
 static_assert(LinkPredictBatch::kLanes % portable::W == 0 && LinkPredictBatch::kLanes == avx2::W);
 
