@@ -5,6 +5,7 @@
 // by the same cascades with the estimators off (truth), on one thread, and with Box2D alone.
 #include <benchmark/benchmark.h>
 
+#include "control/formation/link_predict_lanes.hpp"
 #include "sim/scenario/scenario.hpp"
 #include "sim/core/thread_pool.hpp"
 #include "sim/core/unicycle_drive.hpp"
@@ -12,6 +13,7 @@
 
 using namespace formsim;
 using namespace formsim::sim;
+namespace formation_lanes = formsim::control::formation;
 
 namespace {
 
@@ -42,6 +44,16 @@ void BM_ShippedScenario(benchmark::State& state, const std::string& name) {
 }
 // The paper scenario with a UKF per link (issue 2: goal >= 1000x real time).
 BENCHMARK_CAPTURE(BM_ShippedScenario, formation_traj2_ukf, std::string("formation_traj2_ukf"))
+    ->Unit(benchmark::kMillisecond)->UseRealTime();
+// The paper scenario with its three links predicted one by one, no SIMD lanes (see
+// BM_CascadeUkfScalarLanes).
+void BM_ShippedScenarioScalarLanes(benchmark::State& state, const std::string& name) {
+  const auto saved = formation_lanes::CurrentLanePath();
+  formation_lanes::SetLanePath(formation_lanes::LanePath::kScalar);
+  BM_ShippedScenario(state, name);
+  formation_lanes::SetLanePath(saved);
+}
+BENCHMARK_CAPTURE(BM_ShippedScenarioScalarLanes, formation_traj2_ukf, std::string("formation_traj2_ukf"))
     ->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_ShippedScenario, agv_fused, std::string("agv_fused"))
     ->Unit(benchmark::kMillisecond)->UseRealTime();
@@ -76,9 +88,21 @@ void BM_Cascade(benchmark::State& state, bool ukf, int threads) {
 void BM_CascadeUkf(benchmark::State& s) { BM_Cascade(s, true, 0); }
 void BM_CascadeTruth(benchmark::State& s) { BM_Cascade(s, false, 0); }
 void BM_CascadeUkfOneThread(benchmark::State& s) { BM_Cascade(s, true, 1); }
+// The same with every link predicted by its own Predict, no SIMD lanes (the reference whose
+// bits the lanes give, control/formation/link_predict_lanes.hpp): what the lanes gain.
+void BM_CascadeUkfScalar(benchmark::State& s, int threads) {
+  const auto saved = formation_lanes::CurrentLanePath();
+  formation_lanes::SetLanePath(formation_lanes::LanePath::kScalar);
+  BM_Cascade(s, true, threads);
+  formation_lanes::SetLanePath(saved);
+}
+void BM_CascadeUkfScalarLanes(benchmark::State& s) { BM_CascadeUkfScalar(s, 0); }
+void BM_CascadeUkfScalarLanesOneThread(benchmark::State& s) { BM_CascadeUkfScalar(s, 1); }
 BENCHMARK(BM_CascadeUkf)->Arg(10)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_CascadeTruth)->Arg(10)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_CascadeUkfOneThread)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_CascadeUkfScalarLanes)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_CascadeUkfScalarLanesOneThread)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Box2D alone: N robots with ideal drives in a loose grid, no controllers, no recording.
 void BM_Box2DOnly(benchmark::State& state) {

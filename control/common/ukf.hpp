@@ -267,6 +267,32 @@ class Ukf {
 
   const State& x() const { return x_; }
   const Cov& P() const { return P_; }
+
+  /// For a caller that propagates the sigma points of several filters at once (SIMD lanes,
+  /// link_predict_lanes.hpp) and must give the same bits as PredictSigma: makes the Cholesky
+  /// factor of P current exactly as PredictSigma's first step would (factoring a P that a
+  /// prediction only checked). False when PredictSigma would take another path (no factor and
+  /// P not known positive definite, n + λ ≤ 0, or P not positive definite): the caller then
+  /// runs PredictSigma itself. The sigma points are x ± sigma_scale() · columns of chol().
+  bool SigmaFactorReady() {
+    if (!chol_valid_ && !pd_known_) return false;
+    if (!(N + lambda_ > 0.0)) return false;
+    if (!chol_valid_) {
+      Cov L;
+      if (!CholeskyLower<N>(P_, L)) return false;
+      Factored(L);
+    }
+    return true;
+  }
+  /// Lower Cholesky factor of P (valid after SigmaFactorReady() returned true).
+  const Cov& chol() const { return chol_; }
+  /// √(n+λ): the sigma points' columns are sigma_scale() · chol().
+  double sigma_scale() const { return sqrt_c_; }
+  /// The end of PredictSigma for a mean and a (symmetric, Q included) covariance that the
+  /// caller computed from the propagated sigma points with PredictSigma's operations.
+  UkfStatus AcceptPrediction(const State& mean, const Cov& P) {
+    return Accept(mean, P, /*factor=*/false);
+  }
   /// Normalised innovation squared of the last successful update.
   double last_nis() const { return last_nis_; }
   /// eᵀ P⁻¹ e for the current P (e.g. the normalised estimation error squared, NEES); NaN when

@@ -81,6 +81,22 @@ class LinkUkf final : public LinkFilter {
     return ukf_.UpdateSelection(z, idx_, R);
   }
 
+  bool PredictBasis(LinkPredictBasis& b) override {
+    // The lanes hard-code Predict's single Euler step and the angle states φ and α.
+    if (def_.substeps > 1 || !ukf_.SigmaFactorReady()) return false;
+    b.x = ukf_.x();
+    b.chol = ukf_.chol();
+    b.scale = ukf_.sigma_scale();
+    b.wm0 = ukf_.weight_mean(0), b.wm = ukf_.weight_mean(1);
+    b.wc0 = ukf_.weight_cov(0), b.wc = ukf_.weight_cov(1);
+    b.Tc = def_.Tc, b.L = def_.L;
+    b.q = def_.q;
+    return true;
+  }
+  UkfStatus AcceptPrediction(const Eigen::Vector3d& mean, const Eigen::Matrix3d& P) override {
+    return ukf_.AcceptPrediction(mean, P);
+  }
+
   LinkState state() const override { return LinkState::FromVec(ukf_.x()); }
   Eigen::Matrix3d cov() const override { return ukf_.P(); }
   double nis() const override { return ukf_.last_nis(); }

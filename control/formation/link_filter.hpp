@@ -51,6 +51,18 @@ struct LinkFilterDef {
   UkfScaling scaling = DefaultUkfScaling(3);
 };
 
+/// What a batched time update (link_predict_lanes.hpp) reads of one link filter to run the
+/// operations of its own Predict: the sigma points' basis, the weights and the settings.
+struct LinkPredictBasis {
+  Eigen::Vector3d x;           ///< mean [l, φ, α]
+  Eigen::Matrix3d chol;        ///< lower Cholesky factor of P (upper part zero)
+  double scale = 0.0;          ///< √(n+λ): sigma points x ± scale · columns of chol
+  double wm0 = 0.0, wm = 0.0;  ///< mean weights of the centre point and of the six others
+  double wc0 = 0.0, wc = 0.0;  ///< covariance weights of the centre point and of the others
+  double Tc = 0.0, L = 0.0;
+  Eigen::Vector3d q;  ///< process noise variance (Q's diagonal)
+};
+
 /// A UKF over one link; the measurement dimension depends on the measurement set.
 class LinkFilter {
  public:
@@ -63,6 +75,13 @@ class LinkFilter {
   virtual UkfStatus Predict(const Twist& leader, const Twist& follower) = 0;
   /// Measurement update; `measured` holds all three components, only the set's are used.
   virtual UkfStatus Update(const LinkState& measured) = 0;
+  /// Fills `b` for a batched time update and returns true when Predict would take the
+  /// single-step sigma-point path from a Cholesky factor (made current here exactly as Predict
+  /// would); false otherwise (substeps > 1, P not positive definite, ...): call Predict then.
+  virtual bool PredictBasis(LinkPredictBasis& b) = 0;
+  /// Ends a batched time update: the predicted mean and covariance (Q included, symmetric),
+  /// computed with Predict's operations, checked and taken as Predict takes them.
+  virtual UkfStatus AcceptPrediction(const Eigen::Vector3d& mean, const Eigen::Matrix3d& P) = 0;
   virtual LinkState state() const = 0;
   virtual Eigen::Matrix3d cov() const = 0;
   virtual double nis() const = 0;
