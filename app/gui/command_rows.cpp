@@ -9,10 +9,14 @@
 /// File, Run, View, Compare, the script-only rows, the kinds' menus (Formation), Help, keeping
 /// the parts' order inside each group. That is the order of the menu bar, the palette,
 /// `formsim gui --list-commands` and the README's table.
+#include <cerrno>
+#include <cstring>
+#include <fstream>
 #include <algorithm>
 #include <filesystem>
 
 #include "app/gui/command_table.hpp"
+#include "app/render/long_text.hpp"
 #include "app/export/figure_data.hpp"
 #include "app/export/figure_export.hpp"
 #include "app/gui/command_row_makers.hpp"
@@ -138,7 +142,12 @@ std::vector<Command> WindowRows() {
        .help = "Write what the layout cut off in this frame (window, UI scale, clipped text) as JSON",
        .run =
            [](AppUi& ui, const CommandArgs& a, Src) {
-             ui.state().layout_report_path = a.Text(0);
+             // The report is written at the end of the frame; a path that cannot be written is
+             // refused now, so that the script says so with its line.
+             const std::string path = a.Text(0);
+             std::ofstream probe(path, std::ios::app);
+             if (!probe) return "layout-report: cannot write '" + Shorten(path, 200) + "': " + std::strerror(errno);
+             ui.state().layout_report_path = path;
              return std::string();
            },
        .script_only = true});

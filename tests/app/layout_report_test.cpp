@@ -18,6 +18,7 @@
 #include "app/render/imgui_layer.hpp"
 #include "app/render/offscreen_context.hpp"
 #include "tests/app/test_util.hpp"
+#include "tests/app/ui_window.hpp"
 
 namespace formsim::app {
 namespace {
@@ -78,6 +79,22 @@ TEST(LayoutAudit, FindsNothingWhenEverythingFits) {
     ImGui::TextWrapped("A long text that wraps to the window's width is never cut at its edge.");
   });
   EXPECT_TRUE(cut.empty()) << cut.front().widget << ": " << cut.front().text;
+}
+
+TEST(LayoutAudit, AReportThatCannotBeWrittenIsRefusedAtItsLine) {
+  testing::UiWindow w;
+  // Under a regular file: no folder can be there, whoever runs the test.
+  const std::string dir = TempDir("layout_report_ok");
+  std::ofstream(dir + "/file") << "x";
+  const std::string bad = dir + "/file/report.json";
+  const std::string why = w.ui().RunScriptAction("layout-report " + bad);
+  EXPECT_NE(why.find("layout-report: cannot write '" + bad + "': Not a directory"),
+            std::string::npos)
+      << why;
+  EXPECT_EQ(w.ui().RunScriptAction("layout-report /dev/null"), "") << "a device is written";
+  EXPECT_EQ(w.ui().RunScriptAction("layout-report " + dir + "/r.json"), "");
+  w.Frame();
+  EXPECT_NE(ReadText(dir + "/r.json").find("\"clipped\""), std::string::npos);
 }
 
 struct Size {
