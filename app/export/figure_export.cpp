@@ -33,6 +33,18 @@ const char* FormatExtension(FigureFormat format) {
   return "png";
 }
 
+const char* FormatMime(FigureFormat format) {
+  switch (format) {
+    case FigureFormat::kPng:
+      return "image/png";
+    case FigureFormat::kSvg:
+      return "image/svg+xml";
+    case FigureFormat::kPdf:
+      return "application/pdf";
+  }
+  return "application/octet-stream";
+}
+
 std::vector<FigureFormat> ParseFigureFormats(const std::string& list, const std::string& flag) {
   std::vector<FigureFormat> out;
   std::stringstream ss(list);
@@ -102,7 +114,11 @@ void WriteVectorFigure(const VectorFigure& fig, FigureFormat format, const Figur
   if (format == FigureFormat::kSvg)
     WriteSvg(fig, size, title, path);
   else if (format == FigureFormat::kPdf)
+#ifdef __EMSCRIPTEN__
+    throw std::runtime_error(path + ": PDF needs the desktop build (Cairo); the page writes SVG");
+#else
     WritePdf(fig, size, title, path);
+#endif
   else
     throw std::logic_error("WriteVectorFigure: PNG is rendered, not recorded");
 }

@@ -19,6 +19,15 @@ enum class FigureFormat { kPng, kSvg, kPdf };
 
 /// "png", "svg", "pdf".
 const char* FormatExtension(FigureFormat format);
+/// "image/png", "image/svg+xml", "application/pdf".
+const char* FormatMime(FigureFormat format);
+/// What the window's "Export figures" writes per figure: SVG and PDF; in the browser page,
+/// which has no Cairo, SVG alone.
+#ifdef __EMSCRIPTEN__
+inline constexpr FigureFormat kGuiFigureFormats[] = {FigureFormat::kSvg};
+#else
+inline constexpr FigureFormat kGuiFigureFormats[] = {FigureFormat::kSvg, FigureFormat::kPdf};
+#endif
 /// Parses a comma-separated subset of png,svg,pdf (in that order, duplicates ignored). Throws
 /// std::runtime_error naming `flag`.
 std::vector<FigureFormat> ParseFigureFormats(const std::string& list, const std::string& flag);

@@ -17,6 +17,7 @@
 #include "app/gui/ui.hpp"
 #include "app/render/theme.hpp"
 #include "app/render/world_view.hpp"
+#include "sim/core/background.hpp"
 #include "sim/core/run_output.hpp"
 #include "sim/session/session.hpp"
 #include "sim/session/session_record.hpp"
@@ -60,7 +61,7 @@ std::string ComparePanel::PinReplay(std::shared_ptr<const sim::ScenarioSource> s
   pin->log = log;
   pin->cancel = std::make_shared<std::atomic<bool>>(false);
   auto cancel = pin->cancel;
-  pin->job = std::async(std::launch::async, [source, log = std::move(log), steps, cancel]() {
+  pin->job = sim::StartBackground([source, log = std::move(log), steps, cancel]() {
     PinnedRun::Result r;
     try {
       // The history bound of the GUI's runs, so the copy's plots match the live run's.

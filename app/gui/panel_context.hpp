@@ -46,12 +46,18 @@ struct PanelContext {
   /// history row with `status` when `change` succeeds (AppUi::ReplaceRun).
   std::function<std::string(const std::string& status, const std::function<std::string()>& change)>
       replace_run;
+  /// A file the user asked for was written (a saved scenario or session, a screenshot, a
+  /// figure): the browser page offers it as a download (AppUi::SetFileWrittenHook).
+  std::function<void(const std::string& path, const std::string& mime)> file_written;
   /// The window's panels and the kind's own panel (may hold null), for Find().
   const std::vector<std::unique_ptr<Panel>>* panels = nullptr;
   const std::unique_ptr<Panel>* kind_panel = nullptr;
 
   void SetStatus(const std::string& message, bool error = false) const {
     set_status(message, error);
+  }
+  void NoteFileWritten(const std::string& path, const std::string& mime) const {
+    if (file_written) file_written(path, mime);
   }
   /// Shows `why` in red in the status line and returns it (a command's refusal).
   std::string Refuse(const std::string& why) const {

@@ -287,9 +287,10 @@ std::string PlotsPanel::CmdExportFigures(const std::string& dir) {
       if (!data.error.empty()) throw std::runtime_error("figure '" + fig.id + "': " + data.error);
       const VectorFigure recorded =
           RecordPlot(data, size.LayoutWidth(), size.LayoutHeight(), theme);
-      for (FigureFormat f : {FigureFormat::kSvg, FigureFormat::kPdf}) {
-        WriteVectorFigure(recorded, f, size, data.title,
-                          dir + "/" + fig.id + "." + FormatExtension(f));
+      for (FigureFormat f : kGuiFigureFormats) {
+        const std::string path = dir + "/" + fig.id + "." + FormatExtension(f);
+        WriteVectorFigure(recorded, f, size, data.title, path);
+        ctx_.NoteFileWritten(path, FormatMime(f));
         ++written;
       }
     }

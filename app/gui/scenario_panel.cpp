@@ -112,6 +112,7 @@ std::string ScenarioPanel::CmdSave(const std::string& path, bool overwrite) {
       }
     }
     ctx_.SetStatus("saved " + path + (note.empty() ? "" : " (" + note + ")") + also);
+    ctx_.NoteFileWritten(path, "application/x-yaml");
   } catch (const std::exception& e) {
     return ctx_.Refuse(std::string("save failed: ") + e.what());
   }

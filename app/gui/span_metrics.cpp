@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sim/core/background.hpp"
 #include "sim/core/experiment.hpp"
 #include "sim/core/run_output.hpp"
 
@@ -24,7 +25,7 @@ const sim::Metrics* SpanMetrics::Get(const std::string& run, long steps,
     std::shared_ptr<const sim::ScenarioSource> source = std::move(r.first);
     sim::RunLog log = std::move(r.second);
     e.job =
-        std::async(std::launch::async,
+        sim::StartBackground(
                    [source, log = std::move(log), steps, cancel]() -> std::optional<sim::Metrics> {
                      // The history bound of the GUI's runs, as a pin's replay has it.
                      sim::RunReplay replay(*source, log, [](sim::Experiment& x) {

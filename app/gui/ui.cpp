@@ -79,6 +79,9 @@ void AppUi::MakePanels() {
     SyncKindPanel();  // the file may now hold another kind
   };
   ctx_.run = [this](const std::string& line) { return RunScriptAction(line); };
+  ctx_.file_written = [this](const std::string& path, const std::string& mime) {
+    NoteFileWritten(path, mime);
+  };
   ctx_.replace_run = [this](const std::string& status, const std::function<std::string()>& change) {
     return ReplaceRun(status, change);
   };

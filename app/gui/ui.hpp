@@ -179,6 +179,14 @@ class AppUi {
   const sim::SessionRecord& record() const { return record_; }
   /// With `formsim gui --session FILE`: where "Save session" writes by default.
   void SetSessionFile(const std::string& path);
+  /// Called after each file the user asked for is written (save, save-session, screenshot,
+  /// export-figures), with its path and MIME type: the browser page turns it into a download.
+  void SetFileWrittenHook(std::function<void(const std::string& path, const std::string& mime)> hook) {
+    file_written_hook_ = std::move(hook);
+  }
+  void NoteFileWritten(const std::string& path, const std::string& mime) const {
+    if (file_written_hook_) file_written_hook_(path, mime);
+  }
 
   // ---- The panels (app/gui/panel.hpp) and what the window shares with them.
   /// The panel of type P the window has now (the kind's own panel, or one of the window's), or
@@ -243,6 +251,7 @@ class AppUi {
   /// without one): drawn where the layout puts them.
   std::vector<std::unique_ptr<Panel>> panels_;
   std::unique_ptr<Panel> kind_panel_;
+  std::function<void(const std::string&, const std::string&)> file_written_hook_;
   PanelContext ctx_;  ///< what every panel gets of the window (refers to the members above)
   TimelinePanel* timeline_ = nullptr;  ///< one of panels_: every window has one
   HistoryPanel* history_ = nullptr;    ///< one of panels_: every window has one

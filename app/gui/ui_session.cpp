@@ -41,6 +41,7 @@ std::string AppUi::CmdSaveSession(const std::string& path) {
     return state_.status;
   }
   SetStatus("session saved to " + path + " (replay: formsim replay " + path + ")");
+  NoteFileWritten(path, "application/x-yaml");
   return "";
 }
 

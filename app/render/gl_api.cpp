@@ -44,35 +44,8 @@ void LoadGl(GlGetProcAddress get_proc, const char* context_name) {
   if (g_finish == nullptr) throw std::runtime_error(std::string(context_name) + ": no glFinish");
 }
 
-void GlClear(int width, int height, float r, float g, float b) {
-  glViewport(0, 0, width, height);
-  glClearColor(r, g, b, 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT);
-}
-
-void GlClearRect(int x, int y, int width, int height, std::uint32_t rgba) {
-  if (width <= 0 || height <= 0) return;
-  auto channel = [rgba](int shift) { return static_cast<float>((rgba >> shift) & 0xFF) / 255.0f; };
-  glEnable(GL_SCISSOR_TEST);
-  glScissor(x, y, width, height);
-  glClearColor(channel(IM_COL32_R_SHIFT), channel(IM_COL32_G_SHIFT), channel(IM_COL32_B_SHIFT),
-               channel(IM_COL32_A_SHIFT));
-  glClear(GL_COLOR_BUFFER_BIT);
-}
-
 void GlFinish() {
   g_finish();
-}
-
-std::vector<std::uint8_t> GlReadRgba(int width, int height) {
-  const std::size_t row = static_cast<std::size_t>(width) * 4;
-  std::vector<std::uint8_t> bottom_up(row * height), top_down(row * height);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
-  // GL's row 0 is the bottom of the image; PNG's is the top.
-  for (int y = 0; y < height; ++y)
-    std::memcpy(&top_down[y * row], &bottom_up[(height - 1 - y) * row], row);
-  return top_down;
 }
 
 }  // namespace formsim::app

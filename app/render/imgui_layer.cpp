@@ -8,6 +8,17 @@
 #include "app/render/gl_api.hpp"
 
 namespace formsim::app {
+namespace {
+
+// The shaders' language: GLSL 3.30 on desktop GL 3.3 core (window and OSMesa), GLSL ES 3.00 on
+// WebGL 2 in the browser page.
+#ifdef __EMSCRIPTEN__
+constexpr const char* kGlslVersion = "#version 300 es";
+#else
+constexpr const char* kGlslVersion = "#version 330 core";
+#endif
+
+}  // namespace
 
 ImGuiLayer::ImGuiLayer(const Theme& theme) {
   IMGUI_CHECKVERSION();
@@ -26,7 +37,7 @@ ImGuiLayer::ImGuiLayer(const Theme& theme) {
   style.ItemSpacing = ImVec2(8, 5);
   ApplyImGuiTheme(theme);
 
-  if (!ImGui_ImplOpenGL3_Init("#version 330 core"))
+  if (!ImGui_ImplOpenGL3_Init(kGlslVersion))
     throw std::runtime_error("ImGui OpenGL3 backend failed to initialise");
 }
 

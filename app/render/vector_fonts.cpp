@@ -1,7 +1,9 @@
 #include "app/render/vector_fonts.hpp"
 
+#ifndef __EMSCRIPTEN__
 #include <cairo-ft.h>
 #include <cairo.h>
+#endif
 #include <ft2build.h>
 #include FT_FREETYPE_H
 #include FT_TRUETYPE_TABLES_H
@@ -26,9 +28,11 @@ FT_Library Library() {
   return lib;
 }
 
+#ifndef __EMSCRIPTEN__
 void DoneFace(void* face) {
   FT_Done_Face(static_cast<FT_Face>(face));
 }
+#endif
 
 int FaceIndex(FontRole role) {
   if (role == FontRole::kMono) return 2;
@@ -85,6 +89,10 @@ VectorFonts::VectorFonts() {
         f.advance[cp] = static_cast<float>(face->glyph->metrics.horiAdvance);
       }
     f.fallback = f.advance['?'] >= 0 ? f.advance['?'] : 0.0f;
+#ifdef __EMSCRIPTEN__
+    // The browser page writes SVG only (no Cairo, no PDF): the metrics are all it needs.
+    FT_Done_Face(face);
+#else
     // Cairo owns the FreeType face from here and frees it with its font face.
     f.cairo = cairo_ft_font_face_create_for_ft_face(face, FT_LOAD_NO_HINTING);
     static cairo_user_data_key_t key;
@@ -93,6 +101,7 @@ VectorFonts::VectorFonts() {
       FT_Done_Face(face);
       throw std::runtime_error("cairo: cannot use the font " + f.path);
     }
+#endif
     faces_.push_back(std::move(f));
   }
 }

@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <system_error>
 
+#include "control/common/shortest_double.hpp"
+
 namespace formsim::control {
 
 void AppendDouble(std::string& out, double v) {
@@ -19,8 +21,7 @@ void AppendDouble(std::string& out, double v) {
     return;
   }
   char buf[32];
-  const auto res = std::to_chars(buf, buf + sizeof buf, v);
-  out.append(buf, res.ptr);
+  out.append(buf, WriteShortestDouble(buf, buf + sizeof buf, v));
 }
 
 std::string FormatDouble(double v) {
@@ -155,8 +156,7 @@ bool ParseFiniteDouble(const std::string& text, double* out) {
   const char* last = first + text.size();
   if (*first == '+') ++first;  // from_chars refuses a leading '+', YAML and users write it
   double v = 0;
-  const auto res = std::from_chars(first, last, v);
-  if (res.ec != std::errc() || res.ptr != last || !std::isfinite(v)) return false;
+  if (!ReadWholeDouble(first, last, &v) || !std::isfinite(v)) return false;
   *out = v;
   return true;
 }

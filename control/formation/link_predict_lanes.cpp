@@ -22,6 +22,9 @@ constexpr int W = 2;
 #undef FORMSIM_LANE_FN
 }  // namespace portable
 
+// x86 only: other targets (the WebAssembly build) have the portable lanes alone.
+#if defined(__x86_64__) || defined(__i386__)
+#define FORMSIM_HAVE_AVX2_LANES 1
 namespace avx2 {
 typedef double V __attribute__((vector_size(32)));
 using M = decltype(V{} < V{});
@@ -33,8 +36,10 @@ __attribute__((target("avx2"))) void Run(Lanes& l) {
   RunLanes(l, 0);
 }
 }  // namespace avx2
+static_assert(LinkPredictBatch::kLanes == avx2::W);
+#endif
 
-static_assert(LinkPredictBatch::kLanes % portable::W == 0 && LinkPredictBatch::kLanes == avx2::W);
+static_assert(LinkPredictBatch::kLanes % portable::W == 0);
 
 }  // namespace
 
@@ -53,11 +58,15 @@ const char* LanePathName(LanePath p) {
 }
 
 bool CpuHasAvx2() {
+#ifdef FORMSIM_HAVE_AVX2_LANES
   static const bool has = [] {
     __builtin_cpu_init();  // may run before the runtime's own constructor has
     return __builtin_cpu_supports("avx2") != 0;
   }();
   return has;
+#else
+  return false;
+#endif
 }
 
 LanePath ResolveLanePath(LanePath p) {
@@ -74,10 +83,14 @@ LanePath CurrentLanePath() {
 }
 
 void RunPredictLanes(LanePath path, Lanes& l) {
+#ifdef FORMSIM_HAVE_AVX2_LANES
   if (path == LanePath::kAvx2 && CpuHasAvx2()) {
     avx2::Run(l);
     return;
   }
+#else
+  (void)path;
+#endif
   for (int base = 0; base < LinkPredictBatch::kLanes; base += portable::W)
     portable::RunLanes(l, base);
 }

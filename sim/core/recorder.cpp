@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "control/common/shortest_double.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/thread_pool.hpp"
 
@@ -35,7 +36,7 @@ char* FormatRow(const double* v, std::size_t n, char* out) {
     if (c) *out++ = ',';
     const double x = v[c];
     if (std::isfinite(x)) {
-      out = std::to_chars(out, out + kMaxCell, x).ptr;
+      out = control::WriteShortestDouble(out, out + kMaxCell, x);
     } else if (!IsNotSampled(x)) {
       const char* text = std::isnan(x) ? "nan" : x > 0 ? "inf" : "-inf";
       const std::size_t len = std::strlen(text);

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 
+#include "sim/core/background.hpp"
+
 namespace formsim::sim {
 
 TaskPool::TaskPool(int threads) {
-  for (int i = 1; i < std::max(1, threads); ++i) workers_.emplace_back([this] { WorkerLoop(); });
+  for (int i = 1; i < UsableThreads(threads); ++i) workers_.emplace_back([this] { WorkerLoop(); });
 }
 
 TaskPool::~TaskPool() {
@@ -18,7 +20,7 @@ TaskPool::~TaskPool() {
 }
 
 int TaskPool::HardwareThreads() {
-  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  return UsableThreads(static_cast<int>(std::thread::hardware_concurrency()));
 }
 
 void TaskPool::Drain() {

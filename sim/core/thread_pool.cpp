@@ -10,6 +10,8 @@
 #define FORMSIM_CPU_RELAX() std::this_thread::yield()
 #endif
 
+#include "sim/core/background.hpp"
+
 namespace formsim::sim {
 namespace {
 
@@ -24,7 +26,7 @@ std::atomic<int> g_default_threads{0};  // 0: all cores
 
 }  // namespace
 
-ThreadPool::ThreadPool(int threads) : threads_(std::max(1, threads)) {}
+ThreadPool::ThreadPool(int threads) : threads_(UsableThreads(threads)) {}
 
 ThreadPool::~ThreadPool() {
   stop_ = true;
@@ -34,7 +36,7 @@ ThreadPool::~ThreadPool() {
 }
 
 int ThreadPool::HardwareThreads() {
-  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  return UsableThreads(static_cast<int>(std::thread::hardware_concurrency()));
 }
 
 int ThreadPool::DefaultThreads() {

@@ -44,7 +44,7 @@ MonteCarlo::MonteCarlo(const ScenarioSource& source, const std::vector<Override>
     : def_(DefineSweep(source, sets, {}, std::move(seeds))), source_(source) {
   progress_.total = def_.runs();
   recorded_.assign(def_.runs(), false);
-  thread_ = std::thread([this, threads] {
+  thread_ = BackgroundThread([this, threads] {
     try {
       TaskPool pool(std::max(1, threads));
       std::vector<std::size_t> runs(def_.runs());
@@ -78,7 +78,7 @@ MonteCarlo::MonteCarlo(const ScenarioSource& source, const std::vector<Override>
 
 MonteCarlo::~MonteCarlo() {
   stop_ = true;
-  if (thread_.joinable()) thread_.join();
+  thread_.Join();
 }
 
 void MonteCarlo::Inspect(std::size_t run, const Experiment& exp) {

@@ -14,6 +14,8 @@
 #include <mutex>
 #include <string>
 #include <thread>
+
+#include "sim/core/background.hpp"
 #include <vector>
 
 #include "sim/core/metrics.hpp"
@@ -86,7 +88,7 @@ class MonteCarlo {
   std::vector<std::pair<std::string, std::vector<double>>> headlines_;  ///< values in run order
   std::map<std::string, std::vector<double>> m2_;  ///< Welford's sums of squares per channel
   std::string error_;
-  std::thread thread_;
+  BackgroundThread thread_;  ///< the runs (without threads: done in the constructor)
 };
 
 /// Rows of a run's history thinned for bands: every `stride`-th sampled row, where the stride is
