@@ -157,6 +157,22 @@ await checks.section(`The window: ?scenario=${SCENARIO}, driven through formsim.
   fs.writeFileSync(path.join(o.out, 'console_main.json'), JSON.stringify(main.log, null, 1));
 });
 
+await checks.section('?lesson=ll_singularity&theme=dark opens the lesson', async () => {
+  const tab = await openReady('?lesson=ll_singularity&theme=dark');
+  await within(ACTION_MS, '30 frames', tab.page.waitForFunction(
+      () => window.formsim.frames() >= 30, {timeout: 0, polling: 100}));
+  const shot = path.join(o.out, 'page_lesson_url.png');
+  await tab.page.screenshot({path: shot});
+  const world = measureWorld(fs.readFileSync(shot));
+  checks.check('the world view is drawn', world.nonBackground >= 0.02,
+               `${(100 * world.nonBackground).toFixed(1)} % not ${JSON.stringify(world.background)}`);
+  checks.check('dark theme: the world\'s background is dark',
+               world.background.every((c) => c < 96), JSON.stringify(world.background));
+  checks.check('no console error there', tab.problems().length === 0,
+               JSON.stringify(tab.problems()));
+  await tab.page.close();
+});
+
 await checks.section('?script= is fetched and run; bad addresses are said on the page', async () => {
   const tab = await openReady(`?scenario=${SCENARIO}&script=test/script.txt`);
   const found = await within(ACTION_MS, 'the ?script= screenshot', tab.page.waitForFunction(() => {
