@@ -11,7 +11,7 @@ import path from 'node:path';
 
 import {launch, open} from './browser.mjs';
 import {Checks, within} from './checks.mjs';
-import {compareCsv} from './csv_compare.mjs';
+import {compareCsv, compareResults} from './csv_compare.mjs';
 import {equalityRows, writeEqualityTable, TOLERANCE} from './equality.mjs';
 import {measureWorld} from './pixels.mjs';
 import {options, shippedLessons, shippedScenarios} from './options.mjs';
@@ -221,7 +221,8 @@ if (!o.skipEquality) {
     const page = main.page;
     await page.bringToFront();
     await action(page, 'pause');
-    await page.addScriptTag({content: `window.compareCsv = ${compareCsv.toString()};`});
+    await page.addScriptTag({content: `window.compareCsv = ${compareCsv.toString()};\n` +
+                                      `window.compareResults = ${compareResults.toString()};`});
     const scenarios = o.scenarios || shippedScenarios();
     const results = [];
     for (const s of scenarios) {
@@ -237,16 +238,27 @@ if (!o.skipEquality) {
         const js_ms = performance.now() - t;
         const native = await (await fetch(`native/${name}/timeseries.csv`)).text();
         const cmp = window.compareCsv(run.csv, native);
+        const summary = JSON.parse(new TextDecoder().decode(
+            window.formsim.readFile(`${run.dir}/summary.json`)));
+        const nativeSummary = await (await fetch(`native/${name}/summary.json`)).json();
+        const results = window.compareResults(summary.results, nativeSummary.results);
         window.formsim.remove(run.dir);  // keep the wasm's memory for the next ones
         return {steps: run.steps, sim_time: run.sim_time, wall_ms: run.wall_ms, js_ms, cmp,
-                bytes: run.csv.length};
+                results, summary, kind: nativeSummary.type, bytes: run.csv.length};
       }, s));
+      // The page's summary.json beside the native one, for a look at what differs.
+      fs.mkdirSync(path.join(o.out, 'page', s), {recursive: true});
+      fs.writeFileSync(path.join(o.out, 'page', s, 'summary.json'),
+                       JSON.stringify(r.summary, null, 1) + '\n');
+      delete r.summary;
       results.push({scenario: s, native_ms: nativeMs, ...r});
       const c = r.cmp;
       const what = c.identical ? 'identical' : c.worst ?
           `max |diff| ${c.worst.abs.toExponential(2)} in ${c.worst.column} (row ${c.worst.row})` :
           `${c.text_mismatches} cells differ as text, rows ${c.rows.join(' vs ')}`;
-      console.log(`  ${s.padEnd(32)} ${what}   page ${Math.round(r.wall_ms)} ms, ` +
+      const res = r.results.worst ? `results: worst rel ${r.results.worst.rel.toExponential(2)} ` +
+          `in ${r.results.worst.key}` : 'results: identical';
+      console.log(`  ${s.padEnd(32)} ${what}; ${res}   page ${Math.round(r.wall_ms)} ms, ` +
                   `native ${nativeMs} ms`);
     }
     const rows = equalityRows(results);

@@ -50,3 +50,33 @@ export function compareCsv(textA, textB) {
   }
   return result;
 }
+
+/// Compares the numbers of two summary.json `results` objects (the run's tables: RMSEs, errors,
+/// counts), leaf by leaf. Returns {leaves, differing, worst: {key, a, b, rel} or null,
+/// rmse_worst: the same among keys naming an RMSE, missing: [keys on one side only]}; `rel` is
+/// |a - b| / max(|a|, |b|).
+export function compareResults(a, b) {
+  const out = {leaves: 0, differing: 0, worst: null, rmse_worst: null, missing: []};
+  const walk = (x, y, key) => {
+    if (typeof x === 'number' && typeof y === 'number') {
+      ++out.leaves;
+      if (x === y) return;
+      ++out.differing;
+      const rel = Math.abs(x - y) / Math.max(Math.abs(x), Math.abs(y));
+      if (!out.worst || rel > out.worst.rel) out.worst = {key, a: x, b: y, rel};
+      if (/rmse/i.test(key) && (!out.rmse_worst || rel > out.rmse_worst.rel)) {
+        out.rmse_worst = {key, a: x, b: y, rel};
+      }
+    } else if (x && y && typeof x === 'object' && typeof y === 'object') {
+      for (const k of new Set([...Object.keys(x), ...Object.keys(y)])) {
+        if (!(k in x) || !(k in y)) out.missing.push(`${key}.${k}`);
+        else walk(x[k], y[k], `${key}.${k}`);
+      }
+    } else if (x !== y) {
+      ++out.differing;
+      out.missing.push(`${key} (${JSON.stringify(x)} vs ${JSON.stringify(y)})`);
+    }
+  };
+  walk(a, b, 'results');
+  return out;
+}
