@@ -39,9 +39,9 @@ const action = (page, line) =>
   within(ACTION_MS, `formsim.action(${line})`, page.evaluate((l) => window.formsim.action(l), line));
 
 /// Opens the page at `query` and waits for formsim.ready; returns the open() record.
-async function openReady(query) {
+async function openReady(query, openOptions = {}) {
   const t0 = Date.now();
-  const tab = await open(browser, server.url + query);
+  const tab = await open(browser, server.url + query, openOptions);
   await within(LOAD_MS, `formsim.ready at ${query}`, tab.page.evaluate(() => window.formsim.ready));
   tab.loadMs = Date.now() - t0;
   return tab;
@@ -72,7 +72,10 @@ await checks.section('URL parameters -> program arguments (formsim_params.js, in
 
 let main = null;
 await checks.section(`The window: ?scenario=${SCENARIO}, driven through formsim.action`, async () => {
-  main = await openReady(`?scenario=${SCENARIO}`);
+  const downloadDir = path.join(o.out, 'downloads');
+  fs.rmSync(downloadDir, {recursive: true, force: true});
+  fs.mkdirSync(downloadDir, {recursive: true});
+  main = await openReady(`?scenario=${SCENARIO}`, {downloads: downloadDir});
   const {page} = main;
   checks.check('formsim.ready (first frame drawn)', true, `${main.loadMs} ms from navigation`);
   const version = await page.evaluate(() => window.formsim.version());
@@ -121,7 +124,47 @@ await checks.section(`The window: ?scenario=${SCENARIO}, driven through formsim.
   checks.check('the edit took effect: the saved scenario has R2\'s k_l 0.2, l_des unchanged',
                /k_l: 0\.2[,}]/.test(r2) && /l_des: 0\.3[,}]/.test(r2), r2.trim());
   const downloads = await page.evaluate(() => window.formsim.downloads);
-  console.log(`  info  formsim.downloads after save: ${JSON.stringify(downloads)}`);
+  checks.check('save is offered as a download (Module.formsimDownload)',
+               downloads.length === 1 && downloads[0].name === 'tuned.yaml' &&
+               downloads[0].size === yaml.length, JSON.stringify(downloads));
+  const got = path.join(downloadDir, 'tuned.yaml');
+  await within(ACTION_MS, 'the browser\'s download', (async () => {
+    while (!fs.existsSync(got)) await new Promise((r) => setTimeout(r, 100));
+  })());
+  checks.check('... and the browser saved it, byte for byte', fs.readFileSync(got).toString() === yaml);
+
+  // File/Open: formsim calls Module.formsimPickFile; the user picks a file (a name with a space).
+  const picked = path.join(o.out, 'served', 'my tuned.yaml');
+  fs.writeFileSync(picked, yaml.replace(/k_l: 0\.2([,}])/, 'k_l: 0.25$1'));
+  const badPick = path.join(o.out, 'served', 'broken.yaml');
+  fs.writeFileSync(badPick, 'type: formation\nrobots: [\n');
+  for (const [file, good] of [[picked, true], [badPick, false]]) {
+    const [chooser] = await Promise.all([
+      page.waitForFileChooser({timeout: ACTION_MS}),
+      // A click first: browsers open a file dialog only right after a user's gesture, as after
+      // the click on File/Open in the window.
+      page.click('#note span').then(() => page.evaluate(() => window.Module.formsimPickFile())),
+    ]);
+    await chooser.accept([file]);
+    const upload = await within(ACTION_MS, 'the upload', page.waitForFunction(
+        (n) => window.formsim.uploads[n - 1], {timeout: 0, polling: 100}, good ? 1 : 2)
+        .then(() => page.evaluate((n) => window.formsim.uploads[n - 1].result.then((r) => ({
+                                     path: window.formsim.uploads[n - 1].path, result: r})),
+                                  good ? 1 : 2)));
+    if (good) {
+      checks.check('File/Open: the picked file is written to /home/web_user/uploads and opened',
+                   upload.path === '/home/web_user/uploads/my_tuned.yaml' && upload.result === '',
+                   JSON.stringify(upload));
+    } else {
+      checks.check('File/Open of a broken file: refused with the loader\'s reason',
+                   upload.result.includes('broken.yaml'), JSON.stringify(upload));
+    }
+  }
+  await action(page, `save ${saved}`);
+  const reopened = Buffer.from(await page.evaluate((p) => Array.from(window.formsim.readFile(p)),
+                                                   saved)).toString();
+  checks.check('... the window runs the picked scenario (saved again: k_l 0.25)',
+               /k_l: 0\.25[,}]/.test(reopened));
 
   checks.check('pin', (await action(page, 'pin')) === '');
   checks.check('wait (until the pin\'s work is done)', (await action(page, 'wait')) === '');

@@ -41,7 +41,7 @@ export function equalityRows(results) {
     if (r.kind === 'velocity') {
       const rmse = r.results.rmse_worst;
       return {
-        ...base, verdict: verdict + (rmse ? `; RMSEs within ${(100 * rmse.rel).toFixed(1)} %` : ''),
+        ...base, verdict: verdict + (rmse ? `; RMSEs within ${(100 * rmse.rel).toPrecision(2)} %` : ''),
         ok: r.results.missing.length === 0 && (!rmse || rmse.rel <= TOLERANCE.rmse_rel),
         detail: `${c.cells_differing} cells differ; worst RMSE ${rmse ? rmse.key + ': page ' +
                  rmse.a + ', native ' + rmse.b : 'none differs'} (tolerance ` +
@@ -67,7 +67,8 @@ export function writeEqualityTable(out, rows) {
   const md = ['| scenario | page vs native timeseries.csv | steps | page run (ms) |',
               '|---|---|---|---|'];
   for (const r of rows) {
-    md.push(`| ${r.scenario} | ${r.verdict}${r.ok ? '' : ' (FAILS)'} | ${r.steps ?? ''} | ` +
+    const verdict = r.verdict.replace(/\|/g, '\\|');  // |diff| inside a Markdown cell
+    md.push(`| ${r.scenario} | ${verdict}${r.ok ? '' : ' (FAILS)'} | ${r.steps ?? ''} | ` +
             `${r.page_wall_ms === undefined ? '' : Math.round(r.page_wall_ms)} |`);
   }
   md.push('', `Tolerance: ${TOLERANCE.text}.`);
