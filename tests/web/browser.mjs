@@ -40,11 +40,13 @@ export async function launch({width = 1280, height = 800} = {}) {
   return {browser, close};
 }
 
-/// Opens `url` in a new tab. Returns {page, log, problems()}: `log` holds every console
+/// Opens `url` in a new tab (`downloads`: a folder the browser saves downloads into;
+/// `beforeLoad`: a function run in the page before its scripts). Returns {page, log, problems()}: `log` holds every console
 /// message ({type, text}) and page error; problems() lists the errors (console.error, page
 /// errors, failed requests) — warnings, where formsim's stderr goes, are allowed.
-export async function open(browser, url, {downloads} = {}) {
+export async function open(browser, url, {downloads, beforeLoad} = {}) {
   const page = await browser.newPage();
+  if (beforeLoad) await page.evaluateOnNewDocument(beforeLoad);
   const log = [];
   page.on('console', (m) => log.push({type: m.type(), text: m.text()}));
   page.on('pageerror', (e) => log.push({type: 'pageerror', text: String(e && e.message || e)}));
