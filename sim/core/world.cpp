@@ -9,9 +9,6 @@
 namespace formsim::sim {
 namespace {
 
-constexpr uint16 kObstacleCategory = 0x0001;
-constexpr uint16 kRobotCategory = 0x0002;
-
 b2Vec2 ToB2(Vec2 v) { return b2Vec2(static_cast<float>(v.x), static_cast<float>(v.y)); }
 Vec2 FromB2(const b2Vec2& v) { return {v.x, v.y}; }
 
@@ -359,9 +356,14 @@ RayHit World::RayCast(Vec2 from, Vec2 to, bool include_robots, const Robot* igno
   out.hit = true;
   out.point = FromB2(cb.point);
   out.distance = (out.point - from).Norm();
-  const auto id = const_cast<b2Body*>(cb.body)->GetUserData().pointer;
-  if (id > 0) out.body_name = body_names_[id - 1];
+  out.body_name = BodyName(cb.body);
   return out;
+}
+
+const std::string& World::BodyName(const b2Body* body) const {
+  static const std::string kNone;
+  const auto id = const_cast<b2Body*>(body)->GetUserData().pointer;
+  return id > 0 && id <= body_names_.size() ? body_names_[id - 1] : kNone;
 }
 
 Robot* World::FindRobot(const std::string& name) {

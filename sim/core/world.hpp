@@ -20,6 +20,10 @@ class Robot;
 
 constexpr double kGravity = 9.81;  ///< m/s², for friction limits (the world itself has none)
 
+/// Box2D collision categories of the world's fixtures (ray casts that skip robots test them).
+inline constexpr uint16 kObstacleCategory = 0x0001;
+inline constexpr uint16 kRobotCategory = 0x0002;
+
 /// What the world accepts. Box2D computes in float and asserts on degenerate shapes (Debian's
 /// build keeps its assertions), so everything handed to it is checked against these first.
 namespace world_limits {
@@ -171,7 +175,7 @@ class World {
 
   /// First obstacle (and robot, if `include_robots`) hit along a ray, skipping `ignore`. A ray
   /// shorter than 1e-6 m or not finite hits nothing. Safe to call from several threads at once
-  /// (it only reads the world).
+  /// (it only reads the world). Many rays from one point: `RayFan` (ray_fan.hpp), same hits.
   RayHit RayCast(Vec2 from, Vec2 to, bool include_robots = false,
                  const Robot* ignore = nullptr) const;
 
@@ -194,6 +198,9 @@ class World {
   void Draw(DrawSink& draw) const;
 
   b2World& b2() { return *b2_; }
+  const b2World& b2() const { return *b2_; }
+  /// The name of a body of this world (obstacle or robot; empty for others).
+  const std::string& BodyName(const b2Body* body) const;
 
  private:
   class ContactListener;

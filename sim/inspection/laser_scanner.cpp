@@ -6,6 +6,7 @@
 
 #include "control/inspection/paper_frame.hpp"
 #include "sim/core/multirate.hpp"
+#include "sim/core/ray_fan.hpp"
 #include "sim/core/yaml_reader.hpp"
 
 namespace formsim::sim::inspection {
@@ -38,13 +39,14 @@ control::inspection::Scan LaserScanner::Sample(const World& world, const Pose2& 
     b.outlier = rng_.Bernoulli(def_.outlier_prob);
     b.gross = rng_.Normal(0.0, def_.outlier_sigma);
   }
-  // Each beam writes its own range and endpoint.
+  // Each beam writes its own range and endpoint; the fan gives each beam World::RayCast's hit.
+  const RayFan fan(world, origin, def_.range_max, false, carrier);
   auto cast = [&](std::size_t begin, std::size_t end_k) {
     for (std::size_t k = begin; k < end_k; ++k) {
       const BeamNoise& b = noise_[k];
       const Vec2 dir = AzimuthDirection(heading + scan.Bearing(static_cast<int>(k)) + b.jitter);
       const Vec2 end = origin + dir * def_.range_max;
-      const RayHit hit = world.RayCast(origin, end, false, carrier);
+      const RayHit hit = fan.Cast(end);
       if (!hit.hit) {
         scan.ranges[k] = std::numeric_limits<double>::quiet_NaN();
         if (endpoints) (*endpoints)[k] = end;
@@ -55,7 +57,9 @@ control::inspection::Scan LaserScanner::Sample(const World& world, const Pose2& 
       if (endpoints) (*endpoints)[k] = origin + dir * r;
     }
   };
-  constexpr std::size_t kBeamsPerTask = 32;
+  // A beam through the fan costs well under a microsecond: a scan of the default 720 beams is
+  // cheaper inline than handed to a second thread (measured: 2 threads took more wall time).
+  constexpr std::size_t kBeamsPerTask = 512;
   if (pool != nullptr)
     pool->ParallelFor(static_cast<std::size_t>(n), cast, kBeamsPerTask);
   else

@@ -5,7 +5,7 @@
 /// beam's direction jitters by angle_sigma, each return gets Gaussian range noise and, with
 /// probability outlier_prob, a gross error of outlier_sigma (dust, reflections). Noise comes
 /// from the scanner's own Rng stream, drawn for every beam, so a run is reproducible; the ray
-/// casts (most of the time of an inspection run) are shared out on a thread pool, and the scan
+/// casts (a `RayFan` per scan: Box2D's hits, bearing-binned) are shared out on a thread pool, and the scan
 /// does not depend on the number of threads.
 
 #include <vector>
