@@ -220,6 +220,33 @@ TEST(FigureCli, FiguresCommandDrawsEveryFigureOfEveryScenarioLikeRun) {
   EXPECT_NE(ReadText(dir + "/log.txt").find("--out"), std::string::npos);
 }
 
+// A worker left alone at the end takes the freed cores between two steps (issue 28): its
+// figures stay those of a one-thread run, byte for byte. formation_traj2 ends long before
+// formation_swarm_100, whose link filters then run on two threads.
+TEST(FigureCli, FiguresOfAWorkerThatGainsThreadsMidRunAreThoseOfOneThread) {
+  const std::string dir = TempDir("cli_figures_threads");
+  ASSERT_EQ(RunShell("env -u DISPLAY " + Binary() +
+                         " figures formation_swarm_100 formation_traj2 -q -j 2 --out " + dir +
+                         "/figs",
+                     dir + "/log.txt"),
+            0)
+      << ReadText(dir + "/log.txt");
+  ASSERT_EQ(RunShell(RunCmd("formation_swarm_100 -q --threads 1 --out " + dir + "/run --plots " +
+                            dir + "/plots"),
+                     dir + "/log.txt"),
+            0)
+      << ReadText(dir + "/log.txt");
+  int compared = 0;
+  for (const auto& e : fs::directory_iterator(dir + "/plots")) {
+    const std::string a = ReadText(e.path().string());
+    ASSERT_GT(a.size(), 1000u);
+    EXPECT_TRUE(a == ReadText(dir + "/figs/formation_swarm_100/" + e.path().filename().string()))
+        << e.path().filename();
+    ++compared;
+  }
+  EXPECT_GE(compared, 3);
+}
+
 TEST(FigureCli, GuiThemeColoursTheWindow) {
   if (FindOnPath("xvfb-run").empty()) GTEST_SKIP() << "xvfb-run not installed";
   const std::string dir = TempDir("cli_gui_theme");
