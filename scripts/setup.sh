@@ -19,7 +19,8 @@ PKGS=("${DEMO_PKGS[@]}"
       pybind11-dev python3-pybind11 python3-dev python3-numpy  # the Python module (python/)
       python3-pandas python3-pytest python3-distributed        # ... to_pandas, tests, Dask
       jupyter-nbconvert python3-ipykernel python3-nbformat     # ... the notebooks, executed
-      python3-scipy python3-matplotlib)                        #     by the tests
+      python3-scipy python3-matplotlib                         #     by the tests
+      emscripten dpkg-dev chromium)  # the browser page (scripts/web.sh) and its test in chromium
 if [ "${1:-}" = "demo" ]; then PKGS=("${DEMO_PKGS[@]}"); fi
 missing=()
 for p in "${PKGS[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
@@ -30,4 +31,10 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 else
   echo "setup: all packages present"
+fi
+# The browser test drives chromium with puppeteer-core from npm (tests/web/package-lock.json):
+# npm comes with Node.js; Debian's npm package only where no npm is installed.
+if [ "${1:-}" != "demo" ] && ! command -v npm >/dev/null 2>&1; then
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends npm
 fi
