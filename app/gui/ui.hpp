@@ -187,6 +187,9 @@ class AppUi {
   void NoteFileWritten(const std::string& path, const std::string& mime) const {
     if (file_written_hook_) file_written_hook_(path, mime);
   }
+  /// File/Open… calls `hook` instead of asking for a path (the browser page shows its file
+  /// picker, which then runs `open PATH` with the picked file's copy).
+  void SetPickFileHook(std::function<void()> hook) { pick_file_hook_ = std::move(hook); }
 
   // ---- The panels (app/gui/panel.hpp) and what the window shares with them.
   /// The panel of type P the window has now (the kind's own panel, or one of the window's), or
@@ -252,6 +255,7 @@ class AppUi {
   std::vector<std::unique_ptr<Panel>> panels_;
   std::unique_ptr<Panel> kind_panel_;
   std::function<void(const std::string&, const std::string&)> file_written_hook_;
+  std::function<void()> pick_file_hook_;
   PanelContext ctx_;  ///< what every panel gets of the window (refers to the members above)
   TimelinePanel* timeline_ = nullptr;  ///< one of panels_: every window has one
   HistoryPanel* history_ = nullptr;    ///< one of panels_: every window has one

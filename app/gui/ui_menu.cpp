@@ -38,7 +38,6 @@ bool HasRequiredArgs(const Command& cmd) {
 
 }  // namespace
 
-
 float AppUi::DrawMenuBar() {
   if (!ImGui::BeginMainMenuBar()) return 0;
   const float height = ImGui::GetWindowSize().y;
@@ -90,6 +89,11 @@ void AppUi::DrawMenuItem(const Command& cmd) {
       ImGui::SetTooltip("%s\n%s", cmd.help.c_str(),
                         enabled ? cmd.Usage().c_str() : ("not now: " + why).c_str());
   };
+  if (cmd.name == "open" && pick_file_hook_) {
+    if (ImGui::MenuItem(label.c_str(), keys.c_str(), false, enabled)) pick_file_hook_();
+    hover();
+    return;
+  }
   if (cmd.args.size() == 1 && cmd.args[0].type == ArgType::kOnOff) {
     const bool on = cmd.checked && cmd.checked(*this);
     if (ImGui::MenuItem(label.c_str(), keys.c_str(), on, enabled))
@@ -213,6 +217,5 @@ void AppUi::DrawAbout() {
     ImGui::EndPopup();
   }
 }
-
 
 }  // namespace formsim::app

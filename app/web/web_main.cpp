@@ -20,6 +20,7 @@
 #include "app/gui/gui_loop.hpp"
 #include "app/gui/ui.hpp"
 #include "app/render/gl_api.hpp"
+#include "control/common/shortest_double.hpp"
 #include "sim/core/json.hpp"
 #include "sim/core/provenance.hpp"
 #include "sim/core/run_output.hpp"
@@ -29,6 +30,9 @@
 // Calls into the page (web/formsim_page.js defines them on Module; absent ones are skipped).
 EM_JS(void, formsim_js_download, (const char* path, const char* mime), {
   if (Module.formsimDownload) Module.formsimDownload(UTF8ToString(path), UTF8ToString(mime));
+});
+EM_JS(void, formsim_js_pick_file, (), {
+  if (Module.formsimPickFile) Module.formsimPickFile();
 });
 EM_JS(void, formsim_js_fatal, (const char* text), {
   if (Module.formsimFatal) Module.formsimFatal(UTF8ToString(text));
@@ -145,6 +149,7 @@ int Start(int argc, char** argv) {
   g_app->loop->ui().SetFileWrittenHook([](const std::string& path, const std::string& mime) {
     formsim_js_download(path.c_str(), mime.c_str());
   });
+  g_app->loop->ui().SetPickFileHook([] { formsim_js_pick_file(); });
   // The browser calls Frame once per animation frame; main returns and the page lives on.
   emscripten_set_main_loop(Frame, 0, false);
   return 0;
@@ -180,6 +185,22 @@ std::string RunHeadless(const std::string& scenario, const std::string& seed) {
     out["error"] = std::string(e.what());
   }
   return out.Dump(0);
+}
+
+// The simulation alone: the run to its end with its rows kept in memory as numbers (the
+// window's bound), no CSV text. Milliseconds of wall time, or -1 when it cannot run.
+double TimeSimulation(const std::string& scenario) {
+  try {
+    sim::Session session(sim::ResolveScenario(scenario), {});
+    session.exp().mutable_recorder().SetHistoryLimit(sim::kRunHistoryRows);
+    const auto t0 = std::chrono::steady_clock::now();
+    sim::Experiment& exp = session.exp();
+    while (!exp.finished()) exp.Step();
+    return 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "formsim: %s\n", e.what());
+    return -1;
+  }
 }
 
 }  // namespace
@@ -218,6 +239,18 @@ EMSCRIPTEN_KEEPALIVE const char* formsim_web_run_headless(const char* scenario, 
   static std::string out;
   out = formsim::app::RunHeadless(scenario ? scenario : "", seed ? seed : "");
   return out.c_str();
+}
+
+EMSCRIPTEN_KEEPALIVE double formsim_web_time_simulation(const char* scenario) {
+  return formsim::app::TimeSimulation(scenario ? scenario : "");
+}
+
+// The text the page writes for a double (CSV cells, summaries): the browser test compares it
+// with std::to_chars' on the desktop (tests/web/shortest_doubles.json).
+EMSCRIPTEN_KEEPALIVE const char* formsim_web_format_double(double v) {
+  static char text[32];
+  *formsim::control::WriteShortestDouble(text, text + sizeof text - 1, v) = '\0';
+  return text;
 }
 
 EMSCRIPTEN_KEEPALIVE const char* formsim_web_version() {

@@ -51,8 +51,14 @@ char* ShortestDoubleByPrintf(char* first, char* last, double v) {
     if (*p != '.') d += *p;
   const int exponent = std::atoi(p + 1);
   while (d.size() > 1 && d.back() == '0') d.pop_back();
-  const int k = static_cast<int>(d.size());
+  char* end = ToCharsText(first, negative, d.c_str(), exponent, v);
+  (void)last;
+  return end;
+}
 
+char* ToCharsText(char* first, bool negative, const char* digits, int exponent, double v) {
+  const std::string d = digits;
+  const int k = static_cast<int>(d.size());
   std::string scientific = d.substr(0, 1);
   if (k > 1) scientific += "." + d.substr(1);
   char exp_text[16];
@@ -60,25 +66,25 @@ char* ShortestDoubleByPrintf(char* first, char* last, double v) {
                 exponent < 0 ? -exponent : exponent);
   scientific += exp_text;
   std::string fixed;
-  if (exponent >= 0) {
-    if (exponent >= k - 1) {
-      // A whole number: to_chars writes fixed form as printf's %f, every digit exact
-      // (1234567890123456768, not the shortest digits padded with zeros).
-      char whole[400];
-      std::snprintf(whole, sizeof whole, "%.0f", std::fabs(v));
-      fixed = whole;
-    } else {
-      fixed = d.substr(0, exponent + 1) + "." + d.substr(exponent + 1);
-    }
+  if (exponent >= k - 1 && std::fabs(v) < 9007199254740992.0) {
+    // A whole number below 2^53 is exactly its shortest digits padded with zeros.
+    fixed = d + std::string(static_cast<std::size_t>(exponent - (k - 1)), '0');
+  } else if (exponent >= k - 1) {
+    // Above, to_chars writes fixed form as printf's %f, every digit exact
+    // (1234567890123456768, not the shortest digits padded with zeros).
+    char whole[400];
+    std::snprintf(whole, sizeof whole, "%.0f", std::fabs(v));
+    fixed = whole;
+  } else if (exponent >= 0) {
+    fixed = d.substr(0, exponent + 1) + "." + d.substr(exponent + 1);
   } else {
     fixed = "0." + std::string(static_cast<std::size_t>(-exponent - 1), '0') + d;
   }
   const std::string& best = fixed.size() <= scientific.size() ? fixed : scientific;
   char* out = first;
-  if (negative && out < last) *out++ = '-';
-  const std::size_t n = std::min(best.size(), static_cast<std::size_t>(last - out));
-  std::memcpy(out, best.data(), n);
-  return out + n;
+  if (negative) *out++ = '-';
+  std::memcpy(out, best.data(), best.size());
+  return out + best.size();
 }
 
 bool ReadWholeDouble(const char* first, const char* last, double* out) {

@@ -97,6 +97,16 @@ await checks.section(`The window: ?scenario=${SCENARIO}, driven through formsim.
   checks.check('the note says what needs the desktop build',
                /sweep.*tune.*headless video and threads need the desktop build/s.test(note), note);
 
+  // The page has no floating-point to_chars: its numbers must still be to_chars' text.
+  const expected = JSON.parse(fs.readFileSync(path.join(path.dirname(new URL(import.meta.url).pathname),
+                                                        'shortest_doubles.json')));
+  const wrong = await page.evaluate((pairs) => pairs.filter(([bits, text]) => {
+    const view = new DataView(new ArrayBuffer(8));
+    view.setBigUint64(0, BigInt('0x' + bits));
+    return Module.ccall('formsim_web_format_double', 'string', ['number'], [view.getFloat64(0)]) !== text;
+  }), expected);
+  checks.check(`numbers are written as std::to_chars writes them (${expected.length} doubles)`,
+               wrong.length === 0, JSON.stringify(wrong.slice(0, 5)));
   const frames0 = await page.evaluate(() => window.formsim.frames());
   checks.check('play', (await action(page, 'play')) === '');
   checks.check('edit robots.R2.follow.k_l=0.2 (a live tunable): accepted',
