@@ -21,6 +21,7 @@
 #include "app/export/tune_figures.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/run_output.hpp"
+#include "sim/core/wall_clock.hpp"
 #include "sim/scenario/scenario_files.hpp"
 #include "sim/scenario/scenario_save.hpp"
 #include "sim/study/scenario_set.hpp"
@@ -36,9 +37,7 @@ namespace fs = std::filesystem;
 namespace formsim::app {
 namespace {
 
-double Now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+using sim::WallSeconds;
 
 // "[=====>     ] 37/200 runs, 1 failed, 0:42 left" on stderr, only on a terminal and not -q;
 // redrawn at most ten times a second.
@@ -48,7 +47,7 @@ class RunsBar {
       : enabled_(enabled && isatty(STDERR_FILENO)), total_(total) {}
   void Update(std::size_t done, std::size_t failed, bool force = false) {
     if (!enabled_ || total_ == 0) return;
-    const double now = Now();
+    const double now = WallSeconds();
     if (!force && done < total_ && now - last_ < 0.1) return;  // the last state always shows
     last_ = now;
     const double f = static_cast<double>(done) / static_cast<double>(total_);
@@ -68,7 +67,7 @@ class RunsBar {
  private:
   bool enabled_;
   std::size_t total_;
-  double start_ = Now(), last_ = 0;
+  double start_ = WallSeconds(), last_ = 0;
 };
 
 // A word for a POSIX shell: as is when it is safe, else single-quoted.
@@ -396,7 +395,7 @@ int StudyCommands::Sweep() {
   InstallStopSignals();
   sim::TaskPool pool(jobs);
   RunsBar bar(!quiet_, pending.size());
-  const double t0 = Now();
+  const double t0 = WallSeconds();
   const sim::SweepProgress progress = sim::RunSweep(
       sources, def, pending, pool,
       [&](const sim::SweepRecord& rec, const sim::SweepProgress& p) {
@@ -406,7 +405,7 @@ int StudyCommands::Sweep() {
       [] { return StopSignal() != 0; });
   bar.Done();
   sim::SyncFileSystem(out);  // the records, synced together
-  const double wall = Now() - t0;
+  const double wall = WallSeconds() - t0;
   if (StopSignal() != 0) {
     std::fprintf(stderr,
                  "formsim: sweep interrupted by %s: %zu of %zu runs recorded in %s; add --resume "
@@ -612,7 +611,7 @@ int StudyCommands::Tune() {
                 seed_note.c_str(), s.seeds.size(), jobs);
     std::fflush(stdout);
   }
-  const double t0 = Now();
+  const double t0 = WallSeconds();
   sim::TuneResult r;
   try {
     r = sim::RunTune(
@@ -635,7 +634,7 @@ int StudyCommands::Tune() {
     throw;
   }
   if (tty) std::fprintf(stderr, "\r%78s\r", "");
-  const double wall = Now() - t0;
+  const double wall = WallSeconds() - t0;
 
   // history.csv first, whole and synced (the rows were appended as they came): whatever happens
   // next, every evaluation is on disk.

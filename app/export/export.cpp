@@ -9,22 +9,21 @@
 
 #include "app/export/gif_writer.hpp"
 #include "app/export/pictures.hpp"
-#include "app/gui/offscreen_renderer.hpp"
 #include "app/export/png_writer.hpp"
+#include "app/export/video_writer.hpp"
+#include "app/gui/offscreen_renderer.hpp"
 #include "app/gui/ui.hpp"
 #include "app/render/vector_fonts.hpp"
-#include "app/export/video_writer.hpp"
 #include "app/render/world_view.hpp"
 #include "sim/core/run_output.hpp"
+#include "sim/core/wall_clock.hpp"
 
 namespace fs = std::filesystem;
 
 namespace formsim::app {
 namespace {
 
-double Now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+using sim::WallSeconds;
 
 void EnsureParent(const std::string& file) {
   const fs::path parent = fs::path(file).parent_path();
@@ -154,7 +153,7 @@ ExportStats RunWithExport(sim::Session& session, const ExportOptions& opt,
                           const std::function<bool()>& advance) {
   PrepareExport(opt);
   ExportStats st;
-  const double t_start = Now();
+  const double t_start = WallSeconds();
   const Theme& theme = GetTheme(opt.theme);
   OffscreenRenderer renderer(opt.width, opt.height, theme);
   renderer.SetSceneOverlays(&opt.overlays, opt.legend);
@@ -236,14 +235,14 @@ ExportStats RunWithExport(sim::Session& session, const ExportOptions& opt,
     while (want_frames && main_clock.Due(exp)) {
       try {
         const auto& px = render(main_clock.next == 0);
-        const double t0 = Now();
+        const double t0 = WallSeconds();
         if (video) video->Write(px);
-        const double t1 = Now();
+        const double t1 = WallSeconds();
         if (!opt.frames_dir.empty()) {
           char name[32];
           std::snprintf(name, sizeof(name), "/frame_%05ld.png", main_clock.next);
           std::vector<std::uint8_t> copy = pool.Copy(px);
-          st.copy += Now() - t1;
+          st.copy += WallSeconds() - t1;
           pool.Submit(opt.frames_dir + name, renderer.width(), renderer.height(), std::move(copy));
         }
         st.video += t1 - t0;
@@ -286,9 +285,9 @@ ExportStats RunWithExport(sim::Session& session, const ExportOptions& opt,
     return true;
   };
   while (true) {
-    const double t0 = Now();
+    const double t0 = WallSeconds();
     if (!step()) break;
-    st.sim += Now() - t0;
+    st.sim += WallSeconds() - t0;
     emit_due_frames();
     // A whole-run snapshot without frames still needs the extent of the whole run.
     if (opt.whole_run && !want_frames && !opt.snapshots.empty() && exp.steps() % 10 == 0) {
@@ -302,7 +301,7 @@ ExportStats RunWithExport(sim::Session& session, const ExportOptions& opt,
     }
     if ((exp.steps() & 31) == 0) report("");
   }
-  const double t_finish = Now();
+  const double t_finish = WallSeconds();
   try {
     pool.Wait();  // frames written before the results are reported
   } catch (const std::exception& e) {
@@ -397,19 +396,19 @@ ExportStats RunWithExport(sim::Session& session, const ExportOptions& opt,
       }
     }
   }
-  const double t_drain = Now();
+  const double t_drain = WallSeconds();
   try {
     pool.Wait();
   } catch (const std::exception& e) {
     fail(e.what());
   }
-  st.png_drain = Now() - t_drain;
-  st.finish = Now() - t_finish;
+  st.png_drain = WallSeconds() - t_drain;
+  st.finish = WallSeconds() - t_finish;
   st.build = renderer.times().build;
   st.gl = renderer.times().gl;
   st.png_cpu = pool.encode_seconds();
   st.png_blocked = pool.blocked_seconds();
-  st.wall = Now() - t_start;
+  st.wall = WallSeconds() - t_start;
   return st;
 }
 

@@ -5,14 +5,15 @@
 #include <limits>
 #include <stdexcept>
 
-#include "app/gui/offscreen_renderer.hpp"
 #include "app/export/png_writer.hpp"
+#include "app/gui/offscreen_renderer.hpp"
+#include "control/common/float_limits.hpp"
 #include "sim/core/number_format.hpp"
 
 namespace formsim::app {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using control::kNaN;
 
 // A value of an axis as a short tick label ("0.03162", "ukf").
 std::string Label(const sim::SweepAxis& a, std::size_t i) {
@@ -36,7 +37,7 @@ std::string SeedsText(const sim::SweepDefinition& def) {
 }
 
 // The metric's value in each completed run of point p, in seed order.
-std::vector<std::pair<std::uint64_t, double>> RunValues(
+std::vector<std::pair<std::uint64_t, double>> SeedValues(
     const sim::SweepDefinition& def, const std::vector<sim::SweepRecord>& records, std::size_t p,
     const std::string& metric) {
   std::vector<std::pair<std::uint64_t, double>> out;
@@ -207,7 +208,7 @@ bool SweepFigure(const sim::SweepDefinition& def, const sim::SweepTables& t,
     s.color = sim::PaletteColor(0);
     for (std::size_t k = 0; k < def.seeds.size(); ++k)
       d.x_tick_labels.push_back(std::to_string(def.seeds[k]));
-    for (const auto& [seed, v] : RunValues(def, records, 0, path)) {
+    for (const auto& [seed, v] : SeedValues(def, records, 0, path)) {
       const auto it = std::find(def.seeds.begin(), def.seeds.end(), seed);
       s.x.push_back(static_cast<double>(it - def.seeds.begin()));
       s.y.push_back(v);
@@ -242,7 +243,7 @@ bool SweepFigure(const sim::SweepDefinition& def, const sim::SweepTables& t,
       BandOf(st, band, &lo, &hi);
       mean.band_lo.push_back(lo);
       mean.band_hi.push_back(hi);
-      for (const auto& run : RunValues(def, records, t.points[e], path)) {
+      for (const auto& run : SeedValues(def, records, t.points[e], path)) {
         seeds.x.push_back(x);
         seeds.y.push_back(run.second);
       }

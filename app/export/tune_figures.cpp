@@ -4,12 +4,13 @@
 #include <cmath>
 #include <limits>
 
+#include "control/common/float_limits.hpp"
 #include "sim/core/number_format.hpp"
 
 namespace formsim::app {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using control::kNaN;
 
 // A title's expression: a long sum names its number of terms (history.csv and best.yaml hold
 // the expression).

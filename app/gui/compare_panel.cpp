@@ -4,8 +4,6 @@
 /// edits, and goes when unpinned or when another scenario is loaded.
 #include "app/gui/compare_panel.hpp"
 
-#include "app/gui/flow_layout.hpp"
-
 #include <imgui.h>
 
 #include <algorithm>
@@ -13,12 +11,14 @@
 #include <cstdio>
 
 #include "app/gui/command_row_makers.hpp"
+#include "app/gui/flow_layout.hpp"
 #include "app/gui/history_panel.hpp"
 #include "app/gui/ui.hpp"
 #include "app/render/theme.hpp"
 #include "app/render/world_view.hpp"
 #include "sim/core/background.hpp"
 #include "sim/core/run_output.hpp"
+#include "sim/core/wall_clock.hpp"
 #include "sim/session/session.hpp"
 #include "sim/session/session_record.hpp"
 
@@ -29,9 +29,7 @@ namespace formsim::app {
 
 namespace {
 
-double WallSeconds() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+using sim::WallSeconds;
 
 }  // namespace
 

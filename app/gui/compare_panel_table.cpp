@@ -19,7 +19,6 @@ namespace formsim::app {
 
 namespace {
 
-const ImVec4 kBest(0.55f, 0.85f, 0.55f, 0.45f);
 // Significant digits of every number of the comparison table (and of σ's decimal place).
 constexpr int kDigits = 4;
 
@@ -184,8 +183,7 @@ void ComparePanel::DrawCompareTable(const sim::Metrics& now) {
       ImGui::SetTooltip(better == sim::Better::kLower ? "lower is better" : "higher is better");
     for (std::size_t i = 0; i < v.size(); ++i) {
       ImGui::TableSetColumnIndex(1 + static_cast<int>(i));
-      if (better != sim::Better::kNone && finite > 1 && differ && v[i] == best)
-        ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg, ImGui::GetColorU32(kBest));
+      if (better != sim::Better::kNone && finite > 1 && differ && v[i] == best) MarkBestCell();
       const std::string text = runs[i].metrics == nullptr ? "..."
                                : std::isnan(v[i])         ? "-"
                                                           : sim::FormatCell(v[i] * k, kDigits);

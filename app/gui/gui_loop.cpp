@@ -20,14 +20,13 @@
 #include "sim/core/bounded_file.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/run_output.hpp"
+#include "sim/core/wall_clock.hpp"
 #include "sim/session/session_journal.hpp"
 
 namespace formsim::app {
 namespace {
 
-double Now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+using sim::WallSeconds;
 
 }  // namespace
 
@@ -97,7 +96,7 @@ GuiLoop::GuiLoop(GLFWwindow* window, std::unique_ptr<sim::Session> session, cons
   const std::string journal_dir = sim::JournalDir();
   ui.FindUnfinishedSessions(journal_dir);
   ui.StartJournal(journal_dir);
-  last_ = Now();
+  last_ = WallSeconds();
 }
 
 GuiLoop::~GuiLoop() {
@@ -156,7 +155,7 @@ void GuiLoop::RunDueActions() {
 
 bool GuiLoop::Frame() {
   AppUi& ui = *ui_;
-  const double now = Now();
+  const double now = WallSeconds();
   const double wall_dt = std::min(0.1, now - last_);
   last_ = now;
   RunDueActions();
@@ -178,7 +177,7 @@ bool GuiLoop::Frame() {
     f1_down_ = f1;
   }
   layer_.NewFrame();
-  const double t_ui = Now();
+  const double t_ui = WallSeconds();
   try {
     ui.Advance(wall_dt);
     ui.NoteJournalStep();
@@ -193,7 +192,7 @@ bool GuiLoop::Frame() {
   }
   int fw = 0, fh = 0;
   glfwGetFramebufferSize(window_, &fw, &fh);
-  const double t_gl = Now();
+  const double t_gl = WallSeconds();
   const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
   layer_.Render(fw, fh, bg.x, bg.y, bg.z);
   if (opt_.timing) {
@@ -201,7 +200,7 @@ bool GuiLoop::Frame() {
     // The simulation runs inside Advance: the UI build is the rest of that time.
     sim_ms_.push_back(ui.Find<RunPanel>()->sim_ms());
     ui_ms_.push_back(1e3 * (t_gl - t_ui) - sim_ms_.back());
-    gl_ms_.push_back(1e3 * (Now() - t_gl));
+    gl_ms_.push_back(1e3 * (WallSeconds() - t_gl));
     const ImDrawData* dd = ImGui::GetDrawData();
     int calls = 0;
     for (int i = 0; dd && i < dd->CmdListsCount; ++i) calls += dd->CmdLists[i]->CmdBuffer.Size;
@@ -225,7 +224,7 @@ bool GuiLoop::Frame() {
     glfwSetWindowTitle(window_, now_title.c_str());
     title_shown_ = now_title;
   }
-  ui.state().frame_ms = 1e3 * (Now() - now);
+  ui.state().frame_ms = 1e3 * (WallSeconds() - now);
   if (opt_.timing) frame_ms_.push_back(ui.state().frame_ms);
   ++frames_;
   if (!holding_) ++clock_;

@@ -24,8 +24,6 @@ namespace formsim::app {
 
 namespace {
 
-const ImVec4 kBest(0.55f, 0.85f, 0.55f, 0.45f);
-
 // A metric cell: the comparison table's formatter and digits, in the unit its column shows.
 std::string MetricText(const sim::Metrics::HeadlineValue& m, bool degrees) {
   if (std::isnan(m.value)) return "-";
@@ -265,8 +263,7 @@ void HistoryPanel::Draw(const Fonts&) {
       ImGui::TableSetColumnIndex(kFixed + static_cast<int>(c));
       const auto* m = metric(r, c);
       if (m == nullptr) continue;
-      if (std::isfinite(m->value) && m->value == best[c] && rows.size() > 1)
-        ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg, ImGui::GetColorU32(kBest));
+      if (std::isfinite(m->value) && m->value == best[c] && rows.size() > 1) MarkBestCell();
       ImGui::TextUnformatted(MetricText(*m, degrees).c_str());
     }
     ImGui::TableSetColumnIndex(kTime);

@@ -3,16 +3,15 @@
 #include <chrono>
 #include <cmath>
 
-#include "app/render/imgui_canvas.hpp"
 #include "app/gui/ui.hpp"
+#include "app/render/imgui_canvas.hpp"
 #include "app/render/world_view.hpp"
+#include "sim/core/wall_clock.hpp"
 
 namespace formsim::app {
 namespace {
 
-double Now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+using sim::WallSeconds;
 
 int Device(int logical, float scale) {
   return static_cast<int>(std::lround(logical * static_cast<double>(scale)));
@@ -42,15 +41,15 @@ void OffscreenRenderer::SetScale(float scale) {
 }
 
 void OffscreenRenderer::Begin() {
-  t_begin_ = Now();
+  t_begin_ = WallSeconds();
   layer_.NewHeadlessFrame(logical_w_, logical_h_, 1.0f / 30.0f);
 }
 
 const std::vector<std::uint8_t>& OffscreenRenderer::End(sim::Color clear) {
-  const double t1 = Now();
+  const double t1 = WallSeconds();
   layer_.Render(ctx_.width(), ctx_.height(), clear.r, clear.g, clear.b);
   ctx_.Finish();
-  const double t2 = Now();
+  const double t2 = WallSeconds();
   times_.build += t1 - t_begin_;
   times_.gl += t2 - t1;
   return ctx_.pixels();

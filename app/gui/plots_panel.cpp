@@ -26,11 +26,8 @@
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
 
 namespace formsim::app {
-namespace {
 
-using Clock = std::chrono::steady_clock;
-constexpr auto kPlotRefresh = std::chrono::milliseconds(100);
-
+// Named, not anonymous: CachedPlot (held by PlotsPanel::Cache) has one as a field.
 // The geometry one DrawPlot call appended to a draw list: its vertices, its indices (relative
 // to those vertices) and, per draw command, the clip rectangle, texture and index range.
 struct DrawnGeometry {
@@ -43,6 +40,11 @@ struct DrawnGeometry {
   std::vector<int> idx;
   std::vector<Cmd> cmds;
 };
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr auto kPlotRefresh = std::chrono::milliseconds(100);
 
 struct DrawMark {
   int vtx = 0, idx = 0, cmd = 0;

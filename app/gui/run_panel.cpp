@@ -35,10 +35,6 @@ std::string SpeedLabel(double s) {
   return sim::FormatSignificant(s) + "×";
 }
 
-void CopyString(char* dst, std::size_t n, const std::string& s) {
-  std::snprintf(dst, n, "%s", s.c_str());
-}
-
 // The speeds as the speed command names them.
 std::vector<std::string> SpeedNames() {
   std::vector<std::string> out;

@@ -43,4 +43,9 @@ void TableHeaders(const std::vector<std::string>& labels, bool sortable) {
   }
 }
 
+void MarkBestCell() {
+  ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg,
+                         ImGui::GetColorU32(ImVec4(0.55f, 0.85f, 0.55f, 0.45f)));
+}
+
 }  // namespace formsim::app

@@ -19,4 +19,7 @@ std::string FitHeader(const std::string& label, float width,
 /// room is kept for the sort arrow.
 void TableHeaders(const std::vector<std::string>& labels, bool sortable = false);
 
+/// Shades the current table cell as its column's best value (compare and history tables).
+void MarkBestCell();
+
 }  // namespace formsim::app

@@ -33,9 +33,6 @@ namespace formsim::app {
 namespace {
 
 
-void CopyString(char* dst, std::size_t n, const std::string& s) {
-  std::snprintf(dst, n, "%s", s.c_str());
-}
 
 
 
@@ -398,6 +395,10 @@ void AppUi::DrawMessagesSection() {
   for (std::size_t i = events.size(); i-- > first;)
     ImGui::TextWrapped("%.2f s %s %s: %s", events[i].time, events[i].kind.c_str(),
                        Shorten(events[i].robots, 200).c_str(), Shorten(events[i].message, 400).c_str());
+}
+
+void CopyString(char* dst, std::size_t n, const std::string& s) {
+  std::snprintf(dst, n, "%s", s.c_str());
 }
 
 }  // namespace formsim::app

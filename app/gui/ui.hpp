@@ -282,4 +282,7 @@ class AppUi {
   void DrawRestoreBanner();
 };
 
+/// Copies `s` into the text buffer `dst` of `n` bytes (an ImGui input field), cut to fit.
+void CopyString(char* dst, std::size_t n, const std::string& s);
+
 }  // namespace formsim::app

@@ -14,10 +14,11 @@
 #include "app/render/canvas.hpp"
 #include "app/render/plot.hpp"
 #include "app/render/theme.hpp"
+#include "control/common/float_limits.hpp"
 
 namespace formsim::app::plot_detail {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using control::kNaN;
 
 /// A legend entry is cut to this many bytes (a name of any length keeps the legend in its
 /// corner).

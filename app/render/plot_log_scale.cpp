@@ -4,10 +4,12 @@
 #include <cstdio>
 #include <limits>
 
+#include "control/common/float_limits.hpp"
+
 namespace formsim::app {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using control::kNaN;
 
 // log10 of the values in place; the non-positive ones become NaN and are counted.
 void ToDecades(std::vector<double>& v, long* dropped) {

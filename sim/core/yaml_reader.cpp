@@ -594,4 +594,8 @@ std::string ApplySet(YAML::Node& root, const std::string& assignment) {
   return SetAtPath(root, path, value);
 }
 
+YAML::Node NumberNode(double v) {
+  return YAML::Node(FormatDouble(v + 0.0));
+}
+
 }  // namespace formsim::sim

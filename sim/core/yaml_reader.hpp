@@ -149,4 +149,8 @@ YAML::Node FindAtPath(const YAML::Node& root, const std::string& path);
 /// Splits "a.b.c" into its segments.
 std::vector<std::string> SplitKeyPath(const std::string& path);
 
+/// A YAML scalar holding `v` as its shortest round-trip text, with -0 written as 0: how
+/// formsim writes numbers into scenario text it generates.
+YAML::Node NumberNode(double v);
+
 }  // namespace formsim::sim

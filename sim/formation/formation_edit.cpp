@@ -23,13 +23,11 @@ namespace cf = control::formation;
 
 [[noreturn]] void Fail(const std::string& why) { throw std::runtime_error(why); }
 
-YAML::Node Num(double v) { return YAML::Node(FormatDouble(v + 0.0)); }
-
 YAML::Node PoseNode(const Pose2& p) {
   YAML::Node n(YAML::NodeType::Sequence);
-  n.push_back(Num(p.x));
-  n.push_back(Num(p.y));
-  n.push_back(Num(control::WrapToPi(p.theta)));
+  n.push_back(NumberNode(p.x));
+  n.push_back(NumberNode(p.y));
+  n.push_back(NumberNode(control::WrapToPi(p.theta)));
   n.SetStyle(YAML::EmitterStyle::Flow);
   return n;
 }

@@ -13,7 +13,7 @@ namespace {
 
 namespace cf = control::formation;
 
-[[noreturn]] void Fail(const std::string& why) {
+[[noreturn]] void Refuse(const std::string& why) {
   throw std::runtime_error(why);
 }
 
@@ -52,15 +52,16 @@ double Number(const std::string& s, const std::string& what) {
   } catch (const std::exception&) {
     used = 0;
   }
-  if (used != s.size() || !std::isfinite(v)) Fail(what + " must be a number, got '" + s + "'");
+  if (used != s.size() || !std::isfinite(v)) Refuse(what + " must be a number, got '" + s + "'");
   return v;
 }
 
 cf::FormationLaw Law(const std::string& s) {
   cf::FormationLaw law;
   if (!cf::ParseLaw(s, &law))
-    Fail(std::string("law must be ") + cf::LawName(cf::FormationLaw::kLPhi) + " (one leader) or " +
-         cf::LawName(cf::FormationLaw::kLL) + " (two leaders), got '" + s + "'");
+    Refuse(std::string("law must be ") + cf::LawName(cf::FormationLaw::kLPhi) +
+           " (one leader) or " + cf::LawName(cf::FormationLaw::kLL) + " (two leaders), got '" + s +
+           "'");
   return law;
 }
 
@@ -69,7 +70,7 @@ cf::ShapeKind Shape(const std::vector<std::string>& w) {
   if (w.size() < 2 || !cf::ShapeFromName(w[1], &kind)) {
     std::string names;
     for (const auto& n : cf::ShapeNames()) names += (names.empty() ? "" : ", ") + n;
-    Fail("shape: name one of " + names);
+    Refuse("shape: name one of " + names);
   }
   return kind;
 }
@@ -97,9 +98,9 @@ std::string StructureChangeText(const StructureChange& change) {
 
 StructureChange ParseStructureChange(const std::string& text) {
   const std::vector<std::string> w = Words(text);
-  if (w.empty()) Fail("an empty formation command (add, remove, attach, shape)");
+  if (w.empty()) Refuse("an empty formation command (add, remove, attach, shape)");
   if (w[0] == "add") {
-    if (w.size() < 5 || w.size() > 6) Fail("add LAW LEADERS X Y [NAME]");
+    if (w.size() < 5 || w.size() > 6) Refuse("add LAW LEADERS X Y [NAME]");
     AddFollower c;
     c.law = Law(w[1]);
     c.leaders = SplitNames(w[2]);
@@ -109,11 +110,11 @@ StructureChange ParseStructureChange(const std::string& text) {
     return {c};
   }
   if (w[0] == "remove") {
-    if (w.size() != 2) Fail("remove NAME");
+    if (w.size() != 2) Refuse("remove NAME");
     return {RemoveRobot{w[1]}};
   }
   if (w[0] == "attach") {
-    if (w.size() != 4) Fail("attach NAME LAW LEADERS");
+    if (w.size() != 4) Refuse("attach NAME LAW LEADERS");
     return {AttachFollower{w[1], Law(w[2]), SplitNames(w[3])}};
   }
   if (w[0] == "shape") {
@@ -122,7 +123,7 @@ StructureChange ParseStructureChange(const std::string& text) {
     if (w.size() > 2) c.spacing = Number(w[2], "shape spacing");
     return {c};
   }
-  Fail("unknown formation command '" + w[0] + "' (add, remove, attach, shape)");
+  Refuse("unknown formation command '" + w[0] + "' (add, remove, attach, shape)");
 }
 
 const FormationEditing* EditingOf(const Experiment& exp) {
@@ -133,7 +134,7 @@ namespace {
 
 const FormationEditing& Editing(const Experiment& exp) {
   const FormationEditing* editing = EditingOf(exp);
-  if (editing == nullptr) Fail("this kind of scenario offers no structural changes");
+  if (editing == nullptr) Refuse("this kind of scenario offers no structural changes");
   return *editing;
 }
 

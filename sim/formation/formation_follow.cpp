@@ -3,13 +3,10 @@
 #include <stdexcept>
 
 #include "sim/core/number_format.hpp"
+#include "sim/core/yaml_reader.hpp"
 
 namespace formsim::sim::formation {
 namespace {
-
-YAML::Node Num(double v) {
-  return YAML::Node(FormatDouble(v + 0.0));
-}
 
 YAML::Node FlowList(const std::vector<std::string>& items) {
   YAML::Node n(YAML::NodeType::Sequence);
@@ -25,12 +22,12 @@ void WriteFollow(YAML::Node& follow, const FollowBlock& b) {
   const bool lphi = b.law == cf::FormationLaw::kLPhi;
   follow["law"] = cf::LawName(b.law);
   follow["leaders"] = FlowList(b.leaders);
-  follow["l_des"] = Num(b.l_des);
+  follow["l_des"] = NumberNode(b.l_des);
   follow.remove(lphi ? "l2_des" : "phi_des");
   follow.remove(lphi ? "k_l2" : "k_phi");
-  follow[lphi ? "phi_des" : "l2_des"] = Num(b.second_des);
-  if (b.k1) follow["k_l"] = Num(*b.k1);
-  if (b.k2) follow[lphi ? "k_phi" : "k_l2"] = Num(*b.k2);
+  follow[lphi ? "phi_des" : "l2_des"] = NumberNode(b.second_des);
+  if (b.k1) follow["k_l"] = NumberNode(*b.k1);
+  if (b.k2) follow[lphi ? "k_phi" : "k_l2"] = NumberNode(*b.k2);
   if (!b.estimator.empty()) follow["estimator"] = b.estimator;
   if (!b.measure.empty()) follow["measure"] = FlowList(b.measure);
   follow.SetStyle(YAML::EmitterStyle::Flow);

@@ -18,6 +18,7 @@
 
 #include "sim/core/bounded_file.hpp"
 #include "sim/core/number_format.hpp"
+#include "sim/core/wall_clock.hpp"
 
 namespace fs = std::filesystem;
 
@@ -82,10 +83,6 @@ class Fields {
   const std::string& s_;
   std::size_t pos_ = 0;
 };
-
-double Now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 // Every text an event refers to.
 const ScenarioSource* SourceOf(const SessionEvent& e) {
@@ -332,7 +329,7 @@ void SessionJournal::Append(const SessionEvent& e) {
 
 void SessionJournal::NoteStep(long step, double min_seconds) {
   if (step == last_step_) return;
-  const double now = Now();
+  const double now = WallSeconds();
   if (now - last_step_time_ < min_seconds) return;
   std::string p;
   Field(p, "step");

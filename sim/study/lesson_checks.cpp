@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "control/common/float_limits.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/recorder.hpp"
 #include "sim/core/task_pool.hpp"
@@ -21,7 +22,7 @@ namespace formsim::sim {
 namespace {
 
 using Check = LessonCheck;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using control::kNaN;
 
 std::string Num(double v) { return FormatSignificant(v, 4); }
 

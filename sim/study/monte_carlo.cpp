@@ -4,10 +4,12 @@
 #include <cmath>
 #include <limits>
 
+#include "control/common/float_limits.hpp"
+
 namespace formsim::sim {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using control::kNaN;
 
 // The recorded columns of the experiment's time figures (series against "t").
 std::vector<std::string> TimeColumns(const Experiment& exp) {

@@ -8,6 +8,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "control/common/float_limits.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/run_output.hpp"
 #include "sim/scenario/scenario_files.hpp"
@@ -18,7 +19,7 @@ namespace fs = std::filesystem;
 namespace formsim::sim {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using control::kNaN;
 const char* const kDash = "–";
 
 std::string Substitute(const std::string& pattern, const std::string& key) {

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "control/common/float_limits.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/run_output.hpp"
 
@@ -16,7 +17,7 @@ namespace fs = std::filesystem;
 namespace formsim::sim {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using control::kNaN;
 
 void AppendNumberOrEmpty(std::string& out, double v) {
   if (!std::isnan(v)) AppendDouble(out, v);

@@ -10,6 +10,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "control/common/float_limits.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/study/metric_stats.hpp"
 #include "sim/study/scenario_set.hpp"
@@ -19,7 +20,7 @@
 namespace formsim::sim {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using control::kInf;
 
 std::string Trim(const std::string& s) {
   const std::size_t a = s.find_first_not_of(" \t");

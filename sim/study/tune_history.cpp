@@ -5,13 +5,14 @@
 #include <limits>
 #include <stdexcept>
 
+#include "control/common/float_limits.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/study/sweep_tables.hpp"
 
 namespace formsim::sim {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using control::kInf;
 
 // Constraints with a column of their own: a term's column holds a constrained metric already
 // when the fold is the mean.

@@ -24,9 +24,9 @@ namespace formsim::app {
 namespace {
 
 // Large enough for every menu to open in full.
-class Window : public testing::UiWindow {
+class TableWindow : public testing::UiWindow {
  public:
-  explicit Window(const std::string& scenario = "formation_switching")
+  explicit TableWindow(const std::string& scenario = "formation_switching")
       : UiWindow(scenario, 1600, 900) {}
 };
 
@@ -152,7 +152,7 @@ TEST(CommandTable, HelpAndListsComeFromTheTable) {
 }
 
 TEST(CommandTable, UnknownActionsNameTheClosest) {
-  Window w;
+  TableWindow w;
   const std::string why = w.ui().RunScriptAction("pinn 3");
   EXPECT_NE(why.find("unknown action 'pinn'"), std::string::npos) << why;
   EXPECT_NE(why.find("pin"), std::string::npos) << why;
@@ -163,7 +163,7 @@ TEST(CommandTable, UnknownActionsNameTheClosest) {
 }
 
 TEST(CommandTable, BadArgumentsAreRefusedNamingTheArgument) {
-  Window w;
+  TableWindow w;
   for (const Command& c : Commands()) {
     if (c.disabled && !c.disabled(w.ui()).empty()) continue;
     if (c.args.empty()) {
@@ -191,8 +191,8 @@ TEST(CommandTable, EveryCommandRunsFromAScript) {
     if (c.ends_program) continue;
     // Each command on a fresh window (a load or lesson changes the scenario); the formation
     // editor's structural changes on one without a switching: block.
-    Window w(c.name == "formation" || c.name == "shape" ? "formation_cascade7"
-                                                        : "formation_switching");
+    TableWindow w(c.name == "formation" || c.name == "shape" ? "formation_cascade7"
+                                                             : "formation_switching");
     if (c.name.rfind("lesson-", 0) == 0) {
       // The lesson rows on a lesson at its prediction step, predicted (its action may run).
       ASSERT_EQ(w.ui().RunScriptAction("lesson lphi_time_constant"), "");
@@ -217,7 +217,7 @@ TEST(CommandTable, EveryCommandRunsFromAScript) {
 }
 
 TEST(CommandTable, EveryCommandIsFoundByThePalette) {
-  Window w;
+  TableWindow w;
   for (const Command& c : Commands()) {
     if (c.script_only) continue;
     const auto entries = w.ui().PaletteEntries(c.name);
@@ -247,7 +247,7 @@ TEST(CommandTable, EveryCommandIsFoundByThePalette) {
 }
 
 TEST(CommandTable, EveryMenuItemIsDrawnAndAClickRunsIt) {
-  Window w;
+  TableWindow w;
   std::set<std::string> tops;
   for (const Command& c : Commands())
     if (!c.script_only) tops.insert(TopOf(c.menu));
@@ -281,7 +281,7 @@ TEST(CommandTable, EveryMenuItemIsDrawnAndAClickRunsIt) {
 }
 
 TEST(CommandTable, KeysRunTheirRows) {
-  Window w;
+  TableWindow w;
   const long steps = w.ui().session().exp().steps();
   w.Frame([](ImGuiIO& io) { io.AddInputCharacter('.'); });
   EXPECT_EQ(w.ui().session().exp().steps(), steps + 1);
@@ -299,7 +299,7 @@ TEST(CommandTable, KeysRunTheirRows) {
 }
 
 TEST(CommandTable, FormationCommandsAreDisabledElsewhere) {
-  Window w("agv_fused");
+  TableWindow w("agv_fused");
   const std::string why = w.ui().RunScriptAction("editor add l_phi");
   EXPECT_NE(why.find("only for a formation scenario"), std::string::npos) << why;
   EXPECT_NE(w.ui().RunScriptAction("switch-formation").find("switching"), std::string::npos);
@@ -309,7 +309,7 @@ TEST(CommandTable, SwitchingScenariosKeepTheirStructure) {
   // A scenario with a switching: block names every follower's law and slot in its shapes: its
   // structure is greyed out with the reason (the editor's clicks are refused with it too), and
   // switching and slot drags stay.
-  Window sw("formation_switching");
+  TableWindow sw("formation_switching");
   for (const char* change : {"formation remove R5", "shape wedge 0.6"})
     EXPECT_NE(sw.ui().RunScriptAction(change).find("its switching: block"), std::string::npos)
         << change;

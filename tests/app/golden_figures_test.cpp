@@ -21,7 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kW = 480, kH = 300;
+constexpr int kFigureW = 480, kFigureH = 300;
 
 std::string GoldenPath(const std::string& name) {
   return std::string(FORMSIM_SOURCE_DIR) + "/tests/fixtures/golden/" + name + ".png";
@@ -53,27 +53,27 @@ Difference Compare(const std::vector<std::uint8_t>& a, const std::vector<std::ui
 
 // Renders `fig` and compares it with its golden image (or writes it when updating).
 void ExpectGolden(const std::string& name, const PlotData& fig) {
-  OffscreenRenderer r(kW, kH);
-  const std::vector<std::uint8_t> px = r.RenderFigure(fig, kW, kH);
+  OffscreenRenderer r(kFigureW, kFigureH);
+  const std::vector<std::uint8_t> px = r.RenderFigure(fig, kFigureW, kFigureH);
   const std::string path = GoldenPath(name);
   const char* update = std::getenv("FORMSIM_UPDATE_GOLDEN");
   if (update != nullptr && std::string(update) == "1") {
     fs::create_directories(fs::path(path).parent_path());
-    WritePng(path, kW, kH, px.data());
+    WritePng(path, kFigureW, kFigureH, px.data());
     GTEST_SKIP() << "wrote " << path;
   }
   ASSERT_TRUE(fs::exists(path)) << path << " is missing; regenerate with FORMSIM_UPDATE_GOLDEN=1";
   int w = 0, h = 0;
   const std::vector<std::uint8_t> golden = ReadPng(path, &w, &h);
-  ASSERT_EQ(w, kW);
-  ASSERT_EQ(h, kH);
+  ASSERT_EQ(w, kFigureW);
+  ASSERT_EQ(h, kFigureH);
   const Difference d = Compare(px, golden);
   // Tolerance: 1% of the pixels may differ strongly, 3 levels on average.
   EXPECT_LE(d.moved, 0.01) << name << ": " << 100 * d.moved << "% of the pixels moved";
   EXPECT_LE(d.mean, 3.0) << name << ": mean difference " << d.mean;
   if (::testing::Test::HasFailure()) {
     const std::string got = testing::TempDir("golden_" + name) + ".png";
-    WritePng(got, kW, kH, px.data());
+    WritePng(got, kFigureW, kFigureH, px.data());
     ADD_FAILURE() << "rendered image: " << got;
   }
 }
@@ -134,7 +134,7 @@ TEST(GoldenFigures, SmallMultiplePanel) {
 
 // The comparison itself: an image is within tolerance of itself, and a shifted copy is not.
 TEST(GoldenFigures, ToleranceCatchesAShift) {
-  OffscreenRenderer r(kW, kH);
+  OffscreenRenderer r(kFigureW, kFigureH);
   const sim::SweepDefinition d =
       sim::DefineSweep(Source(), {}, {"robots.R2.follow.k_l=0.1,0.3,1"}, {1, 2});
   const auto recs = Records(d, [](std::size_t p, std::size_t s) {
@@ -142,17 +142,17 @@ TEST(GoldenFigures, ToleranceCatchesAShift) {
   });
   PlotData fig;
   ASSERT_TRUE(SweepFigure(d, sim::BuildSweepTables(d, recs), recs, 0, &fig));
-  const std::vector<std::uint8_t> a = r.RenderFigure(fig, kW, kH);
+  const std::vector<std::uint8_t> a = r.RenderFigure(fig, kFigureW, kFigureH);
   const Difference same = Compare(a, a);
   EXPECT_EQ(same.moved, 0.0);
   EXPECT_EQ(same.mean, 0.0);
   // Everything 6 pixels to the right (what a wider y label would do).
   std::vector<std::uint8_t> shifted(a.size(), 255);
-  for (int y = 0; y < kH; ++y)
-    for (int x = 6; x < kW; ++x)
+  for (int y = 0; y < kFigureH; ++y)
+    for (int x = 6; x < kFigureW; ++x)
       for (int c = 0; c < 4; ++c)
-        shifted[(static_cast<std::size_t>(y) * kW + x) * 4 + c] =
-            a[(static_cast<std::size_t>(y) * kW + x - 6) * 4 + c];
+        shifted[(static_cast<std::size_t>(y) * kFigureW + x) * 4 + c] =
+            a[(static_cast<std::size_t>(y) * kFigureW + x - 6) * 4 + c];
   const Difference moved = Compare(a, shifted);
   EXPECT_TRUE(moved.moved > 0.01 || moved.mean > 3.0)
       << "a 6-pixel shift must fail: " << moved.moved << " " << moved.mean;

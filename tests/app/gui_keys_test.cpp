@@ -19,7 +19,7 @@
 namespace formsim::app {
 namespace {
 
-constexpr int kW = 1280, kH = 800;
+constexpr int kKeysW = 1280, kKeysH = 800;
 
 using Window = testing::UiWindow;
 
@@ -45,7 +45,7 @@ TEST(GuiKeys, TypingIntoAFieldNeverTriggersAShortcut) {
   EXPECT_NE(w.ui().state().status, "reset");
   // Click into the world view: the field lets go, and '.' steps again.
   w.Frame([&](ImGuiIO& io) {
-    io.MousePos = ImVec2(kW / 2, kH / 2);
+    io.MousePos = ImVec2(kKeysW / 2, kKeysH / 2);
     io.MouseDown[0] = true;
   });
   w.Frame();
@@ -59,7 +59,7 @@ TEST(GuiKeys, CtrlZAndCtrlYUndoAndRedoEdits) {
   ASSERT_EQ(w.ui().Find<ParametersPanel>()->CmdEdit(key, "0.4"), "");
   w.Frame();
   w.Frame([&](ImGuiIO& io) {
-    io.MousePos = ImVec2(kW / 2, kH / 2);
+    io.MousePos = ImVec2(kKeysW / 2, kKeysH / 2);
     io.KeyCtrl = true;
     io.KeysDown['Z'] = true;
   });
@@ -81,7 +81,7 @@ TEST(GuiKeys, NothingInTheParameterPanelMovesWhenAnEditIsMade) {
   // What is under each point of the lower panel: labels, sliders, marks.
   auto probe = [&] {
     std::map<std::pair<int, int>, ImGuiID> ids;
-    for (int y = 420; y < kH - 10; y += 7)
+    for (int y = 420; y < kKeysH - 10; y += 7)
       for (int x : {40, 170, 230, 262, 280, 296}) ids[{x, y}] = w.Hover(ImVec2(x, y));
     return ids;
   };

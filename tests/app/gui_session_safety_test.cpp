@@ -320,11 +320,7 @@ std::vector<std::string> Journals(const std::string& state) {
   return out;
 }
 
-bool AnyTmp(const std::string& dir) {
-  for (const auto& e : fs::recursive_directory_iterator(dir))
-    if (e.path().extension() == ".tmp") return true;
-  return false;
-}
+using testing::AnyTmp;
 
 // The reference: the same stepped script in a window that ends by itself.
 std::string ReferenceCsv(const std::string& dir) {

@@ -33,11 +33,7 @@ int CsvLines(const std::string& path) {
   return n;
 }
 
-bool AnyTmp(const std::string& dir) {
-  for (const auto& e : fs::recursive_directory_iterator(dir))
-    if (e.path().extension() == ".tmp") return true;
-  return false;
-}
+using testing::AnyTmp;
 
 TEST(OutputFaults, SnapshotToAFullDeviceKeepsTheResults) {
   if (!IsCharDevice("/dev/full")) GTEST_SKIP() << "/dev/full is not the full device here";

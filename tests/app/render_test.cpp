@@ -19,23 +19,23 @@ using testing::NonBackgroundFraction;
 using testing::Scenario;
 using testing::TempDir;
 
-struct Rgb {
+struct Pixel {
   int r, g, b;
 };
 
-Rgb At(const std::vector<std::uint8_t>& px, int w, int x, int y) {
+Pixel PixelAt(const std::vector<std::uint8_t>& px, int w, int x, int y) {
   const std::size_t i = (static_cast<std::size_t>(y) * w + x) * 4;
   return {px[i], px[i + 1], px[i + 2]};
 }
 
 // Smallest colour distance to `want` within `radius` pixels of (cx, cy).
 double NearestColour(const std::vector<std::uint8_t>& px, int w, int h, ImVec2 c, int radius,
-                     Rgb want) {
+                     Pixel want) {
   double best = 1e9;
   for (int y = static_cast<int>(c.y) - radius; y <= static_cast<int>(c.y) + radius; ++y)
     for (int x = static_cast<int>(c.x) - radius; x <= static_cast<int>(c.x) + radius; ++x) {
       if (x < 0 || y < 0 || x >= w || y >= h) continue;
-      const Rgb p = At(px, w, x, y);
+      const Pixel p = PixelAt(px, w, x, y);
       best = std::min(
           best, std::sqrt(double((p.r - want.r) * (p.r - want.r) + (p.g - want.g) * (p.g - want.g) +
                                  (p.b - want.b) * (p.b - want.b))));
@@ -58,7 +58,7 @@ TEST(HeadlessRender, RobotsAppearInTheirColourWhereTheSimSaysTheyAre) {
   ASSERT_FALSE(robots.empty());
   for (const auto& robot : robots) {
     const sim::Color c = sim::PaletteColor(robot->def().color_index);
-    const Rgb want{int(c.r * 255), int(c.g * 255), int(c.b * 255)};
+    const Pixel want{int(c.r * 255), int(c.g * 255), int(c.b * 255)};
     const ImVec2 p = view.ToScreen(robot->pose().p());
     ASSERT_TRUE(p.x > 0 && p.x < w && p.y > 0 && p.y < h) << robot->name() << " is off screen";
     // The body is filled with the robot colour at 85 % opacity: allow for that blend.
@@ -68,7 +68,7 @@ TEST(HeadlessRender, RobotsAppearInTheirColourWhereTheSimSaysTheyAre) {
   // The colour of R1 is not found in an empty corner of the view.
   const sim::Color c0 = sim::PaletteColor(robots[0]->def().color_index);
   EXPECT_GT(NearestColour(px, w, h, ImVec2(w - 20, 20), 6,
-                          Rgb{int(c0.r * 255), int(c0.g * 255), int(c0.b * 255)}),
+                          Pixel{int(c0.r * 255), int(c0.g * 255), int(c0.b * 255)}),
             60.0);
 }
 
@@ -87,17 +87,18 @@ TEST(HeadlessRender, FiguresHaveAxesTicksAndData) {
     EXPECT_GE(L.x_ticks.size(), 2u) << fig.id;
     EXPECT_GE(L.y_ticks.size(), 2u) << fig.id;
     // Light paper background in the corner, dark axis lines along the left and bottom edges.
-    const Rgb corner = At(px, w, 2, 2);
+    const Pixel corner = PixelAt(px, w, 2, 2);
     EXPECT_GT(corner.r + corner.g + corner.b, 3 * 245) << fig.id;
     int dark_left = 0, dark_bottom = 0;
     const int ax = static_cast<int>(std::round(L.area_min.x)),
               by = static_cast<int>(std::round(L.area_max.y));
     for (int y = static_cast<int>(L.area_min.y) + 2; y < static_cast<int>(L.area_max.y) - 2; ++y) {
-      const Rgb p0 = At(px, w, ax, y), p1 = At(px, w, ax - 1, y);  // the frame straddles the edge
+      const Pixel p0 = PixelAt(px, w, ax, y),
+                  p1 = PixelAt(px, w, ax - 1, y);  // the frame straddles the edge
       dark_left += std::min(p0.r + p0.g + p0.b, p1.r + p1.g + p1.b) < 300;
     }
     for (int x = static_cast<int>(L.area_min.x) + 2; x < static_cast<int>(L.area_max.x) - 2; ++x) {
-      const Rgb p0 = At(px, w, x, by), p1 = At(px, w, x, by + 1);
+      const Pixel p0 = PixelAt(px, w, x, by), p1 = PixelAt(px, w, x, by + 1);
       dark_bottom += std::min(p0.r + p0.g + p0.b, p1.r + p1.g + p1.b) < 300;
     }
     const int hh = static_cast<int>(L.area_max.y - L.area_min.y) - 4;
@@ -108,7 +109,7 @@ TEST(HeadlessRender, FiguresHaveAxesTicksAndData) {
     int label_ink = 0;
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < ax - 4; ++x) {
-        const Rgb p = At(px, w, x, y);
+        const Pixel p = PixelAt(px, w, x, y);
         label_ink += p.r + p.g + p.b < 300;
       }
     EXPECT_GT(label_ink, 50) << fig.id << ": no tick labels";
@@ -116,7 +117,7 @@ TEST(HeadlessRender, FiguresHaveAxesTicksAndData) {
     int coloured = 0;
     for (int y = static_cast<int>(L.area_min.y) + 3; y < by - 3; ++y)
       for (int x = ax + 3; x < static_cast<int>(L.area_max.x) - 3; ++x) {
-        const Rgb p = At(px, w, x, y);
+        const Pixel p = PixelAt(px, w, x, y);
         coloured += std::max({p.r, p.g, p.b}) - std::min({p.r, p.g, p.b}) > 60;
       }
     EXPECT_GT(coloured, 100) << fig.id << ": no data drawn";

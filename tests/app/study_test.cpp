@@ -32,11 +32,9 @@ const std::string kSweep =
 const char* kRanking = "ranking_links.R1-R2.max_abs_error_after_settle.phi.txt";
 const char* kPlot = "plot_links.R1-R2.max_abs_error_after_settle.phi.png";
 
-int Formsim(const std::string& args, const std::string& log) {
-  return RunShell(Binary() + " " + args, log);
-}
+using testing::Formsim;
 
-void ExpectSameTables(const std::string& a, const std::string& b) {
+void ExpectSameStudyTables(const std::string& a, const std::string& b) {
   for (const char* f : {"runs.csv", "aggregate.csv", kRanking}) {
     const std::string ta = ReadText(a + "/" + f), tb = ReadText(b + "/" + f);
     EXPECT_FALSE(ta.empty()) << a << "/" << f;
@@ -44,7 +42,7 @@ void ExpectSameTables(const std::string& a, const std::string& b) {
   }
 }
 
-std::size_t Lines(const std::string& text) {
+std::size_t CountLines(const std::string& text) {
   return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
 }
 
@@ -117,14 +115,14 @@ TEST(SweepCli, JobsOneAndTwoWriteTheSameBytesAndEveryRunIsFormsimRun) {
   const std::string a = TempDir("sweep_j1"), b = TempDir("sweep_j2");
   ASSERT_EQ(Formsim(kSweep + " --jobs 1 -q --out " + a, a + ".log"), 0) << ReadText(a + ".log");
   ASSERT_EQ(Formsim(kSweep + " --jobs 2 -q --out " + b, b + ".log"), 0) << ReadText(b + ".log");
-  ExpectSameTables(a, b);
+  ExpectSameStudyTables(a, b);
   // -q prints nothing of its own (a sanitizer build may add its leak-suppression statistics).
   EXPECT_EQ(ReadText(a + ".log").find("sweep of"), std::string::npos);
   EXPECT_EQ(ReadText(a + ".log").find("wrote"), std::string::npos);
   EXPECT_GT(fs::file_size(a + "/" + kPlot), 10000u);
   const std::string runs = ReadText(a + "/runs.csv");
-  EXPECT_EQ(Lines(runs), 13u);
-  EXPECT_EQ(Lines(ReadText(a + "/aggregate.csv")), 7u);
+  EXPECT_EQ(CountLines(runs), 13u);
+  EXPECT_EQ(CountLines(ReadText(a + "/aggregate.csv")), 7u);
 
   // Run 7 (k_phi 0.1, ukf, seed 2) is exactly `formsim run` with those values.
   const std::string r = TempDir("sweep_run7");
@@ -178,7 +176,7 @@ TEST(SweepCli, ShardsCollectToTheSameBytesAndMissingRunsAreNamed) {
                     merged + ".log"),
             0)
       << ReadText(merged + ".log");
-  ExpectSameTables(whole, merged);
+  ExpectSameStudyTables(whole, merged);
   // Shards of another sweep are refused.
   const std::string other = TempDir("sweep_other");
   ASSERT_EQ(Formsim("sweep formation_traj2_ukf --set duration=1 -q --out " + other, other + ".log"),
@@ -214,13 +212,13 @@ TEST(SweepCli, ResumeRunsOnlyWhatIsMissingAndJobLinesRecordOnce) {
   EXPECT_NE(ReadText(d + ".log").find("000011.run was cut short (a power cut?); it runs again"),
             std::string::npos);
   EXPECT_NE(ReadText(d + ".log").find("\n3 runs in "), std::string::npos) << ReadText(d + ".log");
-  ExpectSameTables(whole, d);
+  ExpectSameStudyTables(whole, d);
 
   // Job lines: one per run not yet recorded; each records its run once.
   const std::string j = TempDir("sweep_jobs");
   ASSERT_EQ(Formsim(kSweep + " --print-jobs --out " + j, j + ".txt"), 0);
   const std::string jobs = ReadText(j + ".txt");
-  ASSERT_EQ(Lines(jobs), 12u);
+  ASSERT_EQ(CountLines(jobs), 12u);
   EXPECT_EQ(jobs.find(Binary() + " sweep " +
                       fs::canonical(testing::Scenario("formation_traj2_ukf")).string()),
             0u)
@@ -231,7 +229,7 @@ TEST(SweepCli, ResumeRunsOnlyWhatIsMissingAndJobLinesRecordOnce) {
   EXPECT_NE(ReadText(j + ".log").find("run 0 is recorded already"), std::string::npos)
       << ReadText(j + ".log");
   ASSERT_EQ(Formsim(kSweep + " --print-jobs --out " + j, j + ".txt"), 0);
-  EXPECT_EQ(Lines(ReadText(j + ".txt")), 11u);
+  EXPECT_EQ(CountLines(ReadText(j + ".txt")), 11u);
 }
 
 TEST(SweepCli, InterruptedSweepsKeepEveryFinishedRunAndResume) {
@@ -348,7 +346,7 @@ TEST(TuneCli, DeterministicAndBestYamlReproducesTheBestObjective) {
     EXPECT_EQ(ReadText(a + "/" + f), ReadText(b + "/" + f)) << f;
   EXPECT_GT(fs::file_size(a + "/convergence.png"), 5000u);
   const std::string history = ReadText(a + "/history.csv");
-  EXPECT_EQ(Lines(history), 9u);
+  EXPECT_EQ(CountLines(history), 9u);
   EXPECT_EQ(history.substr(0, history.find('\n')),
             "eval,stage,robots.R2.follow.k_l,robots.R2.follow.k_phi,objective,mean.links.R1-R2."
             "max_abs_error_after_settle.phi,"
@@ -469,7 +467,7 @@ TEST(TuneCli, ConstraintsHoldoutAndNoFeasiblePoint) {
                              0),
             0u)
       << validation;
-  EXPECT_EQ(Lines(validation), 7u) << "header, three seeds, mean and the interval";
+  EXPECT_EQ(CountLines(validation), 7u) << "header, three seeds, mean and the interval";
   EXPECT_GT(fs::file_size(a + "/validation.png"), 5000u);
   EXPECT_FALSE(fs::exists(a + "/landscape.png")) << "one tuned key: no landscape";
   // A bound no point meets: no best.yaml, exit status 3, the closest point named.
@@ -497,7 +495,7 @@ TEST(TuneCli, KilledMidwayResumesToTheSameHistoryAndBestPoint) {
                " ] && [ $(wc -l < " + h + ") -ge 11 ] && break; sleep 0.05; done; kill -KILL $pid; "
                "wait $pid)",
            b + ".log");
-  const std::size_t kept = Lines(ReadText(h));
+  const std::size_t kept = CountLines(ReadText(h));
   ASSERT_GE(kept, 11u) << ReadText(b + ".log");
   ASSERT_LT(kept, 41u) << "killed midway";
   EXPECT_FALSE(fs::exists(b + "/best.yaml"));

@@ -22,9 +22,7 @@ using testing::ReadText;
 using testing::RunShell;
 using testing::TempDir;
 
-int Formsim(const std::string& args, const std::string& log) {
-  return RunShell(Binary() + " " + args, log);
-}
+using testing::Formsim;
 
 // A list of one more scenario, with a comment and a blank line.
 std::string List() {
@@ -43,7 +41,7 @@ std::string Sweep() {
 const char* kTables[] = {"runs.csv", "aggregate.csv", "aggregate_over_scenarios.csv",
                          "ranking_links.R1-R2.rmse_after_settle.l.txt"};
 
-void ExpectSameTables(const std::string& a, const std::string& b) {
+void ExpectSameScenarioTables(const std::string& a, const std::string& b) {
   for (const char* f : kTables) {
     const std::string ta = ReadText(a + "/" + f);
     EXPECT_FALSE(ta.empty()) << a << "/" << f;
@@ -66,7 +64,7 @@ TEST(SweepScenariosCli, ScenarioColumnSameBytesForAnyJobsShardsAndJobLines) {
             std::string::npos)
       << ReadText(a + ".log");
   ASSERT_EQ(Formsim(Sweep() + " --jobs 2 -q --out " + b, b + ".log"), 0) << ReadText(b + ".log");
-  ExpectSameTables(a, b);
+  ExpectSameScenarioTables(a, b);
   // The scenario (its file's stem) right after the run and the point; scenario by scenario.
   const std::string runs = ReadText(a + "/runs.csv"), agg = ReadText(a + "/aggregate.csv");
   EXPECT_EQ(LineOf(runs, 0).rfind("run,scenario,robots.R2.follow.k_l,seed,", 0), 0u) << runs;
@@ -107,7 +105,7 @@ TEST(SweepScenariosCli, ScenarioColumnSameBytesForAnyJobsShardsAndJobLines) {
                     merged + ".log"),
             0)
       << ReadText(merged + ".log");
-  ExpectSameTables(a, merged);
+  ExpectSameScenarioTables(a, merged);
 
   // Job lines name every scenario by its path; each records its run.
   const std::string j = TempDir("sweep_scen_jobs");

@@ -140,4 +140,16 @@ inline double Distance(Rgb a, sim::Color c) {
   return std::sqrt(dr * dr + dg * dg + db * db);
 }
 
+/// Runs the built formsim with `args` (a shell command line), output to `log`; its exit code.
+inline int Formsim(const std::string& args, const std::string& log) {
+  return RunShell(Binary() + " " + args, log);
+}
+
+/// Whether any file under `dir` ends in .tmp (a write that was not finished or cleaned up).
+inline bool AnyTmp(const std::string& dir) {
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir))
+    if (e.path().extension() == ".tmp") return true;
+  return false;
+}
+
 }  // namespace formsim::app::testing

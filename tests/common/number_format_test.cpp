@@ -7,11 +7,12 @@
 #include <cmath>
 #include <limits>
 
+#include "control/common/float_limits.hpp"
+
 namespace formsim::control {
 namespace {
 
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 TEST(NumberFormat, ShortestTextReadsBackToTheSameBits) {
   EXPECT_EQ(FormatDouble(0.03), "0.03");

@@ -1,11 +1,6 @@
 // The formation experiment end to end: scenarios, closed-loop convergence, estimation, events,
 // determinism and the rejection of invalid scenario files.
-#include "sim/scenario/scenario.hpp"
-#include "sim/session/session.hpp"
-
 #include <gtest/gtest.h>
-
-#include "tests/support/invalid_fixtures.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -13,13 +8,15 @@
 #include <sstream>
 
 #include "sim/formation/formation_experiment.hpp"
+#include "sim/scenario/scenario.hpp"
+#include "sim/session/session.hpp"
+#include "tests/support/invalid_fixtures.hpp"
+#include "tests/support/test_files.hpp"
 
 namespace formsim::sim::formation {
 namespace {
 
-std::string Scenario(const std::string& name) {
-  return std::string(FORMSIM_SOURCE_DIR) + "/assets/scenarios/" + name + ".yaml";
-}
+using testing::ShippedScenario;
 
 std::unique_ptr<Experiment> RunScenario(const std::string& file,
                                         const std::vector<std::string>& sets = {}) {
@@ -36,7 +33,7 @@ const FormationExperiment& Formation(const std::unique_ptr<Experiment>& e) {
 // initial transient (1 s) on the paper's trajectories 1 and 2.
 TEST(FormationExperiment, ConvergesOnPaperTrajectoriesWithPerSampleGains) {
   for (const char* name : {"formation_traj1_per_sample", "formation_traj2_per_sample"}) {
-    auto exp = RunScenario(Scenario(name));
+    auto exp = RunScenario(ShippedScenario(name));
     const auto links = Formation(exp).Links();
     ASSERT_EQ(links.size(), 3u);
     for (const auto& l : links) {
@@ -54,7 +51,7 @@ TEST(FormationExperiment, ConvergesOnPaperTrajectoriesWithPerSampleGains) {
 
 TEST(FormationExperiment, PrintedGainsAreTooSlowForThePapersErrors) {
   // k as printed gives time constants of 7-12 s: after 1 s the errors are still centimetres.
-  auto exp = RunScenario(Scenario("formation_traj2"));
+  auto exp = RunScenario(ShippedScenario("formation_traj2"));
   for (const auto& l : Formation(exp).Links()) {
     EXPECT_GT(l.e_l.max_abs_settled(), 0.05) << l.name;
     EXPECT_LT(l.e_l.max_abs_settled(), 0.2) << l.name;  // but it does converge slowly, not diverge
@@ -64,14 +61,15 @@ TEST(FormationExperiment, PrintedGainsAreTooSlowForThePapersErrors) {
 TEST(FormationExperiment, PrintedBearingConventionDestabilisesTheFormation) {
   // The paper's printed eq. 4 fed to the controller: its derivative has the wrong sign, the
   // linearisation is wrong and the formation falls apart (distance errors of metres).
-  auto exp = RunScenario(Scenario("formation_traj2_per_sample"), {"formation.bearing=printed"});
+  auto exp =
+      RunScenario(ShippedScenario("formation_traj2_per_sample"), {"formation.bearing=printed"});
   double worst = 0.0;
   for (const auto& l : Formation(exp).Links()) worst = std::max(worst, l.e_l.max_abs_settled());
   EXPECT_GT(worst, 1.0);
 }
 
 TEST(FormationExperiment, SevenRobotCascadeConverges) {
-  auto exp = RunScenario(Scenario("formation_cascade7"));
+  auto exp = RunScenario(ShippedScenario("formation_cascade7"));
   const auto links = Formation(exp).Links();
   ASSERT_EQ(links.size(), 9u);  // 3 l-φ followers + 3 l-l followers × 2
   for (const auto& l : links) {
@@ -84,8 +82,8 @@ TEST(FormationExperiment, SevenRobotCascadeConverges) {
 }
 
 TEST(FormationExperiment, UkfFiltersThePapersAngleNoise) {
-  auto ukf = RunScenario(Scenario("formation_traj2_ukf"));
-  auto raw = RunScenario(Scenario("formation_traj2_noisy_raw"));
+  auto ukf = RunScenario(ShippedScenario("formation_traj2_ukf"));
+  auto raw = RunScenario(ShippedScenario("formation_traj2_noisy_raw"));
   const double sigma = std::sqrt(0.9186e-4);
   const auto lu = Formation(ukf).Links(), lr = Formation(raw).Links();
   for (std::size_t k = 0; k < lu.size(); ++k) {
@@ -104,7 +102,7 @@ TEST(FormationExperiment, UkfFiltersThePapersAngleNoise) {
 TEST(FormationExperiment, UkfEstimateStaysInsideItsCovarianceMostOfTheTime) {
   // Consistency in the closed loop: the recorded φ and α errors lie within ±2σ of the filter's
   // own standard deviation most of the time after the transient.
-  auto exp = RunScenario(Scenario("formation_traj2_ukf"));
+  auto exp = RunScenario(ShippedScenario("formation_traj2_ukf"));
   const Recorder& rec = exp->recorder();
   for (const std::string link : {"R1-R2", "R1-R3", "R2-R3"}) {
     for (const std::string q : {"phi", "alpha"}) {
@@ -127,7 +125,7 @@ TEST(FormationExperiment, FilterFaultsAreReportedNotPropagated) {
   // A negative centre weight (κ = −2.5: W0 = −5) with a wide initial spread of the angles makes
   // the predicted covariance indefinite: every fault must become a counted step and an event
   // (on entry), never a NaN in the outputs.
-  auto exp = RunScenario(Scenario("formation_traj2_ukf"),
+  auto exp = RunScenario(ShippedScenario("formation_traj2_ukf"),
                          {"ukf.kappa=-2.5", "ukf.p0_phi=3", "ukf.p0_alpha=3", "duration=1"});
   int events = 0;
   for (const auto& e : exp->events().list())
@@ -188,7 +186,8 @@ robots:
 }
 
 TEST(FormationExperiment, SaturationIsReportedOnEntry) {
-  auto exp = RunScenario(Scenario("formation_traj2_per_sample"), {"robots.R2.drive.omega_max=2"});
+  auto exp =
+      RunScenario(ShippedScenario("formation_traj2_per_sample"), {"robots.R2.drive.omega_max=2"});
   int sat = 0;
   for (const auto& e : exp->events().list()) sat += e.kind == "saturation" && e.robots == "R2";
   EXPECT_GE(sat, 1);
@@ -199,7 +198,7 @@ TEST(FormationExperiment, SaturationIsReportedOnEntry) {
 
 TEST(FormationExperiment, SameSeedSameCsv) {
   auto csv = [](const std::string& dir) {
-    auto exp = RunScenario(Scenario("formation_traj2_ukf"), {"duration=3"});
+    auto exp = RunScenario(ShippedScenario("formation_traj2_ukf"), {"duration=3"});
     std::filesystem::create_directories(dir);
     exp->recorder().WriteCsv(dir + "/t.csv");
     std::ifstream f(dir + "/t.csv");
@@ -212,7 +211,7 @@ TEST(FormationExperiment, SameSeedSameCsv) {
   EXPECT_GT(a.size(), 1000u);
   EXPECT_EQ(a, b);
   // A different seed changes the noise.
-  auto c = LoadExperiment(Scenario("formation_traj2_ukf"), {"duration=3"}, 12345);
+  auto c = LoadExperiment(ShippedScenario("formation_traj2_ukf"), {"duration=3"}, 12345);
   while (!c->finished()) c->Step();
   std::filesystem::create_directories(tmp + "_c");
   c->recorder().WriteCsv(tmp + "_c/t.csv");
@@ -227,7 +226,7 @@ TEST(FormationExperiment, EveryShippedScenarioLoadsAndHasADescription) {
        {"formation_traj1", "formation_traj2", "formation_traj3", "formation_traj1_per_sample",
         "formation_traj2_per_sample", "formation_traj3_per_sample", "formation_traj2_noisy_raw",
         "formation_traj2_ukf", "formation_cascade7"}) {
-    auto exp = LoadExperiment(Scenario(name));
+    auto exp = LoadExperiment(ShippedScenario(name));
     EXPECT_FALSE(exp->setup().description.empty()) << name;
     EXPECT_EQ(exp->setup().type, "formation");
     EXPECT_FALSE(exp->Figures().empty());
@@ -235,7 +234,7 @@ TEST(FormationExperiment, EveryShippedScenarioLoadsAndHasADescription) {
 }
 
 TEST(FormationExperiment, ParamsAreYamlPathsThatSetAccepts) {
-  Session s(Scenario("formation_traj2_ukf"), {}, -1);
+  Session s(ShippedScenario("formation_traj2_ukf"), {}, -1);
   for (const char* key :
        {"robots.R2.follow.k_l", "robots.R2.follow.phi_des", "robots.R3.follow.l2_des",
         "noise.phi_variance", "ukf.q_phi", "robots.R1.schedule.omega", "robots.R2.follow.estimator",
@@ -243,7 +242,7 @@ TEST(FormationExperiment, ParamsAreYamlPathsThatSetAccepts) {
     ASSERT_NE(s.params().Find(key), nullptr) << key;
   }
   // Each key also works through --set (same YAML path).
-  Session edited(Scenario("formation_traj2_ukf"), {"robots.R2.follow.k_l=0.2"}, -1);
+  Session edited(ShippedScenario("formation_traj2_ukf"), {"robots.R2.follow.k_l=0.2"}, -1);
   EXPECT_EQ(edited.params().Find("robots.R2.follow.k_l")->value, 0.2);
   // A live edit takes effect between two steps.
   EXPECT_EQ(s.Edit("robots.R2.follow.estimator", "truth"), "");
@@ -269,7 +268,7 @@ namespace {
 // history, Monte Carlo) equals summary.json's event count, though the contact involves robots of
 // several links (formation_traj2_ukf: one contact, and each of its three links saw it).
 TEST(FormationExperiment, ACollisionIsCountedOncePerContact) {
-  auto exp = RunScenario(Scenario("formation_traj2_ukf"));
+  auto exp = RunScenario(ShippedScenario("formation_traj2_ukf"));
   const long contacts = exp->events().Count(event::kCollision);
   ASSERT_GT(contacts, 0) << "the scenario has a contact";
   double per_link = 0;

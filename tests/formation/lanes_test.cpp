@@ -16,6 +16,7 @@
 #include "sim/core/run_output.hpp"
 #include "sim/formation/formation_experiment.hpp"
 #include "sim/scenario/scenario.hpp"
+#include "tests/support/test_files.hpp"
 
 namespace formsim::sim::formation {
 namespace {
@@ -152,12 +153,7 @@ TEST(PredictLanes, PathsResolveOnThisCpu) {
   EXPECT_EQ(cf::ResolveLanePath(cf::LanePath::kAvx2), best);
 }
 
-std::string ReadText(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using testing::ReadText;
 
 // CSV + summary of a shipped scenario run on `path` with `threads` threads.
 std::string RunBytes(const std::string& name, const std::vector<std::string>& sets,

@@ -7,20 +7,19 @@
 #include <cmath>
 #include <filesystem>
 
-#include "sim/scenario/scenario.hpp"
-#include "sim/session/session.hpp"
-#include "sim/session/session_record.hpp"
 #include "sim/formation/formation_edit.hpp"
 #include "sim/formation/formation_editing.hpp"
 #include "sim/formation/formation_experiment.hpp"
 #include "sim/formation/formation_follow.hpp"
+#include "sim/scenario/scenario.hpp"
+#include "sim/session/session.hpp"
+#include "sim/session/session_record.hpp"
+#include "tests/support/test_files.hpp"
 
 namespace formsim::sim::formation {
 namespace {
 
-std::string Scenario(const std::string& name) {
-  return std::string(FORMSIM_SOURCE_DIR) + "/assets/scenarios/" + name + ".yaml";
-}
+using testing::ShippedScenario;
 
 std::string TempPath(const std::string& name) {
   const auto dir = std::filesystem::temp_directory_path() / "formsim_restructure_test";
@@ -60,7 +59,7 @@ void ExpectSamePoses(const Experiment& a, const Experiment& b) {
 }
 
 TEST(Restructure, AddAFollowerWhileRunningKeepsTheRobotsWhereTheyAre) {
-  Session s(Scenario("formation_traj2_per_sample"), {}, -1);
+  Session s(ShippedScenario("formation_traj2_per_sample"), {}, -1);
   StepTo(s, 150);
   const Pose2 r2 = s.exp().world().robots()[1]->pose();
   // A follower of R2, placed 0.4 m behind-right of it.
@@ -80,7 +79,7 @@ TEST(Restructure, AddAFollowerWhileRunningKeepsTheRobotsWhereTheyAre) {
 }
 
 TEST(Restructure, RefusedChangesNameTheirReasonAndLeaveTheRun) {
-  Session s(Scenario("formation_traj2_per_sample"), {}, -1);
+  Session s(ShippedScenario("formation_traj2_per_sample"), {}, -1);
   StepTo(s, 40);
   const Experiment* before = &s.exp();
   // A cycle: the root made a follower of its own follower.
@@ -111,7 +110,7 @@ TEST(Restructure, RefusedChangesNameTheirReasonAndLeaveTheRun) {
 }
 
 TEST(Restructure, UndoAndRedoTakeStructuralChangesBack) {
-  Session s(Scenario("formation_cascade7"), {}, -1);
+  Session s(ShippedScenario("formation_cascade7"), {}, -1);
   StepTo(s, 20);
   ASSERT_EQ(s.Edit("robots.R2.follow.k_l", "0.2"), "");
   StepTo(s, 30);
@@ -140,7 +139,7 @@ TEST(Restructure, UndoAndRedoTakeStructuralChangesBack) {
 TEST(Restructure, EveryShapeHoldsTogetherWithoutCollisions) {
   for (const char* shape : {"column", "line_abreast", "wedge", "diamond", "v", "grid"}) {
     SCOPED_TRACE(shape);
-    Session s(Scenario("formation_cascade7"), {}, -1);
+    Session s(ShippedScenario("formation_cascade7"), {}, -1);
     StepTo(s, 50);
     ASSERT_EQ(Restructure(s, std::string("shape ") + shape + " 0.6"), "");
     StepTo(s, 400);  // 4 s
@@ -151,7 +150,7 @@ TEST(Restructure, EveryShapeHoldsTogetherWithoutCollisions) {
 }
 
 TEST(Restructure, SaveWritesAScenarioThatReproducesTheRun) {
-  Session s(Scenario("formation_traj2_per_sample"), {}, -1);
+  Session s(ShippedScenario("formation_traj2_per_sample"), {}, -1);
   StepTo(s, 100);
   ASSERT_EQ(Restructure(s, "shape diamond 0.5"), "");
   ASSERT_EQ(s.Edit("robots.R3.follow.k_l", "0.1"), "");
@@ -172,7 +171,7 @@ TEST(Restructure, SaveWritesAScenarioThatReproducesTheRun) {
 
 TEST(Restructure, ASessionRecordReplaysStructuralChanges) {
   SessionRecord record;
-  Session s(Scenario("formation_cascade7"), {}, -1);
+  Session s(ShippedScenario("formation_cascade7"), {}, -1);
   SessionEvent load;
   load.kind = SessionEvent::Kind::kLoad;
   load.source = std::make_shared<ScenarioSource>(s.source());
@@ -195,7 +194,7 @@ TEST(Restructure, ASessionRecordReplaysStructuralChanges) {
 }
 
 TEST(Restructure, DraggingASlotMovesTheFollowerThere) {
-  Session s(Scenario("formation_traj1_per_sample"), {}, -1);
+  Session s(ShippedScenario("formation_traj1_per_sample"), {}, -1);
   StepTo(s, 100);
   const Pose2 r1 = s.exp().world().robots()[0]->pose();
   // R2's slot moved from 0.3 m to 0.4 m behind-right of R1 (R3's l-l triangle with R1 and R2
@@ -225,7 +224,7 @@ TEST(Restructure, DraggingASlotMovesTheFollowerThere) {
 }
 
 TEST(Restructure, TheTextKeepsItsHeaderAndLoadsAlone) {
-  Session s(Scenario("formation_cascade7"), {}, -1);
+  Session s(ShippedScenario("formation_cascade7"), {}, -1);
   FormationState st;
   for (const auto& r : s.exp().world().robots()) st.poses[r->name()] = r->pose();
   const std::string text = RestructureFormationText(s.source().text(), {RemoveRobot{"R7"}}, st);
@@ -248,7 +247,8 @@ TEST(Restructure, TypedChangesAndTheirTextFormAgree) {
   EXPECT_THROW(ParseStructureChange("shape hexagon"), std::runtime_error);
   EXPECT_THROW(ParseStructureChange("attach R4"), std::runtime_error);
   // A typed change and its text give the same scenario.
-  Session a(Scenario("formation_cascade7"), {}, -1), b(Scenario("formation_cascade7"), {}, -1);
+  Session a(ShippedScenario("formation_cascade7"), {}, -1),
+      b(ShippedScenario("formation_cascade7"), {}, -1);
   StepTo(a, 20);
   StepTo(b, 20);
   ASSERT_EQ(Restructure(a, StructureChange{AttachFollower{"R4", cf::FormationLaw::kLPhi, {"R2"}}}),
@@ -260,7 +260,7 @@ TEST(Restructure, TypedChangesAndTheirTextFormAgree) {
 
 TEST(Restructure, AFormationOffersItsCapability) {
   // (A kind without it: tests/sim/test_experiment.cpp.)
-  Session s(Scenario("formation_cascade7"), {}, -1);
+  Session s(ShippedScenario("formation_cascade7"), {}, -1);
   ASSERT_NE(EditingOf(s.exp()), nullptr);
   EXPECT_EQ(s.exp().As<StructureEditing>(), EditingOf(s.exp()));
   EXPECT_EQ(EditingOf(s.exp())->LeadersOf("R4"), Formation(s).LeadersOf("R4"));

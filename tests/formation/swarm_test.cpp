@@ -10,19 +10,15 @@
 #include <sstream>
 
 #include "sim/core/run_output.hpp"
-#include "sim/scenario/scenario.hpp"
 #include "sim/formation/cascade_generator.hpp"
 #include "sim/formation/formation_experiment.hpp"
+#include "sim/scenario/scenario.hpp"
+#include "tests/support/test_files.hpp"
 
 namespace formsim::sim::formation {
 namespace {
 
-std::string ReadText(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using testing::ReadText;
 
 // The shipped swarms: robots, duration and one line of description.
 struct Swarm {

@@ -9,10 +9,11 @@
 
 #include "control/formation/formation_switch.hpp"
 #include "control/formation/obstacle_avoidance.hpp"
-#include "sim/scenario/scenario_files.hpp"
-#include "sim/scenario/scenario.hpp"
 #include "sim/formation/formation_experiment.hpp"
 #include "sim/formation/obstacle_distance.hpp"
+#include "sim/scenario/scenario.hpp"
+#include "sim/scenario/scenario_files.hpp"
+#include "tests/support/test_files.hpp"
 
 namespace formsim::sim::formation {
 namespace {
@@ -20,9 +21,7 @@ namespace {
 namespace cf = control::formation;
 constexpr double kPi = control::kPi;
 
-std::string Scenario(const std::string& name) {
-  return std::string(FORMSIM_SOURCE_DIR) + "/assets/scenarios/" + name + ".yaml";
-}
+using testing::ShippedScenario;
 
 std::unique_ptr<Experiment> RunToEnd(const std::string& file, const std::vector<std::string>& sets = {}) {
   auto exp = LoadExperiment(file, sets);
@@ -30,7 +29,7 @@ std::unique_ptr<Experiment> RunToEnd(const std::string& file, const std::vector<
   return exp;
 }
 
-const FormationExperiment& Formation(const std::unique_ptr<Experiment>& e) {
+const FormationExperiment& SwitchingFormation(const std::unique_ptr<Experiment>& e) {
   return dynamic_cast<const FormationExperiment&>(*e);
 }
 
@@ -179,8 +178,8 @@ TEST(ObstacleAvoidance, Box2DDistancesToTheRealShapes) {
 }
 
 TEST(ObstacleAvoidance, SwitchEventsNameRobotTimeAndObstacle) {
-  auto exp = RunToEnd(Scenario("formation_obstacle_field"));
-  const auto& f = Formation(exp);
+  auto exp = RunToEnd(ShippedScenario("formation_obstacle_field"));
+  const auto& f = SwitchingFormation(exp);
   int enter = 0, leave = 0;
   std::map<std::string, int> open;  // robot -> entries not yet left
   for (const Event& e : exp->events().list()) {
@@ -199,8 +198,8 @@ TEST(ObstacleAvoidance, SwitchEventsNameRobotTimeAndObstacle) {
   EXPECT_EQ(enter, leave);
   for (int j = 0; j < 5; ++j) EXPECT_FALSE(f.avoiding(j));
   // Without avoidance the same run collides.
-  auto off = RunToEnd(Scenario("formation_obstacle_field"), {"avoidance.enabled=false"});
-  EXPECT_GT(Formation(off).collisions_after_transient(), 0);
+  auto off = RunToEnd(ShippedScenario("formation_obstacle_field"), {"avoidance.enabled=false"});
+  EXPECT_GT(SwitchingFormation(off).collisions_after_transient(), 0);
   EXPECT_EQ(off->events().Count("avoidance"), 0);
 }
 
@@ -211,28 +210,29 @@ TEST(ObstacleAvoidance, SwitchEventsNameRobotTimeAndObstacle) {
 TEST(FormationSwitch, ShippedScenariosMeetTheirCriteriaOverSeeds) {
   for (const char* name : {"formation_switching", "formation_obstacle_field"}) {
     for (int seed = 1; seed <= 4; ++seed) {
-      auto exp = RunToEnd(Scenario(name), {"seed=" + std::to_string(seed)});
+      auto exp = RunToEnd(ShippedScenario(name), {"seed=" + std::to_string(seed)});
       const Metrics m = exp->Results();
       const std::string at = std::string(name) + " seed " + std::to_string(seed);
       EXPECT_EQ(Metric(m, "switches.collisions_after_transient"), 0) << at;
       EXPECT_EQ(Metric(m, "switches.not_recovered"), 0) << at;
       EXPECT_LT(Metric(m, "switches.max_recover_s"), 2.0) << at;
       EXPECT_GE(Metric(m, "switches.count"), 2) << at;
-      for (const auto& r : Formation(exp).switch_records()) EXPECT_LT(r.Recover(exp->dt()), 2.0) << at;
+      for (const auto& r : SwitchingFormation(exp).switch_records())
+        EXPECT_LT(r.Recover(exp->dt()), 2.0) << at;
     }
   }
   // The switching run really switches: two formation switches, the column through the gap.
-  auto exp = RunToEnd(Scenario("formation_switching"));
-  const auto& recs = Formation(exp).switch_records();
+  auto exp = RunToEnd(ShippedScenario("formation_switching"));
+  const auto& recs = SwitchingFormation(exp).switch_records();
   ASSERT_EQ(recs.size(), 2u);
   EXPECT_EQ(recs[0].what, "column");
   EXPECT_DOUBLE_EQ(recs[0].time, 3.0);
   EXPECT_EQ(recs[1].what, "initial");
-  EXPECT_EQ(Formation(exp).shape(), -1);
+  EXPECT_EQ(SwitchingFormation(exp).shape(), -1);
 }
 
 TEST(FormationSwitch, ActionsSwitchAndRefuseWithAReason) {
-  auto exp = LoadExperiment(Scenario("formation_switching"), {"switching.schedule=[]"});
+  auto exp = LoadExperiment(ShippedScenario("formation_switching"), {"switching.schedule=[]"});
   auto& f = dynamic_cast<FormationExperiment&>(*exp);
   EXPECT_EQ(exp->RunAction("switch-formation:nosuch"), "no shape 'nosuch' in this scenario");
   EXPECT_EQ(exp->RunAction("switch-formation:initial"), "the formation is already 'initial'");
@@ -249,7 +249,7 @@ TEST(FormationSwitch, ActionsSwitchAndRefuseWithAReason) {
 // Without switching: or avoidance: nothing new is recorded or computed (the CSV of the
 // existing scenarios is unchanged; their summaries gain no switch metrics).
 TEST(FormationSwitch, ScenariosWithoutTheFeaturesAreUntouched) {
-  auto exp = RunToEnd(Scenario("formation_traj2_ukf"));
+  auto exp = RunToEnd(ShippedScenario("formation_traj2_ukf"));
   EXPECT_LT(exp->recorder().Column("formation.error"), 0);
   EXPECT_EQ(exp->Results().Find("switches.count"), nullptr);
   EXPECT_TRUE(exp->Actions().empty());

@@ -17,11 +17,12 @@
 #include <string>
 
 #include "sim/core/bounded_file.hpp"
+#include "sim/core/yaml_limits.hpp"
 #include "sim/scenario/scenario.hpp"
 #include "sim/session/session_record.hpp"
 #include "sim/study/sweep_spec.hpp"
 #include "sim/study/sweep_store.hpp"
-#include "sim/core/yaml_limits.hpp"
+#include "sweep_test_util.hpp"
 #include "test_kind.hpp"
 #include "tests/support/invalid_fixtures.hpp"
 
@@ -30,7 +31,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string Dir(const std::string& name) {
+std::string BoundedDir(const std::string& name) {
   const fs::path p = fs::path(FORMSIM_BINARY_DIR) / "test_out" / "bounded" / name;
   fs::remove_all(p);
   fs::create_directories(p);
@@ -42,7 +43,7 @@ std::string Write(const std::string& path, const std::string& text) {
   return path;
 }
 
-std::string ErrorOf(const std::function<void()>& f) {
+std::string RefusalOf(const std::function<void()>& f) {
   try {
     f();
   } catch (const std::exception& e) {
@@ -69,49 +70,49 @@ std::string ReadAll(const std::string& path) {
 // ---- the one reader ----
 
 TEST(BoundedFile, ReadsARegularFileWhole) {
-  const std::string path = Write(Dir("plain") + "/a.txt", std::string("abc\0def", 7));
+  const std::string path = Write(BoundedDir("plain") + "/a.txt", std::string("abc\0def", 7));
   EXPECT_EQ(ReadBoundedFile(path), std::string("abc\0def", 7));
   EXPECT_EQ(ReadBoundedFile(path, 7).size(), 7u);
-  EXPECT_EQ(ReadBoundedFile(Write(Dir("empty") + "/e.txt", "")), "");
+  EXPECT_EQ(ReadBoundedFile(Write(BoundedDir("empty") + "/e.txt", "")), "");
 }
 
 TEST(BoundedFile, RefusesDevicesFifosFoldersMissingAndLargeFiles) {
-  const std::string dir = Dir("refuse");
-  EXPECT_EQ(ErrorOf([] { ReadBoundedFile("/dev/zero"); }),
+  const std::string dir = BoundedDir("refuse");
+  EXPECT_EQ(RefusalOf([] { ReadBoundedFile("/dev/zero"); }),
             "/dev/zero: is not a regular file (a device)");
-  EXPECT_EQ(ErrorOf([&] { ReadBoundedFile(dir); }), dir + ": is not a regular file (a folder)");
+  EXPECT_EQ(RefusalOf([&] { ReadBoundedFile(dir); }), dir + ": is not a regular file (a folder)");
   // A FIFO with no writer: refused at once, never waited on.
   const std::string fifo = dir + "/fifo";
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-  EXPECT_EQ(ErrorOf([&] { ReadBoundedFile(fifo); }), fifo + ": is not a regular file (a FIFO)");
-  EXPECT_TRUE(Has(ErrorOf([&] { ReadBoundedFile(dir + "/missing.yaml"); }),
+  EXPECT_EQ(RefusalOf([&] { ReadBoundedFile(fifo); }), fifo + ": is not a regular file (a FIFO)");
+  EXPECT_TRUE(Has(RefusalOf([&] { ReadBoundedFile(dir + "/missing.yaml"); }),
                   dir + "/missing.yaml: cannot open the file: No such file or directory"));
   const std::string big = Write(dir + "/big.txt", std::string(101, 'x'));
-  EXPECT_EQ(ErrorOf([&] { ReadBoundedFile(big, 100); }),
+  EXPECT_EQ(RefusalOf([&] { ReadBoundedFile(big, 100); }),
             big + ": is larger than 100 bytes (101 bytes), the most formsim reads from one file");
   EXPECT_EQ(ReadBoundedFile(big, 101).size(), 101u);
   EXPECT_EQ(ByteSizeText(kMaxTextFileBytes), "4 MiB");
 }
 
 TEST(BoundedFile, ScenarioLessonSessionAndYamlReadersUseIt) {
-  const std::string dir = Dir("readers");
+  const std::string dir = BoundedDir("readers");
   // The scenario (and lesson) loader.
-  EXPECT_EQ(ErrorOf([] { ScenarioSource::FromFile("/dev/zero"); }),
+  EXPECT_EQ(RefusalOf([] { ScenarioSource::FromFile("/dev/zero"); }),
             "/dev/zero: is not a regular file (a device)");
-  EXPECT_EQ(ErrorOf([&] { ScenarioSource::FromFile(dir); }),
+  EXPECT_EQ(RefusalOf([&] { ScenarioSource::FromFile(dir); }),
             dir + ": is not a regular file (a folder)");
   // A scenario one byte over the limit: refused with the limit, never parsed.
   const std::string huge =
       Write(dir + "/huge.yaml", "type: x\n# " + std::string(kMaxTextFileBytes, 'x') + "\n");
-  const std::string e = ErrorOf([&] { LoadExperiment(huge); });
+  const std::string e = RefusalOf([&] { LoadExperiment(huge); });
   EXPECT_EQ(e.rfind(huge + ": is larger than 4 MiB (", 0), 0u) << e;
-  EXPECT_EQ(ErrorOf([&] { LoadYamlFile(huge); }), e);
+  EXPECT_EQ(RefusalOf([&] { LoadYamlFile(huge); }), e);
   // Session records (formsim replay) and run histories.
-  EXPECT_EQ(ErrorOf([] { SessionRecord::Read("/dev/zero"); }),
+  EXPECT_EQ(RefusalOf([] { SessionRecord::Read("/dev/zero"); }),
             "/dev/zero: the session file is not a regular file (a device)");
   // A value of --set or of an edit is bounded too.
   const std::string long_value = "[" + std::string(70000, '1') + "]";
-  const std::string v = ErrorOf([&] {
+  const std::string v = RefusalOf([&] {
     ParseScenario(ScenarioSource::FromText(testkind::kScenario, "c.yaml", ""),
                   {{"v", long_value, "--set", -1}});
   });
@@ -128,7 +129,7 @@ TEST(YamlLimits, InvalidFixturesNameTheLineOfTheAlias) {
   // its "# expect:" text at file:line of the alias.
   EXPECT_GE(formsim::testing::CheckInvalidFixtures("input_"), 3);
   const std::string file = Fixture("input_billion_laughs.yaml");
-  const std::string e = ErrorOf([&] { LoadExperiment(file); });
+  const std::string e = RefusalOf([&] { LoadExperiment(file); });
   EXPECT_EQ(e.rfind(file + ":12:8: alias '*f' makes the document expand to more than 1000000 "
                            "nodes",
                     0),
@@ -162,7 +163,7 @@ TEST(YamlLimits, CountsAliasesAsCopiesWithoutExpandingThem) {
   EXPECT_EQ(ExpandedYamlNodes(just), 1 + 1 + 10000 + 1 + 1 + 98 * 10000u);
   EXPECT_NO_THROW(LoadYamlText(just, "just.yaml"));
   const std::string over = just.substr(0, just.size() - 2) + ",*l]\n";
-  EXPECT_TRUE(Has(ErrorOf([&] { LoadYamlText(over, "over.yaml"); }), "over.yaml:2:"));
+  EXPECT_TRUE(Has(RefusalOf([&] { LoadYamlText(over, "over.yaml"); }), "over.yaml:2:"));
 }
 
 TEST(YamlLimits, ABillionLaughsAppendedToASessionIsRefusedByReplay) {
@@ -177,8 +178,8 @@ TEST(YamlLimits, ABillionLaughsAppendedToASessionIsRefusedByReplay) {
   const int first = static_cast<int>(std::count(text.begin(), text.end(), '\n')) + 1;
   const std::string laughs = ReadAll(Fixture("input_billion_laughs.yaml"));
   text += laughs.substr(laughs.find("\na:") + 1);  // the anchors a ... i only
-  const std::string path = Write(Dir("session") + "/laughs.session.yaml", text);
-  const std::string e = ErrorOf([&] { SessionRecord::Read(path); });
+  const std::string path = Write(BoundedDir("session") + "/laughs.session.yaml", text);
+  const std::string e = RefusalOf([&] { SessionRecord::Read(path); });
   // Line of the '*f' alias: the 6th appended line.
   EXPECT_EQ(e.rfind(path + ":" + std::to_string(first + 6) +
                         ":8: alias '*f' makes the "
@@ -190,13 +191,11 @@ TEST(YamlLimits, ABillionLaughsAppendedToASessionIsRefusedByReplay) {
 
 // ---- sweeps ----
 
-ScenarioSource Circle() {
-  return ScenarioSource::FromText(testkind::kScenario, "circle.yaml", "");
-}
+using sweeptest::Circle;
 
 TEST(SweepLimits, TooManyRunsAreRefusedFromTheSpecsAlone) {
   // 10^18 runs: counted, not enumerated, and refused with the count.
-  const std::string e = ErrorOf([] {
+  const std::string e = RefusalOf([] {
     DefineSweep(Circle(), {}, {"v=0.1:1:1000000", "omega=0.1:0.3:1000000", "sigma=0.1:0.3:1000000"},
                 {});
   });
@@ -215,15 +214,15 @@ TEST(SweepLimits, TooManyRunsAreRefusedFromTheSpecsAlone) {
   // Saturates instead of overflowing.
   std::vector<std::string> many(4, "v=0.1:1:1000000");
   EXPECT_EQ(CountSweepRuns(base.params, many, 1000000), std::numeric_limits<std::size_t>::max());
-  EXPECT_TRUE(Has(ErrorOf([&] { DefineSweep(Circle(), {}, many, {}); }),
+  EXPECT_TRUE(Has(RefusalOf([&] { DefineSweep(Circle(), {}, many, {}); }),
                   "the sweep has more than 18446744073709551615 runs"));
   // 200,000 runs: refused by default, planned when allowed.
-  EXPECT_TRUE(Has(ErrorOf([] { DefineSweep(Circle(), {}, {"v=0.1:1:200000"}, {}); }),
+  EXPECT_TRUE(Has(RefusalOf([] { DefineSweep(Circle(), {}, {"v=0.1:1:200000"}, {}); }),
                   "the sweep has 200000 runs"));
   const SweepDefinition big = DefineSweep(Circle(), {}, {"v=0.1:1:200000"}, {}, 1, 200000);
   EXPECT_EQ(big.runs(), 200000u);
   // The hard cap stays whatever is allowed.
-  EXPECT_TRUE(Has(ErrorOf([] {
+  EXPECT_TRUE(Has(RefusalOf([] {
                     DefineSweep(Circle(), {}, {"v=0.1:1:1000000"},
                                 {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}, 1, 1u << 30);
                   }),
@@ -231,14 +230,14 @@ TEST(SweepLimits, TooManyRunsAreRefusedFromTheSpecsAlone) {
 }
 
 TEST(SweepLimits, EmptySeedsAreRefused) {
-  EXPECT_EQ(ErrorOf([] { ParseSeeds(""); }),
+  EXPECT_EQ(RefusalOf([] { ParseSeeds(""); }),
             "--seeds '': no seeds (write 1..20 or 1,2,5, or leave --seeds out for the scenario's "
             "seed)");
-  EXPECT_TRUE(Has(ErrorOf([] { ParseSeeds(" "); }), "no seeds"));
+  EXPECT_TRUE(Has(RefusalOf([] { ParseSeeds(" "); }), "no seeds"));
 }
 
 TEST(SweepLimits, NonFiniteMetricsInRunFilesAreRefusedNamingTheFile) {
-  const std::string dir = Dir("sweep_nan");
+  const std::string dir = BoundedDir("sweep_nan");
   const SweepDefinition def = DefineSweep(Circle(), {}, {"v=1,2"}, {1});
   WriteManifest(dir, def);
   SweepRecord rec;
@@ -256,7 +255,7 @@ TEST(SweepLimits, NonFiniteMetricsInRunFilesAreRefusedNamingTheFile) {
     std::string text = ReadAll(path);
     text.replace(text.find("m a 0.5"), 7, std::string("m a ") + bad);
     Write(path, text);
-    EXPECT_EQ(ErrorOf([&] { ReadRecords(dir, def); }),
+    EXPECT_EQ(RefusalOf([&] { ReadRecords(dir, def); }),
               path + ":6: metric 'a': '" + bad +
                   "' is not a finite number (a run file holds finite numbers, or '-' for a value "
                   "the run could not compute; was it edited?)")
@@ -266,7 +265,7 @@ TEST(SweepLimits, NonFiniteMetricsInRunFilesAreRefusedNamingTheFile) {
   // A run file that is not a regular file is refused by name too.
   fs::remove(path);
   fs::create_directory(path);
-  EXPECT_EQ(ErrorOf([&] { ReadRecords(dir, def); }), path + ": is not a regular file (a folder)");
+  EXPECT_EQ(RefusalOf([&] { ReadRecords(dir, def); }), path + ": is not a regular file (a folder)");
 }
 
 }  // namespace

@@ -16,16 +16,12 @@
 #include "sim/core/run_output.hpp"
 #include "sim/scenario/scenario.hpp"
 #include "tests/sim/test_kind.hpp"
+#include "tests/support/test_files.hpp"
 
 namespace formsim::sim {
 namespace {
 
-std::string Read(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using testing::ReadText;
 
 TEST(NumericalFault, ANonFiniteValueStopsTheRunAndIsWrittenAsNan) {
   auto e = LoadExperimentFromText(testkind::kScenario, "a.yaml", {"fault=value", "fault_time=0.5"});
@@ -38,9 +34,9 @@ TEST(NumericalFault, ANonFiniteValueStopsTheRunAndIsWrittenAsNan) {
   EXPECT_NE(ev.message.find("measured_v = nan"), std::string::npos) << ev.message;
   const std::string dir = std::string(FORMSIM_BINARY_DIR) + "/test_out/fault_value";
   WriteRunOutputs(*e, dir);
-  const std::string csv = Read(dir + "/timeseries.csv");
+  const std::string csv = ReadText(dir + "/timeseries.csv");
   EXPECT_NE(csv.find(",nan\n"), std::string::npos) << "a computed NaN is written as nan";
-  const std::string json = Read(dir + "/summary.json");
+  const std::string json = ReadText(dir + "/summary.json");
   EXPECT_NE(json.find("\"status\": \"numerical_fault\""), std::string::npos);
   EXPECT_NE(json.find("\"stop_reason\""), std::string::npos);
   EXPECT_NE(e->SummaryText().find("run stopped at t = 0.5 s"), std::string::npos);

@@ -1,22 +1,22 @@
 // The tuning session behind the GUI (sim::Session) on the minimal kind of test_kind.hpp: edits
 // are checked by the loader's own rules at once, live ones apply between steps, OnReset ones
 // wait, failed resets and reloads keep the run, Save keeps the file's text and loads back.
-#include "sim/session/session.hpp"
-
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "sim/session/session.hpp"
 #include "tests/sim/test_kind.hpp"
+#include "tests/support/test_files.hpp"
 
 namespace formsim::sim {
 namespace {
 
 using testkind::NoisyCircle;
 
-std::string TempFile(const std::string& name, const std::string& text) {
+std::string SessionFile(const std::string& name, const std::string& text) {
   const std::string dir = std::string(FORMSIM_BINARY_DIR) + "/test_out/session";
   std::filesystem::create_directories(dir);
   const std::string path = dir + "/" + name;
@@ -24,17 +24,12 @@ std::string TempFile(const std::string& name, const std::string& text) {
   return path;
 }
 
-std::string Read(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using testing::ReadText;
 
 const NoisyCircle& Circle(const Session& s) { return dynamic_cast<const NoisyCircle&>(s.exp()); }
 
 TEST(Session, LiveEditAppliesBeforeTheNextStepOnly) {
-  Session s(TempFile("live.yaml", testkind::kScenario), {}, -1);
+  Session s(SessionFile("live.yaml", testkind::kScenario), {}, -1);
   EXPECT_EQ(s.Edit("v", "2"), "");
   EXPECT_EQ(Circle(s).v(), 1.2) << "an edit must not touch the experiment until applied";
   s.Step();
@@ -48,7 +43,7 @@ TEST(Session, LiveEditAppliesBeforeTheNextStepOnly) {
 }
 
 TEST(Session, EditsTheLoaderWouldRefuseAreRefusedAtOnce) {
-  Session s(TempFile("refuse.yaml", testkind::kScenario), {}, -1);
+  Session s(SessionFile("refuse.yaml", testkind::kScenario), {}, -1);
   EXPECT_NE(s.Edit("v", "abc").find("expected a finite number"), std::string::npos);
   EXPECT_NE(s.Edit("v", "nan").find("finite"), std::string::npos);
   EXPECT_NE(s.Edit("v", "-0.5").find("must be >= 0"), std::string::npos);
@@ -70,7 +65,7 @@ TEST(Session, EditsTheLoaderWouldRefuseAreRefusedAtOnce) {
 }
 
 TEST(Session, OnResetEditsWaitAndResetKeepsEveryEdit) {
-  Session s(TempFile("wait.yaml", testkind::kScenario), {}, -1);
+  Session s(SessionFile("wait.yaml", testkind::kScenario), {}, -1);
   EXPECT_EQ(s.Edit("sigma", "0.5"), "");
   EXPECT_EQ(s.Edit("v", "0.8"), "");
   s.Step();
@@ -88,7 +83,7 @@ TEST(Session, OnResetEditsWaitAndResetKeepsEveryEdit) {
 }
 
 TEST(Session, FailedReloadKeepsTheRunningExperiment) {
-  const std::string file = TempFile("reload.yaml", testkind::kScenario);
+  const std::string file = SessionFile("reload.yaml", testkind::kScenario);
   Session s(file, {}, -1);
   EXPECT_EQ(s.Edit("v", "0.9"), "");
   for (int i = 0; i < 5; ++i) s.Step();
@@ -103,7 +98,7 @@ TEST(Session, FailedReloadKeepsTheRunningExperiment) {
 }
 
 TEST(Session, SaveKeepsCommentsAndWritesShortestNumbers) {
-  Session s(TempFile("save.yaml", testkind::kScenario), {}, -1);
+  Session s(SessionFile("save.yaml", testkind::kScenario), {}, -1);
   EXPECT_EQ(s.Edit("v", "0.03"), "");
   EXPECT_EQ(s.Edit("sigma", "0.2"), "");
   EXPECT_EQ(s.Edit("drive.v_max", "4.5"), "");  // not in the file: inserted into drive: {...}
@@ -113,7 +108,7 @@ TEST(Session, SaveKeepsCommentsAndWritesShortestNumbers) {
   std::string note;
   ASSERT_EQ(s.Save(out, true, &note), Session::SaveResult::kSaved);
   EXPECT_EQ(note, "");
-  const std::string text = Read(out);
+  const std::string text = ReadText(out);
   EXPECT_NE(text.find("# A circle for the core tests"), std::string::npos) << text;
   EXPECT_NE(text.find("v: 0.03   # forward speed"), std::string::npos) << text;
   EXPECT_NE(text.find("sigma: 0.2\n"), std::string::npos) << text;
@@ -128,7 +123,7 @@ TEST(Session, SaveKeepsCommentsAndWritesShortestNumbers) {
 }
 
 TEST(Session, RunWithEditsAtStepZeroEqualsTheSavedScenario) {
-  Session s(TempFile("same.yaml", testkind::kScenario), {}, -1);
+  Session s(SessionFile("same.yaml", testkind::kScenario), {}, -1);
   EXPECT_EQ(s.Edit("v", "0.7"), "");
   EXPECT_EQ(s.Reset(), "");
   while (!s.exp().finished()) s.Step();

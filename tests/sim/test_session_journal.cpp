@@ -10,25 +10,21 @@
 
 #include "sim/session/session_journal.hpp"
 #include "tests/sim/test_kind.hpp"
+#include "tests/support/test_files.hpp"
 
 namespace formsim::sim {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string Dir(const std::string& name) {
+std::string JournalTestDir(const std::string& name) {
   const std::string dir = std::string(FORMSIM_BINARY_DIR) + "/test_out/journal/" + name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
 }
 
-std::string Read(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using testing::ReadText;
 
 // A session of the test kind with a few edits, resets and steps, recorded as the GUI records it.
 struct Recorded {
@@ -59,7 +55,7 @@ Recorded Record(const std::string& dir, SessionJournal* journal) {
 }
 
 TEST(SessionJournal, ReadsBackTheRecordUpToTheLastStepWritten) {
-  const std::string dir = Dir("back");
+  const std::string dir = JournalTestDir("back");
   SessionJournal journal(dir + "/state", "circle");
   Recorded r = Record(dir, &journal);
   const RecoveredSession back = RecoverJournal(journal.path());
@@ -80,14 +76,14 @@ TEST(SessionJournal, ReadsBackTheRecordUpToTheLastStepWritten) {
 }
 
 TEST(SessionJournal, ATornLastEntryIsDroppedAndTheRestKept) {
-  const std::string dir = Dir("torn");
+  const std::string dir = JournalTestDir("torn");
   std::string path;
   {
     SessionJournal journal(dir + "/state", "circle");
     Record(dir, &journal);
     path = journal.path();
   }
-  const std::string whole = Read(path);
+  const std::string whole = ReadText(path);
   const RecoveredSession full = ParseJournal(whole, path);
   // Cut the file at every byte of its last entry: the last entry goes, the rest stays.
   const std::size_t last = whole.rfind("\nJ ") + 1;
@@ -115,7 +111,7 @@ TEST(SessionJournal, ATornLastEntryIsDroppedAndTheRestKept) {
 }
 
 TEST(SessionJournal, OnlyJournalsNobodyHoldsAreUnfinished) {
-  const std::string dir = Dir("held");
+  const std::string dir = JournalTestDir("held");
   const std::string state = dir + "/state";
   std::string gone;
   {

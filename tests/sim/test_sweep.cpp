@@ -31,7 +31,7 @@ namespace fs = std::filesystem;
 using sweeptest::Circle;
 using sweeptest::ErrorOf;
 
-std::string Dir(const std::string& name) {
+std::string SweepDir(const std::string& name) {
   const fs::path p = fs::temp_directory_path() / ("formsim_test_sweep_" + name);
   fs::remove_all(p);
   return p.string();
@@ -200,7 +200,7 @@ TEST(SweepStore, ShardsPartitionTheRuns) {
 }
 
 TEST(SweepStore, WriteManifestRefusesAnotherSweep) {
-  const std::string dir = Dir("manifest");
+  const std::string dir = SweepDir("manifest");
   const SweepDefinition a = DefineSweep(Circle(), {}, {"v=1,2"}, {1});
   const SweepDefinition b = DefineSweep(Circle(), {}, {"v=1,3"}, {1});
   WriteManifest(dir, a);

@@ -21,7 +21,7 @@ namespace {
 
 using testkind::NoisyCircle;
 
-std::string TempFile(const std::string& name, const std::string& text) {
+std::string TuningFile(const std::string& name, const std::string& text) {
   const std::string dir = std::string(FORMSIM_BINARY_DIR) + "/test_out/tuning";
   std::filesystem::create_directories(dir);
   const std::string path = dir + "/" + name;
@@ -49,7 +49,7 @@ void StepTo(Session& s, long step) {
 }
 
 TEST(Tuning, UndoAndRedoAreEditsAndSliderDragsAreOneStep) {
-  Session s(TempFile("undo.yaml", testkind::kScenario), {}, -1);
+  Session s(TuningFile("undo.yaml", testkind::kScenario), {}, -1);
   EXPECT_FALSE(s.can_undo());
   EXPECT_EQ(s.Undo(), "nothing to undo");
   // A drag over three frames is one undo step.
@@ -98,7 +98,7 @@ TEST(Tuning, UndoAndRedoAreEditsAndSliderDragsAreOneStep) {
 }
 
 TEST(Tuning, ReplayingTheRunLogGivesTheRunBitForBit) {
-  Session s(TempFile("log.yaml", testkind::kScenario), {}, 7);
+  Session s(TuningFile("log.yaml", testkind::kScenario), {}, 7);
   StepTo(s, 10);
   EXPECT_EQ(s.Edit("v", "2"), "");
   StepTo(s, 40);
@@ -121,7 +121,7 @@ TEST(Tuning, ReplayingTheRunLogGivesTheRunBitForBit) {
 }
 
 TEST(Tuning, BranchStartsFromTheExactStateOfTheRunAtThatStep) {
-  const std::string file = TempFile("branch.yaml", testkind::kScenario);
+  const std::string file = TuningFile("branch.yaml", testkind::kScenario);
   Session a(file, {}, -1);
   StepTo(a, 20);
   EXPECT_EQ(a.Edit("v", "2"), "");
@@ -147,7 +147,7 @@ TEST(Tuning, BranchStartsFromTheExactStateOfTheRunAtThatStep) {
 }
 
 TEST(Tuning, ASessionRecordReplaysToTheSameRun) {
-  const std::string file = TempFile("record.yaml", testkind::kScenario);
+  const std::string file = TuningFile("record.yaml", testkind::kScenario);
   SessionRecord record;
   std::vector<Override> cli = {{"omega", "0.4", "--set", -1}};
   Session s(file, cli);
@@ -177,7 +177,7 @@ TEST(Tuning, ASessionRecordReplaysToTheSameRun) {
   EXPECT_EQ(s.Undo(), "");
   StepTo(s, 88);
   const std::string yaml = record.ToYaml(s.exp().steps());
-  const std::string path = TempFile("record.session.yaml", yaml);
+  const std::string path = TuningFile("record.session.yaml", yaml);
   SessionReplay replay(SessionRecord::Read(path));
   while (replay.Advance()) {
   }
@@ -262,7 +262,7 @@ TEST(Tuning, PathPatternsDirectionsAndHeadlines) {
 }
 
 TEST(Tuning, MonteCarloIsTheSweepAndItsBandsDoNotDependOnThreads) {
-  const std::string file = TempFile("mc.yaml", testkind::kScenario);
+  const std::string file = TuningFile("mc.yaml", testkind::kScenario);
   const ScenarioSource source = ScenarioSource::FromFile(file);
   const std::vector<Override> sets = {{"v", "1.5", "GUI edit", -1},
                                       {"sigma", "0.3", "GUI edit", -1}};
@@ -327,7 +327,7 @@ namespace formsim::sim {
 namespace {
 
 TEST(Tuning, HistoryRowsKeepSettingsMetricsAndReplayExactly) {
-  const std::string file = TempFile("history.yaml", testkind::kScenario);
+  const std::string file = TuningFile("history.yaml", testkind::kScenario);
   Session s(file, {{"omega", "0.3", "--set", -1}});
   EXPECT_EQ(s.Edit("v", "1.6"), "");
   s.ApplyPending();

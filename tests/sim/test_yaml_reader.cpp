@@ -8,7 +8,7 @@ using formsim::sim::YamlReader;
 
 namespace {
 
-std::string ErrorOf(const std::function<void()>& f) {
+std::string ScenarioErrorOf(const std::function<void()>& f) {
   try {
     f();
   } catch (const ScenarioError& e) {
@@ -31,7 +31,7 @@ TEST(YamlReader, ReadsValuesWithDefaults) {
 }
 
 TEST(YamlReader, UnknownKeyNamesFileLineAndKey) {
-  const std::string err = ErrorOf([] {
+  const std::string err = ScenarioErrorOf([] {
     YamlReader r(YAML::Load("robot:\n  gain: 1\n  gian: 2\n"), "s.yaml");
     YamlReader robot = r.Map("robot");
     robot.Double("gain", 0);
@@ -44,19 +44,25 @@ TEST(YamlReader, UnknownKeyNamesFileLineAndKey) {
 }
 
 TEST(YamlReader, RejectsNonFiniteAndWrongTypes) {
-  EXPECT_NE(ErrorOf([] { YamlReader(YAML::Load("k: .nan"), "f").Double("k", 0); }).find("finite"),
+  EXPECT_NE(
+      ScenarioErrorOf([] { YamlReader(YAML::Load("k: .nan"), "f").Double("k", 0); }).find("finite"),
+      std::string::npos);
+  EXPECT_NE(
+      ScenarioErrorOf([] { YamlReader(YAML::Load("k: .inf"), "f").Double("k", 0); }).find("finite"),
+      std::string::npos);
+  EXPECT_NE(
+      ScenarioErrorOf([] { YamlReader(YAML::Load("k: abc"), "f").Double("k", 0); }).find("number"),
+      std::string::npos);
+  EXPECT_NE(
+      ScenarioErrorOf([] { YamlReader(YAML::Load("k: 1.5"), "f").Int("k", 0); }).find("integer"),
+      std::string::npos);
+  EXPECT_NE(ScenarioErrorOf([] {
+              YamlReader(YAML::Load("k: [1, 2]"), "f").Doubles("k", {}, 3);
+            }).find("expected 3 numbers"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([] { YamlReader(YAML::Load("k: .inf"), "f").Double("k", 0); }).find("finite"),
-            std::string::npos);
-  EXPECT_NE(ErrorOf([] { YamlReader(YAML::Load("k: abc"), "f").Double("k", 0); }).find("number"),
-            std::string::npos);
-  EXPECT_NE(ErrorOf([] { YamlReader(YAML::Load("k: 1.5"), "f").Int("k", 0); }).find("integer"),
-            std::string::npos);
-  EXPECT_NE(ErrorOf([] { YamlReader(YAML::Load("k: [1, 2]"), "f").Doubles("k", {}, 3); })
-                .find("expected 3 numbers"),
-            std::string::npos);
-  EXPECT_NE(ErrorOf([] { YamlReader(YAML::Load("k: maybe"), "f").Choice("k", {"a", "b"}, 0); })
-                .find("not one of: a, b"),
+  EXPECT_NE(ScenarioErrorOf([] {
+              YamlReader(YAML::Load("k: maybe"), "f").Choice("k", {"a", "b"}, 0);
+            }).find("not one of: a, b"),
             std::string::npos);
 }
 
@@ -81,7 +87,7 @@ TEST(YamlReader, SyntaxErrorHasLine) {
     std::fputs("a: 1\nb: [1, 2\nc: 3\n", f);
     std::fclose(f);
   }
-  const std::string err = ErrorOf([&] { formsim::sim::LoadYamlFile(path); });
+  const std::string err = ScenarioErrorOf([&] { formsim::sim::LoadYamlFile(path); });
   EXPECT_NE(err.find("bad_syntax.yaml:"), std::string::npos) << err;
   EXPECT_NE(err.find("syntax"), std::string::npos) << err;
 }
