@@ -238,14 +238,14 @@ TEST(SweepCli, InterruptedSweepsKeepEveryFinishedRunAndResume) {
       " sweep formation_traj2_ukf --set duration=3 --vary robots.R2.follow.k_phi=0.02:0.4:12 "
       "--seeds 1..4 -j2 --no-figures";
   ASSERT_EQ(Formsim(big + " -q --out " + ref, ref + ".log"), 0);
-  // SIGINT while it runs (or after it ended, on a fast machine: then there is nothing to resume).
-  const int rc = RunShell(
-      "(" + Binary() + big + " -q --out " + d + " & pid=$!; sleep 0.4; kill -INT $pid; wait $pid)",
-      d + ".log");
-  EXPECT_TRUE(rc == 130 || rc == 0) << rc << ReadText(d + ".log");
-  if (rc == 130) {
-    EXPECT_NE(ReadText(d + ".log").find("add --resume to finish it"), std::string::npos);
-  }
+  // SIGINT once two records are on disk (a fixed sleep could outlast the sweep on a loaded machine).
+  const int rc = RunShell("(" + Binary() + big + " -q --out " + d +
+                              " & pid=$!; for i in $(seq 1 6000); do [ $(ls " + d +
+                              "/runs 2>/dev/null | grep -c '[.]run$') -ge 2 ] && break; "
+                              "sleep 0.005; done; kill -INT $pid; wait $pid)",
+                          d + ".log");
+  EXPECT_EQ(rc, 130) << ReadText(d + ".log");
+  EXPECT_NE(ReadText(d + ".log").find("add --resume to finish it"), std::string::npos);
   for (const auto& e : fs::directory_iterator(d + "/runs"))
     EXPECT_EQ(e.path().extension(), ".run") << "no half-written record";
   ASSERT_EQ(Formsim(big + " -q --resume --out " + d, d + ".log"), 0) << ReadText(d + ".log");
