@@ -35,6 +35,8 @@ struct DrawnGeometry {
     ImVec4 clip;
     ImTextureID texture;
     int idx_begin = 0, idx_count = 0;
+    ImDrawCallback callback = nullptr;  ///< a draw callback (the background's clear), no indices
+    void* callback_data = nullptr;
   };
   std::vector<ImDrawVert> vtx;
   std::vector<int> idx;
@@ -57,6 +59,12 @@ DrawnGeometry Capture(const ImDrawList* dl, DrawMark m) {
   g.vtx.assign(dl->VtxBuffer.Data + m.vtx, dl->VtxBuffer.Data + dl->VtxBuffer.Size);
   for (int c = std::max(0, m.cmd - 1); c < dl->CmdBuffer.Size; ++c) {
     const ImDrawCmd& cmd = dl->CmdBuffer[c];
+    // A callback in the command open at the mark was added after it (AddCallback always opens
+    // a new command behind its own).
+    if (cmd.UserCallback != nullptr) {
+      g.cmds.push_back({cmd.ClipRect, cmd.TextureId, 0, 0, cmd.UserCallback, cmd.UserCallbackData});
+      continue;
+    }
     const int begin = std::max(static_cast<int>(cmd.IdxOffset), m.idx);
     const int end = static_cast<int>(cmd.IdxOffset + cmd.ElemCount);
     if (end <= begin) continue;
@@ -71,9 +79,15 @@ DrawnGeometry Capture(const ImDrawList* dl, DrawMark m) {
 }
 
 // Appends `g` to `dl` again, command by command (each with its vertices, which no other command
-// shares).
+// shares; a callback again under its clip rectangle).
 void Replay(ImDrawList* dl, const DrawnGeometry& g) {
   for (const DrawnGeometry::Cmd& c : g.cmds) {
+    if (c.callback != nullptr) {
+      dl->PushClipRect(ImVec2(c.clip.x, c.clip.y), ImVec2(c.clip.z, c.clip.w), false);
+      dl->AddCallback(c.callback, c.callback_data);
+      dl->PopClipRect();
+      continue;
+    }
     int lo = static_cast<int>(g.vtx.size()), hi = -1;
     for (int i = c.idx_begin; i < c.idx_begin + c.idx_count; ++i) {
       lo = std::min(lo, g.idx[i]);
@@ -175,7 +189,9 @@ void PlotsPanel::Draw(const Fonts& fonts) {
   const int cols = std::max(1, static_cast<int>((full_w + gap) / (kMinPlotWidth + gap)));
   const float w = std::max(1.0f, std::floor((full_w - static_cast<float>(cols - 1) * gap) / cols));
   const int plot_rows = (open_count + cols - 1) / cols;
-  const float h = std::max(220.0f, plot_rows > 0 ? avail_h / std::min(plot_rows, 3) - 6 : 0);
+  // Whole pixels, so that each plot's background is a clear (ImGuiCanvas::FillBackground).
+  const float h =
+      std::max(220.0f, plot_rows > 0 ? std::floor(avail_h / std::min(plot_rows, 3)) - 6 : 0);
   // What DecoratePlot adds: a drawn plot is kept only while it is unchanged.
   std::string decoration =
       compare->Decoration() + (ctx_.state->settings.degrees ? "/deg" : "/rad");

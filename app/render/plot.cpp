@@ -105,7 +105,7 @@ PlotLayout DrawPlot(Canvas& cv, ImVec2 min, ImVec2 max, const PlotData& data, co
   plot_detail::PlotFrame f(cv, min, max, log_y ? decades : data, st);
   f.log_y = log_y;
   f.log_dropped = dropped;
-  cv.FillRect(min, max, f.th.background);
+  cv.FillBackground(min, max, f.th.background);
   f.Ranges();
   f.Layout();
   f.PlaceLegend();
