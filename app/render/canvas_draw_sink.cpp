@@ -7,6 +7,10 @@
 
 namespace formsim::app {
 
+namespace {
+constexpr float kSmallShapePx = 12.0f;
+}  // namespace
+
 void CanvasDrawSink::Legend(sim::LegendMark mark, sim::Color color, const std::string& label) {
   for (const LegendEntry& e : legend_)
     if (e.label == label) return;
@@ -20,7 +24,17 @@ void CanvasDrawSink::Polygon(const std::vector<Vec2>& pts, sim::Color fill, sim:
   for (const Vec2& p : pts) s.push_back(view_.ToScreen(p));
   const int n = static_cast<int>(s.size());
   if (fill.a > 0) cv_.FillPolygon(s.data(), n, theme_.Fill(fill));
-  if (outline.a > 0) cv_.Polyline(s.data(), n, {theme_.Ink(outline), Width(1.5f)}, true);
+  if (outline.a <= 0) return;
+  // Level of detail: a shape under kSmallShapePx (a robot of a zoomed-out swarm) gets a
+  // one-pixel outline, which leaves its colour readable and which ImGui draws as two textured
+  // triangles a side instead of six (a thousand robots: a third of the view's triangles).
+  float lo_x = s[0].x, hi_x = s[0].x, lo_y = s[0].y, hi_y = s[0].y;
+  for (const ImVec2& p : s) {
+    lo_x = std::min(lo_x, p.x), hi_x = std::max(hi_x, p.x);
+    lo_y = std::min(lo_y, p.y), hi_y = std::max(hi_y, p.y);
+  }
+  const bool small = std::max(hi_x - lo_x, hi_y - lo_y) < kSmallShapePx;
+  cv_.Polyline(s.data(), n, {theme_.Ink(outline), Width(small ? 1.0f : 1.5f)}, true);
 }
 
 void CanvasDrawSink::Circle(Vec2 center, double radius, sim::Color fill, sim::Color outline) {
