@@ -13,7 +13,6 @@
 #include <cstdio>
 #include <map>
 #include <unordered_map>
-#include <unordered_set>
 
 #include "app/render/display_unit.hpp"
 #include "app/render/long_text.hpp"
@@ -273,29 +272,49 @@ std::string NeedsActions(const AppUi& ui) {
 
 }  // namespace
 
+const ParametersPanel::Grouping& ParametersPanel::Groups(
+    const std::vector<sim::Param>& params, const std::vector<sim::ActionSpec>& actions) {
+  Grouping& g = grouping_;
+  // The same groups in the same order (tens of thousands of short compares, no allocation).
+  bool same = g.param_groups.size() == params.size() && g.action_groups.size() == actions.size();
+  for (std::size_t i = 0; same && i < params.size(); ++i)
+    same = g.param_groups[i] == params[i].tune.group;
+  for (std::size_t i = 0; same && i < actions.size(); ++i)
+    same = g.action_groups[i] == actions[i].group;
+  if (same) return g;
+  g = Grouping();
+  // One pass over the groups: a set of those seen and a map to each one's place.
+  std::unordered_map<std::string, std::size_t> head_at;
+  std::unordered_map<std::string, std::pair<std::size_t, std::size_t>> sub_at;
+  auto place = [&](const std::string& group) -> Grouping::Sub& {
+    const auto known = sub_at.find(group);
+    if (known != sub_at.end()) return g.heads[known->second.first].subs[known->second.second];
+    const std::string h = Head(group), t = Tail(group);
+    const auto [it, fresh] = head_at.try_emplace(h, g.heads.size());
+    if (fresh)
+      g.heads.push_back(
+          {h, (h.empty() ? std::string("Parameters") : Shorten(h, 120)) + "###grp_" + h, {}});
+    Grouping::Head& head = g.heads[it->second];
+    head.subs.push_back(
+        {t, group, t.empty() ? "" : Shorten(t, 120) + "##" + group, "##tbl" + group, {}, {}});
+    sub_at[group] = {it->second, head.subs.size() - 1};
+    return head.subs.back();
+  };
+  for (std::size_t i = 0; i < params.size(); ++i) {
+    g.param_groups.push_back(params[i].tune.group);
+    place(params[i].tune.group).params.push_back(i);
+  }
+  for (std::size_t i = 0; i < actions.size(); ++i) {
+    g.action_groups.push_back(actions[i].group);
+    place(actions[i].group).actions.push_back(i);
+  }
+  return g;
+}
+
 void ParametersPanel::Draw(const Fonts&) {
   const auto& params = ctx_.session().params().all();
   const auto actions = ctx_.session().exp().Actions();
-  // Groups in order of first appearance; within a head group, sub-groups likewise. One pass
-  // over the parameters (a thousand robots declare tens of thousands in thousands of groups).
-  std::vector<std::string> heads;
-  std::unordered_map<std::string, std::vector<std::string>> tails;
-  std::unordered_set<std::string> seen, seen_pairs;
-  std::unordered_map<std::string, std::vector<const sim::Param*>> members;
-  auto note_group = [&](const std::string& g) {
-    if (!seen.insert(g).second) return;
-    const std::string h = Head(g), t = Tail(g);
-    const auto [it, fresh] = tails.try_emplace(h);
-    if (fresh) heads.push_back(h);
-    // A set, not a search of the head's list: a swarm's head has a thousand sub-groups, and a
-    // linear search made this quadratic (most of the window's build time at 1000 robots).
-    if (seen_pairs.insert(h + '\n' + t).second) it->second.push_back(t);
-  };
-  for (const auto& p : params) {
-    note_group(p.tune.group);
-    members[p.tune.group].push_back(&p);
-  }
-  for (const auto& a : actions) note_group(a.group);
+  const Grouping& groups = Groups(params, actions);
   struct Asked {
     std::string key, value;
     bool held;
@@ -305,31 +324,30 @@ void ParametersPanel::Draw(const Fonts&) {
   std::vector<std::string> reverts;
   std::vector<std::string> run_actions;
   const auto waiting = ctx_.session().waiting_for_reset();
-  for (const std::string& h : heads) {
-    const std::string header = (h.empty() ? std::string("Parameters") : Shorten(h, 120)) + "###grp_" + h;
-    // The palette asked for a tunable: open the way to its field.
-    const sim::Param* focus = focus_param_.empty() ? nullptr : ctx_.session().params().Find(focus_param_);
-    if (focus != nullptr && Head(focus->tune.group) == h) ImGui::SetNextItemOpen(true);
-    if (!ImGui::CollapsingHeader(header.c_str(), ImGuiTreeNodeFlags_DefaultOpen)) continue;
+  // The palette asked for a tunable: open the way to its field.
+  const sim::Param* focus =
+      focus_param_.empty() ? nullptr : ctx_.session().params().Find(focus_param_);
+  for (const Grouping::Head& head : groups.heads) {
+    if (focus != nullptr && Head(focus->tune.group) == head.head) ImGui::SetNextItemOpen(true);
+    if (!ImGui::CollapsingHeader(head.header.c_str(), ImGuiTreeNodeFlags_DefaultOpen)) continue;
     // Sub-groups start open unless there are many (one per robot of a swarm).
-    const auto& subgroups = tails[h];
     const ImGuiTreeNodeFlags node_flags =
-        subgroups.size() <= kOpenSubgroups ? ImGuiTreeNodeFlags_DefaultOpen : 0;
-    for (const std::string& t : subgroups) {
-      const std::string group = t.empty() ? h : h + "/" + t;
+        head.subs.size() <= kOpenSubgroups ? ImGuiTreeNodeFlags_DefaultOpen : 0;
+    for (const Grouping::Sub& sub : head.subs) {
       bool open = true;
-      if (!t.empty() && focus != nullptr && focus->tune.group == group) ImGui::SetNextItemOpen(true);
-      if (!t.empty()) open = ImGui::TreeNodeEx((Shorten(t, 120) + "##" + group).c_str(), node_flags);
+      if (!sub.tail.empty()) {
+        if (focus != nullptr && focus->tune.group == sub.group) ImGui::SetNextItemOpen(true);
+        open = ImGui::TreeNodeEx(sub.label.c_str(), node_flags);
+      }
       if (!open) continue;
-      const auto in_group = members.find(group);
-      if (in_group != members.end() &&
-          ImGui::BeginTable(("##tbl" + group).c_str(), 3, ImGuiTableFlags_SizingStretchProp)) {
+      if (!sub.params.empty() &&
+          ImGui::BeginTable(sub.table_id.c_str(), 3, ImGuiTableFlags_SizingStretchProp)) {
         ImGui::TableSetupColumn("label", ImGuiTableColumnFlags_WidthStretch, 0.45f);
         ImGui::TableSetupColumn("value", ImGuiTableColumnFlags_WidthStretch, 0.55f);
         ImGui::TableSetupColumn("marks", ImGuiTableColumnFlags_WidthFixed,
                                 2 * ImGui::GetFontSize() + 12);
-        for (const sim::Param* pp : in_group->second) {
-          const sim::Param& p = *pp;
+        for (const std::size_t i : sub.params) {
+          const sim::Param& p = params[i];
           const auto w = waiting.find(p.key);
           RowMarks marks;
           marks.waiting = w != waiting.end();
@@ -354,12 +372,12 @@ void ParametersPanel::Draw(const Fonts&) {
         }
         ImGui::EndTable();
       }
-      for (const auto& a : actions) {
-        if (a.group != group) continue;
+      for (const std::size_t i : sub.actions) {
+        const sim::ActionSpec& a = actions[i];
         if (ImGui::Button(a.label.c_str())) run_actions.push_back(a.id);
         if (!a.help.empty() && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", a.help.c_str());
       }
-      if (!t.empty()) ImGui::TreePop();
+      if (!sub.tail.empty()) ImGui::TreePop();
     }
   }
   // Asked for after the loop: an edit never changes the table while we iterate over it. The edits
