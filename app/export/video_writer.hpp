@@ -1,10 +1,15 @@
 #pragma once
-/// \file Video by piping raw RGBA frames to ffmpeg: MP4 (also .mkv, .mov) in H.264 yuv420p. The
-/// file appears only when ffmpeg succeeded: it is written under a temporary name and renamed.
+/// \file Video by piping raw frames to ffmpeg: MP4 (also .mkv, .mov) in H.264 yuv420p, BT.709.
+/// The frames are converted to I420 here and written to ffmpeg by a thread of the writer's own,
+/// so rendering goes on while ffmpeg reads. The file appears only when ffmpeg succeeded: it is
+/// written under a temporary name and renamed.
 
+#include <condition_variable>
 #include <cstdint>
 #include <cstdio>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace formsim::app {
@@ -32,7 +37,8 @@ class VideoWriter {
   VideoWriter(const VideoWriter&) = delete;
   VideoWriter& operator=(const VideoWriter&) = delete;
 
-  /// Appends one frame (RGBA, top row first, width*height*4 bytes).
+  /// Appends one frame (RGBA, top row first, width*height*4 bytes): converted to I420 and
+  /// queued; blocks while two frames wait. Throws when ffmpeg stopped taking frames.
   void Write(const std::vector<std::uint8_t>& rgba);
   /// Ends the stream, waits for ffmpeg and moves the file into place; throws when it failed
   /// (nothing is left at the path then).
@@ -42,9 +48,19 @@ class VideoWriter {
   static void CheckAvailable(const std::string& path, int width, int height);
 
  private:
+  void Pump();        ///< the writer thread: queued frames into the pipe, in order
+  void StopPump();    ///< the writer thread finishes what is queued and ends
   std::FILE* pipe_ = nullptr;
   std::string path_, partial_;
+  int width_ = 0, height_ = 0;
   std::size_t frame_bytes_ = 0;
+  // Frames in I420 between Write and the writer thread: at most two wait, and written
+  // buffers are reused (a new megabyte-sized buffer per frame costs page faults).
+  std::vector<std::vector<std::uint8_t>> queue_, spare_;
+  std::mutex mu_;
+  std::condition_variable queued_, taken_;
+  bool stop_ = false, failed_ = false;
+  std::thread pump_;
 };
 
 }  // namespace formsim::app
