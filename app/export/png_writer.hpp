@@ -1,6 +1,6 @@
 #pragma once
-/// \file PNG files from RGBA pixels (zlib; read back with stb_image), and a pool of worker threads
-/// that encodes frames while the next one renders, using every core.
+/// \file PNG files from RGBA pixels (our own deflate, png_deflate.hpp; read back with stb_image),
+/// and a pool of worker threads that encodes frames while the next one renders, using every core.
 
 #include <condition_variable>
 #include <cstdint>
