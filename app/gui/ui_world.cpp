@@ -144,6 +144,7 @@ void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool in
   opt.clock = ImGui::GetTime();
   opt.degrees = state_.settings.degrees;
   opt.report = &world_report_;
+  opt.level_of_detail = true;
   compare_->AddWorldOverlays(opt);  // the pins, faded
   const sim::Experiment& shown = ShownExperiment();
   if (&shown != &session_->exp()) {

@@ -25,9 +25,12 @@ void CanvasDrawSink::Polygon(const std::vector<Vec2>& pts, sim::Color fill, sim:
   const int n = static_cast<int>(s.size());
   if (fill.a > 0) cv_.FillPolygon(s.data(), n, theme_.Fill(fill));
   if (outline.a <= 0) return;
-  // Level of detail: a shape under kSmallShapePx (a robot of a zoomed-out swarm) gets a
-  // one-pixel outline, which leaves its colour readable and which ImGui draws as two textured
-  // triangles a side instead of six (a thousand robots: a third of the view's triangles).
+  // Level of detail (the window only): a shape under kSmallShapePx (a robot of a zoomed-out
+  // swarm) gets a one-pixel outline, which ImGui draws with fewer triangles a side.
+  if (!level_of_detail_) {
+    cv_.Polyline(s.data(), n, {theme_.Ink(outline), Width(1.5f)}, true);
+    return;
+  }
   float lo_x = s[0].x, hi_x = s[0].x, lo_y = s[0].y, hi_y = s[0].y;
   for (const ImVec2& p : s) {
     lo_x = std::min(lo_x, p.x), hi_x = std::max(hi_x, p.x);

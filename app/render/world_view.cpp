@@ -156,6 +156,7 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
   CanvasDrawSink sink(cv, view, th, FontRole::kSmall);
   sink.SetOverlays(opt.scene_overlays);
   sink.SetAnglesInDegrees(opt.degrees);
+  sink.SetLevelOfDetail(opt.level_of_detail);
   // The legend as last drawn (it moves at most once a second): labels keep off it too.
   const bool has_legend_box = opt.legend && opt.legend_state &&
                               opt.legend_state->box_max.x > opt.legend_state->box_min.x;

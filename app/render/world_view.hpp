@@ -42,6 +42,10 @@ struct WorldViewOptions {
   double clock = 0.0;                   ///< seconds, for the legend's once-a-second corner choice
   bool degrees = true;  ///< angles in the scene's labels in degrees (else radians)
   WorldViewReport* report = nullptr;  ///< when set, filled with what this drawing placed
+  /// Level of detail for the window's frame rate: shapes under 12 px (a zoomed-out swarm's
+  /// robots) get 1 px outlines (CanvasDrawSink::SetLevelOfDetail). Off for files: exported
+  /// frames and figures keep their pixels.
+  bool level_of_detail = false;
 };
 
 /// The overlays on by default (sim::Overlays()).
