@@ -65,8 +65,10 @@ TEST(Yuv420, PrimariesGreysAndBlockMeansAreBt709LimitedRange) {
   // Random pictures of sizes that are and are not multiples of the SIMD width: every byte as
   // the formula gives it, chroma from the mean of each 2x2 block; alpha plays no part.
   std::mt19937 rng(7);
-  for (const auto& [w, h] :
+  for (const std::pair<int, int>& size :
        std::vector<std::pair<int, int>>{{2, 2}, {6, 4}, {18, 10}, {34, 2}, {1282, 6}}) {
+    // Plain names (a lambda below uses them; clang 14 cannot capture structured bindings).
+    const int w = size.first, h = size.second;
     std::vector<std::uint8_t> rgba(static_cast<std::size_t>(4) * w * h), out(I420Bytes(w, h));
     for (auto& b : rgba) b = static_cast<std::uint8_t>(rng());
     RgbaToI420(rgba.data(), w, h, out.data());
