@@ -25,23 +25,6 @@ bool CpuHasAvx2() {
 #endif
 }
 
-// Little-endian loads and stores, the same on every host.
-std::uint64_t LoadLE64(const std::uint8_t* p) {
-  std::uint64_t v;
-  std::memcpy(&v, p, 8);
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
-  v = __builtin_bswap64(v);
-#endif
-  return v;
-}
-
-void StoreLE64(std::uint8_t* p, std::uint64_t v) {
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
-  v = __builtin_bswap64(v);
-#endif
-  std::memcpy(p, &v, 8);
-}
-
 constexpr std::uint32_t kAdlerMod = 65521;
 
 // Eight bytes at a time, as the AVX2 code does 32: over a block, s2 gains 8 x s1 per word

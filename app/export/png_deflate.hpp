@@ -10,9 +10,29 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace formsim::app {
+
+/// 8 bytes read as a little-endian word, the same on every host (the encoder's rows are
+/// compared and filtered 8 bytes at a time).
+inline std::uint64_t LoadLE64(const std::uint8_t* p) {
+  std::uint64_t v;
+  std::memcpy(&v, p, 8);
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+  v = __builtin_bswap64(v);
+#endif
+  return v;
+}
+
+/// Writes `v` as 8 little-endian bytes.
+inline void StoreLE64(std::uint8_t* p, std::uint64_t v) {
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+  v = __builtin_bswap64(v);
+#endif
+  std::memcpy(p, &v, 8);
+}
 
 /// Adler-32 (RFC 1950) of `n` bytes, continuing from `adler` (1 for a new stream): the value of
 /// zlib's adler32, computed with AVX2 when the CPU has it.

@@ -40,23 +40,6 @@ void Chunk(std::vector<std::uint8_t>& out, const char* type, const std::uint8_t*
 #define FORMSIM_PNG_FILTER_X86 1
 #endif
 
-// Little-endian 8-byte loads and stores, the same on every host.
-std::uint64_t Load8(const std::uint8_t* p) {
-  std::uint64_t v;
-  std::memcpy(&v, p, 8);
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
-  v = __builtin_bswap64(v);
-#endif
-  return v;
-}
-
-void Store8(std::uint8_t* p, std::uint64_t v) {
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
-  v = __builtin_bswap64(v);
-#endif
-  std::memcpy(p, &v, 8);
-}
-
 // a - b in each byte, without borrows between bytes (Hacker's Delight 2-18).
 std::uint64_t SubBytes(std::uint64_t a, std::uint64_t b) {
   constexpr std::uint64_t kHigh = 0x8080808080808080ull;
@@ -72,16 +55,16 @@ bool FilterUpScalar(const std::uint8_t* src, const std::uint8_t* above, int widt
   std::size_t x = 0;
   if (comp == 4) {
     for (; x + 2 <= w; x += 2)
-      Store8(out + 4 * x, SubBytes(Load8(src + 4 * x), Load8(above + 4 * x)));
+      StoreLE64(out + 4 * x, SubBytes(LoadLE64(src + 4 * x), LoadLE64(above + 4 * x)));
     for (std::size_t i = 4 * x; i < 4 * w; ++i)
       out[i] = static_cast<std::uint8_t>(src[i] - above[i]);
     return true;
   }
   std::uint64_t alpha = ~std::uint64_t{0};
   for (; x + 2 <= w; x += 2) {
-    const std::uint64_t s = Load8(src + 4 * x), d = SubBytes(s, Load8(above + 4 * x));
+    const std::uint64_t s = LoadLE64(src + 4 * x), d = SubBytes(s, LoadLE64(above + 4 * x));
     alpha &= s;
-    Store8(out + 3 * x, (d & 0xFFFFFF) | ((d >> 8) & 0xFFFFFF000000ull));  // RGBRGB
+    StoreLE64(out + 3 * x, (d & 0xFFFFFF) | ((d >> 8) & 0xFFFFFF000000ull));  // RGBRGB
   }
   bool opaque = (alpha & 0xFF000000FF000000ull) == 0xFF000000FF000000ull;
   for (; x < w; ++x) {

@@ -239,11 +239,9 @@ TEST(SweepCli, InterruptedSweepsKeepEveryFinishedRunAndResume) {
       "--seeds 1..4 -j2 --no-figures";
   ASSERT_EQ(Formsim(big + " -q --out " + ref, ref + ".log"), 0);
   // SIGINT once two records are on disk (a fixed sleep could outlast the sweep on a loaded machine).
-  const int rc = RunShell("(" + Binary() + big + " -q --out " + d +
-                              " & pid=$!; for i in $(seq 1 6000); do [ $(ls " + d +
-                              "/runs 2>/dev/null | grep -c '[.]run$') -ge 2 ] && break; "
-                              "sleep 0.005; done; kill -INT $pid; wait $pid)",
-                          d + ".log");
+  const int rc =
+      RunShell(testing::SignalOnceRecorded(Binary() + big + " -q --out " + d, d, 2, "-INT"),
+               d + ".log");
   EXPECT_EQ(rc, 130) << ReadText(d + ".log");
   EXPECT_NE(ReadText(d + ".log").find("add --resume to finish it"), std::string::npos);
   for (const auto& e : fs::directory_iterator(d + "/runs"))

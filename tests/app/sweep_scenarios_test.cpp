@@ -132,11 +132,9 @@ TEST(SweepScenariosCli, KilledMidwayResumesToTheSameBytes) {
   ASSERT_EQ(Formsim(big + " -j1 -q --out " + ref, ref + ".log"), 0) << ReadText(ref + ".log");
   // kill -9 once two records are on disk. A fixed sleep raced the sweep: on a loaded CI machine
   // it slept past all 96 runs and killed the sweep while it wrote its tables.
-  const int rc = RunShell("(" + Binary() + big + " -j2 -q --out " + d +
-                              " & pid=$!; for i in $(seq 1 6000); do [ $(ls " + d +
-                              "/runs 2>/dev/null | grep -c '[.]run$') -ge 2 ] && break; "
-                              "sleep 0.005; done; kill -9 $pid; wait $pid)",
-                          d + ".log");
+  const int rc =
+      RunShell(testing::SignalOnceRecorded(Binary() + big + " -j2 -q --out " + d, d, 2, "-9"),
+               d + ".log");
   EXPECT_EQ(rc, 137) << ReadText(d + ".log");
   // Killed with a record half written, kill -9 may leave a .tmp (a record is written aside and
   // renamed), never a partial .run; the resume proves the rest.

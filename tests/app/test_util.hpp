@@ -91,6 +91,17 @@ inline int RunShell(const std::string& cmd, const std::string& log) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+/// A shell command that starts `cmd` (a sweep writing into `dir`) and sends it `signal` (e.g.
+/// "-9", "-INT") once `dir`/runs holds `records` finished run records; its exit code is the
+/// sweep's. Signalled by what is on disk, not after a sleep: a fixed sleep raced the sweep on
+/// loaded machines (it outlasted the whole sweep).
+inline std::string SignalOnceRecorded(const std::string& cmd, const std::string& dir, int records,
+                                      const std::string& signal) {
+  return "(" + cmd + " & pid=$!; for i in $(seq 1 6000); do [ $(ls " + dir +
+         "/runs 2>/dev/null | grep -c '[.]run$') -ge " + std::to_string(records) +
+         " ] && break; sleep 0.005; done; kill " + signal + " $pid; wait $pid)";
+}
+
 /// `cmd` run under a virtual X server (1280x800), for the GUI tests.
 inline std::string Xvfb(const std::string& cmd) {
   return "xvfb-run -a -s '-screen 0 1280x800x24' " + cmd;
