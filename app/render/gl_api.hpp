@@ -15,12 +15,17 @@ using GlGetProcAddress = GlProc (*)(const char*);
 /// Throws std::runtime_error when the context is not OpenGL 3.x or a pointer is missing.
 void LoadGl(GlGetProcAddress get_proc, const char* context_name);
 
-/// Sets the viewport to the framebuffer and clears it with an sRGB colour in [0, 1].
+/// Sets the viewport to the framebuffer and clears all of it (scissor test off) with an sRGB
+/// colour in [0, 1].
 void GlClear(int width, int height, float r, float g, float b);
 /// Clears the rectangle of `width` x `height` pixels whose bottom-left corner is (x, y) (GL's
 /// window coordinates) to `rgba` (ImGui's packed colour), with the scissor test on. The next
 /// draw sets its own scissor.
 void GlClearRect(int x, int y, int width, int height, std::uint32_t rgba);
+/// The same with the colour as four channels in [0, 1].
+void GlClearRect(int x, int y, int width, int height, float r, float g, float b, float a);
+/// Turns the scissor test off (after GlClearRect outside the backend's draws).
+void GlScissorOff();
 /// Waits until every GL command has finished (the OSMesa buffer is then complete).
 void GlFinish();
 /// Reads the current framebuffer as RGBA, top row first.

@@ -16,18 +16,27 @@ namespace formsim::app {
 
 void GlClear(int width, int height, float r, float g, float b) {
   glViewport(0, 0, width, height);
+  glDisable(GL_SCISSOR_TEST);
   glClearColor(r, g, b, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT);
 }
 
-void GlClearRect(int x, int y, int width, int height, std::uint32_t rgba) {
+void GlClearRect(int x, int y, int width, int height, float r, float g, float b, float a) {
   if (width <= 0 || height <= 0) return;
-  auto channel = [rgba](int shift) { return static_cast<float>((rgba >> shift) & 0xFF) / 255.0f; };
   glEnable(GL_SCISSOR_TEST);
   glScissor(x, y, width, height);
-  glClearColor(channel(IM_COL32_R_SHIFT), channel(IM_COL32_G_SHIFT), channel(IM_COL32_B_SHIFT),
-               channel(IM_COL32_A_SHIFT));
+  glClearColor(r, g, b, a);
   glClear(GL_COLOR_BUFFER_BIT);
+}
+
+void GlClearRect(int x, int y, int width, int height, std::uint32_t rgba) {
+  auto channel = [rgba](int shift) { return static_cast<float>((rgba >> shift) & 0xFF) / 255.0f; };
+  GlClearRect(x, y, width, height, channel(IM_COL32_R_SHIFT), channel(IM_COL32_G_SHIFT),
+              channel(IM_COL32_B_SHIFT), channel(IM_COL32_A_SHIFT));
+}
+
+void GlScissorOff() {
+  glDisable(GL_SCISSOR_TEST);
 }
 
 std::vector<std::uint8_t> GlReadRgba(int width, int height) {

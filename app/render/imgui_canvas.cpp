@@ -1,12 +1,12 @@
 #include "app/render/imgui_canvas.hpp"
 
-#include "app/render/gl_api.hpp"
-
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <functional>
 #include <vector>
+
+#include "app/render/gl_api.hpp"
 
 namespace formsim::app {
 namespace {
@@ -57,22 +57,35 @@ namespace {
 // The clear behind FillBackground: the command's clip rectangle (the background's rectangle,
 // on whole pixels) cleared to the colour packed into the callback's data.
 void ClearRectCallback(const ImDrawList*, const ImDrawCmd* cmd) {
-  const ImDrawData* dd = ImGui::GetDrawData();
-  const ImVec2 off = dd->DisplayPos, sc = dd->FramebufferScale;
-  const int fb_h = static_cast<int>(dd->DisplaySize.y * sc.y);
-  const int x0 = static_cast<int>((cmd->ClipRect.x - off.x) * sc.x);
-  const int y0 = static_cast<int>((cmd->ClipRect.y - off.y) * sc.y);
-  const int x1 = static_cast<int>((cmd->ClipRect.z - off.x) * sc.x);
-  const int y1 = static_cast<int>((cmd->ClipRect.w - off.y) * sc.y);
-  const auto rgba = static_cast<std::uint32_t>(reinterpret_cast<std::uintptr_t>(cmd->UserCallbackData));
-  GlClearRect(x0, fb_h - y1, x1 - x0, y1 - y0, rgba);
+  BackgroundClear c;
+  if (!DecodeBackgroundClear(*ImGui::GetDrawData(), *cmd, &c)) return;
+  const int fb_h = static_cast<int>(ImGui::GetDrawData()->DisplaySize.y *
+                                    ImGui::GetDrawData()->FramebufferScale.y);
+  GlClearRect(c.x0, fb_h - c.y1, c.x1 - c.x0, c.y1 - c.y0, c.rgba);
 }
+
+void SkippedClearCallback(const ImDrawList*, const ImDrawCmd*) {}
 
 bool OnWholePixels(ImVec2 p, float scale) {
   return std::floor(p.x * scale) == p.x * scale && std::floor(p.y * scale) == p.y * scale;
 }
 
 }  // namespace
+
+bool DecodeBackgroundClear(const ImDrawData& dd, const ImDrawCmd& cmd, BackgroundClear* out) {
+  if (cmd.UserCallback != &ClearRectCallback) return false;
+  const ImVec2 off = dd.DisplayPos, sc = dd.FramebufferScale;
+  out->x0 = static_cast<int>((cmd.ClipRect.x - off.x) * sc.x);
+  out->y0 = static_cast<int>((cmd.ClipRect.y - off.y) * sc.y);
+  out->x1 = static_cast<int>((cmd.ClipRect.z - off.x) * sc.x);
+  out->y1 = static_cast<int>((cmd.ClipRect.w - off.y) * sc.y);
+  out->rgba = static_cast<std::uint32_t>(reinterpret_cast<std::uintptr_t>(cmd.UserCallbackData));
+  return true;
+}
+
+void SkipBackgroundClear(ImDrawCmd& cmd) {
+  if (cmd.UserCallback == &ClearRectCallback) cmd.UserCallback = &SkippedClearCallback;
+}
 
 void ImGuiCanvas::FillBackground(ImVec2 min, ImVec2 max, sim::Color color) {
   // The rectangle as the quad would be clipped: the current clip rectangle, all on whole

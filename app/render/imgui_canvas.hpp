@@ -5,6 +5,7 @@
 
 #include <imgui.h>
 
+#include <cstdint>
 #include <functional>
 
 #include "app/render/canvas.hpp"
@@ -63,5 +64,16 @@ class ImGuiCanvas : public Canvas {
   ImDrawList* dl_;
   const Fonts& fonts_;
 };
+
+/// A FillBackground done as a clear: its rectangle in framebuffer pixels (x0, y0 the top-left
+/// pixel, x1, y1 one past the bottom-right, rows counted from the top) and its packed colour.
+struct BackgroundClear {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  std::uint32_t rgba = 0;
+};
+/// Whether `cmd` of `dd` is such a clear, and which.
+bool DecodeBackgroundClear(const ImDrawData& dd, const ImDrawCmd& cmd, BackgroundClear* out);
+/// Turns such a clear into a command that does nothing (it was done before the frame's draws).
+void SkipBackgroundClear(ImDrawCmd& cmd);
 
 }  // namespace formsim::app

@@ -5,6 +5,7 @@
 
 #include <stdexcept>
 
+#include "app/render/clear_hoist.hpp"
 #include "app/render/gl_api.hpp"
 
 namespace formsim::app {
@@ -78,8 +79,10 @@ void ImGuiLayer::NewFrame() {
 
 void ImGuiLayer::Render(int fb_width, int fb_height, float r, float g, float b) {
   ImGui::Render();
-  GlClear(fb_width, fb_height, r, g, b);
-  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  ImDrawData* dd = ImGui::GetDrawData();
+  hoisted_clear_ = hoist_clears_ && ClearForFrame(*dd, fb_width, fb_height, r, g, b);
+  if (!hoist_clears_) GlClear(fb_width, fb_height, r, g, b);
+  ImGui_ImplOpenGL3_RenderDrawData(dd);
 }
 
 }  // namespace formsim::app

@@ -30,9 +30,16 @@ class ImGuiLayer {
   void SetTheme(const Theme& theme);
 
   const Fonts& fonts() const { return fonts_; }
+  /// Whether Render may clear the frame to its first background's colour (clear_hoist.hpp; the
+  /// same pixels). On by default; tests compare both.
+  void SetHoistClears(bool on) { hoist_clears_ = on; }
+  /// Whether the last Render did so.
+  bool hoisted_clear() const { return hoisted_clear_; }
 
  private:
   Fonts fonts_;
+  bool hoist_clears_ = true;
+  bool hoisted_clear_ = false;
 };
 
 }  // namespace formsim::app

@@ -60,9 +60,83 @@ TEST(FillBackground, ClearGivesTheQuadsPixels) {
       for (std::size_t i = 0; i < quad.size(); ++i) differ += quad[i] != cleared[i];
       EXPECT_EQ(differ, 0u) << name << " at scale " << scale;
       // The background is there (not the frame's clear colour) inside the clip.
-      const std::size_t at = (static_cast<std::size_t>(200 * scale) * static_cast<std::size_t>(w * scale) +
-                              static_cast<std::size_t>(250 * scale)) * 4;
+      const std::size_t at =
+          (static_cast<std::size_t>(200 * scale) * static_cast<std::size_t>(w * scale) +
+           static_cast<std::size_t>(250 * scale)) *
+          4;
       EXPECT_EQ(cleared[at], static_cast<std::uint8_t>(bg.r * 255 + 0.5f)) << name;
+    }
+  }
+}
+
+// The frame's first background clear done as the frame's clear (clear_hoist.hpp): the pixels of
+// the frame cleared first and the background cleared over it, whether or not it applies.
+struct HoistCase {
+  const char* what;
+  ImVec2 before_min, before_max;  // drawn before the background (a bar, or something under it)
+  ImVec2 bg_min, bg_max;          // the background
+  bool hoisted;                   // whether the hoist applies
+};
+
+std::vector<std::uint8_t> RenderHoist(ImGuiLayer& layer, int w, int h, float scale, bool hoist,
+                                      const HoistCase& c, sim::Color bg, bool* hoisted) {
+  layer.NewHeadlessFrame(w, h, 1.0f / 60.0f);
+  ImGui::Begin("v", nullptr, ImGuiWindowFlags_NoBackground | ImGuiWindowFlags_NoDecoration);
+  ImGui::End();
+  ImDrawList* dl = ImGui::GetBackgroundDrawList();
+  ImGuiCanvas cv(dl, layer.fonts());
+  // A bar with text and an anti-aliased rule along its bottom (as the menu bar).
+  if (c.before_max.x > c.before_min.x) {
+    cv.FillRect(c.before_min, c.before_max, sim::Color{0.95f, 0.95f, 0.95f, 1}, 0);
+    cv.Line(ImVec2(c.before_min.x, c.before_max.y - 1.5f),
+            ImVec2(c.before_max.x, c.before_max.y - 1.5f),
+            Stroke(sim::Color{0.2f, 0.2f, 0.2f, 1}, 1.0f));
+    cv.Text(ImVec2(c.before_min.x + 4, c.before_min.y + 2), FontRole::kSmall,
+            sim::Color{0, 0, 0, 1}, "File Run View");
+  }
+  cv.PushClip(c.bg_min, c.bg_max);
+  cv.FillBackground(c.bg_min, c.bg_max, bg);
+  cv.Line(ImVec2(0, 0), ImVec2(400, 300), Stroke(sim::Color{0.1f, 0.3f, 0.8f, 1}, 2.5f));
+  cv.Text(ImVec2(60, 80), FontRole::kLabel, sim::Color{0, 0, 0, 1}, "R1 l 0.300 m");
+  cv.PopClip();
+  const int fw = static_cast<int>(w * scale), fh = static_cast<int>(h * scale);
+  layer.SetHoistClears(hoist);
+  layer.Render(fw, fh, 0.2f, 0.25f, 0.3f);
+  *hoisted = layer.hoisted_clear();
+  return GlReadRgba(fw, fh);
+}
+
+TEST(FillBackground, FrameClearedToTheFirstBackgroundGivesTheSamePixels) {
+  const int w = 400, h = 300;
+  const HoistCase cases[] = {
+      {"a view under a bar, a pixel from each side", ImVec2(0, 0), ImVec2(400, 21), ImVec2(1, 21),
+       ImVec2(399, 299), true},
+      {"the view is the whole frame", ImVec2(0, 0), ImVec2(0, 0), ImVec2(0, 0), ImVec2(400, 300),
+       true},
+      {"the bar reaches one row into the view", ImVec2(0, 0), ImVec2(400, 22), ImVec2(1, 21),
+       ImVec2(399, 299), false},
+      {"the bar's line reaches into the view", ImVec2(0, 0), ImVec2(400, 21.5f), ImVec2(0, 21),
+       ImVec2(400, 300), false},
+      {"a small view: the strips around it would cost more", ImVec2(0, 0), ImVec2(400, 21),
+       ImVec2(100, 100), ImVec2(200, 200), false},
+  };
+  for (const float scale : {1.0f, 2.0f}) {
+    OffscreenContext ctx(static_cast<int>(w * scale), static_cast<int>(h * scale));
+    ImGuiLayer layer;
+    if (scale != 1.0f) layer.SetFontScale(scale);
+    for (const char* name : {"light", "high-contrast"}) {
+      const sim::Color bg = GetTheme(ParseTheme(name)).background;
+      for (const HoistCase& c : cases) {
+        bool off_hoisted = true, on_hoisted = false;
+        const auto plain = RenderHoist(layer, w, h, scale, false, c, bg, &off_hoisted);
+        const auto hoisted = RenderHoist(layer, w, h, scale, true, c, bg, &on_hoisted);
+        EXPECT_FALSE(off_hoisted);
+        EXPECT_EQ(on_hoisted, c.hoisted) << c.what << " at scale " << scale;
+        ASSERT_EQ(plain.size(), hoisted.size());
+        std::size_t differ = 0;
+        for (std::size_t i = 0; i < plain.size(); ++i) differ += plain[i] != hoisted[i];
+        EXPECT_EQ(differ, 0u) << c.what << ", " << name << " at scale " << scale;
+      }
     }
   }
 }
