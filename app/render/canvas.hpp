@@ -51,6 +51,11 @@ class Canvas {
   virtual void Polyline(const ImVec2* pts, int n, const Stroke& stroke, bool closed = false) = 0;
   /// Simple polygon (convex or not) filled.
   virtual void FillPolygon(const ImVec2* pts, int n, sim::Color color) = 0;
+  /// The same without anti-aliased edges where the canvas has them: a shape a few pixels across
+  /// in the window, whose outline is drawn over the edge anyway (level of detail).
+  virtual void FillPolygonAliased(const ImVec2* pts, int n, sim::Color color) {
+    FillPolygon(pts, n, color);
+  }
   /// The area between two curves sampled at the same x (upper[i].x == lower[i].x, ascending):
   /// a plot's band. The curves may touch or cross. By default the outline (upper forward, lower
   /// back) filled with the non-zero rule, which fills every lobe of a crossing band.

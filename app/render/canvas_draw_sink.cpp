@@ -9,6 +9,51 @@ namespace formsim::app {
 
 namespace {
 constexpr float kSmallShapePx = 12.0f;
+
+double Cross(ImVec2 o, ImVec2 a, ImVec2 b) {
+  return static_cast<double>(a.x - o.x) * (b.y - o.y) -
+         static_cast<double>(a.y - o.y) * (b.x - o.x);
+}
+
+// `pts` moved `d` pixels inwards (outwards for d < 0) along each edge's normal (a convex
+// polygon's mitred inset), in `inner`; empty when the shape is too thin to keep an inside. False
+// when `pts` is not strictly convex or has a corner sharper than 30 degrees (the mitre would reach
+// far out).
+bool InsetConvex(const std::vector<ImVec2>& pts, float d, std::vector<ImVec2>* inner) {
+  const std::size_t n = pts.size();
+  if (n < 3) return false;
+  double sign = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double c = Cross(pts[i], pts[(i + 1) % n], pts[(i + 2) % n]);
+    if (c == 0 || (sign != 0 && (c > 0) != (sign > 0))) return false;
+    sign = c;
+  }
+  // Inward unit normal of the edge i -> i+1.
+  std::vector<ImVec2> normal(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const ImVec2 a = pts[i], b = pts[(i + 1) % n];
+    const double len = std::hypot(b.x - a.x, b.y - a.y);
+    if (len <= 0) return false;
+    const float s = sign > 0 ? 1.0f : -1.0f;
+    normal[i] = ImVec2(static_cast<float>(-(b.y - a.y) / len) * s,
+                       static_cast<float>((b.x - a.x) / len) * s);
+  }
+  inner->assign(n, ImVec2());
+  for (std::size_t i = 0; i < n; ++i) {
+    const ImVec2 na = normal[(i + n - 1) % n], nb = normal[i];
+    const float k = 1.0f + na.x * nb.x + na.y * nb.y;
+    if (k < 0.134f) return false;  // 1 + cos(150 deg): a corner under 30 degrees
+    (*inner)[i] = ImVec2(pts[i].x + d * (na.x + nb.x) / k, pts[i].y + d * (na.y + nb.y) / k);
+  }
+  // Too thin: the inset turned over (its orientation flipped or it has no area left).
+  double area = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    area += Cross(ImVec2(0, 0), (*inner)[i], (*inner)[(i + 1) % n]);
+  double outer = 0;
+  for (std::size_t i = 0; i < n; ++i) outer += Cross(ImVec2(0, 0), pts[i], pts[(i + 1) % n]);
+  if (area * outer <= 0 || std::abs(area) < 1.0) inner->clear();
+  return true;
+}
 }  // namespace
 
 void CanvasDrawSink::Legend(sim::LegendMark mark, sim::Color color, const std::string& label) {
@@ -23,20 +68,44 @@ void CanvasDrawSink::Polygon(const std::vector<Vec2>& pts, sim::Color fill, sim:
   s.reserve(pts.size());
   for (const Vec2& p : pts) s.push_back(view_.ToScreen(p));
   const int n = static_cast<int>(s.size());
-  if (fill.a > 0) cv_.FillPolygon(s.data(), n, theme_.Fill(fill));
-  if (outline.a <= 0) return;
   // Level of detail (the window only): a shape under kSmallShapePx (a robot of a zoomed-out
-  // swarm) gets a one-pixel outline, which ImGui draws with fewer triangles a side.
-  if (!level_of_detail_) {
-    cv_.Polyline(s.data(), n, {theme_.Ink(outline), Width(1.5f)}, true);
-    return;
+  // swarm, its heading wedge) is filled without ImGui's anti-aliasing fringe (an outline covers
+  // the edge; a wedge's steps are under a pixel at that size) and gets a one-pixel outline, which
+  // ImGui draws with fewer triangles a side. The fringe and the wider outline are thin triangles,
+  // which a software rasteriser pays for per block they touch.
+  bool small = false;
+  if (level_of_detail_) {
+    float lo_x = s[0].x, hi_x = s[0].x, lo_y = s[0].y, hi_y = s[0].y;
+    for (const ImVec2& p : s) {
+      lo_x = std::min(lo_x, p.x), hi_x = std::max(hi_x, p.x);
+      lo_y = std::min(lo_y, p.y), hi_y = std::max(hi_y, p.y);
+    }
+    small = std::max(hi_x - lo_x, hi_y - lo_y) < kSmallShapePx;
   }
-  float lo_x = s[0].x, hi_x = s[0].x, lo_y = s[0].y, hi_y = s[0].y;
-  for (const ImVec2& p : s) {
-    lo_x = std::min(lo_x, p.x), hi_x = std::max(hi_x, p.x);
-    lo_y = std::min(lo_y, p.y), hi_y = std::max(hi_y, p.y);
+  const sim::Color fill_ink = theme_.Fill(fill);
+  if (small && outline.a > 0 && fill.a > 0) {
+    // A small filled shape with its outline: the outline's colour filled half a pixel beyond the
+    // edge, then the fill half a pixel inside it, where a one-pixel outline would have run (four
+    // triangles for a rectangle, none of them thin). The fill is made
+    // opaque as it looks over the background: at this size nothing shows through it anyway.
+    std::vector<ImVec2> outer, inner;
+    if (InsetConvex(s, -0.5f, &outer) && InsetConvex(s, 0.5f, &inner)) {
+      const sim::Color bg = theme_.background;
+      const float a = fill_ink.a;
+      const sim::Color solid{fill_ink.r * a + bg.r * (1 - a), fill_ink.g * a + bg.g * (1 - a),
+                             fill_ink.b * a + bg.b * (1 - a), 1.0f};
+      cv_.FillPolygonAliased(outer.data(), n, theme_.Ink(outline));
+      if (!inner.empty()) cv_.FillPolygonAliased(inner.data(), n, solid);
+      return;
+    }
   }
-  const bool small = std::max(hi_x - lo_x, hi_y - lo_y) < kSmallShapePx;
+  if (fill.a > 0) {
+    if (small)
+      cv_.FillPolygonAliased(s.data(), n, fill_ink);
+    else
+      cv_.FillPolygon(s.data(), n, fill_ink);
+  }
+  if (outline.a <= 0) return;
   cv_.Polyline(s.data(), n, {theme_.Ink(outline), Width(small ? 1.0f : 1.5f)}, true);
 }
 
@@ -123,10 +192,11 @@ void CanvasDrawSink::Label(Vec2 p, const std::string& text, sim::Color color, si
   ImVec2 clip_min, clip_max;
   cv_.Clip(clip_min, clip_max);
   constexpr float kReach = 80.0f;  // a label may move this far towards the view
-  if (s.x < clip_min.x - kReach - 400 || s.x > clip_max.x + kReach ||
-      s.y < clip_min.y - kReach || s.y > clip_max.y + kReach)
+  if (s.x < clip_min.x - kReach - 400 || s.x > clip_max.x + kReach || s.y < clip_min.y - kReach ||
+      s.y > clip_max.y + kReach)
     return;
-  queued_.push_back({s, ImVec2(std::round(s.x + dx_px), std::round(s.y + dy_px)), text, color, role});
+  queued_.push_back(
+      {s, ImVec2(std::round(s.x + dx_px), std::round(s.y + dy_px)), text, color, role});
 }
 
 namespace {
@@ -146,7 +216,10 @@ class BoxGrid {
   }
   void Add(const ImVec4& b) {
     boxes_.push_back(b);
-    ForCells(b, [&](std::vector<int>& c) { c.push_back(static_cast<int>(boxes_.size()) - 1); return false; });
+    ForCells(b, [&](std::vector<int>& c) {
+      c.push_back(static_cast<int>(boxes_.size()) - 1);
+      return false;
+    });
   }
   bool Hits(const ImVec4& b) const {
     return const_cast<BoxGrid*>(this)->ForCells(b, [&](std::vector<int>& c) {
@@ -185,12 +258,16 @@ void CanvasDrawSink::FlushLabels() {
   const float fs = cv_.FontSize(font_);
   BoxGrid taken(clip_min, clip_max);
   for (const ImVec4& o : keep_clear_)
-    if (o.z >= clip_min.x && o.x <= clip_max.x && o.w >= clip_min.y && o.y <= clip_max.y) taken.Add(o);
+    if (o.z >= clip_min.x && o.x <= clip_max.x && o.w >= clip_min.y && o.y <= clip_max.y)
+      taken.Add(o);
   for (const Queued& q : queued_) {
     const ImVec2 ext = cv_.TextSize(font_, q.text);
-    auto box_at = [&](ImVec2 pos) { return ImVec4(pos.x - 2, pos.y - 1, pos.x + ext.x + 2, pos.y + ext.y + 1); };
+    auto box_at = [&](ImVec2 pos) {
+      return ImVec4(pos.x - 2, pos.y - 1, pos.x + ext.x + 2, pos.y + ext.y + 1);
+    };
     auto free = [&](const ImVec4& b) {
-      if (b.x < clip_min.x || b.z > clip_max.x || b.y < clip_min.y || b.w > clip_max.y) return false;
+      if (b.x < clip_min.x || b.z > clip_max.x || b.y < clip_min.y || b.w > clip_max.y)
+        return false;
       return !taken.Hits(b);
     };
     // The scene's own spot, then spots around the anchor: above, below, right, left, the
@@ -199,10 +276,14 @@ void CanvasDrawSink::FlushLabels() {
     bool found = free(box_at(pos)), moved = false;
     for (int ring = 1; ring <= 2 && !found; ++ring) {
       const float d = fs * (0.6f + 1.1f * static_cast<float>(ring));
-      const ImVec2 offsets[8] = {
-          ImVec2(-ext.x / 2, -d - ext.y), ImVec2(-ext.x / 2, d),     ImVec2(d, -ext.y / 2),
-          ImVec2(-d - ext.x, -ext.y / 2), ImVec2(d, -d - ext.y),     ImVec2(-d - ext.x, -d - ext.y),
-          ImVec2(d, d),                   ImVec2(-d - ext.x, d)};
+      const ImVec2 offsets[8] = {ImVec2(-ext.x / 2, -d - ext.y),
+                                 ImVec2(-ext.x / 2, d),
+                                 ImVec2(d, -ext.y / 2),
+                                 ImVec2(-d - ext.x, -ext.y / 2),
+                                 ImVec2(d, -d - ext.y),
+                                 ImVec2(-d - ext.x, -d - ext.y),
+                                 ImVec2(d, d),
+                                 ImVec2(-d - ext.x, d)};
       for (const ImVec2& o : offsets) {
         const ImVec2 c(std::round(q.anchor.x + o.x), std::round(q.anchor.y + o.y));
         if (free(box_at(c))) {
@@ -225,7 +306,8 @@ void CanvasDrawSink::FlushLabels() {
       cv_.Line(q.anchor, to, {ink.WithAlpha(0.7f), 1.0f});
     }
     // A translucent backdrop keeps labels readable over grid lines and trails.
-    cv_.FillRect(ImVec2(box.x, box.y), ImVec2(box.z, box.w), theme_.backdrop.WithAlpha(0.67f), 2.0f);
+    cv_.FillRect(ImVec2(box.x, box.y), ImVec2(box.z, box.w), theme_.backdrop.WithAlpha(0.67f),
+                 2.0f);
     cv_.Text(pos, font_, ink, q.text);
   }
   queued_.clear();

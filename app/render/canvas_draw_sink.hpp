@@ -42,9 +42,11 @@ class CanvasDrawSink : public sim::DrawSink {
   void SetOverlays(const std::set<std::string>* overlays) { overlays_ = overlays; }
   bool AnglesInDegrees() const override { return degrees_; }
   void SetAnglesInDegrees(bool degrees) { degrees_ = degrees; }
-  /// On: a polygon under 12 px across gets a 1 px outline instead of 1.5 px, which leaves its
-  /// colour readable and which ImGui draws with fewer triangles (the window's frame rate with a
-  /// thousand robots). Off (the default): the pictures of files stay as they are.
+  /// On: a polygon under 12 px across is filled without anti-aliasing fringes; with an outline,
+  /// as the outline's colour half a pixel beyond its edge under its fill, made opaque over the
+  /// background, half a pixel inside (four triangles for a rectangle, none thin; its colour stays
+  /// readable), else with a 1 px outline (the window's frame rate with a thousand robots). Off
+  /// (the default): the pictures of files stay as they are.
   void SetLevelOfDetail(bool on) { level_of_detail_ = on; }
   /// One entry per label the scene named, in the order first named.
   struct LegendEntry {

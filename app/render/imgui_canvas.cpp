@@ -170,6 +170,13 @@ void ImGuiCanvas::Polyline(const ImVec2* pts, int n, const Stroke& stroke, bool 
   DashedPolyline(loop.data(), static_cast<int>(loop.size()), col, stroke.width, stroke.dash);
 }
 
+void ImGuiCanvas::FillPolygonAliased(const ImVec2* pts, int n, sim::Color color) {
+  const ImDrawListFlags flags = dl_->Flags;
+  dl_->Flags &= ~ImDrawListFlags_AntiAliasedFill;
+  FillPolygon(pts, n, color);
+  dl_->Flags = flags;
+}
+
 // Concave polygons (floor patches may be any simple polygon) are ear-clipped into triangles;
 // convex ones go to ImGui's anti-aliased convex fill.
 void ImGuiCanvas::FillPolygon(const ImVec2* pts, int n, sim::Color color) {

@@ -31,6 +31,8 @@ class ImGuiCanvas : public Canvas {
   void StrokeRect(ImVec2 min, ImVec2 max, sim::Color color, float width, float rounding) override;
   void Polyline(const ImVec2* pts, int n, const Stroke& stroke, bool closed) override;
   void FillPolygon(const ImVec2* pts, int n, sim::Color color) override;
+  /// ImGui's fill without its one-pixel fringe of anti-aliasing triangles.
+  void FillPolygonAliased(const ImVec2* pts, int n, sim::Color color) override;
   void FillBetween(const ImVec2* upper, const ImVec2* lower, int n, sim::Color color) override;
   void FillCircle(ImVec2 center, float radius, sim::Color color) override;
   void StrokeCircle(ImVec2 center, float radius, sim::Color color, float width) override;

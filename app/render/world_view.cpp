@@ -100,7 +100,8 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
 
   // Grid: minor lines (a fifth of the major step when far enough apart), major lines, axes.
   if (opt.grid) {
-    const double minor = major / 5.0 * view.scale >= 12.0 ? major / 5.0 : major / 2.0;
+    const double minor =
+        major / 5.0 * view.scale >= 12.0 && !opt.level_of_detail ? major / 5.0 : major / 2.0;
     // Grid lines are pixel-aligned 1-px rectangles, not anti-aliased lines: crisper, and far
     // cheaper for the software rasteriser (long thin AA quads cost it ~8 ms per frame).
     auto vline = [&](float sx, sim::Color col) {
