@@ -10,6 +10,9 @@ OUT=screenshots
 mkdir -p "$OUT"
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
+# The window's pictures with its default settings (UI scale, angle unit), whatever the user's
+# ~/.config/formsim says, and no journals left in the user's state folder.
+export XDG_CONFIG_HOME="$TMP/config" FORMSIM_STATE_DIR="$TMP/state"
 run() { env -u DISPLAY "$BIN" run "$@" -q; }
 
 # Every paper figure of the scenarios shown below, drawn by `formsim figures` on all cores as PNG

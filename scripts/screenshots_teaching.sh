@@ -10,7 +10,7 @@ mkdir -p "$OUT"
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
 # The window's settings (UI scale, angle unit) go to a folder of their own, not the user's.
-export XDG_CONFIG_HOME="$TMP/config"
+export XDG_CONFIG_HOME="$TMP/config" FORMSIM_STATE_DIR="$TMP/state"
 
 # Headless: every overlay of "what the law sees" with the legend, the UKF cascade at t = 4 s.
 env -u DISPLAY "$BIN" run formation_traj2_ukf --set duration=4 -q --out "$TMP/ov" \

@@ -6,9 +6,12 @@
 // is a message; a crash, a sanitizer report or an ImGui assertion is a find.
 #include <imgui.h>
 
+#include <stdlib.h>
+
 #include <cstddef>
 #include <cstdint>
 #include <exception>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -30,7 +33,28 @@ std::string ScenarioFor(std::uint8_t b) {
   return formsim::sim::ResolveScenario(kNames[b % 3]);
 }
 
+std::string& OwnDir() {
+  static std::string dir;
+  return dir;
+}
+
 }  // namespace
+
+// The window saves its settings (ui-scale, angle-unit, theme: $XDG_CONFIG_HOME/formsim) and its
+// session journals (FORMSIM_STATE_DIR) as actions change them: into a folder of the harness's
+// own, removed at exit, never the user's. (A fuzz run once left `ui_scale: 3` in ~/.config.)
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  char dir[] = "/tmp/formsim_fuzz_script_XXXXXX";
+  if (mkdtemp(dir) == nullptr) return 0;
+  OwnDir() = dir;
+  setenv("XDG_CONFIG_HOME", (OwnDir() + "/config").c_str(), 1);
+  setenv("FORMSIM_STATE_DIR", (OwnDir() + "/state").c_str(), 1);
+  std::atexit([] {
+    std::error_code ec;
+    std::filesystem::remove_all(OwnDir(), ec);
+  });
+  return 0;
+}
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace formsim;
