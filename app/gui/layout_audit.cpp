@@ -86,7 +86,9 @@ std::vector<std::pair<float, float>> BandsPast(const ImDrawList& dl, float right
         const ImDrawVert& p = dl.VtxBuffer[cmd.VtxOffset + dl.IdxBuffer[cmd.IdxOffset + k + v]];
         x1 = std::max(x1, p.pos.x), y0 = std::min(y0, p.pos.y), y1 = std::max(y1, p.pos.y);
       }
-      if (x1 > work_right + 1.0f && y1 > y0) bands.push_back({y0, y1});  // 1: anti-aliasing
+      // An anti-aliased fill's fringe reaches half a pixel past an item that fits; a square
+      // frame that reaches a pixel past the content region belongs to an item cut there.
+      if (x1 > work_right + 0.75f && y1 > y0) bands.push_back({y0, y1});
     }
   }
   // Merged where they overlap: one band per cut line.

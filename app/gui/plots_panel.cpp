@@ -204,6 +204,7 @@ void PlotsPanel::Draw(const Fonts& fonts) {
   style.padding = 6;
   style.theme = &GetTheme(ctx_.state->theme);
   ImGuiCanvas canvas(ImGui::GetWindowDrawList(), fonts);
+  canvas.SetWholePixelLines(true);  // the window's level of detail (exported figures keep theirs)
   auto draw_cell = [&](std::size_t i) {
     // A time plot's log-y toggle on a line of its own above it (the log-y command).
     if (IsTimePlot(figures[i])) {

@@ -153,6 +153,7 @@ void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool in
     opt.time_note = note;
   }
   ImGuiCanvas canvas(ImGui::GetWindowDrawList(), fonts);
+  canvas.SetWholePixelLines(opt.level_of_detail);
   DrawWorldView(canvas, state_.view, shown, GetTheme(state_.theme), opt);
   // The kind panel's marks (the formation editor's picks).
   if (kind_panel_) kind_panel_->DrawOverWorld(shown, state_.view);

@@ -87,6 +87,10 @@ void SkipBackgroundClear(ImDrawCmd& cmd) {
   if (cmd.UserCallback == &ClearRectCallback) cmd.UserCallback = &SkippedClearCallback;
 }
 
+bool IsSkippedBackgroundClear(const ImDrawCmd& cmd) {
+  return cmd.UserCallback == &SkippedClearCallback;
+}
+
 void ImGuiCanvas::FillBackground(ImVec2 min, ImVec2 max, sim::Color color) {
   // The rectangle as the quad would be clipped: the current clip rectangle, all on whole
   // framebuffer pixels (else the quad's edge pixels could differ from the clear's).
@@ -107,15 +111,22 @@ void ImGuiCanvas::FillBackground(ImVec2 min, ImVec2 max, sim::Color color) {
   dl_->PopClipRect();
 }
 
+float ImGuiCanvas::StrokeWidth(float width) const {
+  // Only where ImGui's textured lines apply: a fringe of one logical pixel (framebuffer scale 1).
+  if (!whole_pixel_lines_ || fonts_.scale != 1.0f || !(width < 63.0f)) return width;
+  return std::max(1.0f, std::round(width));
+}
+
 void ImGuiCanvas::StrokeRect(ImVec2 min, ImVec2 max, sim::Color color, float width,
                              float rounding) {
-  dl_->AddRect(min, max, ToImColor(color), rounding, 0, width);
+  dl_->AddRect(min, max, ToImColor(color), rounding, 0, StrokeWidth(width));
 }
 
 // The dash pattern runs on along the whole polyline (it does not restart at each vertex); each
 // dash is one polyline, so dashes that turn a corner keep a smooth join.
 void ImGuiCanvas::DashedPolyline(const ImVec2* pts, int n, ImU32 col, float width,
                                  const LineDash& dash) {
+  width = StrokeWidth(width);
   float period = 0;
   for (int k = 0; k < dash.count; ++k) period += dash.lengths[k];
   if (!(period > 0.5f)) {
@@ -158,7 +169,8 @@ void ImGuiCanvas::Polyline(const ImVec2* pts, int n, const Stroke& stroke, bool 
   if (n < 2) return;
   const ImU32 col = ToImColor(stroke.color);
   if (stroke.dash.solid()) {
-    dl_->AddPolyline(pts, n, col, closed ? ImDrawFlags_Closed : ImDrawFlags_None, stroke.width);
+    dl_->AddPolyline(pts, n, col, closed ? ImDrawFlags_Closed : ImDrawFlags_None,
+                     StrokeWidth(stroke.width));
     return;
   }
   if (!closed) {
@@ -258,7 +270,7 @@ void ImGuiCanvas::FillCircle(ImVec2 center, float radius, sim::Color color) {
 }
 
 void ImGuiCanvas::StrokeCircle(ImVec2 center, float radius, sim::Color color, float width) {
-  dl_->AddCircle(center, radius, ToImColor(color), 0, width);
+  dl_->AddCircle(center, radius, ToImColor(color), 0, StrokeWidth(width));
 }
 
 float ImGuiCanvas::FontSize(FontRole font) const {

@@ -57,9 +57,18 @@ class ImGuiCanvas : public Canvas {
  /// FillBackground as a clear (true) or always as a quad (false: a draw list that is not rendered
   /// by the GL backend, or kept and appended again later).
   void SetClearBackgrounds(bool on) { clear_backgrounds_ = on; }
+  /// Strokes on whole pixels (the window's level of detail): at a one-to-one framebuffer scale a
+  /// stroke of whole-pixel width is drawn by ImGui from its baked anti-aliased line texture, two
+  /// triangles a segment instead of six, which a software rasteriser pays for per triangle.
+  /// Widths round to the nearest whole pixel, at least one. Off: exported frames and figures
+  /// keep their widths.
+  void SetWholePixelLines(bool on) { whole_pixel_lines_ = on; }
 
  private:
+  /// The width a stroke is drawn with: `width`, or on whole pixels (SetWholePixelLines).
+  float StrokeWidth(float width) const;
   bool clear_backgrounds_ = true;
+  bool whole_pixel_lines_ = false;
   /// Runs `draw`, then turns what it added 90° counter-clockwise about `center`.
   void DrawRotated(ImVec2 center, const std::function<void()>& draw);
   void DashedPolyline(const ImVec2* pts, int n, ImU32 col, float width, const LineDash& dash);
@@ -77,5 +86,7 @@ struct BackgroundClear {
 bool DecodeBackgroundClear(const ImDrawData& dd, const ImDrawCmd& cmd, BackgroundClear* out);
 /// Turns such a clear into a command that does nothing (it was done before the frame's draws).
 void SkipBackgroundClear(ImDrawCmd& cmd);
+/// Whether `cmd` is a clear that SkipBackgroundClear turned into nothing.
+bool IsSkippedBackgroundClear(const ImDrawCmd& cmd);
 
 }  // namespace formsim::app

@@ -30,16 +30,20 @@ class ImGuiLayer {
   void SetTheme(const Theme& theme);
 
   const Fonts& fonts() const { return fonts_; }
-  /// Whether Render may clear the frame to its first background's colour (clear_hoist.hpp; the
-  /// same pixels). On by default; tests compare both.
+  /// Whether Render may clear the frame to its first background's colour and leave out clears
+  /// that change nothing (clear_hoist.hpp; the same pixels). On by default; tests compare both.
   void SetHoistClears(bool on) { hoist_clears_ = on; }
   /// Whether the last Render did so.
   bool hoisted_clear() const { return hoisted_clear_; }
+  /// How many background clears the last Render left out (the hoisted one, and those that would
+  /// have written the colour already there).
+  int skipped_clears() const { return skipped_clears_; }
 
  private:
   Fonts fonts_;
   bool hoist_clears_ = true;
   bool hoisted_clear_ = false;
+  int skipped_clears_ = 0;
 };
 
 }  // namespace formsim::app

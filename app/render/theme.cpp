@@ -290,9 +290,11 @@ void ApplyImGuiTheme(const Theme& theme) {
   } else {
     ImGui::StyleColorsLight();
   }
+  // The panels' background is the world view's and the plots' in every theme: their backgrounds
+  // are then the window's own clear, and a software rasteriser skips them (clear_hoist.hpp).
   switch (theme.id) {
     case ThemeId::kLight:
-      style.Colors[ImGuiCol_WindowBg] = ImVec4(0.96f, 0.96f, 0.95f, 1.0f);
+      style.Colors[ImGuiCol_WindowBg] = c(theme.background);
       break;
     case ThemeId::kPrint:
       style.Colors[ImGuiCol_WindowBg] = ImVec4(1, 1, 1, 1);

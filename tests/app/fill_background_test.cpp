@@ -141,5 +141,100 @@ TEST(FillBackground, FrameClearedToTheFirstBackgroundGivesTheSamePixels) {
   }
 }
 
+
+// A background clear that would write the colour already under it (a plot's background in a
+// window of that colour) is left out: the same pixels, and only where nothing drawn before it
+// reaches its rectangle and its whole rectangle has that one colour.
+struct SkipCase {
+  const char* what;
+  bool view;            // a view background (the hoisted one) first, over most of the frame
+  ImVec2 plot_min, plot_max;
+  bool plot_of_frame;   // the plot's colour: the frame's (else the view's colour)
+  bool line_before;     // a line drawn before the plot, crossing into it
+  bool other_before;    // a background of another colour over part of the plot, before it
+  int skipped;          // clears left out, the hoisted one included
+};
+
+std::vector<std::uint8_t> RenderSkip(ImGuiLayer& layer, int w, int h, float scale, bool skip,
+                                     const SkipCase& c, int* skipped) {
+  const sim::Color frame{51 / 255.0f, 64 / 255.0f, 77 / 255.0f, 1};
+  const sim::Color view{250 / 255.0f, 250 / 255.0f, 247 / 255.0f, 1};
+  layer.NewHeadlessFrame(w, h, 1.0f / 60.0f);
+  ImGui::Begin("v", nullptr, ImGuiWindowFlags_NoBackground | ImGuiWindowFlags_NoDecoration);
+  ImGui::End();
+  ImDrawList* dl = ImGui::GetBackgroundDrawList();
+  ImGuiCanvas cv(dl, layer.fonts());
+  if (c.view) {
+    cv.PushClip(ImVec2(0, 20), ImVec2(360, 300));
+    cv.FillBackground(ImVec2(0, 20), ImVec2(360, 300), view);
+    cv.Text(ImVec2(20, 30), FontRole::kLabel, sim::Color{0, 0, 0, 1}, "t = 1.00 s");
+    cv.PopClip();
+  }
+  if (c.line_before)
+    cv.Line(ImVec2(0, 0), ImVec2(400, 300), Stroke(sim::Color{0.1f, 0.3f, 0.8f, 1}, 2.0f));
+  if (c.other_before) cv.FillBackground(ImVec2(100, 100), ImVec2(240, 160), sim::Color{1, 1, 1, 1});
+  cv.PushClip(c.plot_min, c.plot_max);
+  cv.FillBackground(c.plot_min, c.plot_max, c.plot_of_frame ? frame : view);
+  cv.Line(ImVec2(c.plot_min.x, c.plot_max.y), c.plot_max,
+          Stroke(sim::Color{0.8f, 0.2f, 0.1f, 1}, 2.0f));
+  cv.Text(ImVec2(c.plot_min.x + 6, c.plot_min.y + 4), FontRole::kSmall, sim::Color{0, 0, 0, 1},
+          "(b) e_phi");
+  cv.PopClip();
+  const int fw = static_cast<int>(w * scale), fh = static_cast<int>(h * scale);
+  layer.SetHoistClears(skip);
+  layer.Render(fw, fh, frame.r, frame.g, frame.b);
+  *skipped = layer.skipped_clears();
+  return GlReadRgba(fw, fh);
+}
+
+TEST(FillBackground, ClearOfTheColourAlreadyThereIsLeftOutWithTheSamePixels) {
+  const int w = 400, h = 300;
+  const SkipCase cases[] = {
+      {"a plot of the frame's colour", false, ImVec2(200, 40), ImVec2(380, 200), true, false,
+       false, 1},
+      {"a plot of another colour", false, ImVec2(200, 40), ImVec2(380, 200), false, false, false,
+       0},
+      {"a line drawn before reaches into the plot", false, ImVec2(200, 40), ImVec2(380, 200),
+       true, true, false, 0},
+      {"a background of another colour before it overlaps the plot", false, ImVec2(200, 40),
+       ImVec2(380, 200), true, false, true, 0},
+      {"a plot of the view's colour inside the hoisted view", true, ImVec2(180, 60),
+       ImVec2(340, 200), false, false, false, 2},
+      {"a plot of the frame's colour inside the hoisted view", true, ImVec2(180, 60),
+       ImVec2(340, 200), true, false, false, 1},
+      {"a plot across the hoisted view's edge", true, ImVec2(300, 60), ImVec2(400, 200), false,
+       false, false, 1},
+  };
+  for (const float scale : {1.0f, 2.0f}) {
+    OffscreenContext ctx(static_cast<int>(w * scale), static_cast<int>(h * scale));
+    ImGuiLayer layer;
+    if (scale != 1.0f) layer.SetFontScale(scale);
+    for (const SkipCase& c : cases) {
+      int off_skipped = -1, on_skipped = -1;
+      const auto plain = RenderSkip(layer, w, h, scale, false, c, &off_skipped);
+      const auto skipped = RenderSkip(layer, w, h, scale, true, c, &on_skipped);
+      EXPECT_EQ(off_skipped, 0);
+      EXPECT_EQ(on_skipped, c.skipped) << c.what << " at scale " << scale;
+      ASSERT_EQ(plain.size(), skipped.size());
+      std::size_t differ = 0;
+      for (std::size_t i = 0; i < plain.size(); ++i) differ += plain[i] != skipped[i];
+      EXPECT_EQ(differ, 0u) << c.what << " at scale " << scale;
+    }
+  }
+}
+
+// Every theme's panels have the world view's and the plots' background: their backgrounds are
+// then the window's own clear, left out for software GL (above).
+TEST(FillBackground, PanelsShareTheViewsBackgroundInEveryTheme) {
+  OffscreenContext ctx(64, 64);
+  ImGuiLayer layer;
+  for (const char* name : {"light", "dark", "print", "high-contrast"}) {
+    const Theme& th = GetTheme(ParseTheme(name));
+    layer.SetTheme(th);
+    const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
+    EXPECT_EQ(ImGui::ColorConvertFloat4ToU32(bg), ToImColor(th.background)) << name;
+  }
+}
+
 }  // namespace
 }  // namespace formsim::app
