@@ -194,9 +194,17 @@ bool GuiLoop::Frame() {
   glfwGetFramebufferSize(window_, &fw, &fh);
   const double t_gl = WallSeconds();
   const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
+  // The previous frame is shown only now, and this one is handed to the GL without waiting: a
+  // software rasteriser (llvmpipe) draws it on its own threads while the next frame's
+  // simulation and UI are built, instead of the main thread waiting for every pixel.
+  if (swap_pending_) {
+    glfwSwapBuffers(window_);
+    swap_pending_ = false;
+  }
   layer_.Render(fw, fh, bg.x, bg.y, bg.z);
+  GlFlush();
   if (opt_.timing) {
-    GlFinish();  // attribute the rasterisation to this frame
+    // GL: issuing this frame's draws and waiting for the previous frame's pixels.
     // The simulation runs inside Advance: the UI build is the rest of that time.
     sim_ms_.push_back(ui.Find<RunPanel>()->sim_ms());
     ui_ms_.push_back(1e3 * (t_gl - t_ui) - sim_ms_.back());
@@ -218,7 +226,7 @@ bool GuiLoop::Frame() {
     results_.erase(-t);
   }
   ran_this_frame_.clear();
-  glfwSwapBuffers(window_);
+  swap_pending_ = true;  // shown at the next frame, or never if the window closes now
   const std::string now_title = WindowTitle(ui.session().exp().setup().name);
   if (now_title != title_shown_) {
     glfwSetWindowTitle(window_, now_title.c_str());

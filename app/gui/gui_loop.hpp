@@ -67,6 +67,7 @@ class GuiLoop {
   long clock_ = 0;  ///< script time: stands still while a `wait` holds the script
   long frames_ = 0;
   bool holding_ = false;
+  bool swap_pending_ = false;  ///< a rendered frame waits for glfwSwapBuffers
   bool f1_down_ = false;
   int shot_counter_ = 0;
   std::string shot_where_;

@@ -17,6 +17,7 @@ namespace {
 // glFinish is not in ImGui's loader table; we load it ourselves from the same context.
 using FinishFn = void (*)();
 FinishFn g_finish = nullptr;
+FinishFn g_flush = nullptr;
 
 }  // namespace
 
@@ -42,10 +43,16 @@ void LoadGl(GlGetProcAddress get_proc, const char* context_name) {
                                std::to_string(i) + " is missing");
   g_finish = reinterpret_cast<FinishFn>(get_proc("glFinish"));
   if (g_finish == nullptr) throw std::runtime_error(std::string(context_name) + ": no glFinish");
+  g_flush = reinterpret_cast<FinishFn>(get_proc("glFlush"));
+  if (g_flush == nullptr) throw std::runtime_error(std::string(context_name) + ": no glFlush");
 }
 
 void GlFinish() {
   g_finish();
+}
+
+void GlFlush() {
+  g_flush();
 }
 
 }  // namespace formsim::app

@@ -28,6 +28,9 @@ void GlClearRect(int x, int y, int width, int height, float r, float g, float b,
 void GlScissorOff();
 /// Waits until every GL command has finished (the OSMesa buffer is then complete).
 void GlFinish();
+/// Hands every GL command issued so far to the GL to carry out, without waiting for them
+/// (llvmpipe rasterises on its own threads meanwhile).
+void GlFlush();
 /// Reads the current framebuffer as RGBA, top row first.
 std::vector<std::uint8_t> GlReadRgba(int width, int height);
 

@@ -58,4 +58,8 @@ void GlFinish() {
   glFinish();
 }
 
+void GlFlush() {
+  glFlush();
+}
+
 }  // namespace formsim::app
