@@ -19,7 +19,8 @@ double Cross(ImVec2 o, ImVec2 a, ImVec2 b) {
 // polygon's mitred inset), in `inner`; empty when the shape is too thin to keep an inside. False
 // when `pts` is not strictly convex or has a corner sharper than 30 degrees (the mitre would reach
 // far out).
-bool InsetConvex(const std::vector<ImVec2>& pts, float d, std::vector<ImVec2>* inner) {
+bool InsetConvex(const std::vector<ImVec2>& pts, float d, std::vector<ImVec2>* inner,
+                 std::vector<ImVec2>* normal_scratch) {
   const std::size_t n = pts.size();
   if (n < 3) return false;
   double sign = 0;
@@ -29,7 +30,8 @@ bool InsetConvex(const std::vector<ImVec2>& pts, float d, std::vector<ImVec2>* i
     sign = c;
   }
   // Inward unit normal of the edge i -> i+1.
-  std::vector<ImVec2> normal(n);
+  std::vector<ImVec2>& normal = *normal_scratch;
+  normal.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const ImVec2 a = pts[i], b = pts[(i + 1) % n];
     const double len = std::hypot(b.x - a.x, b.y - a.y);
@@ -64,8 +66,9 @@ void CanvasDrawSink::Legend(sim::LegendMark mark, sim::Color color, const std::s
 
 void CanvasDrawSink::Polygon(const std::vector<Vec2>& pts, sim::Color fill, sim::Color outline) {
   if (pts.size() < 2) return;
-  std::vector<ImVec2> s;
-  s.reserve(pts.size());
+  // Scratch kept between calls: a thousand robots draw two polygons each a frame.
+  std::vector<ImVec2>& s = screen_;
+  s.clear();
   for (const Vec2& p : pts) s.push_back(view_.ToScreen(p));
   const int n = static_cast<int>(s.size());
   // Level of detail (the window only): a shape under kSmallShapePx (a robot of a zoomed-out
@@ -88,8 +91,9 @@ void CanvasDrawSink::Polygon(const std::vector<Vec2>& pts, sim::Color fill, sim:
     // edge, then the fill half a pixel inside it, where a one-pixel outline would have run (four
     // triangles for a rectangle, none of them thin). The fill is made
     // opaque as it looks over the background: at this size nothing shows through it anyway.
-    std::vector<ImVec2> outer, inner;
-    if (InsetConvex(s, -0.5f, &outer) && InsetConvex(s, 0.5f, &inner)) {
+    std::vector<ImVec2>& outer = outer_;
+    std::vector<ImVec2>& inner = inner_;
+    if (InsetConvex(s, -0.5f, &outer, &normals_) && InsetConvex(s, 0.5f, &inner, &normals_)) {
       const sim::Color bg = theme_.background;
       const float a = fill_ink.a;
       const sim::Color solid{fill_ink.r * a + bg.r * (1 - a), fill_ink.g * a + bg.g * (1 - a),

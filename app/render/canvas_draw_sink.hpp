@@ -85,6 +85,7 @@ class CanvasDrawSink : public sim::DrawSink {
   bool degrees_ = true;
   bool level_of_detail_ = false;
   std::vector<LegendEntry> legend_;
+  std::vector<ImVec2> screen_, outer_, inner_, normals_;  ///< Polygon's scratch
   Canvas& cv_;
   const View& view_;
   const Theme& theme_;

@@ -162,12 +162,12 @@ bool ClearForFrame(ImDrawData& dd, int fb_width, int fb_height, float r, float g
   }
   // The frame's colour as its clear writes it, when that is sure (else no clear matches it).
   const int br = ClearedByte(r), bg = ClearedByte(g), bb = ClearedByte(b);
-  const std::uint32_t under =
-      br < 0 || bg < 0 || bb < 0
-          ? 0u  // alpha 0: no background clear (opaque only) equals it
-          : (static_cast<std::uint32_t>(br) << IM_COL32_R_SHIFT) |
-                (static_cast<std::uint32_t>(bg) << IM_COL32_G_SHIFT) |
-                (static_cast<std::uint32_t>(bb) << IM_COL32_B_SHIFT) | IM_COL32_A_MASK;
+  const std::uint32_t under = br < 0 || bg < 0 || bb < 0
+                                  ? 0u  // alpha 0: no background clear (opaque only) equals it
+                                  : (static_cast<std::uint32_t>(br) << IM_COL32_R_SHIFT) |
+                                        (static_cast<std::uint32_t>(bg) << IM_COL32_G_SHIFT) |
+                                        (static_cast<std::uint32_t>(bb) << IM_COL32_B_SHIFT) |
+                                        IM_COL32_A_MASK;
   if (!first || reached) {
     GlClear(fb_width, fb_height, r, g, b);
     *skipped = SkipRedundantClears(dd, fb_width, fb_height, under, nullptr);

@@ -136,6 +136,7 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
     avoid.bodies.push_back(c);
     if (r >= 3.0f) bodies.push_back(ImVec4(c.x - r, c.y - r, c.x + r, c.y + r));
   }
+  avoid.trails.reserve(focus.trails.size());
   for (const Vec2& p : focus.trails) avoid.trails.push_back(view.ToScreen(p));
   const std::size_t robot_boxes = bodies.size();  // the entries after them are not robots
   // Scene labels also keep off what the view draws over them: the time and caption (top left),

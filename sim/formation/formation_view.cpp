@@ -494,6 +494,10 @@ void FormationExperiment::FocusPoints(std::vector<Vec2>& bodies, std::vector<dou
   // A trail point is pushed every trail_every steps: the last `seconds` are its last n points.
   const double per_point = dt() * cfg_.trail_every;
   const std::size_t n = per_point > 0 ? static_cast<std::size_t>(seconds / per_point) : 0;
+  // Reserved at once: a thousand robots' trails are tens of thousands of points a frame.
+  std::size_t count = trails.size();
+  for (const Agent& a : agents_) count += std::min(n, a.trail.size());
+  trails.reserve(count);
   for (const Agent& a : agents_)
     for (std::size_t k = a.trail.size() > n ? a.trail.size() - n : 0; k < a.trail.size(); ++k)
       trails.push_back(a.trail[k]);

@@ -141,18 +141,17 @@ TEST(FillBackground, FrameClearedToTheFirstBackgroundGivesTheSamePixels) {
   }
 }
 
-
 // A background clear that would write the colour already under it (a plot's background in a
 // window of that colour) is left out: the same pixels, and only where nothing drawn before it
 // reaches its rectangle and its whole rectangle has that one colour.
 struct SkipCase {
   const char* what;
-  bool view;            // a view background (the hoisted one) first, over most of the frame
+  bool view;  // a view background (the hoisted one) first, over most of the frame
   ImVec2 plot_min, plot_max;
-  bool plot_of_frame;   // the plot's colour: the frame's (else the view's colour)
-  bool line_before;     // a line drawn before the plot, crossing into it
-  bool other_before;    // a background of another colour over part of the plot, before it
-  int skipped;          // clears left out, the hoisted one included
+  bool plot_of_frame;  // the plot's colour: the frame's (else the view's colour)
+  bool line_before;    // a line drawn before the plot, crossing into it
+  bool other_before;   // a background of another colour over part of the plot, before it
+  int skipped;         // clears left out, the hoisted one included
 };
 
 std::vector<std::uint8_t> RenderSkip(ImGuiLayer& layer, int w, int h, float scale, bool skip,
@@ -190,12 +189,12 @@ std::vector<std::uint8_t> RenderSkip(ImGuiLayer& layer, int w, int h, float scal
 TEST(FillBackground, ClearOfTheColourAlreadyThereIsLeftOutWithTheSamePixels) {
   const int w = 400, h = 300;
   const SkipCase cases[] = {
-      {"a plot of the frame's colour", false, ImVec2(200, 40), ImVec2(380, 200), true, false,
-       false, 1},
+      {"a plot of the frame's colour", false, ImVec2(200, 40), ImVec2(380, 200), true, false, false,
+       1},
       {"a plot of another colour", false, ImVec2(200, 40), ImVec2(380, 200), false, false, false,
        0},
-      {"a line drawn before reaches into the plot", false, ImVec2(200, 40), ImVec2(380, 200),
-       true, true, false, 0},
+      {"a line drawn before reaches into the plot", false, ImVec2(200, 40), ImVec2(380, 200), true,
+       true, false, 0},
       {"a background of another colour before it overlaps the plot", false, ImVec2(200, 40),
        ImVec2(380, 200), true, false, true, 0},
       {"a plot of the view's colour inside the hoisted view", true, ImVec2(180, 60),
