@@ -4,11 +4,11 @@
 #include <cmath>
 #include <cstdio>
 
-#include "app/render/imgui_canvas.hpp"
-#include "app/render/long_text.hpp"
 #include "app/gui/compare_panel.hpp"
 #include "app/gui/timeline_panel.hpp"
 #include "app/gui/ui.hpp"
+#include "app/render/imgui_canvas.hpp"
+#include "app/render/long_text.hpp"
 #include "app/render/world_view.hpp"
 
 namespace formsim::app {
@@ -112,8 +112,9 @@ void AppUi::DrawWorldMouse(const View& view) {
     const Vec2 m = view.ToWorld(io.MousePos);
     char buf[64];
     std::snprintf(buf, sizeof(buf), "x %.3f m, y %.3f m", m.x, m.y);
-    ImGui::GetWindowDrawList()->AddText(ImVec2(view.min.x + 44, view.max.y - 42),
-                                        ToImColor(GetTheme(state_.theme).coordinates), buf);
+    const ImVec2 at =
+        CoordinateReadoutPos(view, ImGui::CalcTextSize(buf), world_report_.scale_bar_box);
+    ImGui::GetWindowDrawList()->AddText(at, ToImColor(GetTheme(state_.theme).coordinates), buf);
   }
 }
 

@@ -57,7 +57,8 @@ std::string ParseSceneOverlays(const std::string& text, std::set<std::string>* o
       for (const sim::OverlayInfo& o : sim::Overlays()) known = known || o.name == name;
       if (!known) {
         std::string names;
-        for (const sim::OverlayInfo& o : sim::Overlays()) names += (names.empty() ? "" : ", ") + o.name;
+        for (const sim::OverlayInfo& o : sim::Overlays())
+          names += (names.empty() ? "" : ", ") + o.name;
         return "unknown overlay '" + name + "' (known: " + names + ", all, none, default, -NAME)";
       }
       if (remove)
@@ -144,14 +145,19 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
   {
     const float fs = cv.FontSize(FontRole::kSmall);
     if (opt.time_label)
-      bodies.push_back(ImVec4(view.min.x, view.min.y, view.min.x + 16 + cv.TextSize(FontRole::kTitle, "t = 000.00 s  " + opt.time_note).x,
-                              view.min.y + 40 + (opt.caption.empty() ? 0 : fs + 6)));
+      bodies.push_back(ImVec4(
+          view.min.x, view.min.y,
+          view.min.x + 16 + cv.TextSize(FontRole::kTitle, "t = 000.00 s  " + opt.time_note).x,
+          view.min.y + 40 + (opt.caption.empty() ? 0 : fs + 6)));
     if (opt.scale_bar)
       bodies.push_back(ImVec4(view.max.x - 40 - static_cast<float>(major * view.scale),
-                              view.max.y - 50 - cv.FontSize(FontRole::kLabel), view.max.x, view.max.y));
+                              view.max.y - 50 - cv.FontSize(FontRole::kLabel), view.max.x,
+                              view.max.y));
     if (opt.grid && opt.coordinates) {
       bodies.push_back(ImVec4(view.min.x, view.max.y - fs - 6, view.max.x, view.max.y));
-      bodies.push_back(ImVec4(view.min.x, view.min.y, view.min.x + 4 + cv.TextSize(FontRole::kSmall, "-00.0").x, view.max.y));
+      bodies.push_back(ImVec4(view.min.x, view.min.y,
+                              view.min.x + 4 + cv.TextSize(FontRole::kSmall, "-00.0").x,
+                              view.max.y));
     }
   }
 
@@ -160,8 +166,8 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
   sink.SetAnglesInDegrees(opt.degrees);
   sink.SetLevelOfDetail(opt.level_of_detail);
   // The legend as last drawn (it moves at most once a second): labels keep off it too.
-  const bool has_legend_box = opt.legend && opt.legend_state &&
-                              opt.legend_state->box_max.x > opt.legend_state->box_min.x;
+  const bool has_legend_box =
+      opt.legend && opt.legend_state && opt.legend_state->box_max.x > opt.legend_state->box_min.x;
   if (has_legend_box) {
     const LegendState& ls = *opt.legend_state;
     bodies.push_back(ImVec4(ls.box_min.x, ls.box_min.y, ls.box_max.x, ls.box_max.y));
@@ -175,6 +181,7 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
   }
   sink.FlushLabels();
   if (opt.report) {
+    opt.report->scale_bar_box = ImVec4();
     // Counted from the boxes as drawn, not from what the placement meant to do.
     auto overlap = [](const ImVec4& a, const ImVec4& b) {
       return a.x < b.z && b.x < a.z && a.y < b.w && b.y < a.w;
@@ -183,7 +190,8 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
     int n = 0;
     for (std::size_t i = 0; i < placed.size(); ++i) {
       bool hit = false;
-      for (std::size_t j = 0; j < placed.size() && !hit; ++j) hit = j != i && overlap(placed[i], placed[j]);
+      for (std::size_t j = 0; j < placed.size() && !hit; ++j)
+        hit = j != i && overlap(placed[i], placed[j]);
       for (std::size_t k = 0; k < robot_boxes && !hit; ++k) hit = overlap(placed[i], keep_clear[k]);
       if (has_legend_box && !hit) hit = overlap(placed[i], keep_clear.back());
       n += hit;
@@ -224,6 +232,8 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
     const ImVec2 ext = cv.TextSize(FontRole::kLabel, buf);
     cv.FillRect(ImVec2(p0.x - 8, p0.y - ext.y - 10), ImVec2(p1.x + 8, p1.y + 10),
                 th.backdrop.WithAlpha(0.84f), 3.0f);
+    if (opt.report)
+      opt.report->scale_bar_box = ImVec4(p0.x - 8, p0.y - ext.y - 10, p1.x + 8, p1.y + 10);
     const sim::Color ink = th.axis;
     cv.Line(p0, p1, {ink, 3.0f});
     cv.Line(ImVec2(p0.x, p0.y - 6), ImVec2(p0.x, p0.y + 6), {ink, 2.0f});
@@ -245,8 +255,8 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
     const float pins = opt.overlays.empty()
                            ? 0.0f
                            : (cv.FontSize(FontRole::kSmall) + 6) * opt.overlays.size() + 14;
-    DrawWorldLegend(cv, view, th, sink.legend(), avoid, opt.legend_state, opt.clock,
-                    60.0f + pins, 56.0f);
+    DrawWorldLegend(cv, view, th, sink.legend(), avoid, opt.legend_state, opt.clock, 60.0f + pins,
+                    56.0f);
   }
   // Legend of the overlays, top right: a dashed sample in the entry's colour and its label.
   if (!opt.overlays.empty()) {
@@ -267,6 +277,14 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
     }
   }
   cv.PopClip();
+}
+
+ImVec2 CoordinateReadoutPos(const View& view, ImVec2 ext, const ImVec4& bar) {
+  ImVec2 at(view.min.x + 44, view.max.y - 42);
+  constexpr float kGap = 6;
+  if (bar.z > bar.x && at.x + ext.x + kGap > bar.x && at.y + ext.y > bar.y && at.y < bar.w)
+    at.y = bar.y - ext.y - 4;
+  return at;
 }
 
 }  // namespace formsim::app

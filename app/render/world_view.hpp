@@ -22,17 +22,18 @@ struct WorldOverlay {
 
 /// What a drawing of the world view placed, for the layout report (issue 24 item 5).
 struct WorldViewReport {
-  int labels = 0;               ///< scene labels drawn
-  int overlapping_labels = 0;   ///< drawn labels that overlap another drawn label or a robot body
+  int labels = 0;                 ///< scene labels drawn
+  int overlapping_labels = 0;     ///< drawn labels that overlap another drawn label or a robot body
   double formation_fraction = 0;  ///< FormationFraction() of the robots in this view
+  ImVec4 scale_bar_box;           ///< the scale bar's backdrop (x0, y0, x1, y1); empty: none
 };
 
 struct WorldViewOptions {
   bool grid = true;
   bool scale_bar = true;
   bool time_label = true;
-  bool coordinates = true;  ///< grid values along the left and bottom edges
-  std::string caption;      ///< drawn under the time (scenario name)
+  bool coordinates = true;             ///< grid values along the left and bottom edges
+  std::string caption;                 ///< drawn under the time (scenario name)
   std::vector<WorldOverlay> overlays;  ///< drawn faded after the experiment, listed top right
   std::string time_note;               ///< after the time label, e.g. "(timeline; live at 7.00 s)"
   /// Overlays of the scene to draw (sim::Overlays() names); nullptr: the defaults.
@@ -40,8 +41,8 @@ struct WorldViewOptions {
   bool legend = false;  ///< a legend of every kind of mark drawn (app/render/world_legend.hpp)
   LegendState* legend_state = nullptr;  ///< the legend's corner and collapse between frames
   double clock = 0.0;                   ///< seconds, for the legend's once-a-second corner choice
-  bool degrees = true;  ///< angles in the scene's labels in degrees (else radians)
-  WorldViewReport* report = nullptr;  ///< when set, filled with what this drawing placed
+  bool degrees = true;                  ///< angles in the scene's labels in degrees (else radians)
+  WorldViewReport* report = nullptr;    ///< when set, filled with what this drawing placed
   /// Level of detail for the window's frame rate: shapes under 12 px (a zoomed-out swarm's
   /// robots) are drawn without thin anti-aliasing triangles (CanvasDrawSink::SetLevelOfDetail),
   /// and the grid has one minor line between major lines instead of four (each one-pixel line
@@ -68,5 +69,10 @@ double GridStep(double pixels_per_metre, double min_px);
 /// the experiment's bounds (at once when `jump`, else smoothly, as frames of a video do).
 void FrameWorldView(const sim::Experiment& exp, float width, float height, View& view, AutoFit& fit,
                     bool jump);
+
+/// Where the pointer's coordinates (text of size `ext`) are written in `view`: bottom left, above
+/// the grid's values; above the scale bar's backdrop `bar` (WorldViewReport::scale_bar_box) where
+/// the two would meet (a narrow view, a large UI scale).
+ImVec2 CoordinateReadoutPos(const View& view, ImVec2 ext, const ImVec4& bar);
 
 }  // namespace formsim::app

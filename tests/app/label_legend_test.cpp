@@ -6,6 +6,9 @@
 #include "app/render/canvas_draw_sink.hpp"
 #include "app/render/vector_canvas.hpp"
 #include "app/render/world_legend.hpp"
+#include "app/render/world_view.hpp"
+#include "sim/session/session.hpp"
+#include "tests/app/test_util.hpp"
 
 namespace formsim::app {
 namespace {
@@ -69,7 +72,8 @@ std::vector<CanvasDrawSink::LegendEntry> Entries(int n) {
 }
 
 TEST(WorldLegend, TakesAtMostFifteenPercentAndAvoidsTheRobots) {
-  for (auto [w, h] : std::vector<std::pair<float, float>>{{1920.f, 1080.f}, {900.f, 600.f}, {480.f, 320.f}}) {
+  for (auto [w, h] :
+       std::vector<std::pair<float, float>>{{1920.f, 1080.f}, {900.f, 600.f}, {480.f, 320.f}}) {
     VectorCanvas cv(w, h);
     const View view = Screen(w, h);
     LegendAvoid avoid;
@@ -105,6 +109,36 @@ TEST(WorldLegend, CornerIsReChosenAtMostOnceASecondAndCollapses) {
   st.collapsed = true;
   DrawWorldLegend(cv, view, GetTheme(ThemeId::kLight), Entries(6), avoid, &st, 11.2, 60, 56);
   EXPECT_LT(st.box_max.y - st.box_min.y, 0.5f * open_h) << "collapsed: a title tab";
+}
+
+// The pointer's coordinates, bottom left, never run under the scale bar, bottom right: in a narrow
+// view (a UI scale of 2 at 1920x1080 gives one about 500 logical pixels wide) they go above it.
+TEST(CoordinateReadout, KeepsOffTheScaleBarInNarrowViews) {
+  sim::Session s(testing::Scenario("formation_cascade7"), {}, -1);
+  const Theme& th = GetTheme(ThemeId::kLight);
+  int moved = 0;
+  for (const float w : {1200.0f, 800.0f, 500.0f, 380.0f, 300.0f}) {
+    VectorCanvas cv(static_cast<int>(w), 600);
+    View view;
+    AutoFit fit;
+    FrameWorldView(s.exp(), w, 600, view, fit, true);
+    WorldViewReport report;
+    WorldViewOptions opt;
+    opt.report = &report;
+    DrawWorldView(cv, view, s.exp(), th, opt);
+    const ImVec4 bar = report.scale_bar_box;
+    ASSERT_GT(bar.z, bar.x) << "a scale bar at width " << w;
+    for (const float text_w : {150.0f, 230.0f, 320.0f}) {
+      const ImVec2 ext(text_w, 15);
+      const ImVec2 at = CoordinateReadoutPos(view, ext, bar);
+      const ImVec4 box(at.x, at.y, at.x + ext.x, at.y + ext.y);
+      EXPECT_FALSE(Overlap(box, bar)) << "width " << w << ", text " << text_w;
+      EXPECT_GE(at.y, view.min.y) << "width " << w;
+      moved += at.y != view.max.y - 42;
+    }
+  }
+  EXPECT_GT(moved, 0) << "some narrow view needs the readout moved";
+  EXPECT_LT(moved, 15) << "a wide view keeps it at its place";
 }
 
 }  // namespace
