@@ -65,6 +65,9 @@ struct UiState {
   bool legend = true;    ///< a legend of every mark drawn in the world view
   bool help = false;     ///< the help overlay (F1)
   bool present = false;  ///< presentation mode: the world view fills the window
+  /// Where presentation mode's buttons ended last frame (logical pixels from the top; 0: none):
+  /// the camera frames the formation below them.
+  float present_bar_bottom = 0;
   /// The presentation camera frames the formation outside presentation mode too.
   bool frame_formation = false;
   PresentationCamera camera;  ///< view-only: frames and follows the formation (app/render/camera)

@@ -24,7 +24,9 @@ void AppUi::UpdateView(ImVec2 min, ImVec2 max) {
     // Presentation (or "frame the formation"): the camera frames the robots and recent trails.
     if (state_.fit_now) state_.camera.Fit();
     state_.fit_now = false;
-    state_.camera.Update(v, FocusOf(exp, state_.camera.options().trail_seconds), 0.15);
+    // In presentation mode the buttons cover the top right: the formation is framed below them.
+    const float inset = state_.present ? std::max(0.0f, state_.present_bar_bottom - min.y) : 0.0f;
+    state_.camera.Update(v, FocusOf(exp, state_.camera.options().trail_seconds), 0.15, inset);
   } else if (state_.fit_now) {
     if (!state_.whole_run) auto_fit_.Reset();
     state_.auto_fit = true;

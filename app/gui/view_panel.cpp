@@ -5,16 +5,16 @@
 #include <cstdio>
 #include <functional>
 
-#include "app/render/imgui_canvas.hpp"
-#include "app/gui/run_panel.hpp"
 #include "app/gui/command_row_makers.hpp"
+#include "app/gui/run_panel.hpp"
 #include "app/gui/ui.hpp"
 #include "app/gui/ui_settings.hpp"
+#include "app/render/imgui_canvas.hpp"
 #include "app/render/theme.hpp"
 #include "app/render/world_view.hpp"
 #include "sim/core/draw.hpp"
-#include "sim/session/session.hpp"
 #include "sim/core/number_format.hpp"
+#include "sim/session/session.hpp"
 
 // Each row names only the fields it sets; the others keep their defaults on purpose.
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
@@ -111,9 +111,10 @@ void ViewPanel::Draw(const Fonts&) {
     ImGui::SetTooltip(
         "auto-fit keeps everything seen since the start in view\n(off: follows the robots)");
   const auto& robots = ctx_.session().exp().world().robots();
-  std::string preview = ctx_.state->follow >= 0 && ctx_.state->follow < static_cast<int>(robots.size())
-                            ? robots[ctx_.state->follow]->name()
-                            : "nobody";
+  std::string preview =
+      ctx_.state->follow >= 0 && ctx_.state->follow < static_cast<int>(robots.size())
+          ? robots[ctx_.state->follow]->name()
+          : "nobody";
   ImGui::SetNextItemWidth(140);
   if (ImGui::BeginCombo("follow", preview.c_str())) {
     if (ImGui::Selectable("nobody", ctx_.state->follow < 0)) ctx_.state->follow = -1;
@@ -219,6 +220,7 @@ void ViewPanel::DrawPresentationBar(ImVec2 min, ImVec2 max) {
   ImGui::SameLine();
   if (ImGui::Button("Exit presentation")) CmdPresent(false);
   ctx_.Find<RunPanel>()->DrawAchievedSpeed();
+  ctx_.state->present_bar_bottom = ImGui::GetWindowPos().y + ImGui::GetWindowSize().y;
   ImGui::End();
 }
 
@@ -243,7 +245,8 @@ std::vector<Command> ViewPanel::Rows() {
        .menu = "View/Presentation mode",
        .help = "The world view fills the window, for a lecture room (Esc leaves)",
        .checked = [](const AppUi& ui) { return ui.state().present; },
-       .run = [panel](AppUi& ui, const CommandArgs& a, Src) { return panel(ui)->CmdPresent(a.On(0)); }});
+       .run = [panel](AppUi& ui, const CommandArgs& a,
+                      Src) { return panel(ui)->CmdPresent(a.On(0)); }});
   row({.name = "frame-formation",
        .args = {OnOff()},
        .key_args = "toggle",
@@ -251,11 +254,12 @@ std::vector<Command> ViewPanel::Rows() {
        .help = "The camera frames the robots and their recent trails and follows them (always on "
                "in presentation mode; zooming by hand pauses it until fit)",
        .checked = [](const AppUi& ui) { return ui.state().frame_formation; },
-       .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         ui.state().frame_formation = a.On(0);
-         ui.state().camera.Fit();
-         return std::string();
-       }});
+       .run =
+           [](AppUi& ui, const CommandArgs& a, Src) {
+             ui.state().frame_formation = a.On(0);
+             ui.state().camera.Fit();
+             return std::string();
+           }});
   row({.name = "theme",
        .args = {Initial(
            Choice("NAME", ThemeList()),
@@ -276,7 +280,9 @@ std::vector<Command> ViewPanel::Rows() {
            [](const AppUi& ui) { return sim::FormatDouble(ui.state().settings.ui_scale); })},
        .menu = "View/UI scale",
        .help = "Fonts and line widths, kept between runs",
-       .run = [panel](AppUi& ui, const CommandArgs& a, Src) { return panel(ui)->CmdUiScale(a.Real(0)); }});
+       .run = [panel](AppUi& ui, const CommandArgs& a, Src) {
+         return panel(ui)->CmdUiScale(a.Real(0));
+       }});
   row({.name = "angle-unit",
        .args = {Initial(Choice("UNIT", {"deg", "rad"}),
                         [](const AppUi& ui) {
@@ -284,13 +290,17 @@ std::vector<Command> ViewPanel::Rows() {
                         })},
        .menu = "View/Angle unit",
        .help = "Show angles in degrees or radians (stored values stay radians)",
-       .run = [panel](AppUi& ui, const CommandArgs& a, Src) { return panel(ui)->CmdAngleUnit(a.Text(0)); }});
+       .run = [panel](AppUi& ui, const CommandArgs& a, Src) {
+         return panel(ui)->CmdAngleUnit(a.Text(0));
+       }});
   row({.name = "overlay",
        .args = {Offer(Text("LIST", "overlay names, comma-separated (all, none, default, -NAME)"),
                       OverlayNames)},
        .menu = "View/Overlays",
        .help = "What the law sees, drawn over the scene: applied to the overlays shown now",
-       .run = [panel](AppUi& ui, const CommandArgs& a, Src) { return panel(ui)->CmdOverlay(a.Text(0)); }});
+       .run = [panel](AppUi& ui, const CommandArgs& a, Src) {
+         return panel(ui)->CmdOverlay(a.Text(0));
+       }});
   row({.name = "legend",
        .args = {OnOff()},
        .keys = {"l"},
@@ -298,7 +308,8 @@ std::vector<Command> ViewPanel::Rows() {
        .menu = "View/Legend",
        .help = "A legend of every mark in the world view",
        .checked = [](const AppUi& ui) { return ui.state().legend; },
-       .run = [panel](AppUi& ui, const CommandArgs& a, Src) { return panel(ui)->CmdLegend(a.On(0)); }});
+       .run = [panel](AppUi& ui, const CommandArgs& a,
+                      Src) { return panel(ui)->CmdLegend(a.On(0)); }});
   row({.name = "follow",
        .args = {Initial(
            Offer(Text("ROBOT", "a robot's name, or nobody", ArgType::kChoice), RobotNames),
@@ -342,7 +353,8 @@ std::vector<Command> ViewPanel::Rows() {
        .menu = "Help/Keys and mouse",
        .help = "The help overlay: every key and mouse gesture",
        .checked = [](const AppUi& ui) { return ui.state().help; },
-       .run = [panel](AppUi& ui, const CommandArgs& a, Src) { return panel(ui)->CmdHelp(a.On(0)); }});
+       .run = [panel](AppUi& ui, const CommandArgs& a,
+                      Src) { return panel(ui)->CmdHelp(a.On(0)); }});
   return t;
 }
 

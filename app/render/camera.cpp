@@ -30,7 +30,7 @@ double FormationFraction(const View& view, const FocusSet& focus) {
   return std::max(hi.x - lo.x, hi.y - lo.y) * view.scale / shorter;
 }
 
-View PresentationCamera::Target(const View& view, const FocusSet& focus) const {
+View PresentationCamera::Target(const View& view, const FocusSet& focus, float top_inset) const {
   View t = view;
   Vec2 rlo, rhi;
   if (!focus.RobotBox(rlo, rhi)) return t;
@@ -43,7 +43,8 @@ View PresentationCamera::Target(const View& view, const FocusSet& focus) const {
   const double shorter = std::max(1.0f, std::min(view.width(), view.height()));
   const double margin = opt_.margin_fraction * shorter;
   const double aw = std::max(10.0, view.width() - 2 * margin);
-  const double ah = std::max(10.0, view.height() - 2 * margin);
+  const double inset = std::clamp(static_cast<double>(top_inset), 0.0, 0.5 * view.height());
+  const double ah = std::max(10.0, view.height() - 2 * margin - inset);
   const double rw = std::max(1e-3, rhi.x - rlo.x), rh = std::max(1e-3, rhi.y - rlo.y);
   // Everything framed; at least the wanted fill of the robots; never more than the robots fit.
   const double all = std::min(aw / std::max(1e-3, hi.x - lo.x), ah / std::max(1e-3, hi.y - lo.y));
@@ -60,13 +61,16 @@ View PresentationCamera::Target(const View& view, const FocusSet& focus) const {
     const double limit = (ahi - alo) <= 2 * half ? room : 0.5 * room;
     return rc + std::clamp(towards, -limit, limit);
   };
-  t.center = {place(rlo.x, rhi.x, lo.x, hi.x, hw), place(rlo.y, rhi.y, lo.y, hi.y, hh)};
+  // The framed box sits in the middle of the room below the inset: half of it lower on screen.
+  t.center = {place(rlo.x, rhi.x, lo.x, hi.x, hw),
+              place(rlo.y, rhi.y, lo.y, hi.y, hh) + 0.5 * inset / t.scale};
   return t;
 }
 
-void PresentationCamera::Update(View& view, const FocusSet& focus, double smoothing) {
+void PresentationCamera::Update(View& view, const FocusSet& focus, double smoothing,
+                                float top_inset) {
   if (suspended_ || focus.empty()) return;
-  const View t = Target(view, focus);
+  const View t = Target(view, focus, top_inset);
   const double a = jump_ ? 1.0 : std::clamp(smoothing, 0.0, 1.0);
   jump_ = false;
   // The centre keeps up with moving robots (no lag at 2.5 m/s); the zoom eases.

@@ -13,9 +13,9 @@ namespace formsim::app {
 
 /// What the camera keeps in view, in world metres.
 struct FocusSet {
-  std::vector<Vec2> bodies;    ///< robot positions
-  std::vector<double> radii;   ///< their circumscribed radii
-  std::vector<Vec2> trails;    ///< points of their recent trails
+  std::vector<Vec2> bodies;   ///< robot positions
+  std::vector<double> radii;  ///< their circumscribed radii
+  std::vector<Vec2> trails;   ///< points of their recent trails
   bool empty() const { return bodies.empty(); }
   /// The robots' bounding box (bodies grown by their radii); false when there are no robots.
   bool RobotBox(Vec2& lo, Vec2& hi) const;
@@ -31,21 +31,22 @@ double FormationFraction(const View& view, const FocusSet& focus);
 class PresentationCamera {
  public:
   struct Options {
-    double min_fill = 0.55;        ///< the robots' box fills at least this of the shorter side
-                                   ///< (the issue asks for half; a little more for slack)
-    float margin_fraction = 0.06f; ///< of the shorter side, kept free around the framed box
-    double trail_seconds = 3.0;    ///< how much of the trails is framed
+    double min_fill = 0.55;         ///< the robots' box fills at least this of the shorter side
+                                    ///< (the issue asks for half; a little more for slack)
+    float margin_fraction = 0.06f;  ///< of the shorter side, kept free around the framed box
+    double trail_seconds = 3.0;     ///< how much of the trails is framed
   };
   PresentationCamera() = default;
   explicit PresentationCamera(Options o) : opt_(o) {}
 
   /// The view that frames `focus` in `view`'s rectangle: the robots and their recent trails with
   /// a margin, zoomed in further (trails cut off first) when the robots would fill less than
-  /// `min_fill` of the shorter side.
-  View Target(const View& view, const FocusSet& focus) const;
+  /// `min_fill` of the shorter side. `top_inset`: pixels at the top of the view that something
+  /// drawn over it covers (presentation mode's buttons); the framing keeps below them.
+  View Target(const View& view, const FocusSet& focus, float top_inset = 0) const;
   /// Moves `view` towards Target(): `smoothing` in (0, 1] of the way (1 jumps), and at once after
   /// Fit(). Does nothing while suspended.
-  void Update(View& view, const FocusSet& focus, double smoothing);
+  void Update(View& view, const FocusSet& focus, double smoothing, float top_inset = 0);
   /// The user zoomed or panned: the camera stops following until Fit().
   void Suspend() { suspended_ = true; }
   /// Frames the formation now and follows it again.

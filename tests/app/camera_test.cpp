@@ -32,8 +32,10 @@ TEST(PresentationCamera, FitFillsHalfTheShorterSideWithLongTrails) {
   FocusSet f;
   f.bodies = {{10, 10}, {10.6, 10.3}, {10.2, 9.6}};
   f.radii = {0.1, 0.1, 0.1};
-  for (int k = 0; k < 100; ++k) f.trails.push_back({10.0 - 0.3 * k, 10.0 - 0.1 * k});  // 30 m behind
-  for (auto [w, h] : std::vector<std::pair<float, float>>{{1920.f, 1080.f}, {1280.f, 800.f}, {600.f, 900.f}}) {
+  for (int k = 0; k < 100; ++k)
+    f.trails.push_back({10.0 - 0.3 * k, 10.0 - 0.1 * k});  // 30 m behind
+  for (auto [w, h] :
+       std::vector<std::pair<float, float>>{{1920.f, 1080.f}, {1280.f, 800.f}, {600.f, 900.f}}) {
     View v = Screen(w, h);
     PresentationCamera cam;
     cam.Fit();
@@ -57,6 +59,32 @@ TEST(PresentationCamera, ShortTrailsAreFramedWhole) {
     EXPECT_LT(s.x, 1920);
   }
   EXPECT_GE(FormationFraction(v, f), 0.5);
+}
+
+// Presentation mode's buttons cover the top of the view: the robots (their bodies, not only
+// their centres) are framed below them, still filling half the shorter side.
+TEST(PresentationCamera, KeepsTheFormationBelowTheButtons) {
+  FocusSet f;
+  // A wide wedge, as formation_swarm_100: rows of robots, the leader at the top right.
+  for (int row = 0; row < 10; ++row)
+    for (int k = 0; k <= row; ++k) {
+      f.bodies.push_back({10.0 - 0.5 * row, 4.0 - 0.4 * row + 0.4 * k});
+      f.radii.push_back(0.1);
+    }
+  for (int k = 0; k < 60; ++k) f.trails.push_back({10.0 - 0.3 * k, 4.0 - 0.05 * k});
+  for (const float inset : {0.0f, 80.0f, 160.0f}) {
+    for (auto [w, h] : std::vector<std::pair<float, float>>{{1920.f, 1080.f}, {960.f, 540.f}}) {
+      View v = Screen(w, h);
+      PresentationCamera cam;
+      cam.Update(v, f, 1.0, inset);
+      for (std::size_t i = 0; i < f.bodies.size(); ++i) {
+        const ImVec2 p = v.ToScreen(f.bodies[i]);
+        EXPECT_GE(p.y - f.radii[i] * v.scale, v.min.y + inset) << "inset " << inset << ", " << w;
+        EXPECT_LE(p.y + f.radii[i] * v.scale, v.max.y) << "inset " << inset << ", " << w;
+      }
+      EXPECT_GE(FormationFraction(v, f), 0.5) << "inset " << inset << ", " << w;
+    }
+  }
 }
 
 TEST(PresentationCamera, ManualZoomSuspendsFollowUntilFit) {
