@@ -15,11 +15,11 @@
 
 #include "app/gui/command_table.hpp"
 #include "app/gui/panel_context.hpp"
-#include "app/render/fonts.hpp"
-#include "app/render/theme.hpp"
 #include "app/gui/tuning_state.hpp"
 #include "app/gui/ui_settings.hpp"
 #include "app/render/camera.hpp"
+#include "app/render/fonts.hpp"
+#include "app/render/theme.hpp"
 #include "app/render/view.hpp"
 #include "app/render/world_view.hpp"
 #include "sim/session/session.hpp"
@@ -48,7 +48,7 @@ struct UiState {
   int follow = -1;  ///< robot index to follow, -1 none
   bool grid = true;
   bool coordinates = true;
-  ThemeId theme = ThemeId::kLight;          ///< colours of the panels, the world view and the plots
+  ThemeId theme = ThemeId::kLight;  ///< colours of the panels, the world view and the plots
   bool screenshot_requested = false;
   std::string screenshot_path;  ///< where the requested screenshot goes ("" = numbered name)
   std::string status;           ///< last message for the status line
@@ -57,8 +57,8 @@ struct UiState {
   char session_path[512] = "";
   std::string gesture_key;  ///< the slider held since its last edit (its edits make one undo step)
   std::string select_tab;   ///< a tab of the right-hand window to bring to front once
-  std::string drag_name;  ///< robot or obstacle being dragged
-  double frame_ms = 0;  ///< the last frame, as the window measured it
+  std::string drag_name;    ///< robot or obstacle being dragged
+  double frame_ms = 0;      ///< the last frame, as the window measured it
 
   // View options, shared: set by the View panel (app/gui/view_panel.hpp), read by the world view.
   std::set<std::string> overlays = DefaultSceneOverlays();  ///< of the scene (View panel)
@@ -72,14 +72,14 @@ struct UiState {
   bool frame_formation = false;
   PresentationCamera camera;  ///< view-only: frames and follows the formation (app/render/camera)
   LegendState legend_state;   ///< the world legend's corner and whether it is collapsed
-  UiSettings settings;   ///< UI scale and angle unit, kept between runs
+  UiSettings settings;        ///< UI scale and angle unit, kept between runs
 
   // The command table's window parts (app/gui/ui_menu.cpp, app/gui/ui_palette.cpp).
   std::string layout_report_path;  ///< `layout-report`: written at the end of the next frame
-  bool quit_requested = false;  ///< `quit`: the window closes after this frame
-  bool about = false;           ///< the About box
-  bool palette = false;         ///< the command palette (Ctrl+K)
-  bool palette_focus = false;   ///< give the palette's field the keyboard on its next frame
+  bool quit_requested = false;     ///< `quit`: the window closes after this frame
+  bool about = false;              ///< the About box
+  bool palette = false;            ///< the command palette (Ctrl+K)
+  bool palette_focus = false;      ///< give the palette's field the keyboard on its next frame
   char palette_filter[256] = "";
   int palette_selected = 0;
   std::vector<std::string> recent_commands;  ///< newest first, run from the menu or palette
@@ -184,7 +184,8 @@ class AppUi {
   void SetSessionFile(const std::string& path);
   /// Called after each file the user asked for is written (save, save-session, screenshot,
   /// export-figures), with its path and MIME type: the browser page turns it into a download.
-  void SetFileWrittenHook(std::function<void(const std::string& path, const std::string& mime)> hook) {
+  void SetFileWrittenHook(
+      std::function<void(const std::string& path, const std::string& mime)> hook) {
     file_written_hook_ = std::move(hook);
   }
   void NoteFileWritten(const std::string& path, const std::string& mime) const {
@@ -214,6 +215,7 @@ class AppUi {
   /// `layout-report`: what this frame cut off, as JSON.
   void WriteLayoutReport(ImVec2 display);
   WorldViewReport world_report_;  ///< what the last world view drawing placed
+  FocusSet frame_focus_;          ///< this frame's robots and recent trails (camera, world view)
   /// The menu bar, generated from the command table; returns its height.
   float DrawMenuBar();
   void DrawMenuItem(const Command& cmd);
@@ -260,15 +262,15 @@ class AppUi {
   std::function<void(const std::string&, const std::string&)> file_written_hook_;
   std::function<void()> pick_file_hook_;
   PanelContext ctx_;  ///< what every panel gets of the window (refers to the members above)
-  TimelinePanel* timeline_ = nullptr;  ///< one of panels_: every window has one
-  HistoryPanel* history_ = nullptr;    ///< one of panels_: every window has one
-  ComparePanel* compare_ = nullptr;    ///< one of panels_: every window has one
+  TimelinePanel* timeline_ = nullptr;      ///< one of panels_: every window has one
+  HistoryPanel* history_ = nullptr;        ///< one of panels_: every window has one
+  ComparePanel* compare_ = nullptr;        ///< one of panels_: every window has one
   ParametersPanel* parameters_ = nullptr;  ///< one of panels_: every window has one
-  PlotsPanel* plots_ = nullptr;        ///< one of panels_: every window has one
-  RunPanel* run_ = nullptr;            ///< one of panels_: every window has one
-  ScenarioPanel* scenario_ = nullptr;  ///< one of panels_: every window has one
-  TablesPanel* tables_ = nullptr;      ///< one of panels_: every window has one
-  ViewPanel* view_ = nullptr;          ///< one of panels_: every window has one
+  PlotsPanel* plots_ = nullptr;            ///< one of panels_: every window has one
+  RunPanel* run_ = nullptr;                ///< one of panels_: every window has one
+  ScenarioPanel* scenario_ = nullptr;      ///< one of panels_: every window has one
+  TablesPanel* tables_ = nullptr;          ///< one of panels_: every window has one
+  ViewPanel* view_ = nullptr;              ///< one of panels_: every window has one
   std::function<void(sim::Experiment&)> run_setup_;
   std::unique_ptr<sim::Session> owned_;
   sim::Session* session_ = nullptr;
@@ -278,7 +280,7 @@ class AppUi {
   // The session record (every panel notes what it does in it) and its crash-safe journal.
   sim::SessionRecord record_;
   std::string session_file_;
-  std::unique_ptr<sim::SessionJournal> journal_;  ///< the window's crash-safe journal
+  std::unique_ptr<sim::SessionJournal> journal_;   ///< the window's crash-safe journal
   std::vector<sim::RecoveredSession> unfinished_;  ///< offered for restore, newest first
   bool journal_error_shown_ = false;
   /// The banner offering to restore an unfinished session (top of the control panel).

@@ -26,7 +26,7 @@ void AppUi::UpdateView(ImVec2 min, ImVec2 max) {
     state_.fit_now = false;
     // In presentation mode the buttons cover the top right: the formation is framed below them.
     const float inset = state_.present ? std::max(0.0f, state_.present_bar_bottom - min.y) : 0.0f;
-    state_.camera.Update(v, FocusOf(exp, state_.camera.options().trail_seconds), 0.15, inset);
+    state_.camera.Update(v, frame_focus_, 0.15, inset);
   } else if (state_.fit_now) {
     if (!state_.whole_run) auto_fit_.Reset();
     state_.auto_fit = true;
@@ -134,6 +134,8 @@ void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool in
   // The timeline takes a strip at the bottom.
   const float strip = ImGui::GetFrameHeight() + 8;
   const ImVec2 max(min.x + std::max(avail.x, 10.0f), min.y + std::max(avail.y - strip, 10.0f));
+  // The robots and recent trails, once a frame for the camera and the world view.
+  FocusOf(ShownExperiment(), kFocusTrailSeconds, &frame_focus_);
   UpdateView(min, max);
   ImGui::InvisibleButton("world", ImVec2(max.x - min.x, max.y - min.y),
                          ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
@@ -147,6 +149,7 @@ void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool in
   opt.clock = ImGui::GetTime();
   opt.degrees = state_.settings.degrees;
   opt.report = &world_report_;
+  opt.focus = &frame_focus_;
   opt.level_of_detail = true;
   compare_->AddWorldOverlays(opt);  // the pins, faded
   const sim::Experiment& shown = ShownExperiment();

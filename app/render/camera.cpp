@@ -19,8 +19,15 @@ bool FocusSet::RobotBox(Vec2& lo, Vec2& hi) const {
 
 FocusSet FocusOf(const sim::Experiment& exp, double trail_seconds) {
   FocusSet f;
-  exp.FocusPoints(f.bodies, f.radii, f.trails, trail_seconds);
+  FocusOf(exp, trail_seconds, &f);
   return f;
+}
+
+void FocusOf(const sim::Experiment& exp, double trail_seconds, FocusSet* out) {
+  out->bodies.clear();
+  out->radii.clear();
+  out->trails.clear();
+  exp.FocusPoints(out->bodies, out->radii, out->trails, trail_seconds);
 }
 
 double FormationFraction(const View& view, const FocusSet& focus) {

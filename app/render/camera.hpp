@@ -21,8 +21,14 @@ struct FocusSet {
   bool RobotBox(Vec2& lo, Vec2& hi) const;
 };
 
+/// How much of the trails the camera frames and the world view's labels and legend keep off.
+constexpr double kFocusTrailSeconds = 3.0;
+
 /// The focus of `exp`: its robots and the trail points of the last `trail_seconds`.
 FocusSet FocusOf(const sim::Experiment& exp, double trail_seconds);
+/// The same into `out`, keeping its storage (a thousand robots' trails are tens of thousands of
+/// points, each frame).
+void FocusOf(const sim::Experiment& exp, double trail_seconds, FocusSet* out);
 
 /// Fraction of `view`'s shorter side that the robots' bounding box fills: its larger side on
 /// screen over the view's shorter side (0 without robots).
@@ -34,7 +40,7 @@ class PresentationCamera {
     double min_fill = 0.55;         ///< the robots' box fills at least this of the shorter side
                                     ///< (the issue asks for half; a little more for slack)
     float margin_fraction = 0.06f;  ///< of the shorter side, kept free around the framed box
-    double trail_seconds = 3.0;     ///< how much of the trails is framed
+    double trail_seconds = kFocusTrailSeconds;  ///< how much of the trails is framed
   };
   PresentationCamera() = default;
   explicit PresentationCamera(Options o) : opt_(o) {}

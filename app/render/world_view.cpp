@@ -128,7 +128,9 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
 
   // The robots and their recent trails on screen: labels keep off the bodies, the legend off
   // both.
-  const FocusSet focus = FocusOf(exp, 3.0);
+  FocusSet own;
+  if (!opt.focus) FocusOf(exp, kFocusTrailSeconds, &own);
+  const FocusSet& focus = opt.focus ? *opt.focus : own;
   LegendAvoid avoid;
   std::vector<ImVec4> bodies;
   for (std::size_t i = 0; i < focus.bodies.size(); ++i) {

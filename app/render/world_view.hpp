@@ -5,6 +5,7 @@
 #include <set>
 #include <string>
 
+#include "app/render/camera.hpp"
 #include "app/render/canvas.hpp"
 #include "app/render/theme.hpp"
 #include "app/render/view.hpp"
@@ -43,6 +44,8 @@ struct WorldViewOptions {
   double clock = 0.0;                   ///< seconds, for the legend's once-a-second corner choice
   bool degrees = true;                  ///< angles in the scene's labels in degrees (else radians)
   WorldViewReport* report = nullptr;    ///< when set, filled with what this drawing placed
+  /// FocusOf(exp, kFocusTrailSeconds) when the caller has it for this frame (else computed).
+  const FocusSet* focus = nullptr;
   /// Level of detail for the window's frame rate: shapes under 12 px (a zoomed-out swarm's
   /// robots) are drawn without thin anti-aliasing triangles (CanvasDrawSink::SetLevelOfDetail),
   /// and the grid has one minor line between major lines instead of four (each one-pixel line
