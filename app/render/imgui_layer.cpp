@@ -34,13 +34,10 @@ ImGuiLayer::ImGuiLayer(const Theme& theme) {
   // square one is 2, and a software rasteriser (llvmpipe: virtual machines, remote desktops,
   // lecture-hall laptops) pays per triangle. The panel of controls drew 3.7 k triangles rounded,
   // 1.7 k square (formation_cascade7 at 1920x1080).
-  style.WindowRounding = 0.0f;
-  style.ChildRounding = 0.0f;
-  style.PopupRounding = 0.0f;
-  style.FrameRounding = 0.0f;
-  style.GrabRounding = 0.0f;
-  style.ScrollbarRounding = 0.0f;
-  style.TabRounding = 0.0f;
+  for (float* rounding :
+       {&style.WindowRounding, &style.ChildRounding, &style.PopupRounding, &style.FrameRounding,
+        &style.GrabRounding, &style.ScrollbarRounding, &style.TabRounding})
+    *rounding = 0.0f;
   style.GrabMinSize = 6.0f;  // thin handles of continuous sliders: they hide no digit
   style.WindowBorderSize = 1.0f;
   style.ItemSpacing = ImVec2(8, 5);

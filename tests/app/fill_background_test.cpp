@@ -235,5 +235,16 @@ TEST(FillBackground, PanelsShareTheViewsBackgroundInEveryTheme) {
   }
 }
 
+// Square widget corners: a rounded frame is an anti-aliased fan of about 20 triangles, a square
+// one 2, and a software rasteriser pays per triangle (BENCHMARKS.md, frame budget, fifth round).
+TEST(FillBackground, WidgetsHaveSquareCorners) {
+  OffscreenContext ctx(64, 64);
+  ImGuiLayer layer;
+  const ImGuiStyle& st = ImGui::GetStyle();
+  for (const float r : {st.WindowRounding, st.ChildRounding, st.PopupRounding, st.FrameRounding,
+                        st.GrabRounding, st.ScrollbarRounding, st.TabRounding})
+    EXPECT_EQ(r, 0.0f);
+}
+
 }  // namespace
 }  // namespace formsim::app
