@@ -56,7 +56,8 @@ void DrawSample(Canvas& cv, const Theme& th, sim::LegendMark mark, sim::Color co
     case sim::LegendMark::kArc: {
       std::vector<ImVec2> pts;
       for (int k = 0; k <= 8; ++k)
-        pts.push_back(ImVec2(x0 + 2 + 22 * std::cos(-k * 0.12f), cy + 6 + 22 * std::sin(-k * 0.12f) * 0.6f));
+        pts.push_back(
+            ImVec2(x0 + 2 + 22 * std::cos(-k * 0.12f), cy + 6 + 22 * std::sin(-k * 0.12f) * 0.6f));
       cv.Polyline(pts.data(), static_cast<int>(pts.size()), {c, 1.5f});
       break;
     }
@@ -78,7 +79,8 @@ Layout Measure(Canvas& cv, const std::vector<CanvasDrawSink::LegendEntry>& entri
   l.columns = columns;
   l.shown = shown;
   float label_w = 0;
-  for (int i = 0; i < shown; ++i) label_w = std::max(label_w, cv.TextSize(f, entries[static_cast<std::size_t>(i)].label).x);
+  for (int i = 0; i < shown; ++i)
+    label_w = std::max(label_w, cv.TextSize(f, entries[static_cast<std::size_t>(i)].label).x);
   l.col_w = kSample + 8 + label_w + 10;
   const bool more = shown < static_cast<int>(entries.size());
   l.rows = collapsed ? 0 : (shown + columns - 1) / columns + (more ? 1 : 0);
@@ -91,8 +93,8 @@ Layout Measure(Canvas& cv, const std::vector<CanvasDrawSink::LegendEntry>& entri
 
 void DrawWorldLegend(Canvas& cv, const View& view, const Theme& th,
                      const std::vector<CanvasDrawSink::LegendEntry>& entries,
-                     const LegendAvoid& avoid, LegendState* state, double clock,
-                     float top_reserved, float bottom_reserved) {
+                     const LegendAvoid& avoid, LegendState* state, double clock, float top_reserved,
+                     float bottom_reserved) {
   if (entries.empty()) return;
   const FontRole f = FontRole::kSmall;
   const bool collapsed = state != nullptr && state->collapsed;
@@ -108,7 +110,8 @@ void DrawWorldLegend(Canvas& cv, const View& view, const Theme& th,
     for (int columns : {2, 1}) {
       if (columns == 2 && shown < 4) continue;
       l = Measure(cv, entries, shown, columns, collapsed, title_w);
-      fits = l.w * l.h <= max_area && l.w <= std::min(view.width() - 50, columns == 2 ? 0.6f * view.width() : 1e9f) &&
+      fits = l.w * l.h <= max_area &&
+             l.w <= std::min(view.width() - 50, columns == 2 ? 0.6f * view.width() : 1e9f) &&
              l.h <= view.height() - top_reserved - bottom_reserved;
       if (fits) break;
     }
@@ -118,7 +121,8 @@ void DrawWorldLegend(Canvas& cv, const View& view, const Theme& th,
     l = Measure(cv, entries, 0, 1, true, title_w);  // the title tab alone
     if (l.w * l.h > max_area) return;
   }
-  // The corner covering the fewest robots (10 each) and trail points (1 each); kept for a
+  // The corner covering the fewest robots, then the fewest trail points (a robot outweighs any
+  // number of them: a thousand robots' trails put tens of thousands in a corner); kept for a
   // second, and on a tie the current one, then bottom left, bottom right, top right, top left.
   const float x_left = view.min.x + 40, x_right = view.max.x - 10 - l.w;
   const float y_top = view.min.y + top_reserved, y_bottom = view.max.y - bottom_reserved - l.h;
@@ -126,14 +130,23 @@ void DrawWorldLegend(Canvas& cv, const View& view, const Theme& th,
     return ImVec2((c % 2 == 0) ? x_left : x_right, c < 2 ? y_top : y_bottom);
   };
   int corner = state != nullptr ? state->corner : -1;
-  if (corner < 0 || state == nullptr || clock - state->chosen_at >= 1.0 || clock < state->chosen_at) {
-    long best = -1;
+  if (corner < 0 || state == nullptr || clock - state->chosen_at >= 1.0 ||
+      clock < state->chosen_at) {
+    constexpr long long kRobotCost = 1LL << 32;  // 64 bits in the page's wasm32 too
+    long long best = -1;
     for (int c : {corner, 2, 3, 1, 0}) {
       if (c < 0) continue;
       const ImVec2 lo = corner_min(c), hi(lo.x + l.w, lo.y + l.h);
-      auto inside = [&](ImVec2 p) { return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y; };
-      long cost = 0;
-      for (const ImVec2& p : avoid.bodies) cost += inside(p) ? 10 : 0;
+      auto inside = [&](ImVec2 p) {
+        return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y;
+      };
+      long long cost = 0;
+      for (std::size_t i = 0; i < avoid.bodies.size(); ++i) {
+        const ImVec2 p = avoid.bodies[i];
+        const float r = i < avoid.body_radii.size() ? avoid.body_radii[i] : 0.0f;
+        const bool under = p.x + r >= lo.x && p.x - r <= hi.x && p.y + r >= lo.y && p.y - r <= hi.y;
+        cost += under ? kRobotCost : 0;
+      }
       for (const ImVec2& p : avoid.trails) cost += inside(p) ? 1 : 0;
       if (best < 0 || cost < best) best = cost, corner = c;
     }

@@ -17,16 +17,19 @@ inline constexpr float kLegendMaxShare = 0.15f;
 
 /// The legend's state between frames (the window keeps one; a frame drawn alone passes none).
 struct LegendState {
-  bool collapsed = false;  ///< only its title tab is drawn
-  int corner = -1;         ///< 0 top left, 1 top right, 2 bottom left, 3 bottom right; -1 unset
+  bool collapsed = false;     ///< only its title tab is drawn
+  int corner = -1;            ///< 0 top left, 1 top right, 2 bottom left, 3 bottom right; -1 unset
   double chosen_at = -1e300;  ///< clock (s) when the corner was last chosen
   ImVec2 toggle_min, toggle_max;  ///< where a click collapses or opens it (screen pixels)
   ImVec2 box_min, box_max;        ///< the legend's box as last drawn
 };
 
-/// Screen points the legend should not cover: robots (`weight` 10 each) and trail points (1).
+/// What the legend should not cover, on screen: robots first, then trail points.
 struct LegendAvoid {
   std::vector<ImVec2> bodies, trails;
+  /// The robots' radii in pixels, as `bodies` (missing: 0): a robot counts when its body reaches
+  /// under the legend, not only its centre.
+  std::vector<float> body_radii;
 };
 
 /// Draws the legend of `entries` in `view`, placed away from `avoid`. `state` (may be null: a
@@ -34,7 +37,7 @@ struct LegendAvoid {
 /// `top_reserved` / `bottom_reserved`: pixels at the top and bottom taken by other labels.
 void DrawWorldLegend(Canvas& cv, const View& view, const Theme& theme,
                      const std::vector<CanvasDrawSink::LegendEntry>& entries,
-                     const LegendAvoid& avoid, LegendState* state, double clock,
-                     float top_reserved, float bottom_reserved);
+                     const LegendAvoid& avoid, LegendState* state, double clock, float top_reserved,
+                     float bottom_reserved);
 
 }  // namespace formsim::app

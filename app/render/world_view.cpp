@@ -137,6 +137,7 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
     const ImVec2 c = view.ToScreen(focus.bodies[i]);
     const float r = static_cast<float>(focus.radii[i] * view.scale);
     avoid.bodies.push_back(c);
+    avoid.body_radii.push_back(r);
     if (r >= 3.0f) bodies.push_back(ImVec4(c.x - r, c.y - r, c.x + r, c.y + r));
   }
   avoid.trails.reserve(focus.trails.size());

@@ -91,6 +91,56 @@ TEST(WorldLegend, TakesAtMostFifteenPercentAndAvoidsTheRobots) {
   }
 }
 
+// A robot whose centre lies just outside the legend's corner but whose body reaches under it
+// counts as covered (presentation mode at UI scale 2 put the legend over R6 so).
+TEST(WorldLegend, AvoidsARobotWhoseBodyReachesUnderIt) {
+  VectorCanvas cv(1280, 800);
+  const View view = Screen(1280, 800);
+  LegendState free_st;
+  DrawWorldLegend(cv, view, GetTheme(ThemeId::kLight), Entries(6), LegendAvoid(), &free_st, 0.0, 60,
+                  56);
+  const int preferred = free_st.corner;
+  LegendAvoid avoid;
+  avoid.bodies.push_back(
+      ImVec2(0.5f * (free_st.box_min.x + free_st.box_max.x), free_st.box_min.y - 10.0f));
+  avoid.body_radii.push_back(30.0f);
+  LegendState st;
+  DrawWorldLegend(cv, view, GetTheme(ThemeId::kLight), Entries(6), avoid, &st, 0.0, 60, 56);
+  EXPECT_NE(st.corner, preferred) << "the body reaches 20 px under the legend there";
+  const ImVec2 p = avoid.bodies[0];
+  const float r = avoid.body_radii[0];
+  EXPECT_FALSE(p.x + r >= st.box_min.x && p.x - r <= st.box_max.x && p.y + r >= st.box_min.y &&
+               p.y - r <= st.box_max.y);
+}
+
+// Covering a robot is worse than covering any number of trail points: dense trails (a point a
+// step, a thousand robots) must not push the legend over a robot.
+TEST(WorldLegend, ARobotOutweighsAnyNumberOfTrailPoints) {
+  VectorCanvas cv(1280, 800);
+  const View view = Screen(1280, 800);
+  // Where the legend goes in each corner: drawn once per corner with the others made costly.
+  std::vector<ImVec4> boxes(4);
+  for (int c = 0; c < 4; ++c) {
+    LegendState st;
+    st.corner = c;
+    st.chosen_at = 0.0;
+    DrawWorldLegend(cv, view, GetTheme(ThemeId::kLight), Entries(6), LegendAvoid(), &st, 0.5, 60,
+                    56);
+    boxes[c] = ImVec4(st.box_min.x, st.box_min.y, st.box_max.x, st.box_max.y);
+  }
+  LegendAvoid avoid;
+  const ImVec4 b = boxes[2];  // bottom left, the first choice on a tie: one robot there
+  avoid.bodies.push_back(ImVec2(0.5f * (b.x + b.z), 0.5f * (b.y + b.w)));
+  for (int c : {0, 1, 3})  // 200 trail points in each other corner
+    for (int k = 0; k < 200; ++k)
+      avoid.trails.push_back(
+          ImVec2(boxes[c].x + 2 + (k % 20) * (boxes[c].z - boxes[c].x - 4) / 20,
+                 boxes[c].y + 2 + (k / 20) * (boxes[c].w - boxes[c].y - 4) / 10));
+  LegendState st;
+  DrawWorldLegend(cv, view, GetTheme(ThemeId::kLight), Entries(6), avoid, &st, 0.0, 60, 56);
+  EXPECT_NE(st.corner, 2) << "the legend went over the robot to spare trail points";
+}
+
 TEST(WorldLegend, CornerIsReChosenAtMostOnceASecondAndCollapses) {
   VectorCanvas cv(1280, 800);
   const View view = Screen(1280, 800);
