@@ -81,14 +81,15 @@ SCRIPT
 xvfb-run -a -s "-screen 0 1600x900x24" "$BIN" gui formation_traj1 --paused --size 1600x900 \
   --speed 1 --exit-after 92 --script "$TMP/slot.txt" >/dev/null
 # Presentation mode at 1920x1080: panels hidden, UI scale 2, the high-contrast theme, graph and
-# triangles, the legend.
+# triangles, the legend; taken once the camera has flown in (the legend is placed for where the
+# robots are, once a second).
 cat >"$TMP/present.txt" <<'SCRIPT'
 2 ui-scale 2
 3 present on
 4 overlay graph,triangles,errors
-100 screenshot screenshots/teach_presentation.png
-101 help on
-103 screenshot screenshots/teach_help.png
+240 screenshot screenshots/teach_presentation.png
+241 help on
+243 screenshot screenshots/teach_help.png
 SCRIPT
 xvfb-run -a -s "-screen 0 1920x1080x24" "$BIN" gui formation_cascade7 --size 1920x1080 \
-  --theme high-contrast --speed 1 --exit-after 105 --script "$TMP/present.txt" >/dev/null
+  --theme high-contrast --speed 1 --exit-after 245 --script "$TMP/present.txt" >/dev/null

@@ -273,12 +273,12 @@ std::string NeedsActions(const AppUi& ui) {
 }  // namespace
 
 const ParametersPanel::Grouping& ParametersPanel::Groups(
-    const std::vector<sim::Param>& params, const std::vector<sim::ActionSpec>& actions) {
+    const sim::ParamTable& table, const std::vector<sim::ActionSpec>& actions) {
   Grouping& g = grouping_;
-  // The same groups in the same order (tens of thousands of short compares, no allocation).
-  bool same = g.param_groups.size() == params.size() && g.action_groups.size() == actions.size();
-  for (std::size_t i = 0; same && i < params.size(); ++i)
-    same = g.param_groups[i] == params[i].tune.group;
+  // The same table (comparing a thousand robots' groups took 0.5 ms a frame) and the same
+  // action groups in the same order.
+  const std::vector<sim::Param>& params = table.all();
+  bool same = g.params_revision == table.revision() && g.action_groups.size() == actions.size();
   for (std::size_t i = 0; same && i < actions.size(); ++i)
     same = g.action_groups[i] == actions[i].group;
   if (same) return g;
@@ -300,8 +300,8 @@ const ParametersPanel::Grouping& ParametersPanel::Groups(
     sub_at[group] = {it->second, head.subs.size() - 1};
     return head.subs.back();
   };
+  g.params_revision = table.revision();
   for (std::size_t i = 0; i < params.size(); ++i) {
-    g.param_groups.push_back(params[i].tune.group);
     place(params[i].tune.group).params.push_back(i);
   }
   for (std::size_t i = 0; i < actions.size(); ++i) {
@@ -314,7 +314,7 @@ const ParametersPanel::Grouping& ParametersPanel::Groups(
 void ParametersPanel::Draw(const Fonts&) {
   const auto& params = ctx_.session().params().all();
   const auto actions = ctx_.session().exp().Actions();
-  const Grouping& groups = Groups(params, actions);
+  const Grouping& groups = Groups(ctx_.session().params(), actions);
   struct Asked {
     std::string key, value;
     bool held;
@@ -333,11 +333,39 @@ void ParametersPanel::Draw(const Fonts&) {
     // Sub-groups start open unless there are many (one per robot of a swarm).
     const ImGuiTreeNodeFlags node_flags =
         head.subs.size() <= kOpenSubgroups ? ImGuiTreeNodeFlags_DefaultOpen : 0;
+    // A closed sub-group's row well outside the panel's visible part is not submitted: a run of
+    // them becomes one gap of their measured height (a thousand robots' closed rows took 0.4 ms
+    // a frame as tree nodes). Two rows on either side are still submitted.
+    const ImVec2 clip_min = ImGui::GetWindowDrawList()->GetClipRectMin();
+    const ImVec2 clip_max = ImGui::GetWindowDrawList()->GetClipRectMax();
+    if (closed_row_.font_size != ImGui::GetFontSize()) closed_row_ = {ImGui::GetFontSize(), 0.0f};
+    const float step = closed_row_.step;
+    float gap = 0.0f;  // the rows left out since the last one submitted
+    auto close_gap = [&] {
+      if (gap > 0.0f) ImGui::Dummy(ImVec2(0.0f, gap - ImGui::GetStyle().ItemSpacing.y));
+      gap = 0.0f;
+    };
     for (const Grouping::Sub& sub : head.subs) {
       bool open = true;
       if (!sub.tail.empty()) {
-        if (focus != nullptr && focus->tune.group == sub.group) ImGui::SetNextItemOpen(true);
+        const bool focused = focus != nullptr && focus->tune.group == sub.group;
+        if (!focused && step > 0.0f) {
+          const float y = ImGui::GetCursorScreenPos().y + gap;
+          const bool far = y + 3 * step < clip_min.y || y - 2 * step > clip_max.y;
+          // The node's ID as ImGui::GetID makes it, hashed once per ID seed.
+          const ImGuiID seed = ImGui::GetCurrentWindow()->IDStack.back();
+          if (sub.id_seed != seed || sub.id == 0) sub.id = ImHashStr(sub.label.c_str(), 0, seed);
+          sub.id_seed = seed;
+          if (far && !ImGui::TreeNodeBehaviorIsOpen(sub.id, node_flags)) {
+            gap += step;
+            continue;
+          }
+        }
+        close_gap();
+        if (focused) ImGui::SetNextItemOpen(true);
+        const float y0 = ImGui::GetCursorPosY();
         open = ImGui::TreeNodeEx(sub.label.c_str(), node_flags);
+        if (!open) closed_row_.step = ImGui::GetCursorPosY() - y0;
       }
       if (!open) continue;
       if (!sub.params.empty() &&
@@ -379,6 +407,7 @@ void ParametersPanel::Draw(const Fonts&) {
       }
       if (!sub.tail.empty()) ImGui::TreePop();
     }
+    close_gap();
   }
   // Asked for after the loop: an edit never changes the table while we iterate over it. The edits
   // of a slider held since its last edit continue that edit (one undo step).

@@ -76,20 +76,27 @@ class ParametersPanel : public Panel {
     struct Sub {
       std::string tail, group, label, table_id;  ///< label: the tree node's ("" for none)
       std::vector<std::size_t> params, actions;  ///< indices into the tables drawn from
+      mutable unsigned id = 0, id_seed = 0;      ///< the tree node's ImGuiID and its seed
     };
     struct Head {
       std::string head, header;  ///< header: the collapsing header's label
       std::vector<Sub> subs;
     };
-    std::vector<std::string> param_groups, action_groups;  ///< what it was built from
+    std::uint64_t params_revision = 0;       ///< the tunables' table it was built from
+    std::vector<std::string> action_groups;  ///< and the actions' groups
     std::vector<Head> heads;
   };
-  /// grouping_, rebuilt when the tunables' or actions' groups differ from what it was built from.
-  const Grouping& Groups(const std::vector<sim::Param>& params,
-                         const std::vector<sim::ActionSpec>& actions);
+  /// grouping_, rebuilt when the tunables' table (its revision) or the actions' groups differ
+  /// from what it was built from.
+  const Grouping& Groups(const sim::ParamTable& table, const std::vector<sim::ActionSpec>& actions);
 
   const PanelContext& ctx_;
   Grouping grouping_;
+  /// The height a closed sub-group's row takes (spacing included) at a font size, as last
+  /// measured: rows far outside the view are left out as a gap of that height.
+  struct ClosedRow {
+    float font_size = 0.0f, step = 0.0f;
+  } closed_row_;
   std::string focus_param_;  ///< a tunable whose field takes the keyboard once
   ValueEntry value_entry_;   ///< the tunable whose value is being typed
 };

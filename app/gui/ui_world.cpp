@@ -134,8 +134,16 @@ void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool in
   // The timeline takes a strip at the bottom.
   const float strip = ImGui::GetFrameHeight() + 8;
   const ImVec2 max(min.x + std::max(avail.x, 10.0f), min.y + std::max(avail.y - strip, 10.0f));
-  // The robots and recent trails, once a frame for the camera and the world view.
-  FocusOf(ShownExperiment(), kFocusTrailSeconds, &frame_focus_);
+  // The robots, once a frame for the camera and the world view, and of their recent trails what
+  // is needed: every point when the legend chooses its corner (once a second), their box while
+  // the camera frames them, else nothing.
+  const bool camera = (state_.present || state_.frame_formation) && state_.follow < 0;
+  const FocusTrails trails =
+      state_.legend && LegendCornerDue(&state_.legend_state, ImGui::GetTime())
+          ? FocusTrails::kPoints
+      : camera ? FocusTrails::kBox
+               : FocusTrails::kNone;
+  FocusOf(ShownExperiment(), kFocusTrailSeconds, &frame_focus_, trails);
   UpdateView(min, max);
   ImGui::InvisibleButton("world", ImVec2(max.x - min.x, max.y - min.y),
                          ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |

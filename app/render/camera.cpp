@@ -23,11 +23,31 @@ FocusSet FocusOf(const sim::Experiment& exp, double trail_seconds) {
   return f;
 }
 
-void FocusOf(const sim::Experiment& exp, double trail_seconds, FocusSet* out) {
+bool FocusSet::TrailBox(Vec2& lo, Vec2& hi) const {
+  if (trail_box) {
+    lo = trail_lo, hi = trail_hi;
+    return true;
+  }
+  bool any = false;
+  for (const Vec2& p : trails) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) continue;
+    lo = any ? Vec2{std::min(lo.x, p.x), std::min(lo.y, p.y)} : p;
+    hi = any ? Vec2{std::max(hi.x, p.x), std::max(hi.y, p.y)} : p;
+    any = true;
+  }
+  return any;
+}
+
+void FocusOf(const sim::Experiment& exp, double trail_seconds, FocusSet* out, FocusTrails trails) {
   out->bodies.clear();
   out->radii.clear();
   out->trails.clear();
-  exp.FocusPoints(out->bodies, out->radii, out->trails, trail_seconds);
+  out->trail_box = false;
+  // Zero seconds of trail: the robots alone.
+  const bool points = trails == FocusTrails::kPoints;
+  exp.FocusPoints(out->bodies, out->radii, out->trails, points ? trail_seconds : 0.0);
+  if (trails == FocusTrails::kBox)
+    out->trail_box = exp.TrailBox(trail_seconds, out->trail_lo, out->trail_hi);
 }
 
 double FormationFraction(const View& view, const FocusSet& focus) {
@@ -41,11 +61,10 @@ View PresentationCamera::Target(const View& view, const FocusSet& focus, float t
   View t = view;
   Vec2 rlo, rhi;
   if (!focus.RobotBox(rlo, rhi)) return t;
-  Vec2 lo = rlo, hi = rhi;
-  for (const Vec2& p : focus.trails) {
-    if (!std::isfinite(p.x) || !std::isfinite(p.y)) continue;
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+  Vec2 lo = rlo, hi = rhi, tlo, thi;
+  if (focus.TrailBox(tlo, thi)) {
+    lo = {std::min(lo.x, tlo.x), std::min(lo.y, tlo.y)};
+    hi = {std::max(hi.x, thi.x), std::max(hi.y, thi.y)};
   }
   const double shorter = std::max(1.0f, std::min(view.width(), view.height()));
   const double margin = opt_.margin_fraction * shorter;

@@ -15,20 +15,34 @@ namespace formsim::app {
 struct FocusSet {
   std::vector<Vec2> bodies;   ///< robot positions
   std::vector<double> radii;  ///< their circumscribed radii
-  std::vector<Vec2> trails;   ///< points of their recent trails
+  std::vector<Vec2> trails;   ///< points of their recent trails (when collected)
+  /// The box of the recent trails' finite points, when known without `trails` (trail_box).
+  bool trail_box = false;
+  Vec2 trail_lo, trail_hi;
   bool empty() const { return bodies.empty(); }
   /// The robots' bounding box (bodies grown by their radii); false when there are no robots.
   bool RobotBox(Vec2& lo, Vec2& hi) const;
+  /// The box of the recent trails' finite points: trail_lo/hi when trail_box, else from
+  /// `trails`; false when there are none.
+  bool TrailBox(Vec2& lo, Vec2& hi) const;
 };
 
 /// How much of the trails the camera frames and the world view's labels and legend keep off.
 constexpr double kFocusTrailSeconds = 3.0;
 
+/// What of the recent trails FocusOf collects.
+enum class FocusTrails {
+  kPoints,  ///< every point (what the legend keeps off), and their box
+  kBox,     ///< only their box (what the presentation camera frames)
+  kNone,
+};
+
 /// The focus of `exp`: its robots and the trail points of the last `trail_seconds`.
 FocusSet FocusOf(const sim::Experiment& exp, double trail_seconds);
-/// The same into `out`, keeping its storage (a thousand robots' trails are tens of thousands of
-/// points, each frame).
-void FocusOf(const sim::Experiment& exp, double trail_seconds, FocusSet* out);
+/// The same into `out`, keeping its storage; `trails` says how much of the trails (a thousand
+/// robots' trails are tens of thousands of points, which the window needs once a second).
+void FocusOf(const sim::Experiment& exp, double trail_seconds, FocusSet* out,
+             FocusTrails trails = FocusTrails::kPoints);
 
 /// Fraction of `view`'s shorter side that the robots' bounding box fills: its larger side on
 /// screen over the view's shorter side (0 without robots).

@@ -15,12 +15,12 @@ double Cross(ImVec2 o, ImVec2 a, ImVec2 b) {
          static_cast<double>(a.y - o.y) * (b.x - o.x);
 }
 
-// `pts` moved `d` pixels inwards (outwards for d < 0) along each edge's normal (a convex
-// polygon's mitred inset), in `inner`; empty when the shape is too thin to keep an inside. False
-// when `pts` is not strictly convex or has a corner sharper than 30 degrees (the mitre would reach
-// far out).
-bool InsetConvex(const std::vector<ImVec2>& pts, float d, std::vector<ImVec2>* inner,
-                 std::vector<ImVec2>* normal_scratch) {
+// `pts` moved `d[k]` pixels inwards (outwards for d[k] < 0) along each edge's normal (a convex
+// polygon's mitred inset), in `inset[k]`, for both k (the normals computed once); an inset is
+// empty when the shape is too thin to keep an inside. False when `pts` is not strictly convex or
+// has a corner sharper than 30 degrees (the mitre would reach far out).
+bool InsetConvex(const std::vector<ImVec2>& pts, const float (&d)[2],
+                 std::vector<ImVec2>* const (&inset)[2], std::vector<ImVec2>* normal_scratch) {
   const std::size_t n = pts.size();
   if (n < 3) return false;
   double sign = 0;
@@ -40,20 +40,23 @@ bool InsetConvex(const std::vector<ImVec2>& pts, float d, std::vector<ImVec2>* i
     normal[i] = ImVec2(static_cast<float>(-(b.y - a.y) / len) * s,
                        static_cast<float>((b.x - a.x) / len) * s);
   }
-  inner->assign(n, ImVec2());
+  for (std::vector<ImVec2>* out : inset) out->assign(n, ImVec2());
   for (std::size_t i = 0; i < n; ++i) {
     const ImVec2 na = normal[(i + n - 1) % n], nb = normal[i];
     const float k = 1.0f + na.x * nb.x + na.y * nb.y;
     if (k < 0.134f) return false;  // 1 + cos(150 deg): a corner under 30 degrees
-    (*inner)[i] = ImVec2(pts[i].x + d * (na.x + nb.x) / k, pts[i].y + d * (na.y + nb.y) / k);
+    for (int j = 0; j < 2; ++j)
+      (*inset[j])[i] =
+          ImVec2(pts[i].x + d[j] * (na.x + nb.x) / k, pts[i].y + d[j] * (na.y + nb.y) / k);
   }
-  // Too thin: the inset turned over (its orientation flipped or it has no area left).
-  double area = 0;
-  for (std::size_t i = 0; i < n; ++i)
-    area += Cross(ImVec2(0, 0), (*inner)[i], (*inner)[(i + 1) % n]);
+  // Too thin: an inset turned over (its orientation flipped or it has no area left).
   double outer = 0;
   for (std::size_t i = 0; i < n; ++i) outer += Cross(ImVec2(0, 0), pts[i], pts[(i + 1) % n]);
-  if (area * outer <= 0 || std::abs(area) < 1.0) inner->clear();
+  for (std::vector<ImVec2>* out : inset) {
+    double area = 0;
+    for (std::size_t i = 0; i < n; ++i) area += Cross(ImVec2(0, 0), (*out)[i], (*out)[(i + 1) % n]);
+    if (area * outer <= 0 || std::abs(area) < 1.0) out->clear();
+  }
   return true;
 }
 }  // namespace
@@ -93,7 +96,7 @@ void CanvasDrawSink::Polygon(const std::vector<Vec2>& pts, sim::Color fill, sim:
     // opaque as it looks over the background: at this size nothing shows through it anyway.
     std::vector<ImVec2>& outer = outer_;
     std::vector<ImVec2>& inner = inner_;
-    if (InsetConvex(s, -0.5f, &outer, &normals_) && InsetConvex(s, 0.5f, &inner, &normals_)) {
+    if (InsetConvex(s, {-0.5f, 0.5f}, {&outer, &inner}, &normals_) && !outer.empty()) {
       const sim::Color bg = theme_.background;
       const float a = fill_ink.a;
       const sim::Color solid{fill_ink.r * a + bg.r * (1 - a), fill_ink.g * a + bg.g * (1 - a),

@@ -71,6 +71,11 @@ struct Layout {
 
 constexpr float kSample = 24, kPad = 6, kTitleGap = 2;
 
+// The last line of a legend that leaves out `hidden` entries.
+std::string MoreText(int hidden) {
+  return "+ " + std::to_string(hidden) + " more (larger view shows them)";
+}
+
 Layout Measure(Canvas& cv, const std::vector<CanvasDrawSink::LegendEntry>& entries, int shown,
                int columns, bool collapsed, float title_w) {
   const FontRole f = FontRole::kSmall;
@@ -82,9 +87,10 @@ Layout Measure(Canvas& cv, const std::vector<CanvasDrawSink::LegendEntry>& entri
   for (int i = 0; i < shown; ++i)
     label_w = std::max(label_w, cv.TextSize(f, entries[static_cast<std::size_t>(i)].label).x);
   l.col_w = kSample + 8 + label_w + 10;
-  const bool more = shown < static_cast<int>(entries.size());
-  l.rows = collapsed ? 0 : (shown + columns - 1) / columns + (more ? 1 : 0);
+  const int hidden = static_cast<int>(entries.size()) - shown;
+  l.rows = collapsed ? 0 : (shown + columns - 1) / columns + (hidden > 0 ? 1 : 0);
   l.w = std::max(title_w + 2 * kPad, collapsed ? 0.0f : columns * l.col_w + 2 * kPad);
+  if (!collapsed && hidden > 0) l.w = std::max(l.w, cv.TextSize(f, MoreText(hidden)).x + 2 * kPad);
   l.h = l.row_h + kTitleGap + l.rows * l.row_h + kPad;
   return l;
 }
@@ -102,57 +108,106 @@ void DrawWorldLegend(Canvas& cv, const View& view, const Theme& th,
   const float title_w = cv.TextSize(f, title).x;
   const float max_area = kLegendMaxShare * view.width() * view.height();
   const int n = static_cast<int>(entries.size());
-  // As many entries as fit (the rest are counted in a last line), in two columns where that
-  // fits in 60% of the view's width, else one.
-  Layout l;
-  bool fits = false;
-  for (int shown = n; shown >= 1 && !fits; --shown) {
-    for (int columns : {2, 1}) {
-      if (columns == 2 && shown < 4) continue;
-      l = Measure(cv, entries, shown, columns, collapsed, title_w);
-      fits = l.w * l.h <= max_area &&
-             l.w <= std::min(view.width() - 50, columns == 2 ? 0.6f * view.width() : 1e9f) &&
-             l.h <= view.height() - top_reserved - bottom_reserved;
-      if (fits) break;
+  auto fits = [&](const Layout& l) {
+    return l.w * l.h <= max_area &&
+           l.w <= std::min(view.width() - 50, l.columns == 2 ? 0.6f * view.width() : 1e9f) &&
+           l.h <= view.height() - top_reserved - bottom_reserved;
+  };
+  // The layouts that fit, fullest first: every entry in two columns where that fits in 60% of
+  // the view's width, else in one; then fewer entries, the rest counted in a last line. Folded
+  // (by a click): the title tab alone. Nothing fits: the title tab alone.
+  std::vector<Layout> layouts;
+  auto add_layouts = [&] {
+    for (int shown = n; shown >= 1; --shown) {
+      for (int columns : {2, 1}) {
+        if (columns == 2 && shown < 4) continue;
+        const Layout l = Measure(cv, entries, shown, columns, collapsed, title_w);
+        if (fits(l)) layouts.push_back(l);
+        if (collapsed && fits(l)) return;
+      }
+      if (collapsed) return;
     }
-    if (collapsed) break;
-  }
-  if (!fits) {
-    l = Measure(cv, entries, 0, 1, true, title_w);  // the title tab alone
-    if (l.w * l.h > max_area) return;
-  }
-  // The corner covering the fewest robots, then the fewest trail points (a robot outweighs any
-  // number of them: a thousand robots' trails put tens of thousands in a corner); kept for a
-  // second, and on a tie the current one, then bottom left, bottom right, top right, top left.
-  const float x_left = view.min.x + 40, x_right = view.max.x - 10 - l.w;
-  const float y_top = view.min.y + top_reserved, y_bottom = view.max.y - bottom_reserved - l.h;
-  auto corner_min = [&](int c) {
-    return ImVec2((c % 2 == 0) ? x_left : x_right, c < 2 ? y_top : y_bottom);
+  };
+  const float x_left = view.min.x + 40;
+  const float y_top = view.min.y + top_reserved;
+  auto corner_min = [&](const Layout& l, int c) {
+    return ImVec2((c % 2 == 0) ? x_left : view.max.x - 10 - l.w,
+                  c < 2 ? y_top : view.max.y - bottom_reserved - l.h);
+  };
+  // Robots whose bodies reach under the box, and trail points inside it.
+  auto robots_under = [&](ImVec2 lo, ImVec2 hi) {
+    long long count = 0;
+    for (std::size_t i = 0; i < avoid.bodies.size(); ++i) {
+      const ImVec2 p = avoid.bodies[i];
+      const float r = i < avoid.body_radii.size() ? avoid.body_radii[i] : 0.0f;
+      count += p.x + r >= lo.x && p.x - r <= hi.x && p.y + r >= lo.y && p.y - r <= hi.y;
+    }
+    return count;
+  };
+  auto trail_points_in = [&](ImVec2 lo, ImVec2 hi) {
+    long long count = 0;
+    for (const ImVec2& p : avoid.trails)
+      count += p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y;
+    return count;
   };
   int corner = state != nullptr ? state->corner : -1;
-  if (corner < 0 || state == nullptr || clock - state->chosen_at >= 1.0 ||
-      clock < state->chosen_at) {
-    constexpr long long kRobotCost = 1LL << 32;  // 64 bits in the page's wasm32 too
-    long long best = -1;
-    for (int c : {corner, 2, 3, 1, 0}) {
-      if (c < 0) continue;
-      const ImVec2 lo = corner_min(c), hi(lo.x + l.w, lo.y + l.h);
-      auto inside = [&](ImVec2 p) {
-        return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y;
-      };
-      long long cost = 0;
-      for (std::size_t i = 0; i < avoid.bodies.size(); ++i) {
-        const ImVec2 p = avoid.bodies[i];
-        const float r = i < avoid.body_radii.size() ? avoid.body_radii[i] : 0.0f;
-        const bool under = p.x + r >= lo.x && p.x - r <= hi.x && p.y + r >= lo.y && p.y - r <= hi.y;
-        cost += under ? kRobotCost : 0;
-      }
-      for (const ImVec2& p : avoid.trails) cost += inside(p) ? 1 : 0;
-      if (best < 0 || cost < best) best = cost, corner = c;
-    }
-    if (state != nullptr) state->corner = corner, state->chosen_at = clock;
+  const bool due = LegendCornerDue(state, clock);
+  Layout l;
+  bool have = false;
+  // Between choices, the layout chosen with the corner while the entries, the fold and the fit
+  // stay as they were.
+  if (!due && state->entries == n && state->chosen_collapsed == collapsed && state->shown >= 0 &&
+      state->shown <= n) {
+    l = Measure(cv, entries, state->shown, state->columns, collapsed || state->shown == 0, title_w);
+    have = fits(l) || state->shown == 0;
   }
-  const ImVec2 lo = corner_min(corner), hi(lo.x + l.w, lo.y + l.h);
+  if (!have) {
+    add_layouts();
+    if (layouts.empty()) {
+      l = Measure(cv, entries, 0, 1, true, title_w);  // the title tab alone
+      if (l.w * l.h > max_area) return;
+      layouts.push_back(l);
+    }
+    // The fullest layout with a corner that covers no robot; else the one covering the fewest
+    // (the fuller on a tie). Between choices the corner stays and only the layout is chosen so.
+    // Its corner: the fewest robots, then the fewest trail points (a robot outweighs any number
+    // of them: a thousand robots' trails put tens of thousands in a corner); on a tie the
+    // current one, then bottom left, bottom right, top right, top left.
+    const std::vector<int> order =
+        due ? std::vector<int>{corner, 2, 3, 1, 0} : std::vector<int>{corner};
+    std::size_t pick = 0;
+    long long fewest = -1;
+    for (std::size_t k = 0; k < layouts.size() && fewest != 0; ++k) {
+      long long least = -1;
+      for (int c : order) {
+        if (c < 0) continue;
+        const ImVec2 lo = corner_min(layouts[k], c);
+        const long long r = robots_under(lo, ImVec2(lo.x + layouts[k].w, lo.y + layouts[k].h));
+        if (least < 0 || r < least) least = r;
+      }
+      if (fewest < 0 || least < fewest) fewest = least, pick = k;
+    }
+    l = layouts[pick];
+    if (due) {
+      long long best_robots = -1, best_trails = -1;
+      for (int c : order) {
+        if (c < 0) continue;
+        const ImVec2 lo = corner_min(l, c), hi(lo.x + l.w, lo.y + l.h);
+        const long long r = robots_under(lo, hi);
+        if (best_robots >= 0 && r > best_robots) continue;
+        const long long t = trail_points_in(lo, hi);
+        if (best_robots < 0 || r < best_robots || t < best_trails)
+          best_robots = r, best_trails = t, corner = c;
+      }
+    }
+    if (state != nullptr) {
+      if (due) state->corner = corner, state->chosen_at = clock;
+      state->shown = l.rows == 0 ? 0 : l.shown, state->columns = l.columns;
+      state->chosen_collapsed = collapsed, state->entries = n;
+    }
+  }
+  const bool title_only = l.rows == 0;
+  const ImVec2 lo = corner_min(l, corner), hi(lo.x + l.w, lo.y + l.h);
   cv.FillRect(lo, hi, th.backdrop.WithAlpha(0.88f), 3.0f);
   cv.StrokeRect(lo, hi, th.legend_border, 1.0f, 3.0f);
   cv.Text(ImVec2(lo.x + kPad, lo.y + 2), f, th.text, title);
@@ -161,7 +216,7 @@ void DrawWorldLegend(Canvas& cv, const View& view, const Theme& th,
     state->toggle_max = ImVec2(hi.x, lo.y + l.row_h);
     state->box_min = lo, state->box_max = hi;
   }
-  if (collapsed || !fits) return;
+  if (title_only) return;
   const int rows_per_col = (l.shown + l.columns - 1) / l.columns;
   for (int i = 0; i < l.shown; ++i) {
     const auto& e = entries[static_cast<std::size_t>(i)];
@@ -173,8 +228,7 @@ void DrawWorldLegend(Canvas& cv, const View& view, const Theme& th,
   }
   if (l.shown < n) {
     const float y = lo.y + l.row_h + kTitleGap + rows_per_col * l.row_h;
-    cv.Text(ImVec2(lo.x + kPad, y + 1), f, th.coordinates,
-            "+ " + std::to_string(n - l.shown) + " more (larger view shows them)");
+    cv.Text(ImVec2(lo.x + kPad, y + 1), f, th.coordinates, MoreText(n - l.shown));
   }
 }
 

@@ -20,9 +20,21 @@ struct LegendState {
   bool collapsed = false;     ///< only its title tab is drawn
   int corner = -1;            ///< 0 top left, 1 top right, 2 bottom left, 3 bottom right; -1 unset
   double chosen_at = -1e300;  ///< clock (s) when the corner was last chosen
+  /// The layout chosen with the corner: entries shown (0: the title tab alone) and columns.
+  /// Where every corner would cover a robot, fewer entries (or one column) that cover none.
+  int shown = -1, columns = 1;
+  int entries = -1;               ///< how many entries there were when chosen
+  bool chosen_collapsed = false;  ///< whether it was folded when chosen
   ImVec2 toggle_min, toggle_max;  ///< where a click collapses or opens it (screen pixels)
   ImVec2 box_min, box_max;        ///< the legend's box as last drawn
 };
+
+/// Whether a legend drawn at `clock` with `state` (may be null) chooses its corner anew: with
+/// no corner yet, a second after the last choice, or when the clock went back.
+inline bool LegendCornerDue(const LegendState* state, double clock) {
+  return state == nullptr || state->corner < 0 || clock - state->chosen_at >= 1.0 ||
+         clock < state->chosen_at;
+}
 
 /// What the legend should not cover, on screen: robots first, then trail points.
 struct LegendAvoid {

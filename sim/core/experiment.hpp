@@ -144,6 +144,9 @@ class Experiment {
   /// last `seconds` (`trails`). Appends to both. Default: the robots, no trails.
   virtual void FocusPoints(std::vector<Vec2>& bodies, std::vector<double>& radii,
                            std::vector<Vec2>& trails, double seconds) const;
+  /// The bounding box of the finite trail points FocusPoints would give for `seconds`, without
+  /// collecting them (a camera that frames them each frame); false when there are none.
+  virtual bool TrailBox(double /*seconds*/, Vec2& /*lo*/, Vec2& /*hi*/) const { return false; }
   /// Metrics over the run so far: summary.json's `results`, the printed and GUI tables.
   virtual Metrics Results() const = 0;
   /// summary.json: scenario, provenance, steps, results, event counts and the first events.

@@ -1,6 +1,7 @@
 #include "sim/core/param_table.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <stdexcept>
 
 #include "sim/core/number_format.hpp"
@@ -126,6 +127,8 @@ std::string Param::Parse(const std::string& text, std::string* canonical) const 
 }
 
 void ParamTable::Add(Param p) {
+  static std::atomic<std::uint64_t> next{1};
+  revision_ = next.fetch_add(1, std::memory_order_relaxed);
   const auto [it, inserted] = index_.emplace(p.key, params_.size());
   if (!inserted) {
     params_[it->second] = std::move(p);  // read twice (e.g. a noise block resolved again): keep the latest

@@ -7,6 +7,7 @@
 /// and its current value; the GUI panel, `--set`, edit validation, Apply and Save all read it.
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <unordered_map>
@@ -90,9 +91,14 @@ class ParamTable {
   const Param* Find(const std::string& key) const;
   bool empty() const { return params_.empty(); }
   std::size_t size() const { return params_.size(); }
+  /// A number no other content of any table has had in this process: each Add draws a new one
+  /// (copies keep it), so two equal revisions mean the same parameters, and a view built from
+  /// the table (the GUI's groups) stays valid while it holds. 0 for a table never added to.
+  std::uint64_t revision() const { return revision_; }
 
  private:
   std::vector<Param> params_;
+  std::uint64_t revision_ = 0;
   std::unordered_map<std::string, std::size_t> index_;  ///< key -> params_, so loading is linear
 };
 

@@ -35,6 +35,20 @@ class RingBuffer {
   }
   /// The i-th element, oldest first.
   const T& operator[](std::size_t i) const { return data_[(head_ + i) % data_.size()]; }
+  /// Calls `f(first, count)` for the elements [from, size()), oldest first, as at most two
+  /// contiguous runs (no index arithmetic per element: a thousand robots' trails each frame).
+  template <class F>
+  void ForEachRun(std::size_t from, F&& f) const {
+    if (from >= size_) return;
+    const std::size_t cap = data_.size(), start = (head_ + from) % cap, n = size_ - from;
+    const std::size_t first = n < cap - start ? n : cap - start;
+    f(data_.data() + start, first);
+    if (first < n) f(data_.data(), n - first);
+  }
+  /// Appends the elements [from, size()) to `out`, oldest first.
+  void AppendTo(std::vector<T>& out, std::size_t from = 0) const {
+    ForEachRun(from, [&](const T* p, std::size_t n) { out.insert(out.end(), p, p + n); });
+  }
   /// The newest element; the buffer must not be empty.
   const T& back() const { return (*this)[size_ - 1]; }
 

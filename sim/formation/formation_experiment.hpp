@@ -76,6 +76,7 @@ class FormationExperiment : public ExperimentOf<FormationConfig>, public Formati
   void Bounds(Vec2& lo, Vec2& hi) const override;
   void FocusPoints(std::vector<Vec2>& bodies, std::vector<double>& radii,
                    std::vector<Vec2>& trails, double seconds) const override;
+  bool TrailBox(double seconds, Vec2& lo, Vec2& hi) const override;
   Metrics Results() const override;
   // ---- FormationEditing (formation_editing.hpp; the changes: formation_edit.hpp) ----
   std::string PlacedText(const std::string& text) const override;

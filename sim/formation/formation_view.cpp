@@ -189,7 +189,7 @@ void FormationExperiment::DrawScene(DrawSink& draw) const {
     if (!root && (body_px < 2.0 || i % trail_every != 0)) continue;
     std::vector<Vec2> pts;
     pts.reserve(a.trail.size() + 1);
-    for (std::size_t k = 0; k < a.trail.size(); ++k) pts.push_back(a.trail[k]);
+    a.trail.AppendTo(pts);
     pts.push_back(a.robot->pose().p());
     draw.Polyline(pts, PaletteColor(cfg_.robots[i].body.color_index).WithAlpha(0.8f), 2.0f, !many);
     draw.Legend(LegendMark::kTrail, PaletteColor(cfg_.robots[i].body.color_index), "trail (path so far)");
@@ -384,6 +384,10 @@ void FormationExperiment::DrawLawOverlays(DrawSink& draw, double body_px,
     }
     if (!links_.empty()) draw.Legend(LegendMark::kArrow, g, "graph: leader -> follower (law)");
   }
+  // Which overlays, asked once for every robot (a thousand a frame).
+  const bool measured = draw.Shows("measured"), errors = draw.Shows("errors"),
+             triangles = draw.Shows("triangles"), velocity = draw.Shows("velocity");
+  if (!measured && !errors && !triangles && !velocity) return;
   for (std::size_t j = 0; j < agents_.size(); ++j) {
     const Agent& a = agents_[j];
     if (a.links.empty() || !in_view(a.robot->pose().p())) continue;
@@ -393,7 +397,7 @@ void FormationExperiment::DrawLawOverlays(DrawSink& draw, double body_px,
     const Color c = PaletteColor(r.body.color_index);
     // Measured l and φ as the law sees them: an arc from the leader's heading to the bearing
     // of M (l-φ), labelled; the estimate's arc dashed-looking (faint) when an estimator runs.
-    if (draw.Shows("measured")) {
+    if (measured) {
       for (int li : a.links) {
         const Link& l = links_[li];
         const Pose2 pi = agents_[l.leader].robot->pose();
@@ -420,9 +424,9 @@ void FormationExperiment::DrawLawOverlays(DrawSink& draw, double body_px,
       }
       draw.Legend(LegendMark::kArc, ink, "measured φ (from leader heading) and l");
     }
-    const Pose2 g = DesiredPose(static_cast<int>(j));
     // Error vector: from M to where M should be.
-    if (draw.Shows("errors") && std::isfinite(g.x)) {
+    const Pose2 g = errors ? DesiredPose(static_cast<int>(j)) : Pose2{};
+    if (errors && std::isfinite(g.x)) {
       const Vec2 md = cf::ControlPoint(g, L);
       const Color e{0.85f, 0.3f, 0.0f, 1.0f};
       Arrow(draw, m, md, e, 2.0f, 0.03);
@@ -432,7 +436,7 @@ void FormationExperiment::DrawLawOverlays(DrawSink& draw, double body_px,
     }
     // l-l: the triangle of the two leaders and M, and the singular line through the leaders in a
     // colour from green (|sin| comfortable) to red (at the threshold and below).
-    if (draw.Shows("triangles") && r.node.law == FormationLaw::kLL) {
+    if (triangles && r.node.law == FormationLaw::kLL) {
       const Vec2 p1 = agents_[links_[a.links[0]].leader].robot->pose().p();
       const Vec2 p2 = agents_[links_[a.links[1]].leader].robot->pose().p();
       const double s = std::abs(a.sin_ll);
@@ -449,7 +453,7 @@ void FormationExperiment::DrawLawOverlays(DrawSink& draw, double body_px,
     }
     // The command split: the control point's velocity from the leaders' motion alone
     // (feed-forward, errors zero) and what the error terms add (feedback), as far as M goes in 0.1 s.
-    if (draw.Shows("velocity")) {
+    if (velocity) {
       Twist ff;
       if (r.node.law == FormationLaw::kLPhi) {
         cf::LPhiPrepared p = a.lphi;
@@ -494,13 +498,30 @@ void FormationExperiment::FocusPoints(std::vector<Vec2>& bodies, std::vector<dou
   // A trail point is pushed every trail_every steps: the last `seconds` are its last n points.
   const double per_point = dt() * cfg_.trail_every;
   const std::size_t n = per_point > 0 ? static_cast<std::size_t>(seconds / per_point) : 0;
-  // Reserved at once: a thousand robots' trails are tens of thousands of points a frame.
+  // Reserved at once: a thousand robots' trails are tens of thousands of points.
   std::size_t count = trails.size();
   for (const Agent& a : agents_) count += std::min(n, a.trail.size());
   trails.reserve(count);
   for (const Agent& a : agents_)
-    for (std::size_t k = a.trail.size() > n ? a.trail.size() - n : 0; k < a.trail.size(); ++k)
-      trails.push_back(a.trail[k]);
+    a.trail.AppendTo(trails, a.trail.size() > n ? a.trail.size() - n : 0);
+}
+
+bool FormationExperiment::TrailBox(double seconds, Vec2& lo, Vec2& hi) const {
+  const double per_point = dt() * cfg_.trail_every;
+  const std::size_t n = per_point > 0 ? static_cast<std::size_t>(seconds / per_point) : 0;
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (const Agent& a : agents_)
+    a.trail.ForEachRun(a.trail.size() > n ? a.trail.size() - n : 0,
+                       [&](const Vec2* p, std::size_t count) {
+                         for (std::size_t k = 0; k < count; ++k) {
+                           if (!std::isfinite(p[k].x) || !std::isfinite(p[k].y)) continue;
+                           x0 = std::min(x0, p[k].x), y0 = std::min(y0, p[k].y);
+                           x1 = std::max(x1, p[k].x), y1 = std::max(y1, p[k].y);
+                         }
+                       });
+  if (!(x0 <= x1)) return false;
+  lo = {x0, y0}, hi = {x1, y1};
+  return true;
 }
 
 }  // namespace formsim::sim::formation

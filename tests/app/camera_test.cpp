@@ -126,5 +126,34 @@ TEST(PresentationCamera, FollowsARunningFormationAndEditsNothing) {
   EXPECT_FALSE(s.can_undo());
 }
 
+// The window asks for the trails' box alone (the camera) or no trails (most frames): the box is
+// the one the points give, and the robots are the same either way.
+TEST(PresentationCamera, TrailBoxIsTheBoxOfTheTrailPoints) {
+  sim::Session s(testing::Scenario("formation_cascade7"), {"duration=3"}, -1);
+  while (!s.exp().finished()) s.Step();
+  FocusSet points, box, none;
+  FocusOf(s.exp(), 2.0, &points, FocusTrails::kPoints);
+  FocusOf(s.exp(), 2.0, &box, FocusTrails::kBox);
+  FocusOf(s.exp(), 2.0, &none, FocusTrails::kNone);
+  ASSERT_GT(points.trails.size(), 100u);
+  EXPECT_TRUE(box.trails.empty());
+  EXPECT_TRUE(none.trails.empty());
+  EXPECT_FALSE(none.trail_box);
+  Vec2 lo, hi, blo, bhi;
+  ASSERT_TRUE(points.TrailBox(lo, hi));
+  ASSERT_TRUE(box.TrailBox(blo, bhi));
+  EXPECT_EQ(lo.x, blo.x);
+  EXPECT_EQ(lo.y, blo.y);
+  EXPECT_EQ(hi.x, bhi.x);
+  EXPECT_EQ(hi.y, bhi.y);
+  EXPECT_LT(lo.x, hi.x) << "the trails span some ground";
+  EXPECT_EQ(points.bodies.size(), none.bodies.size());
+  EXPECT_EQ(points.radii, none.radii);
+  // Their last 2 s only: a longer span gives a box at least as large.
+  FocusSet longer;
+  FocusOf(s.exp(), 3.0, &longer, FocusTrails::kBox);
+  EXPECT_LE(longer.trail_lo.x, blo.x);
+}
+
 }  // namespace
 }  // namespace formsim::app

@@ -71,6 +71,23 @@ std::vector<CanvasDrawSink::LegendEntry> Entries(int n) {
   return e;
 }
 
+// Where a legend of `n` entries goes in each corner of `view`, with nothing to avoid: drawn once
+// per corner with that corner kept (a choice made half a second before). `last` gets the state
+// of the last one drawn.
+std::vector<ImVec4> CornerBoxes(Canvas& cv, const View& view, int n, LegendState* last = nullptr) {
+  std::vector<ImVec4> boxes(4);
+  for (int c = 0; c < 4; ++c) {
+    LegendState st;
+    st.corner = c;
+    st.chosen_at = 0.0;
+    DrawWorldLegend(cv, view, GetTheme(ThemeId::kLight), Entries(n), LegendAvoid(), &st, 0.5, 60,
+                    56);
+    boxes[c] = ImVec4(st.box_min.x, st.box_min.y, st.box_max.x, st.box_max.y);
+    if (last != nullptr) *last = st;
+  }
+  return boxes;
+}
+
 TEST(WorldLegend, TakesAtMostFifteenPercentAndAvoidsTheRobots) {
   for (auto [w, h] :
        std::vector<std::pair<float, float>>{{1920.f, 1080.f}, {900.f, 600.f}, {480.f, 320.f}}) {
@@ -118,16 +135,7 @@ TEST(WorldLegend, AvoidsARobotWhoseBodyReachesUnderIt) {
 TEST(WorldLegend, ARobotOutweighsAnyNumberOfTrailPoints) {
   VectorCanvas cv(1280, 800);
   const View view = Screen(1280, 800);
-  // Where the legend goes in each corner: drawn once per corner with the others made costly.
-  std::vector<ImVec4> boxes(4);
-  for (int c = 0; c < 4; ++c) {
-    LegendState st;
-    st.corner = c;
-    st.chosen_at = 0.0;
-    DrawWorldLegend(cv, view, GetTheme(ThemeId::kLight), Entries(6), LegendAvoid(), &st, 0.5, 60,
-                    56);
-    boxes[c] = ImVec4(st.box_min.x, st.box_min.y, st.box_max.x, st.box_max.y);
-  }
+  const std::vector<ImVec4> boxes = CornerBoxes(cv, view, 6);
   LegendAvoid avoid;
   const ImVec4 b = boxes[2];  // bottom left, the first choice on a tie: one robot there
   avoid.bodies.push_back(ImVec2(0.5f * (b.x + b.z), 0.5f * (b.y + b.w)));
@@ -139,6 +147,42 @@ TEST(WorldLegend, ARobotOutweighsAnyNumberOfTrailPoints) {
   LegendState st;
   DrawWorldLegend(cv, view, GetTheme(ThemeId::kLight), Entries(6), avoid, &st, 0.0, 60, 56);
   EXPECT_NE(st.corner, 2) << "the legend went over the robot to spare trail points";
+}
+
+// Where the full legend would cover a robot in every corner, it takes a smaller layout (one
+// column, or fewer entries) that covers none, rather than hide a robot (presentation mode at UI
+// scale 2, where two columns of eight entries span 60% of the view, hid R6 so).
+TEST(WorldLegend, ShrinksRatherThanCoverARobot) {
+  VectorCanvas cv(1280, 800);
+  const View view = Screen(1280, 800);
+  // The full legend's box in each corner.
+  LegendState full;
+  const std::vector<ImVec4> boxes = CornerBoxes(cv, view, 8, &full);
+  ASSERT_EQ(full.shown, 8);
+  ASSERT_EQ(full.columns, 2) << "eight entries fit in two columns at 1280x800";
+  // A robot under each box, at the box's side away from the view's edges.
+  LegendAvoid avoid;
+  for (int c = 0; c < 4; ++c) {
+    const ImVec4 b = boxes[c];
+    avoid.bodies.push_back(ImVec2(c % 2 == 0 ? b.z - 8 : b.x + 8, c < 2 ? b.w - 8 : b.y + 8));
+    avoid.body_radii.push_back(4.0f);
+  }
+  LegendState st;
+  DrawWorldLegend(cv, view, GetTheme(ThemeId::kLight), Entries(8), avoid, &st, 0.0, 60, 56);
+  for (std::size_t i = 0; i < avoid.bodies.size(); ++i) {
+    const ImVec2 p = avoid.bodies[i];
+    const float r = avoid.body_radii[i];
+    EXPECT_FALSE(p.x + r >= st.box_min.x && p.x - r <= st.box_max.x && p.y + r >= st.box_min.y &&
+                 p.y - r <= st.box_max.y)
+        << "robot " << i << " is under the legend";
+  }
+  EXPECT_TRUE(st.columns == 1 || st.shown < 8) << "a smaller layout than the full one";
+  EXPECT_GT(st.shown, 0) << "one column of all eight fits beside the robots";
+  // Kept for the rest of the second, with the same layout.
+  const ImVec2 lo = st.box_min, hi = st.box_max;
+  DrawWorldLegend(cv, view, GetTheme(ThemeId::kLight), Entries(8), avoid, &st, 0.5, 60, 56);
+  EXPECT_EQ(st.box_min.x, lo.x);
+  EXPECT_EQ(st.box_max.y, hi.y);
 }
 
 TEST(WorldLegend, CornerIsReChosenAtMostOnceASecondAndCollapses) {
