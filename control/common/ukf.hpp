@@ -233,13 +233,7 @@ class Ukf {
   /// Closed form when it is exact (see the file comment), else the sigma-point update.
   UkfStatus UpdateSelection(const Meas& z, const std::array<int, M>& idx, const MeasCov& R) {
     if (!x_.allFinite() || !P_.allFinite()) return UkfStatus::kNonFinite;
-    const double c = N + lambda_;
-    bool exact = c > 0.0;
-    for (int k = 0; k < N && exact; ++k) exact = !angle_state_[k] || c * P_(k, k) < 9.0;
-    for (int k = 0; k < M && exact; ++k)
-      exact =
-          angle_meas_[k] == angle_state_[idx[k]] && (!angle_meas_[k] || P_(idx[k], idx[k]) < 1.0);
-    if (!exact)
+    if (!ClosedFormExact(idx))
       return Update(
           z,
           [&](const State& s) {
@@ -267,6 +261,23 @@ class Ukf {
 
   const State& x() const { return x_; }
   const Cov& P() const { return P_; }
+
+  /// For a caller that updates several filters at once (SIMD lanes, link_update_lanes.hpp) and
+  /// must give the same bits as UpdateSelection: true when UpdateSelection with `idx` would take
+  /// the closed form with a covariance already known positive definite, or would fault on a
+  /// non-finite x or P (unchecked here: every value of x and P reaches the new x or P, so the
+  /// caller finds a non-finite result and runs UpdateSelection, which reports the fault).
+  bool ClosedFormMayRun(const std::array<int, M>& idx) const {
+    return pd_known_ && ClosedFormExact(idx);
+  }
+  /// The end of a closed-form update the caller computed with Correct's and Accept's operations
+  /// and found finite and positive definite: the new state, P, its lower Cholesky factor, the NIS.
+  void AcceptCorrected(const State& x, const Cov& P, const Cov& chol, double nis) {
+    last_nis_ = nis;
+    x_ = x;
+    P_ = P;
+    Factored(chol);
+  }
 
   /// For a caller that propagates the sigma points of several filters at once (SIMD lanes,
   /// link_predict_lanes.hpp) and must give the same bits as PredictSigma: makes the Cholesky
@@ -338,6 +349,17 @@ class Ukf {
       pts[1 + N + i] = x_ - S.col(i);
     }
     return UkfStatus::kOk;
+  }
+  // Whether the closed-form update of the components `idx` equals the sigma-point one (see the
+  // file comment): the angle spreads well inside ±π.
+  bool ClosedFormExact(const std::array<int, M>& idx) const {
+    const double c = N + lambda_;
+    bool exact = c > 0.0;
+    for (int k = 0; k < N && exact; ++k) exact = !angle_state_[k] || c * P_(k, k) < 9.0;
+    for (int k = 0; k < M && exact; ++k)
+      exact =
+          angle_meas_[k] == angle_state_[idx[k]] && (!angle_meas_[k] || P_(idx[k], idx[k]) < 1.0);
+    return exact;
   }
   void Factored(const Cov& L) {
     chol_ = L;

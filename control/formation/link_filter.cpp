@@ -97,6 +97,28 @@ class LinkUkf final : public LinkFilter {
     return ukf_.AcceptPrediction(mean, P);
   }
 
+  int UpdateBasis(LinkUpdateBasis& b) const override {
+    if constexpr (M == 1) {
+      return 0;
+    } else {
+      if (!ukf_.ClosedFormMayRun(idx_)) return 0;
+      b.x = ukf_.x().data();
+      b.P = ukf_.P().data();
+      b.r = def_.r.data();
+      return M;
+    }
+  }
+  void AcceptUpdate(const LinkUpdateResult& u) override {
+    Eigen::Vector3d x;
+    Eigen::Matrix3d P, L;
+    for (int k = 0; k < 3; ++k) {
+      x(k) = u.x[k * u.stride];
+      for (int c = 0; c < 3; ++c)
+        P(k, c) = u.P[(k * 3 + c) * u.stride], L(k, c) = u.chol[(k * 3 + c) * u.stride];
+    }
+    ukf_.AcceptCorrected(x, P, L, u.nis);
+  }
+
   LinkState state() const override { return LinkState::FromVec(ukf_.x()); }
   Eigen::Matrix3d cov() const override { return ukf_.P(); }
   double nis() const override { return ukf_.last_nis(); }

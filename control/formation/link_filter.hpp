@@ -63,6 +63,24 @@ struct LinkPredictBasis {
   Eigen::Vector3d q;  ///< process noise variance (Q's diagonal)
 };
 
+/// What a batched measurement update (link_update_lanes.hpp) reads of one link filter: views
+/// of its storage, valid until the filter changes.
+struct LinkUpdateBasis {
+  const double* x = nullptr;  ///< mean [l, φ, α]
+  const double* P = nullptr;  ///< covariance, column-major 3x3
+  const double* r = nullptr;  ///< measurement noise variance (R's diagonal for l, φ, α)
+};
+
+/// A batched measurement update's result for one link, in a structure of arrays: element k of a
+/// vector at [k * stride], element (row, col) of a matrix at [(row * 3 + col) * stride].
+struct LinkUpdateResult {
+  const double* x;     ///< the new mean
+  const double* P;     ///< the new covariance
+  const double* chol;  ///< its lower Cholesky factor
+  int stride;
+  double nis;
+};
+
 /// A UKF over one link; the measurement dimension depends on the measurement set.
 class LinkFilter {
  public:
@@ -82,6 +100,15 @@ class LinkFilter {
   /// Ends a batched time update: the predicted mean and covariance (Q included, symmetric),
   /// computed with Predict's operations, checked and taken as Predict takes them.
   virtual UkfStatus AcceptPrediction(const Eigen::Vector3d& mean, const Eigen::Matrix3d& P) = 0;
+  /// Fills `b` for a batched measurement update and returns how many components it measures
+  /// (2: [φ, α], 3: [l, φ, α]) when Update would take the closed-form path with a covariance
+  /// known positive definite, or could only end in a fault on a non-finite value (which the
+  /// batch finds in its result and hands to Update); 0 otherwise ([α] alone, a spread that
+  /// needs sigma points, ...): call Update then.
+  virtual int UpdateBasis(LinkUpdateBasis& b) const = 0;
+  /// Ends a batched measurement update that succeeded: the new mean, covariance (with its
+  /// Cholesky factor) and NIS, computed with Update's operations.
+  virtual void AcceptUpdate(const LinkUpdateResult& u) = 0;
   virtual LinkState state() const = 0;
   virtual Eigen::Matrix3d cov() const = 0;
   virtual double nis() const = 0;

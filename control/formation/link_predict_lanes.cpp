@@ -1,7 +1,10 @@
 #include "control/formation/link_predict_lanes.hpp"
 
 #include <atomic>
+#include <cmath>
 #include <cstring>
+
+#include "control/formation/link_update_lanes.hpp"
 
 namespace formsim::control::formation {
 namespace {
@@ -9,6 +12,7 @@ namespace {
 std::atomic<LanePath> g_path{LanePath::kAuto};
 
 using Lanes = LinkPredictBatch::Lanes;
+using UpdateLanes_ = LinkUpdateBatch::Lanes;
 
 // The kernel twice, each copy with internal linkage and its own vector width: the portable one
 // in SSE2 pairs (x86-64's baseline), the AVX2 one compiled for AVX2 alone (no FMA: a product
@@ -19,6 +23,7 @@ using M = decltype(V{} < V{});
 constexpr int W = 2;
 #define FORMSIM_LANE_FN inline __attribute__((always_inline))
 #include "control/formation/link_predict_lanes.inc"
+#include "control/formation/link_update_lanes.inc"
 #undef FORMSIM_LANE_FN
 }  // namespace portable
 
@@ -31,9 +36,16 @@ using M = decltype(V{} < V{});
 constexpr int W = 4;
 #define FORMSIM_LANE_FN inline __attribute__((always_inline, target("avx2")))
 #include "control/formation/link_predict_lanes.inc"
+#include "control/formation/link_update_lanes.inc"
 #undef FORMSIM_LANE_FN
 __attribute__((target("avx2"))) void Run(Lanes& l) {
   RunLanes(l, 0);
+}
+__attribute__((target("avx2"))) void RunUpdate(int measured, UpdateLanes_& l) {
+  if (measured == 3)
+    UpdateLanes<3>(l, 0);
+  else
+    UpdateLanes<2>(l, 0);
 }
 }  // namespace avx2
 static_assert(LinkPredictBatch::kLanes == avx2::W);
@@ -93,6 +105,23 @@ void RunPredictLanes(LanePath path, Lanes& l) {
 #endif
   for (int base = 0; base < LinkPredictBatch::kLanes; base += portable::W)
     portable::RunLanes(l, base);
+}
+
+void RunUpdateLanes(LanePath path, int measured, UpdateLanes_& l) {
+#ifdef FORMSIM_HAVE_AVX2_LANES
+  if (path == LanePath::kAvx2 && CpuHasAvx2()) {
+    avx2::RunUpdate(measured, l);
+    return;
+  }
+#else
+  (void)path;
+#endif
+  for (int base = 0; base < LinkUpdateBatch::kLanes; base += portable::W) {
+    if (measured == 3)
+      portable::UpdateLanes<3>(l, base);
+    else
+      portable::UpdateLanes<2>(l, base);
+  }
 }
 
 void LinkPredictBatch::Add(LinkFilter& f, const Twist& leader, const Twist& follower,

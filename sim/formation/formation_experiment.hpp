@@ -50,6 +50,7 @@
 
 #include "control/formation/formation_laws.hpp"
 #include "control/formation/link_filter.hpp"
+#include "control/formation/link_update_lanes.hpp"
 #include "sim/core/error_stats.hpp"
 #include "sim/core/experiment.hpp"
 #include "sim/core/ring_buffer.hpp"
@@ -208,10 +209,15 @@ class FormationExperiment : public ExperimentOf<FormationConfig>, public Formati
   /// Starts (or restarts after a fault) a link filter: measured components from the
   /// measurement, the others from the truth (first start) or the last estimate (restart).
   void InitFilter(Link& link, bool restart);
-  void RunFilter(Link& link);
-  /// Everything a step does for one link alone (sensor, filter, statistics): links run in
-  /// parallel; events are raised afterwards in link order.
-  void SenseLink(std::size_t i, double t, bool filter_step);
+  /// A filter step up to its measurement update, which `updates` runs (several links at once in
+  /// SIMD lanes); FinishFilter takes its result.
+  void RunFilter(Link& link, cf::LinkUpdateBatch& updates);
+  void FinishFilter(Link& link);
+  /// Everything a step does for one link alone (sensor, filter, statistics), in two halves
+  /// around the batched measurement updates: links run in parallel; events are raised
+  /// afterwards in link order.
+  void SenseLink(std::size_t i, bool filter_step, cf::LinkUpdateBatch& updates);
+  void FinishLink(std::size_t i, double t, bool filter_step);
   void Accumulate(Link& link, double t);
   double Gain(double k) const;
   double DesiredL(const Link& l) const;

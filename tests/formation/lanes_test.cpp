@@ -1,5 +1,6 @@
-// The link filters' time updates in SIMD lanes (control/formation/link_predict_lanes.hpp) give
-// the same bits as each filter's own Predict: link by link on states that cover every branch
+// The link filters' time and measurement updates in SIMD lanes
+// (control/formation/link_predict_lanes.hpp, link_update_lanes.hpp) give the same bits as each
+// filter's own Predict and Update: link by link on states that cover every branch
 // of the scalar code (all four quadrants of the sines, both cosine forms, angles at and across
 // ±π, spreads beyond the small-angle polynomials, non-finite inputs, substeps), and run by run
 // on the shipped formation scenarios, CSV and summary byte for byte, with one and two threads.
@@ -11,8 +12,10 @@
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <utility>
 
 #include "control/formation/link_predict_lanes.hpp"
+#include "control/formation/link_update_lanes.hpp"
 #include "sim/core/run_output.hpp"
 #include "sim/formation/formation_experiment.hpp"
 #include "sim/scenario/scenario.hpp"
@@ -108,40 +111,104 @@ std::unique_ptr<cf::LinkFilter> Prepared(const Case& c) {
   return f;
 }
 
+// The same state and covariance, bit for bit.
+::testing::AssertionResult SameFilter(const cf::LinkFilter& a, const cf::LinkFilter& b) {
+  if (SameBytes(a.state(), b.state()) && SameBytes(a.cov(), b.cov()))
+    return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "state or covariance differs";
+}
+
+// Calls `add(batch, i)` for every i < n on one batch, flushes it, and returns how many links ran
+// in lanes and how many off them.
+template <class Batch, class Add>
+std::pair<std::size_t, std::size_t> RunBatch(std::size_t n, Add add) {
+  Batch batch;
+  for (std::size_t i = 0; i < n; ++i) add(batch, i);
+  batch.Flush();
+  return {batch.laned(), batch.fell_back()};
+}
+
+// Most links of a batch ran in lanes and over a hundred off their common path.
+void ExpectBothKinds(std::size_t laned, std::size_t fell_back, std::size_t n, cf::LanePath path) {
+  EXPECT_GT(laned, n / 2) << cf::LanePathName(path);
+  EXPECT_GT(fell_back, 100u) << cf::LanePathName(path);
+}
+
+// Two filters in the same state for every case: one run alone, one batched. `predicted`: each
+// after one more prediction (what a measurement update follows).
+struct Twins {
+  std::vector<std::unique_ptr<cf::LinkFilter>> reference, batched;
+  Twins(const std::vector<Case>& cases, bool predicted) {
+    for (const Case& c : cases)
+      for (auto* v : {&reference, &batched}) {
+        v->push_back(Prepared(c));
+        if (predicted) v->back()->Predict(c.leader, c.follower);
+      }
+  }
+};
+
 TEST(PredictLanes, EachLinkGetsTheBitsOfItsOwnPredict) {
   const std::vector<Case> cases = MakeCases();
   for (cf::LanePath path : LanePaths()) {
     PathScope scope(path);
-    std::vector<std::unique_ptr<cf::LinkFilter>> reference, batched;
+    Twins twins(cases, false);
+    auto& reference = twins.reference;
+    auto& batched = twins.batched;
     std::vector<UkfStatus> want(cases.size()), got(cases.size(), UkfStatus::kOk);
-    for (const Case& c : cases) {
-      reference.push_back(Prepared(c));
-      batched.push_back(Prepared(c));
-    }
     for (std::size_t i = 0; i < cases.size(); ++i)
       want[i] = reference[i]->Predict(cases[i].leader, cases[i].follower);
-    std::size_t laned = 0, fell_back = 0;
-    {
-      cf::LinkPredictBatch batch;
-      for (std::size_t i = 0; i < cases.size(); ++i)
-        batch.Add(*batched[i], cases[i].leader, cases[i].follower, &got[i]);
-      batch.Flush();
-      laned = batch.laned();
-      fell_back = batch.fell_back();
-    }
+    const auto ran = RunBatch<cf::LinkPredictBatch>(cases.size(), [&](auto& batch, std::size_t i) {
+      batch.Add(*batched[i], cases[i].leader, cases[i].follower, &got[i]);
+    });
     for (std::size_t i = 0; i < cases.size(); ++i) {
       SCOPED_TRACE(std::string(cf::LanePathName(path)) + " case " + std::to_string(i));
       ASSERT_EQ(got[i], want[i]);
-      ASSERT_TRUE(SameBytes(batched[i]->state(), reference[i]->state()));
-      ASSERT_TRUE(SameBytes(batched[i]->cov(), reference[i]->cov()));
+      ASSERT_TRUE(SameFilter(*batched[i], *reference[i]));
       // And the next step from there (the factor the lanes made current, the update after).
       ASSERT_EQ(batched[i]->Update(cases[i].x0), reference[i]->Update(cases[i].x0));
-      ASSERT_TRUE(SameBytes(batched[i]->state(), reference[i]->state()));
-      ASSERT_TRUE(SameBytes(batched[i]->cov(), reference[i]->cov()));
+      ASSERT_TRUE(SameFilter(*batched[i], *reference[i]));
     }
-    // Both kinds of link were there: most in lanes, some off the common path.
-    EXPECT_GT(laned, cases.size() / 2) << cf::LanePathName(path);
-    EXPECT_GT(fell_back, 100u) << cf::LanePathName(path);
+    ExpectBothKinds(ran.first, ran.second, cases.size(), path);
+  }
+}
+
+// The measurement update in lanes: each link the bits of its own Update (state, covariance,
+// NIS, status), then the next step from there, on the same states; measurements near the
+// estimate and a turn or more away, and non-finite ones.
+TEST(UpdateLanes, EachLinkGetsTheBitsOfItsOwnUpdate) {
+  const std::vector<Case> cases = MakeCases();
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> n01(0.0, 1.0);
+  std::vector<cf::LinkState> measured;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    cf::LinkState z = cases[i].x0;
+    const double s = i % 7 == 0 ? 1.0 : 0.01;
+    z.l += 0.01 * n01(rng), z.phi += s * n01(rng), z.alpha += s * n01(rng);
+    if (i % 101 == 0) z.alpha += 8 * control::kPi;  // more than a turn out: Update wraps it
+    if (i % 103 == 0) z.phi = std::nan("");
+    measured.push_back(z);
+  }
+  for (cf::LanePath path : LanePaths()) {
+    PathScope scope(path);
+    Twins twins(cases, true);
+    auto& reference = twins.reference;
+    auto& batched = twins.batched;
+    std::vector<UkfStatus> want(cases.size()), got(cases.size(), UkfStatus::kOk);
+    for (std::size_t i = 0; i < cases.size(); ++i) want[i] = reference[i]->Update(measured[i]);
+    const auto ran = RunBatch<cf::LinkUpdateBatch>(
+        cases.size(), [&](auto& batch, std::size_t i) { batch.Add(*batched[i], measured[i], &got[i]); });
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      SCOPED_TRACE(std::string(cf::LanePathName(path)) + " case " + std::to_string(i));
+      ASSERT_EQ(got[i], want[i]);
+      ASSERT_TRUE(SameFilter(*batched[i], *reference[i]));
+      const double nis_b = batched[i]->nis(), nis_r = reference[i]->nis();
+      ASSERT_EQ(std::memcmp(&nis_b, &nis_r, sizeof nis_b), 0);
+      // And the next step from there (the factor the lanes kept, the prediction after).
+      ASSERT_EQ(batched[i]->Predict(cases[i].leader, cases[i].follower),
+                reference[i]->Predict(cases[i].leader, cases[i].follower));
+      ASSERT_TRUE(SameFilter(*batched[i], *reference[i]));
+    }
+    ExpectBothKinds(ran.first, ran.second, cases.size(), path);
   }
 }
 
