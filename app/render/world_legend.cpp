@@ -118,15 +118,14 @@ void DrawWorldLegend(Canvas& cv, const View& view, const Theme& th,
   // (by a click): the title tab alone. Nothing fits: the title tab alone.
   std::vector<Layout> layouts;
   auto add_layouts = [&] {
-    for (int shown = n; shown >= 1; --shown) {
+    for (int shown = n; shown >= 1; --shown)
       for (int columns : {2, 1}) {
         if (columns == 2 && shown < 4) continue;
         const Layout l = Measure(cv, entries, shown, columns, collapsed, title_w);
-        if (fits(l)) layouts.push_back(l);
-        if (collapsed && fits(l)) return;
+        if (!fits(l)) continue;
+        layouts.push_back(l);
+        if (collapsed) return;  // folded: every layout is the same title tab
       }
-      if (collapsed) return;
-    }
   };
   const float x_left = view.min.x + 40;
   const float y_top = view.min.y + top_reserved;
