@@ -183,6 +183,7 @@ ExportStats RunWithExport(sim::Session& session, const ExportOptions& opt,
     ui->state().playing = false;
     ui->state().whole_run = opt.whole_run;
     ui->state().theme = opt.theme;
+    ui->state().plots_every_frame = true;
     ui->state().overlays = opt.overlays;
     ui->state().legend = opt.legend;
     renderer.RenderUi(*ui);  // warm-up: ImGui lays windows out on their first frame
@@ -241,7 +242,9 @@ ExportStats RunWithExport(sim::Session& session, const ExportOptions& opt,
         if (!opt.frames_dir.empty()) {
           char name[32];
           std::snprintf(name, sizeof(name), "/frame_%05ld.png", main_clock.next);
-          std::vector<std::uint8_t> copy = pool.Copy(px);
+          // The world's frame is handed to the encoder as rendered (the renderer takes a
+          // written image's buffer for the next one); a --ui frame may serve the GIF too.
+          std::vector<std::uint8_t> copy = ui ? pool.Copy(px) : renderer.TakePixels(pool.Spare());
           st.copy += WallSeconds() - t1;
           pool.Submit(opt.frames_dir + name, renderer.width(), renderer.height(), std::move(copy));
         }

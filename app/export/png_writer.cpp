@@ -263,15 +263,18 @@ void PngPool::Submit(std::string path, int width, int height, std::vector<std::u
   cv_.notify_one();
 }
 
-std::vector<std::uint8_t> PngPool::Copy(const std::vector<std::uint8_t>& rgba) {
+std::vector<std::uint8_t> PngPool::Spare() {
   std::vector<std::uint8_t> out;
-  {
-    std::lock_guard<std::mutex> lock(mu_);
-    if (!spare_.empty()) {
-      out = std::move(spare_.back());
-      spare_.pop_back();
-    }
+  std::lock_guard<std::mutex> lock(mu_);
+  if (!spare_.empty()) {
+    out = std::move(spare_.back());
+    spare_.pop_back();
   }
+  return out;
+}
+
+std::vector<std::uint8_t> PngPool::Copy(const std::vector<std::uint8_t>& rgba) {
+  std::vector<std::uint8_t> out = Spare();
   out.assign(rgba.begin(), rgba.end());
   return out;
 }

@@ -38,6 +38,8 @@ class PngPool {
   /// A copy of `rgba` in the buffer of an image already written, when there is one: a new
   /// megabyte-sized buffer per frame costs page faults.
   std::vector<std::uint8_t> Copy(const std::vector<std::uint8_t>& rgba);
+  /// The buffer of an image already written (its old pixels), or an empty one.
+  std::vector<std::uint8_t> Spare();
   /// Waits until everything queued is written. Rethrows the first worker error.
   void Wait();
   int threads() const { return static_cast<int>(workers_.size()); }

@@ -56,6 +56,11 @@ class OffscreenRenderer {
   const Fonts& fonts() const { return layer_.fonts(); }
   /// The last rendered image (RGBA, device pixels).
   const std::vector<std::uint8_t>& pixels() const { return ctx_.pixels(); }
+  /// The last rendered image handed over without a copy (pixels() is then no longer it); `next`
+  /// becomes the buffer of the following renders (OffscreenContext::TakePixels).
+  std::vector<std::uint8_t> TakePixels(std::vector<std::uint8_t> next) {
+    return ctx_.TakePixels(std::move(next));
+  }
   const Theme& theme() const { return theme_; }
   /// Overlays of the scene (nullptr: the defaults; the set must outlive the renderer) and the
   /// legend, for RenderWorld / RenderWorldAs.

@@ -158,7 +158,8 @@ void PlotsPanel::Draw(const Fonts& fonts) {
   const bool paused = exp.steps() == cache.steps;
   cache.steps = exp.steps();
   const bool new_rows = rows != cache.rows || cache.figures.empty();
-  if (new_rows && (paused || now - cache.figures_at >= kPlotRefresh)) {
+  if (new_rows &&
+      (paused || ctx_.state->plots_every_frame || now - cache.figures_at >= kPlotRefresh)) {
     // The figure list can change during a run (an estimator switched on adds its figure).
     cache.figures = exp.Figures();
     cache.figures_at = now;

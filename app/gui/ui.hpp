@@ -59,6 +59,10 @@ struct UiState {
   std::string select_tab;   ///< a tab of the right-hand window to bring to front once
   std::string drag_name;    ///< robot or obstacle being dragged
   double frame_ms = 0;      ///< the last frame, as the window measured it
+  /// Headless --ui frames: plots are redrawn at every frame with new rows (the window redraws
+  /// them at most every 100 ms of wall time while running), so each frame shows its own step's
+  /// data, the same in every run.
+  bool plots_every_frame = false;
 
   // View options, shared: set by the View panel (app/gui/view_panel.hpp), read by the world view.
   std::set<std::string> overlays = DefaultSceneOverlays();  ///< of the scene (View panel)

@@ -45,16 +45,30 @@ void OffscreenContext::Resize(int width, int height) {
   if (buffers_.size() > 2 && buffers_.count({width, height}) == 0) buffers_.clear();
   buffer_ = &buffers_[{width, height}];
   buffer_->resize(static_cast<std::size_t>(width) * height * 4, 0);
+  Bind();
+}
+
+void OffscreenContext::Bind() {
   if (!OSMesaMakeCurrent(static_cast<OSMesaContext>(context_), buffer_->data(), GL_UNSIGNED_BYTE,
-                         width, height))
-    throw std::runtime_error("OSMesa: cannot bind a " + std::to_string(width) + "x" +
-                             std::to_string(height) + " buffer");
+                         width_, height_))
+    throw std::runtime_error("OSMesa: cannot bind a " + std::to_string(width_) + "x" +
+                             std::to_string(height_) + " buffer");
   // Row 0 of our buffer is the top of the image, as in PNG files.
   OSMesaPixelStore(OSMESA_Y_UP, 0);
 }
 
 void OffscreenContext::Finish() {
   GlFinish();
+}
+
+std::vector<std::uint8_t> OffscreenContext::TakePixels(std::vector<std::uint8_t> next) {
+  std::vector<std::uint8_t> out = std::move(*buffer_);
+  *buffer_ = std::move(next);
+  buffer_->resize(static_cast<std::size_t>(width_) * height_ * 4);
+  // OSMesa keeps its framebuffer (found again by format and size) and only copies into the
+  // newly bound memory when a frame is finished.
+  Bind();
+  return out;
 }
 
 }  // namespace formsim::app

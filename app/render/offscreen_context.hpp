@@ -29,8 +29,13 @@ class OffscreenContext {
   const std::vector<std::uint8_t>& pixels() const { return *buffer_; }
   /// Waits for rendering to complete.
   void Finish();
+  /// Hands the rendered image over without copying it; `next` (its contents do not matter:
+  /// OSMesa writes every pixel of the bound buffer when a frame is finished) becomes the buffer
+  /// the following frames are rendered into.
+  std::vector<std::uint8_t> TakePixels(std::vector<std::uint8_t> next);
 
  private:
+  void Bind();
   void* context_ = nullptr;
   std::map<std::pair<int, int>, std::vector<std::uint8_t>> buffers_;  ///< by size
   std::vector<std::uint8_t>* buffer_ = nullptr;                       ///< the bound one
