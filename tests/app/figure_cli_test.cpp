@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <utility>
 
 #include "app/export/png_writer.hpp"
 #include "app/export/video_writer.hpp"
@@ -23,6 +24,18 @@ using testing::TempDir;
 
 std::string RunCmd(const std::string& args) {
   return "env -u DISPLAY " + Binary() + " run " + args;
+}
+
+// Every file of `a` has the bytes of the file of the same name in `b`; returns how many.
+int ExpectSameFiles(const std::string& a, const std::string& b) {
+  int compared = 0;
+  for (const auto& e : fs::directory_iterator(a)) {
+    const std::string bytes = ReadText(e.path().string());
+    EXPECT_GT(bytes.size(), 1000u) << e.path();
+    EXPECT_TRUE(bytes == ReadText(b + "/" + e.path().filename().string())) << e.path().filename();
+    ++compared;
+  }
+  return compared;
 }
 
 TEST(FigureCli, BadOutputNamesAreClearErrorsThatCreateNothing) {
@@ -224,29 +237,6 @@ TEST(FigureCli, FiguresCommandDrawsEveryFigureOfEveryScenarioLikeRun) {
 // A worker left alone at the end takes the freed cores between two steps (issue 28): its
 // figures stay those of a one-thread run, byte for byte. formation_traj2 ends long before
 // formation_swarm_100, whose link filters then run on two threads.
-// --ui frames show the plots of their own step: the window redraws plots at most every 100 ms
-// of wall time, which made which frames showed fresh plots depend on the machine's speed (two
-// runs differed in 21 of 30 frames).
-TEST(FigureCli, UiFramesAreTheSameInEveryRun) {
-  const std::string dir = TempDir("cli_ui_frames_twice");
-  for (const char* run : {"a", "b"}) {
-    ASSERT_EQ(RunShell(RunCmd(std::string("formation_traj2 --ui --set duration=3 -q --fps 10 ") +
-                              "--size 960x540 --threads " + (run[0] == 'a' ? "2" : "1") +
-                              " --frames " + dir + "/" + run),
-                       dir + "/log.txt"),
-              0)
-        << ReadText(dir + "/log.txt");
-  }
-  int compared = 0;
-  for (const auto& e : fs::directory_iterator(dir + "/a")) {
-    const std::string a = ReadText(e.path().string());
-    ASSERT_GT(a.size(), 1000u);
-    EXPECT_TRUE(a == ReadText(dir + "/b/" + e.path().filename().string())) << e.path().filename();
-    ++compared;
-  }
-  EXPECT_EQ(compared, 30);
-}
-
 TEST(FigureCli, FiguresOfAWorkerThatGainsThreadsMidRunAreThoseOfOneThread) {
   const std::string dir = TempDir("cli_figures_threads");
   ASSERT_EQ(RunShell("env -u DISPLAY " + Binary() +
@@ -260,15 +250,23 @@ TEST(FigureCli, FiguresOfAWorkerThatGainsThreadsMidRunAreThoseOfOneThread) {
                      dir + "/log.txt"),
             0)
       << ReadText(dir + "/log.txt");
-  int compared = 0;
-  for (const auto& e : fs::directory_iterator(dir + "/plots")) {
-    const std::string a = ReadText(e.path().string());
-    ASSERT_GT(a.size(), 1000u);
-    EXPECT_TRUE(a == ReadText(dir + "/figs/formation_swarm_100/" + e.path().filename().string()))
-        << e.path().filename();
-    ++compared;
+  EXPECT_GE(ExpectSameFiles(dir + "/plots", dir + "/figs/formation_swarm_100"), 3);
+}
+
+// --ui frames show the plots of their own step: the window redraws plots at most every 100 ms
+// of wall time, which made which frames showed fresh plots depend on the machine's speed (two
+// runs differed in 21 of 30 frames).
+TEST(FigureCli, UiFramesAreTheSameInEveryRun) {
+  const std::string dir = TempDir("cli_ui_frames_twice");
+  for (const auto& [run, threads] : {std::pair{"a", "2"}, std::pair{"b", "1"}}) {
+    ASSERT_EQ(
+        RunShell(RunCmd(std::string("formation_traj2 --ui --set duration=3 -q --fps 10 ") +
+                        "--size 960x540 --threads " + threads + " --frames " + dir + "/" + run),
+                 dir + "/log.txt"),
+        0)
+        << ReadText(dir + "/log.txt");
   }
-  EXPECT_GE(compared, 3);
+  EXPECT_EQ(ExpectSameFiles(dir + "/a", dir + "/b"), 30);
 }
 
 TEST(FigureCli, GuiThemeColoursTheWindow) {
