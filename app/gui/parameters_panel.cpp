@@ -6,6 +6,8 @@
 /// that differs from the file is marked (its label in blue, a ↺ button that reverts it), one
 /// waiting for a reset shows ↻; both live in a column of fixed width and every row has the
 /// height of a widget, so nothing in the panel moves when an edit is made.
+#include "app/gui/parameters_panel.hpp"
+
 #include <imgui_internal.h>  // SetItemUsingMouseWheel
 
 #include <algorithm>
@@ -14,14 +16,14 @@
 #include <map>
 #include <unordered_map>
 
-#include "app/render/display_unit.hpp"
-#include "app/render/long_text.hpp"
 #include "app/gui/command_row_makers.hpp"
-#include "app/gui/parameters_panel.hpp"
+#include "app/gui/table_header.hpp"
 #include "app/gui/ui.hpp"
 #include "app/gui/value_entry.hpp"
-#include "sim/session/session.hpp"
+#include "app/render/display_unit.hpp"
+#include "app/render/long_text.hpp"
 #include "sim/core/number_format.hpp"
+#include "sim/session/session.hpp"
 
 // Each row names only the fields it sets; the others keep their defaults on purpose.
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
@@ -126,11 +128,15 @@ RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks&
   if (colour)
     ImGui::PushStyleColor(ImGuiCol_Text, !marks.refusal.empty() ? ImVec4(0.75f, 0.1f, 0.1f, 1)
                                                                 : ImVec4(0.15f, 0.45f, 0.9f, 1));
-  label = Shorten(label, 200);
+  // Too long for its column (a narrow panel, a large UI scale): shortened in its name, the unit
+  // kept whole, as the tables' headers are; the tooltip has it in full.
+  const std::string full = Shorten(label, 200);
+  label = FitHeader(full, ImGui::GetContentRegionAvail().x,
+                    [](const std::string& s) { return ImGui::CalcTextSize(s.c_str()).x; });
   ImGui::TextUnformatted(label.c_str());
   if (colour) ImGui::PopStyleColor();
   if (ImGui::IsItemHovered()) {
-    std::string tip = p.key;
+    std::string tip = label == full ? p.key : full + "\n" + p.key;
     if (!p.tune.help.empty()) tip += "\n" + p.tune.help;
     if (p.kind == sim::Param::Kind::kDouble || p.kind == sim::Param::Kind::kInt)
       tip += "\nvalid: " + p.tune.ValidityText() +
