@@ -15,6 +15,7 @@
 #include "app/gui/ui.hpp"
 #include "app/render/vector_fonts.hpp"
 #include "app/render/world_view.hpp"
+#include "sim/core/number_format.hpp"
 #include "sim/core/run_output.hpp"
 #include "sim/core/wall_clock.hpp"
 
@@ -83,7 +84,7 @@ void GifFrameSize(const ExportOptions& opt, int* width, int* height) {
 
 void PrepareExport(const ExportOptions& opt) {
   if (!(opt.fps > 0 && opt.fps <= 1000))
-    throw std::runtime_error("--fps must be in (0, 1000], got " + std::to_string(opt.fps));
+    throw std::runtime_error("--fps must be in (0, 1000], got " + sim::FormatDouble(opt.fps));
   ParseDpi(opt.dpi);
   if (!opt.video.empty()) {
     VideoWriter::CheckAvailable(opt.video, opt.width, opt.height);

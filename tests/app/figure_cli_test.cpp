@@ -78,6 +78,24 @@ TEST(FigureCli, BadOutputNamesAreClearErrorsThatCreateNothing) {
 }
 
 // --log-y: the named time plot gets decade ticks in its SVG; the others keep a linear axis.
+// A frame rate out of range is named as typed in its shortest form (1e308 printed as %f was a
+// 300-digit number).
+TEST(FigureCli, AnFpsOutOfRangeIsRefusedInOneShortLine) {
+  const std::string dir = TempDir("cli_bad_fps");
+  for (const auto& [fps, shown] : {std::pair{"1e308", "got 1e+308"}, std::pair{"nan", "got nan"},
+                                   std::pair{"-3", "got -3"}, std::pair{"0", "got 0"}}) {
+    EXPECT_EQ(
+        RunShell(RunCmd(std::string("formation_traj2 -q --fps ") + fps + " --frames " + dir + "/f"),
+                 dir + "/log.txt"),
+        2)
+        << fps;
+    const std::string log = ReadText(dir + "/log.txt");
+    EXPECT_NE(log.find(shown), std::string::npos) << log;
+    EXPECT_LT(log.size(), 200u) << log;
+    EXPECT_FALSE(fs::exists(dir + "/f")) << fps;
+  }
+}
+
 TEST(FigureCli, LogYGivesTheNamedPlotDecadeTicks) {
   const std::string dir = TempDir("cli_log_y");
   // 30 s: the distance errors fall through several decades.
