@@ -5,6 +5,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "control/common/cpu_features.hpp"
+
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
 #define FORMSIM_PNG_X86 1
@@ -15,15 +17,6 @@ namespace {
 namespace pngz {  // named: in a unity build the other files' anonymous namespaces are this one
 
 std::atomic<bool> force_scalar{false};
-
-bool CpuHasAvx2() {
-#ifdef FORMSIM_PNG_X86
-  static const bool has = __builtin_cpu_supports("avx2");
-  return has;
-#else
-  return false;
-#endif
-}
 
 constexpr std::uint32_t kAdlerMod = 65521;
 
@@ -276,7 +269,7 @@ std::uint32_t Adler32(std::uint32_t adler, const std::uint8_t* data, std::size_t
 }
 
 bool PngUsesAvx2() {
-  return pngz::CpuHasAvx2() && !pngz::force_scalar.load(std::memory_order_relaxed);
+  return control::CpuHasAvx2() && !pngz::force_scalar.load(std::memory_order_relaxed);
 }
 
 void ForcePngScalar(bool scalar) {

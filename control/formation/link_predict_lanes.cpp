@@ -69,18 +69,6 @@ const char* LanePathName(LanePath p) {
   return "?";
 }
 
-bool CpuHasAvx2() {
-#ifdef FORMSIM_HAVE_AVX2_LANES
-  static const bool has = [] {
-    __builtin_cpu_init();  // may run before the runtime's own constructor has
-    return __builtin_cpu_supports("avx2") != 0;
-  }();
-  return has;
-#else
-  return false;
-#endif
-}
-
 LanePath ResolveLanePath(LanePath p) {
   if (p == LanePath::kScalar) return p;
   if (p == LanePath::kPortable) return p;

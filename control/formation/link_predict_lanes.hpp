@@ -13,6 +13,7 @@
 
 #include <cstddef>
 
+#include "control/common/cpu_features.hpp"
 #include "control/common/ukf.hpp"
 #include "control/formation/link_filter.hpp"
 
@@ -28,8 +29,6 @@ enum class LanePath {
 
 /// "auto", "scalar", "portable", "avx2".
 const char* LanePathName(LanePath p);
-/// Whether this CPU runs the AVX2 lanes (__builtin_cpu_supports).
-bool CpuHasAvx2();
 /// The path that `p` resolves to on this CPU (kAuto and kAvx2 without AVX2 become kPortable).
 LanePath ResolveLanePath(LanePath p);
 /// Process-wide choice of path for every LinkPredictBatch (tests compare the paths; results are

@@ -5,6 +5,8 @@
 #include <initializer_list>
 
 #include "control/common/angle.hpp"
+#include "control/common/dense_ldlt.hpp"
+#include "control/common/exact_products.hpp"
 #include "control/velocity/factors.hpp"
 #include "control/velocity/triangulation.hpp"
 
@@ -44,6 +46,21 @@ struct RowBlock {
 /// Adds JᵀJ and Jᵀr of a one-row residual touching the given blocks (all distinct). Plain loops
 /// over the columns: each element gets one product added, the same operations as Eigen's outer
 /// product (a bearing residual is most of a window's rows; this is a sixth of an update's time).
+/// The columns of one block pair: col j of H's (a, b) block gains b_j·a. `Na` > 0 fixes the
+/// block's height at compile time (a keyframe's 10 states, a landmark's 2): the same operations,
+/// unrolled.
+template <int Na>
+void AccumulateBlock(Eigen::MatrixXd& H, int oa, const double* ja, int na, int ob,
+                     const Eigen::Ref<const Eigen::RowVectorXd>& jb) {
+  const int n = Na > 0 ? Na : na;
+  const int nb = static_cast<int>(jb.size());
+  for (int j = 0; j < nb; ++j) {
+    double* col = &H(oa, ob + j);
+    const double bj = jb(j);
+    for (int i = 0; i < n; ++i) col[i] += bj * ja[i];
+  }
+}
+
 void AccumulateRow(Eigen::MatrixXd& H, Eigen::VectorXd& g, double r,
                    std::initializer_list<RowBlock> blocks) {
   for (const RowBlock& a : blocks) {
@@ -54,12 +71,12 @@ void AccumulateRow(Eigen::MatrixXd& H, Eigen::VectorXd& g, double r,
     for (int i = 0; i < na; ++i) ga[i] += ja[i] * r;
     for (const RowBlock& b : blocks) {
       if (b.offset < 0) continue;
-      const int nb = static_cast<int>(b.J.size());
-      for (int j = 0; j < nb; ++j) {
-        double* col = &H(a.offset, b.offset + j);
-        const double bj = b.J(j);
-        for (int i = 0; i < na; ++i) col[i] += bj * ja[i];
-      }
+      if (na == KeyframeState::kDim)
+        AccumulateBlock<KeyframeState::kDim>(H, a.offset, ja, na, b.offset, b.J);
+      else if (na == 2)
+        AccumulateBlock<2>(H, a.offset, ja, na, b.offset, b.J);
+      else
+        AccumulateBlock<0>(H, a.offset, ja, na, b.offset, b.J);
     }
   }
 }
@@ -393,19 +410,19 @@ bool SlidingWindowEstimator::Optimize(UpdateReport& report) {
   std::deque<KeyframeState> frames;
   std::map<int, Track> tracks;
   Eigen::MatrixXd A;
-  Eigen::LDLT<Eigen::MatrixXd> ldlt;  // its buffers, too, serve every iteration
+  DenseLdlt ldlt;  // Eigen's LDLT, its bits in less time; its buffers serve every iteration
   for (int it = 0; it < def_.max_iterations; ++it) {
     A = H;
     for (int i = 0; i < layout.dim; ++i) A(i, i) += lambda * std::max(H(i, i), 1e-9) + 1e-15;
     // Jacobi scaling: the unknowns span many orders of magnitude of information (bias random
     // walks vs. weakly observed directions), the scaled system is far better conditioned.
     const Eigen::VectorXd dinv = A.diagonal().cwiseSqrt().cwiseInverse();
-    ldlt.compute(dinv.asDiagonal() * A * dinv.asDiagonal());
-    if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) {
+    ldlt.Compute(dinv.asDiagonal() * A * dinv.asDiagonal());
+    if (!ldlt.ok() || !ldlt.positive()) {
       report.message = "normal equations not positive definite";
       return false;
     }
-    const Eigen::VectorXd delta = dinv.asDiagonal() * ldlt.solve(-(dinv.asDiagonal() * g));
+    const Eigen::VectorXd delta = dinv.asDiagonal() * ldlt.Solve(-(dinv.asDiagonal() * g));
     if (!delta.allFinite()) {
       report.message = "non-finite Gauss-Newton step";
       return false;
@@ -666,8 +683,11 @@ void SlidingWindowEstimator::ReanchorPrior(const std::vector<Reanchoring>& moves
     gU(i) = ga(ri);
     for (int j = 0; j < k; ++j) UHU(i, j) = Hp(ri, rows[static_cast<std::size_t>(j)]);
   }
-  const Eigen::MatrixXd HUDt = HU * D.transpose();
-  prior_.H = Symmetrised(Hp + HUDt + HUDt.transpose() + D * UHU * D.transpose());
+  // D's rows are zero but for the moved landmarks and their anchors: the products are formed
+  // over its non-zero rows, with the bits of the dense ones.
+  const Eigen::MatrixXd HUDt = TimesTransposed(HU, D);
+  const Eigen::MatrixXd DUHUDt = TimesTransposed(D * UHU, D);
+  prior_.H = Symmetrised(Hp + HUDt + HUDt.transpose() + DUHUDt);
   prior_.g = ga + D * gU;
   for (const Reanchoring& m : moves)
     for (PriorVar& v : prior_.vars)

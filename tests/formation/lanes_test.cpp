@@ -36,7 +36,7 @@ struct PathScope {
 
 std::vector<cf::LanePath> LanePaths() {
   std::vector<cf::LanePath> paths{cf::LanePath::kPortable};
-  if (cf::CpuHasAvx2()) paths.push_back(cf::LanePath::kAvx2);
+  if (formsim::control::CpuHasAvx2()) paths.push_back(cf::LanePath::kAvx2);
   return paths;
 }
 
@@ -215,7 +215,8 @@ TEST(UpdateLanes, EachLinkGetsTheBitsOfItsOwnUpdate) {
 TEST(PredictLanes, PathsResolveOnThisCpu) {
   EXPECT_EQ(cf::ResolveLanePath(cf::LanePath::kScalar), cf::LanePath::kScalar);
   EXPECT_EQ(cf::ResolveLanePath(cf::LanePath::kPortable), cf::LanePath::kPortable);
-  const cf::LanePath best = cf::CpuHasAvx2() ? cf::LanePath::kAvx2 : cf::LanePath::kPortable;
+  const cf::LanePath best =
+      formsim::control::CpuHasAvx2() ? cf::LanePath::kAvx2 : cf::LanePath::kPortable;
   EXPECT_EQ(cf::ResolveLanePath(cf::LanePath::kAuto), best);
   EXPECT_EQ(cf::ResolveLanePath(cf::LanePath::kAvx2), best);
 }
