@@ -58,19 +58,45 @@ namespace {
     }                                                                                \
   }
 
+// col[i] /= d for the rows of [0, rows) (Eigen's A21 /= Akk); true when every quotient is
+// finite (x − x is 0 for a finite x, NaN otherwise).
+#define FORMSIM_LDLT_DIVIDE(NAME, ATTR, V, W, SPLAT)                \
+  ATTR bool NAME(double* col, long rows, double d) {                \
+    const V dv = SPLAT(d);                                          \
+    V bad = SPLAT(0.0);                                             \
+    long i = 0;                                                     \
+    for (; i + (W) <= rows; i += (W)) {                             \
+      V x;                                                          \
+      std::memcpy(&x, col + i, sizeof x);                           \
+      x = x / dv;                                                   \
+      std::memcpy(col + i, &x, sizeof x);                           \
+      bad = bad + (x - x);                                          \
+    }                                                               \
+    bool finite = true;                                             \
+    for (int l = 0; l < (W); ++l) finite = finite && bad[l] == 0.0; \
+    for (; i < rows; ++i) {                                         \
+      col[i] = col[i] / d;                                          \
+      finite = finite && std::isfinite(col[i]);                     \
+    }                                                               \
+    return finite;                                                  \
+  }
+
 typedef double V2 __attribute__((vector_size(16)));
 #define FORMSIM_SPLAT2(x) (V2{(x), (x)})
 FORMSIM_LDLT_KERNEL(UpdatePortable, static, V2, 2, FORMSIM_SPLAT2)
+FORMSIM_LDLT_DIVIDE(DividePortable, static, V2, 2, FORMSIM_SPLAT2)
 
 #if defined(__x86_64__) || defined(__i386__)
 #define FORMSIM_LDLT_AVX2 1
 typedef double V4 __attribute__((vector_size(32)));
 #define FORMSIM_SPLAT4(x) (V4{(x), (x), (x), (x)})
 FORMSIM_LDLT_KERNEL(UpdateAvx2, __attribute__((target("avx2"))) static, V4, 4, FORMSIM_SPLAT4)
+FORMSIM_LDLT_DIVIDE(DivideAvx2, __attribute__((target("avx2"))) static, V4, 4, FORMSIM_SPLAT4)
 #endif
 
 #undef FORMSIM_LDLT_KERNEL
 #undef FORMSIM_LDLT_CHUNK
+#undef FORMSIM_LDLT_DIVIDE
 
 std::atomic<LdltPath> g_default{LdltPath::kAuto};
 
@@ -120,6 +146,7 @@ void DenseLdlt::Factor() {
 
   finite_.assign(static_cast<std::size_t>(size), 1);
   diag_.resize(static_cast<std::size_t>(size));
+  d_.resize(static_cast<std::size_t>(size));
   for (Index i = 0; i < size; ++i) diag_[static_cast<std::size_t>(i)] = m_(i, i);
   columns_.resize(static_cast<std::size_t>(size));
   std::vector<int> block_ends;
@@ -156,7 +183,8 @@ void DenseLdlt::Factor() {
     Block<MatrixXd, Dynamic, 1> A21(m_, k + 1, k, rs, 1);
     Block<MatrixXd, 1, Dynamic> A10(m_, k, 0, 1, k);
     if (k > 0) {
-      temp_.head(k) = m_.diagonal().real().head(k).asDiagonal() * A10.adjoint();
+      // Eigen's D·A10ᵀ, from a contiguous copy of D.
+      for (Index j = 0; j < k; ++j) temp_(j) = d_[static_cast<std::size_t>(j)] * m_.coeff(k, j);
       m_.coeffRef(k, k) -= (A10 * temp_.head(k)).value();
       if (rs == 1) {
         // One row: Eigen's product falls back to a dot product (a sum from its first term).
@@ -202,10 +230,18 @@ void DenseLdlt::Factor() {
       }
       return;
     }
-    if (rs > 0 && pivot_is_valid)
-      A21 /= akk;
-    else if (rs > 0)
+    bool finite = true;
+    if (rs > 0 && pivot_is_valid) {
+#ifdef FORMSIM_LDLT_AVX2
+      if (avx2)
+        finite = DivideAvx2(&m_.coeffRef(k + 1, k), rs, akk);
+      else
+#endif
+        finite = DividePortable(&m_.coeffRef(k + 1, k), rs, akk);
+    } else if (rs > 0) {
+      finite = A21.allFinite();
       ok_ = ok_ && (A21.array() == 0.0).all();
+    }
     if (found_zero_pivot && pivot_is_valid)
       ok_ = false;
     else if (!pivot_is_valid)
@@ -221,7 +257,8 @@ void DenseLdlt::Factor() {
         sign_ = Sign::kNegativeSemiDef;
     }
     // Column k of L is final now (later swaps only reorder its entries).
-    finite_[static_cast<std::size_t>(k)] = A21.allFinite() ? 1 : 0;
+    finite_[static_cast<std::size_t>(k)] = finite ? 1 : 0;
+    d_[static_cast<std::size_t>(k)] = akk;
   }
 }
 

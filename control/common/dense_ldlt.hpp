@@ -75,7 +75,8 @@ class DenseLdlt {
   Eigen::VectorXd temp_;
   std::vector<int> columns_;  // the columns a step's update adds up (multiplier ≠ 0)
   std::vector<unsigned char> finite_;
-  std::vector<double> diag_;  // the diagonal the pivots are chosen on (A's own, swapped)  // per
+  std::vector<double> diag_;  // the diagonal the pivots are chosen on (A's own, swapped)
+  std::vector<double> d_;     // D so far (the factor's diagonal), contiguous  // per
                               // column of L: every entry below the diagonal finite
   bool ok_ = false;
   Sign sign_ = Sign::kZero;

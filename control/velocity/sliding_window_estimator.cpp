@@ -22,16 +22,17 @@ template <class Res, class JA, class JB>
 void Accumulate(Eigen::MatrixXd& H, Eigen::VectorXd& g, const Res& r, int oa, const JA& Ja, int ob,
                 const JB& Jb) {
   const int na = static_cast<int>(Ja.cols()), nb = static_cast<int>(Jb.cols());
+  // JᵀJ with Eigen's bits, without its kernel's packing (a third of this function's time).
   if (oa >= 0) {
-    H.block(oa, oa, na, na).noalias() += Ja.transpose() * Ja;
+    AddTransposedTimes(H.block(oa, oa, na, na), Ja, Ja);
     g.segment(oa, na).noalias() += Ja.transpose() * r;
   }
   if (ob >= 0) {
-    H.block(ob, ob, nb, nb).noalias() += Jb.transpose() * Jb;
+    AddTransposedTimes(H.block(ob, ob, nb, nb), Jb, Jb);
     g.segment(ob, nb).noalias() += Jb.transpose() * r;
   }
   if (oa >= 0 && ob >= 0) {
-    H.block(oa, ob, na, nb).noalias() += Ja.transpose() * Jb;
+    AddTransposedTimes(H.block(oa, ob, na, nb), Ja, Jb);
     H.block(ob, oa, nb, na) = H.block(oa, ob, na, nb).transpose();
   }
 }

@@ -76,5 +76,38 @@ TEST(TimesTransposed, NonFiniteFactorsGetEigensBits) {
   }
 }
 
+// dst += aᵀb into a block of a dynamic matrix holding other values, against Eigen's own.
+template <int K, int M, int N>
+void ExpectAddTransposedTimesBits(std::mt19937_64& rng, bool bottom_rows = false) {
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::Matrix<double, K, M> a = Random(K, M, 0.1, rng);
+    const Eigen::Matrix<double, K, N> b = Random(K, N, 0.1, rng);
+    const MatrixXd start = Random(M + 7, N + 5, 0.0, rng);
+    MatrixXd want = start, got = start;
+    if (bottom_rows && K > 2) {
+      // The odometry factor's planar rows: a fixed-size block of its Jacobians.
+      want.block(3, 2, M, N).noalias() +=
+          a.template bottomRows<2>().transpose() * b.template bottomRows<2>();
+      AddTransposedTimes(got.block(3, 2, M, N), a.template bottomRows<2>(),
+                         b.template bottomRows<2>());
+    } else {
+      want.block(3, 2, M, N).noalias() += a.transpose() * b;
+      AddTransposedTimes(got.block(3, 2, M, N), a, b);
+    }
+    EXPECT_TRUE(SameBits(got, want)) << K << "x" << M << " and " << K << "x" << N;
+  }
+}
+
+TEST(AddTransposedTimes, TheWindowsFactorShapesGetEigensBits) {
+  std::mt19937_64 rng(21);
+  ExpectAddTransposedTimesBits<8, 10, 10>(rng);        // IMU: Jiᵀ Ji, Jiᵀ Jj (depth 8: halves)
+  ExpectAddTransposedTimesBits<5, 10, 10>(rng);        // odometry
+  ExpectAddTransposedTimesBits<5, 10, 10>(rng, true);  // its planar rows
+  ExpectAddTransposedTimesBits<1, 10, 10>(rng);        // one-row factors
+  ExpectAddTransposedTimesBits<9, 6, 13>(rng);         // halves in a 2-row tail, 13 columns
+  ExpectAddTransposedTimesBits<16, 11, 9>(rng);        // two rounds of 8
+  ExpectAddTransposedTimesBits<2, 3, 4>(rng);          // tiny: Eigen's coefficient-wise path
+}
+
 }  // namespace
 }  // namespace formsim::control
