@@ -6,8 +6,10 @@
 namespace formsim::testing {
 
 inline bool SameBits(const Eigen::MatrixXd& x, const Eigen::MatrixXd& y) {
+  // (An empty matrix may have no storage: memcmp must not see its null pointer.)
   return x.rows() == y.rows() && x.cols() == y.cols() &&
-         std::memcmp(x.data(), y.data(), sizeof(double) * static_cast<std::size_t>(x.size())) == 0;
+         (x.size() == 0 ||
+          std::memcmp(x.data(), y.data(), sizeof(double) * static_cast<std::size_t>(x.size())) == 0);
 }
 
 }  // namespace formsim::testing
