@@ -51,6 +51,12 @@ class DenseLdlt {
     Factor();
   }
 
+  /// Factors `a`, taking its storage (the caller's matrix is left with this one's last buffer).
+  void Compute(Eigen::MatrixXd&& a) {
+    m_.swap(a);
+    Factor();
+  }
+
   /// Eigen's info() == Success: no pivot was zero with a non-zero column below it.
   bool ok() const { return ok_; }
   /// Eigen's isPositive(): every pivot ≥ 0.

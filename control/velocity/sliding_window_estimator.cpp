@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <utility>
 
 #include "control/common/angle.hpp"
 #include "control/common/dense_ldlt.hpp"
@@ -410,15 +411,20 @@ bool SlidingWindowEstimator::Optimize(UpdateReport& report) {
   // reused; an accepted step swaps it in.
   std::deque<KeyframeState> frames;
   std::map<int, Track> tracks;
-  Eigen::MatrixXd A;
+  Eigen::MatrixXd scaled;
+  Eigen::VectorXd damped;
   DenseLdlt ldlt;  // Eigen's LDLT, its bits in less time; its buffers serve every iteration
   for (int it = 0; it < def_.max_iterations; ++it) {
-    A = H;
-    for (int i = 0; i < layout.dim; ++i) A(i, i) += lambda * std::max(H(i, i), 1e-9) + 1e-15;
+    // A = H with the damped diagonal; only its diagonal is formed apart.
+    damped = H.diagonal();
+    for (int i = 0; i < layout.dim; ++i) damped(i) += lambda * std::max(H(i, i), 1e-9) + 1e-15;
     // Jacobi scaling: the unknowns span many orders of magnitude of information (bias random
     // walks vs. weakly observed directions), the scaled system is far better conditioned.
-    const Eigen::VectorXd dinv = A.diagonal().cwiseSqrt().cwiseInverse();
-    ldlt.Compute(dinv.asDiagonal() * A * dinv.asDiagonal());
+    // D⁻½ A D⁻½ entry by entry as (dᵢ Aᵢⱼ) dⱼ.
+    const Eigen::VectorXd dinv = damped.cwiseSqrt().cwiseInverse();
+    scaled.noalias() = dinv.asDiagonal() * H * dinv.asDiagonal();
+    for (int i = 0; i < layout.dim; ++i) scaled(i, i) = (dinv(i) * damped(i)) * dinv(i);
+    ldlt.Compute(std::move(scaled));
     if (!ldlt.ok() || !ldlt.positive()) {
       report.message = "normal equations not positive definite";
       return false;
