@@ -45,9 +45,6 @@ struct RowBlock {
   Eigen::Ref<const Eigen::RowVectorXd> J;
 };
 
-/// Adds JᵀJ and Jᵀr of a one-row residual touching the given blocks (all distinct). Plain loops
-/// over the columns: each element gets one product added, the same operations as Eigen's outer
-/// product (a bearing residual is most of a window's rows; this is a sixth of an update's time).
 /// The columns of one block pair: col j of H's (a, b) block gains b_j·a. `Na` > 0 fixes the
 /// block's height at compile time (a keyframe's 10 states, a landmark's 2): the same operations,
 /// unrolled.
@@ -63,6 +60,9 @@ void AccumulateBlock(Eigen::MatrixXd& H, int oa, const double* ja, int na, int o
   }
 }
 
+/// Adds JᵀJ and Jᵀr of a one-row residual touching the given blocks (all distinct). Plain loops
+/// over the columns: each element gets one product added, the same operations as Eigen's outer
+/// product (a bearing residual is most of a window's rows; this is a sixth of an update's time).
 void AccumulateRow(Eigen::MatrixXd& H, Eigen::VectorXd& g, double r,
                    std::initializer_list<RowBlock> blocks) {
   for (const RowBlock& a : blocks) {
