@@ -67,6 +67,26 @@ std::vector<sim::Override> Overrides(const std::vector<std::string>& sets, const
   return out;
 }
 
+// An empty file or folder name given to an option (`--frames ""`, most often a shell variable
+// that was not set) is refused by name, in every command: it used to mean "not given", so the
+// run went on without the frames, video or output folder and said nothing.
+void RefuseEmptyNames(const CLI::App& app) {
+  static const char* kNames[] = {"--out", "--frames",     "--snapshot", "--plots",  "--video",
+                                 "--gif", "--screenshot", "--script",   "--session"};
+  for (const CLI::App* sub : app.get_subcommands({})) {
+    if (!sub->parsed()) continue;
+    for (const CLI::Option* o : sub->get_options())
+      for (const char* name : kNames)
+        if (o->check_name(name) && o->count() > 0)
+          for (const std::string& v : o->results())
+            if (v.empty())
+              throw std::runtime_error(std::string(name) +
+                                       " '': an empty name (an unset shell variable?); give a "
+                                       "file or folder name, or leave the option out");
+    RefuseEmptyNames(*sub);
+  }
+}
+
 // `formsim run`: the one load path (sim::Session, as the GUI), then the same steps with or
 // without pictures.
 int RunCommand(RunOptions opt) {
@@ -348,6 +368,7 @@ int Main(int argc, char** argv) {
     return app.exit(e);
   }
   try {
+    RefuseEmptyNames(app);
     if (threads > 0) sim::ThreadPool::SetDefaultThreads(threads);
     auto overlays = [](const std::string& text, std::set<std::string>* out) {
       *out = DefaultSceneOverlays();

@@ -77,6 +77,31 @@ TEST(FigureCli, BadOutputNamesAreClearErrorsThatCreateNothing) {
   EXPECT_NE(ReadText(dir + "/log.txt").find("error: --size '100'"), std::string::npos);
 }
 
+// An empty file or folder name (an unset shell variable) is refused by the option's name before
+// anything runs, in each command; it used to be taken as "not given" without a word.
+TEST(FigureCli, AnEmptyFileOrFolderNameIsRefusedByName) {
+  const std::string dir = TempDir("cli_empty_names");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"run formation_traj2 -q --out " + dir + "/out --frames ''", "--frames"},
+      {"run formation_traj2 -q --out " + dir + "/out --snapshot ''", "--snapshot"},
+      {"run formation_traj2 -q --out " + dir + "/out --plots ''", "--plots"},
+      {"run formation_traj2 -q --out " + dir + "/out --video ''", "--video"},
+      {"run formation_traj2 -q --out " + dir + "/out --gif ''", "--gif"},
+      {"run formation_traj2 -q --out ''", "--out"},
+      {"figures formation_traj2 -q --out ''", "--out"},
+      {"sweep formation_traj2 -q --out '' --seeds 1,2", "--out"},
+  };
+  for (const auto& [args, flag] : cases) {
+    // From the test's folder: a command that took '' as "not given" would write into out/.
+    const int rc = RunShell("cd " + dir + " && " + Binary() + " " + args, dir + "/log.txt");
+    const std::string log = ReadText(dir + "/log.txt");
+    EXPECT_EQ(rc, 2) << args << "\n" << log;
+    EXPECT_NE(log.find("error: " + flag + " '': an empty name"), std::string::npos) << args << "\n"
+                                                                                    << log;
+    EXPECT_FALSE(fs::exists(dir + "/out")) << args << ": ran anyway";
+  }
+}
+
 // --log-y: the named time plot gets decade ticks in its SVG; the others keep a linear axis.
 // A frame rate out of range is named as typed in its shortest form (1e308 printed as %f was a
 // 300-digit number).
