@@ -149,7 +149,6 @@ void DenseLdlt::Factor() {
   d_.resize(static_cast<std::size_t>(size));
   for (Index i = 0; i < size; ++i) diag_[static_cast<std::size_t>(i)] = m_(i, i);
   columns_.resize(static_cast<std::size_t>(size));
-  std::vector<int> block_ends;
   bool found_zero_pivot = false;
   for (Index k = 0; k < size; ++k) {
     // The largest diagonal entry of the corner (the first of equals) becomes the pivot.
@@ -194,7 +193,7 @@ void DenseLdlt::Factor() {
         // Eigen's matrix-vector kernel takes all columns at once below 128 and blocks of 16
         // from there (while a column is under 32000 bytes; 4 beyond).
         const Index block = k < 128 ? k : (size * Index(sizeof(double)) < 32000 ? 16 : 4);
-        block_ends.clear();
+        block_ends_.clear();
         int n = 0;
         for (Index b = 0; b < k; b += block) {
           const Index end = std::min(b + block, k);
@@ -202,19 +201,19 @@ void DenseLdlt::Factor() {
             columns_[static_cast<std::size_t>(n)] = static_cast<int>(j);
             n += temp_(j) != 0.0 || !finite_[static_cast<std::size_t>(j)];
           }
-          block_ends.push_back(n);
+          block_ends_.push_back(n);
         }
         double* col = &m_.coeffRef(k + 1, k);
         const double* a = &m_.coeffRef(k + 1, 0);
-        const int blocks = static_cast<int>(block_ends.size());
+        const int blocks = static_cast<int>(block_ends_.size());
 #ifdef FORMSIM_LDLT_AVX2
         if (avx2)
-          UpdateAvx2(col, a, m_.outerStride(), rs, temp_.data(), columns_.data(), block_ends.data(),
-                     blocks);
+          UpdateAvx2(col, a, m_.outerStride(), rs, temp_.data(), columns_.data(),
+                     block_ends_.data(), blocks);
         else
 #endif
           UpdatePortable(col, a, m_.outerStride(), rs, temp_.data(), columns_.data(),
-                         block_ends.data(), blocks);
+                         block_ends_.data(), blocks);
       }
     }
 

@@ -79,11 +79,11 @@ class DenseLdlt {
   Eigen::MatrixXd m_;
   Eigen::Transpositions<Eigen::Dynamic, Eigen::Dynamic, int> transpositions_;
   Eigen::VectorXd temp_;
-  std::vector<int> columns_;  // the columns a step's update adds up (multiplier ≠ 0)
-  std::vector<unsigned char> finite_;
-  std::vector<double> diag_;  // the diagonal the pivots are chosen on (A's own, swapped)
-  std::vector<double> d_;     // D so far (the factor's diagonal), contiguous  // per
-                              // column of L: every entry below the diagonal finite
+  std::vector<int> columns_;           // the columns a step's update adds up (multiplier ≠ 0)
+  std::vector<int> block_ends_;        // where each of Eigen's column blocks ends in columns_
+  std::vector<unsigned char> finite_;  // per column of L: every entry below the diagonal finite
+  std::vector<double> diag_;           // the diagonal the pivots are chosen on (A's, swapped)
+  std::vector<double> d_;              // D so far (the factor's diagonal), contiguous
   bool ok_ = false;
   Sign sign_ = Sign::kZero;
 };

@@ -15,14 +15,11 @@ Eigen::MatrixXd TimesTransposed(const Eigen::MatrixXd& a, const Eigen::MatrixXd&
       const double bjp = b(j, p);
       if (bjp != 0.0) c.col(j) += a.col(p) * bjp;
     }
-  // The entries Eigen sums in two halves (the last pair of rows, in whole panels).
-  if (k >= 8) {
-    const Index pair = (m / 4) * 4, pair_end = pair + ((m - pair) / 2) * 2;
-    for (Index i = pair; i < pair_end; ++i)
-      for (Index j = 0; j < (n / 4) * 4; ++j)
-        c(i, j) =
-            exact_products::GebpSum(i, j, m, n, k, [&](Index p) { return a(i, p) * b(j, p); });
-  }
+  // The entries Eigen sums in two halves, again in its order.
+  const exact_products::HalvedEntries halved = exact_products::Halved(m, n, k);
+  for (Index i = halved.begin; i < halved.end; ++i)
+    for (Index j = 0; j < halved.cols; ++j)
+      c(i, j) = exact_products::GebpSum(i, j, m, n, k, [&](Index p) { return a(i, p) * b(j, p); });
   return c;
 }
 

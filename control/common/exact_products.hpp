@@ -24,19 +24,30 @@ inline bool InGebpOrder(Eigen::Index m, Eigen::Index n, Eigen::Index k) {
   return m <= 320 && n <= 320 && k <= 64 && k + m + n >= 20;
 }
 
+/// The entries of an m×n product of depth k that Eigen's kernel sums in two halves: rows
+/// [begin, end) (its last pair of rows, when m is not a multiple of four) in columns [0, cols)
+/// (whole four-column panels); empty below a depth of 8.
+struct HalvedEntries {
+  Eigen::Index begin, end, cols;
+  bool Contain(Eigen::Index i, Eigen::Index j) const { return i >= begin && i < end && j < cols; }
+};
+inline HalvedEntries Halved(Eigen::Index m, Eigen::Index n, Eigen::Index k) {
+  const Eigen::Index pair = (m / 4) * 4;
+  return {pair, k >= 8 ? pair + ((m - pair) / 2) * 2 : pair, (n / 4) * 4};
+}
+
 /// Entry (i, j) of an m×n product of depth k, Σₚ term(p), added up in the order of Eigen's
 /// kernel: it takes rows four at a time (two SSE2 pairs), then a last pair, then single rows;
-/// the last pair's entries in whole four-column panels add the terms below the depth's multiple
-/// of 8 in two sums, the even terms and the odd ones, then the rest in order; every other entry
-/// is one sum in order. Every sum starts from +0.
+/// the last pair's entries in whole four-column panels (`Halved`) add the terms below the
+/// depth's multiple of 8 in two sums, the even terms and the odd ones, then the rest in order;
+/// every other entry is one sum in order. Every sum starts from +0.
 template <class Term>
 double GebpSum(Eigen::Index i, Eigen::Index j, Eigen::Index m, Eigen::Index n, Eigen::Index k,
                const Term& term) {
   const Eigen::Index peeled = k & ~Eigen::Index(7);
-  const Eigen::Index pair = (m / 4) * 4, pair_end = pair + ((m - pair) / 2) * 2;
   double s = 0.0;
   Eigen::Index p = 0;
-  if (peeled > 0 && i >= pair && i < pair_end && j < (n / 4) * 4) {
+  if (Halved(m, n, k).Contain(i, j)) {
     double odd = 0.0;
     for (; p < peeled; p += 2) {
       s = s + term(p);
@@ -70,11 +81,11 @@ void AddTransposedTimes(Dst&& dst, const Eigen::MatrixBase<A>& a, const Eigen::M
   // Eigen's kernel adds them (alpha = 1: dst + 1·s is dst + s).
   const Eigen::Matrix<double, A::ColsAtCompileTime, A::RowsAtCompileTime> at = a.transpose();
   Eigen::Matrix<double, A::ColsAtCompileTime, 1> sum(m);
-  const Eigen::Index pair = (m / 4) * 4, pair_end = k >= 8 ? pair + ((m - pair) / 2) * 2 : pair;
+  const exact_products::HalvedEntries halved = exact_products::Halved(m, n, k);
   for (Eigen::Index j = 0; j < n; ++j) {
     sum.setZero();
     for (Eigen::Index p = 0; p < k; ++p) sum += at.col(p) * b(p, j);
-    for (Eigen::Index i = pair; i < pair_end && j < (n / 4) * 4; ++i)
+    for (Eigen::Index i = halved.begin; i < halved.end && j < halved.cols; ++i)
       sum(i) = exact_products::GebpSum(i, j, m, n, k,
                                        [&](Eigen::Index p) { return at(i, p) * b(p, j); });
     dst.col(j) += sum;
