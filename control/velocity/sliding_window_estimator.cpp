@@ -23,7 +23,7 @@ template <class Res, class JA, class JB>
 void Accumulate(Eigen::MatrixXd& H, Eigen::VectorXd& g, const Res& r, int oa, const JA& Ja, int ob,
                 const JB& Jb) {
   const int na = static_cast<int>(Ja.cols()), nb = static_cast<int>(Jb.cols());
-  // JᵀJ with Eigen's bits, without its kernel's packing (a third of this function's time).
+  // JᵀJ with Eigen's bits, without its kernel's packing.
   if (oa >= 0) {
     AddTransposedTimes(H.block(oa, oa, na, na), Ja, Ja);
     g.segment(oa, na).noalias() += Ja.transpose() * r;
