@@ -175,7 +175,8 @@ int RunCommand(RunOptions opt) {
       if (!opt.exp.plots_dir.empty())
         std::printf(", %ld figures (%ld files) in %s", st.figures, st.figure_files,
                     opt.exp.plots_dir.c_str());
-      if (!opt.exp.video.empty() && st.error.empty()) std::printf(", %s", opt.exp.video.c_str());
+      if (!opt.exp.video.empty() && st.error.empty())
+        std::printf(", %s (%ld frames)", opt.exp.video.c_str(), st.frames);
       if (!opt.exp.gif.empty() && st.error.empty())
         std::printf(", %s (%ld frames)", opt.exp.gif.c_str(), st.gif_frames);
       if (!opt.snapshot.empty() && st.error.empty()) std::printf(", %s", opt.snapshot.c_str());
