@@ -45,15 +45,19 @@ def timed(cmd, cwd):
     return wall, cpu, p.stdout
 
 
-def instructions(cmd, cwd):
-    """Instructions of cmd, every thread and child (callgrind's total Ir)."""
+def instructions(cmd, cwd, only=None):
+    """Instructions of cmd, every thread and child (callgrind's total Ir); with `only`, those
+    executed inside that function (callgrind's --toggle-collect)."""
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "cg.%p")
-        p = subprocess.run(["valgrind", "--tool=callgrind", "--trace-children=yes",
-                            "--callgrind-out-file=" + out] + cmd, cwd=cwd,
-                           stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        vg = ["valgrind", "--tool=callgrind", "--trace-children=yes", "--callgrind-out-file=" + out]
+        if only:
+            vg.append("--toggle-collect=" + only)
+        p = subprocess.run(vg + cmd, cwd=cwd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                           text=True)
         if p.returncode != 0:
-            sys.exit("speed_report: callgrind of %s failed:\n%s" % (" ".join(cmd), p.stderr[-2000:]))
+            sys.exit("speed_report: callgrind of %s failed:\n%s" %
+                     (" ".join(cmd), p.stderr[-2000:]))
         total = 0
         for name in os.listdir(tmp):
             with open(os.path.join(tmp, name)) as f:
@@ -70,7 +74,8 @@ def export_runs(formsim, runs, quick, work):
     kinds = [
         ("png", "PNG frames (`--frames`)", lambda d: ["--frames", os.path.join(d, "frames")]),
         ("mp4", "MP4 (`--video`, x264 ultrafast)", lambda d: ["--video", os.path.join(d, "v.mp4")]),
-        ("gif", "GIF (`--gif`, 15 frames/s, 640 px)", lambda d: ["--gif", os.path.join(d, "g.gif")]),
+        ("gif", "GIF (`--gif`, 15 frames/s, 640 px)",
+         lambda d: ["--gif", os.path.join(d, "g.gif")]),
     ]
     rows = []
     for key, label, args in kinds:
@@ -112,7 +117,7 @@ def bench_runs(bench, runs, quick):
     names = ["BM_ShippedScenario/formation_traj2_ukf"]
     for n in robots:
         names += ["BM_CascadeUkfOneThread/%d" % n, "BM_CascadeUkfTwoThreads/%d" % n,
-                  "BM_CascadeUkf/%d" % n]
+                  "BM_CascadeUkf/%d" % n, "BM_CascadeTruth/%d" % n, "BM_Box2DOnly/%d" % n]
     filt = "^(" + "|".join(re.escape(n) for n in names) + ")/real_time$"
     cmd = [bench, "--benchmark_filter=" + filt, "--benchmark_format=json",
            "--benchmark_repetitions=%d" % runs]
@@ -153,16 +158,15 @@ def export_instructions(formsim, work):
     return (counts[3] - counts[1]) / 60.0
 
 
-def step_instructions(formsim, work, scenario, threads, steps_short, steps_long, dt):
-    """Instructions per simulation step of a shipped scenario (two lengths, start-up cancels)."""
-    counts = []
-    for steps in (steps_short, steps_long):
-        d = tempfile.mkdtemp(dir=work)
-        cmd = [formsim, "run", scenario, "-q", "--threads", str(threads), "--out", d, "--set",
-               "duration=%g" % (steps * dt)]
-        counts.append(instructions(cmd, work))
-        shutil.rmtree(d)
-    return (counts[1] - counts[0]) / float(steps_long - steps_short)
+def step_instructions(formsim, work, scenario, steps, dt):
+    """Instructions per step of a shipped scenario run by `formsim run --threads 1`: everything
+    inside Experiment::Step, which includes formatting the CSV rows the run writes as it goes."""
+    d = tempfile.mkdtemp(dir=work)
+    cmd = [formsim, "run", scenario, "-q", "--threads", "1", "--out", d, "--set",
+           "duration=%g" % (steps * dt)]
+    n = instructions(cmd, work, only="formsim::sim::Experiment::Step()")
+    shutil.rmtree(d)
+    return n / float(steps)
 
 
 def fmt_ins(n):
@@ -203,9 +207,10 @@ def main():
 def report(formsim, bench, runs, a, work):
     load = os.getloadavg()
     lines = ["A smoke test (--quick): short runs, not a measurement.", ""] if a.quick else []
-    lines += ["Measured %s UTC on %d cores, load average %.2f %.2f %.2f at the start; medians of %d "
-             "run%s." % (time.strftime("%Y-%m-%d %H:%M", time.gmtime()), os.cpu_count() or 1,
-                         load[0], load[1], load[2], runs, "" if runs == 1 else "s"), ""]
+    lines += ["Measured %s UTC on %d cores, load average %.2f %.2f %.2f at the start; medians "
+              "of %d run%s." % (time.strftime("%Y-%m-%d %H:%M", time.gmtime()),
+                                os.cpu_count() or 1, load[0], load[1], load[2], runs,
+                                "" if runs == 1 else "s"), ""]
     exports = export_runs(formsim, runs, a.quick, work)
     for r in exports:
         if r["frames"] <= 0:
@@ -217,8 +222,8 @@ def report(formsim, bench, runs, a, work):
     for r in exports:
         fps = r["frames"] / r["wall"] if r["wall"] > 0 else 0.0
         goal = GOALS.get(r["key"])
-        verdict = "" if goal is None or a.quick else ("%d frames/s: %s" % (goal, "met" if fps >= goal
-                                                                else "not met"))
+        verdict = "" if goal is None or a.quick else (
+            "%d frames/s: %s" % (goal, "met" if fps >= goal else "not met"))
         lines.append("| %s | %d | %.2f s (%s) | %.0f | %.2f s | %s |" % (
             r["label"], r["frames"], r["wall"], ", ".join("%.2f" % w for w in r["walls"]), fps,
             r["cpu"], verdict))
@@ -251,12 +256,12 @@ def report(formsim, bench, runs, a, work):
                       "-" if a.quick else "met" if paper["realtime_x"] >= 8000 else "not met")]
     ins_step = {}
     if a.instructions:
-        ins_step["paper"] = step_instructions(formsim, work, "formation_traj2_ukf", 1, 100, 600,
-                                              0.01)
-        ins_step[1000] = step_instructions(formsim, work, "formation_swarm_1000", 1, 10, 30, 0.01)
-        lines += ["- instructions per step (callgrind, one thread): the paper scenario %s, "
-                  "1000 robots (`formation_swarm_1000`) %s" % (fmt_ins(ins_step["paper"]),
-                                                                fmt_ins(ins_step[1000]))]
+        ins_step["paper"] = step_instructions(formsim, work, "formation_traj2_ukf", 600, 0.01)
+        ins_step[1000] = step_instructions(formsim, work, "formation_swarm_1000", 30, 0.01)
+        lines += ["- instructions per step (callgrind, `Experiment::Step` of `formsim run "
+                  "--threads 1`, with the CSV rows it formats): the paper scenario %s (600 "
+                  "steps), 1000 robots (`formation_swarm_1000`, 30 steps) %s" % (
+                      fmt_ins(ins_step["paper"]), fmt_ins(ins_step[1000]))]
     lines += ["", "| robots | 1 thread | 2 threads | all %d threads | goal |" % cores,
               "|---|---|---|---|---|"]
     goals = {1000: 40.0, 10000: 3.0}
@@ -270,6 +275,18 @@ def report(formsim, bench, runs, a, work):
         verdict = "" if g is None or best is None or a.quick else "%gx: %s" % (
             g, "met" if best["realtime_x"] >= g else "not met")
         lines.append("| %d | %s | %s |" % (n, " | ".join(cells), verdict))
+    # What bounds the goals: the same cascades with no estimator at all, and Box2D alone.
+    lines += ["", "Without the link filters, all %d threads: the same cascades with every "
+              "estimator off (`BM_CascadeTruth`: Box2D, drives, control laws, recording; no "
+              "sensor noise, no filter) and Box2D alone with ideal drives (`BM_Box2DOnly`, its "
+              "step is serial):" % cores, "",
+              "| robots | UKF per link | no estimator | Box2D alone |", "|---|---|---|---|"]
+    for n in robots:
+        cells = []
+        for name in ("BM_CascadeUkf", "BM_CascadeTruth", "BM_Box2DOnly"):
+            r = res.get("%s/%d" % (name, n))
+            cells.append("%.1fx" % r["realtime_x"] if r else "-")
+        lines.append("| %d | %s |" % (n, " | ".join(cells)))
     return lines
 
 
