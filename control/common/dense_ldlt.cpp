@@ -130,7 +130,7 @@ void DenseLdlt::Factor() {
     return;
   }
   // The step's kernel: AVX2 only after the CPU check.
-  bool avx2 = false;
+  [[maybe_unused]] bool avx2 = false;  // unused where the AVX2 kernel is not compiled (the page)
 #ifdef FORMSIM_LDLT_AVX2
   avx2 = path_ != LdltPath::kPortable && CpuHasAvx2();
 #endif

@@ -79,7 +79,6 @@ class SessionJournal {
 
   std::string path_, scenario_, error_;
   std::FILE* file_ = nullptr;
-  int lock_fd_ = -1;
   std::vector<std::string> written_sources_;  ///< SHA-256 of the texts already in the file
   long last_step_ = -1;
   double last_step_time_ = 0;
