@@ -289,7 +289,7 @@ TEST(CommandTable, KeysRunTheirRows) {
   EXPECT_FALSE(w.ui().state().legend);
   w.Frame([](ImGuiIO& io) {
     io.KeyCtrl = true;
-    io.KeysDown['K'] = true;
+    io.KeysDown[int{'K'}] = true;  // GLFW's key code of a letter is its capital
   });
   EXPECT_TRUE(w.ui().state().palette);
   EXPECT_EQ(w.ui().PressKey("Esc"), "");

@@ -61,17 +61,17 @@ TEST(GuiKeys, CtrlZAndCtrlYUndoAndRedoEdits) {
   w.Frame([&](ImGuiIO& io) {
     io.MousePos = ImVec2(kKeysW / 2, kKeysH / 2);
     io.KeyCtrl = true;
-    io.KeysDown['Z'] = true;
+    io.KeysDown[int{'Z'}] = true;  // GLFW's key code of a letter is its capital
   });
   EXPECT_EQ(w.ui().session().EffectiveValue(key), "0.15");
   w.Frame([&](ImGuiIO& io) {
     io.KeyCtrl = true;
-    io.KeysDown['Y'] = true;
+    io.KeysDown[int{'Y'}] = true;  // GLFW's key code of a letter is its capital
   });
   EXPECT_EQ(w.ui().session().EffectiveValue(key), "0.4");
   w.Frame([&](ImGuiIO& io) {
     io.KeyCtrl = io.KeyShift = true;  // Ctrl+Shift+Z redoes too; here: nothing left to redo
-    io.KeysDown['Z'] = true;
+    io.KeysDown[int{'Z'}] = true;     // GLFW's key code of a letter is its capital
   });
   EXPECT_EQ(w.ui().session().EffectiveValue(key), "0.4");
 }

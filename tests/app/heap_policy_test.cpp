@@ -29,7 +29,7 @@ long MinorFaults() {
 
 // In a child process (the policy is for the whole process): the page faults of frames 2-8 when
 // each frame allocates, fills and frees a 40 MiB buffer; 0 after setting the policy.
-long FaultsOfRepeatedFrames(bool with_policy) {
+[[maybe_unused]] long FaultsOfRepeatedFrames(bool with_policy) {
   int fds[2];
   if (pipe(fds) != 0) return -1;
   const pid_t pid = fork();
