@@ -142,6 +142,10 @@ def bench_runs(bench, runs, quick):
             "ms": statistics.median(r["real_time"] for r in reps),
             "threads": reps[0].get("threads", 0),
         }
+    # Every benchmark asked for must have reported (a renamed one would leave a gap).
+    missing = [n for n in names if n not in result or not result[n]["realtime_x"] > 0]
+    if missing:
+        sys.exit("speed_report: no real-time factor from " + ", ".join(missing))
     cores = os.cpu_count() or 1
     return result, robots, cores
 
@@ -190,7 +194,11 @@ def main():
     bench = a.bench or os.path.join(a.build, "bench", "formsim_bench")
     for f in (formsim, bench):
         if not os.access(f, os.X_OK):
-            sys.exit("speed_report: %s is missing: build with `bash scripts/build.sh` first" % f)
+            sys.exit("speed_report: %s is missing or not a program: build with "
+                     "`bash scripts/build.sh` first" % f)
+    # A report that cannot be written fails now, not after minutes of measuring.
+    if a.out and not os.access(os.path.dirname(os.path.abspath(a.out)), os.W_OK):
+        sys.exit("speed_report: --out %s: its folder does not exist or is not writable" % a.out)
     runs = 1 if a.quick else a.runs
     work = tempfile.mkdtemp(prefix="formsim_speed_")
     try:
@@ -240,12 +248,6 @@ def report(formsim, bench, runs, a, work):
                   fig["files"] / fig["wall"], fig["cpu"],
                   "-" if a.quick else "met" if fig["wall"] < 5 else "not met"), ""]
     res, robots, cores = bench_runs(bench, runs, a.quick)
-    missing = [n for n in ["BM_ShippedScenario/formation_traj2_ukf"] + [
-        "%s/%d" % (b, n) for n in robots
-        for b in ("BM_CascadeUkfOneThread", "BM_CascadeUkfTwoThreads", "BM_CascadeUkf")]
-        if n not in res or not res[n]["realtime_x"] > 0]
-    if missing:
-        sys.exit("speed_report: no real-time factor from " + ", ".join(missing))
     paper = res.get("BM_ShippedScenario/formation_traj2_ukf")
     lines += ["**Simulation** (Google Benchmark, real time, no rendering; real-time factor = "
               "simulated seconds per second):", ""]
