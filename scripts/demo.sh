@@ -7,7 +7,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh demo
 # A first configure leaves the tests and benchmarks out (their packages may not be installed
-# yet); scripts/build.sh turns them on. An existing build folder keeps its settings.
+# yet); scripts/build.sh turns them on. The Python module is AUTO: built once its packages are
+# there, decided again at every configure (scripts/test.sh requires it).
 if [ ! -f build/CMakeCache.txt ]; then
   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DFORMSIM_BUILD_TESTS=OFF \
     -DFORMSIM_BUILD_BENCH=OFF >/dev/null

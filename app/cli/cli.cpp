@@ -12,6 +12,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "app/cli/cli_reference.hpp"
+#include "app/cli/doctor_command.hpp"
 #include "app/cli/figures_command.hpp"
 #include "app/cli/lessons_cli.hpp"
 #include "app/cli/progress.hpp"
@@ -19,6 +21,7 @@
 #include "app/cli/reproduce_cli.hpp"
 #include "app/cli/stop_signal.hpp"
 #include "app/cli/study_cli.hpp"
+#include "app/export/app_icon.hpp"
 #include "app/export/export.hpp"
 #include "app/export/figure_requests.hpp"
 #include "app/gui/command_table.hpp"
@@ -208,6 +211,20 @@ int RunCommand(RunOptions opt) {
   return rc;
 }
 
+// `formsim list --names [scenarios|lessons|all]`: bare names, one a line (the bash completion
+// and scripts read them).
+int ListNames(const std::string& which) {
+  if (which != "scenarios" && which != "lessons" && which != "all")
+    throw std::runtime_error("--names '" + which + "': expected scenarios, lessons or all");
+  if (which != "lessons")
+    for (const auto& file : sim::ShippedScenarios())
+      std::printf("%s\n", std::filesystem::path(file).stem().c_str());
+  if (which != "scenarios")
+    for (const auto& file : sim::ShippedLessons())
+      std::printf("%s\n", std::filesystem::path(file).stem().c_str());
+  return 0;
+}
+
 int ListCommand() {
   for (const auto& file : sim::ShippedScenarios()) {
     const sim::ScenarioListing s = sim::DescribeScenario(file);
@@ -234,6 +251,8 @@ int ListCommand() {
 int Main(int argc, char** argv) {
   CLI::App app{"formsim: multi-robot formation control and navigation simulator"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", VersionLine(),
+                       "Print the version, the git commit and the build type, and exit");
 
   RunOptions run;
   CLI::App* run_cmd = app.add_subcommand("run", "Run a scenario headless and write CSV + summary");
@@ -292,7 +311,31 @@ int Main(int argc, char** argv) {
       "Threads for the work inside a step (default: all cores); results are identical for any N";
   run_cmd->add_option("--threads", threads, threads_help)->check(CLI::Range(1, 1024));
 
-  app.add_subcommand("list", "List the shipped scenarios and lessons");
+  CLI::App* list_cmd = app.add_subcommand("list", "List the shipped scenarios and lessons");
+  std::string list_names;
+  list_cmd
+      ->add_option("--names", list_names,
+                   "Print bare names only, one a line: scenarios, lessons or all")
+      ->expected(0, 1)
+      ->default_str("all");
+
+  app.add_subcommand("doctor",
+                     "Say where the assets were found and which optional parts (Python module, "
+                     "ffmpeg, NLopt, Cairo, GL renderer, display) are present; exit 1 when "
+                     "something formsim needs is missing");
+  // Hidden (no group): the build makes the man page, the bash completion and the icon with these.
+  CLI::App* ref_cmd = app.add_subcommand(
+      "reference", "Print the command-line reference generated from these definitions");
+  ref_cmd->group("");
+  std::string ref_format = "markdown";
+  ref_cmd->add_option("--format", ref_format, "man, bash or markdown")->required();
+  CLI::App* icon_cmd = app.add_subcommand("icon", "Draw the application icon");
+  icon_cmd->group("");
+  std::string icon_svg, icon_png;
+  int icon_px = 256;
+  icon_cmd->add_option("--svg", icon_svg, "SVG file");
+  icon_cmd->add_option("--png", icon_png, "PNG file");
+  icon_cmd->add_option("--png-size", icon_px, "PNG width and height in pixels");
 
   FiguresOptions figs;
   CLI::App* figs_cmd = app.add_subcommand(
@@ -380,7 +423,28 @@ int Main(int argc, char** argv) {
       if (!run_overlay.empty()) overlays(run_overlay, &run.exp.overlays);
       return RunCommand(run);
     }
-    if (app.got_subcommand("list")) return ListCommand();
+    if (list_cmd->parsed())
+      return list_cmd->count("--names") > 0 ? ListNames(list_names.empty() ? "all" : list_names)
+                                             : ListCommand();
+    if (app.got_subcommand("doctor")) return DoctorCommand();
+    if (ref_cmd->parsed()) {
+      const std::vector<CommandDoc> docs = DescribeCommands(app);
+      const std::string version = FORMSIM_VERSION_NUMBER;
+      if (ref_format == "man")
+        std::fputs(ManPage(docs, version).c_str(), stdout);
+      else if (ref_format == "bash")
+        std::fputs(BashCompletion(docs).c_str(), stdout);
+      else if (ref_format == "markdown")
+        std::fputs(CliMarkdown(docs, version).c_str(), stdout);
+      else
+        throw std::runtime_error("--format '" + ref_format + "': expected man, bash or markdown");
+      return 0;
+    }
+    if (icon_cmd->parsed()) {
+      if (icon_svg.empty() && icon_png.empty()) throw std::runtime_error("icon: give --svg or --png");
+      WriteAppIcon(icon_svg, icon_png, icon_px);
+      return 0;
+    }
     if (study.parsed()) return study.Run();
     if (reproduce.parsed()) return reproduce.Run();
     if (replay.parsed()) return replay.Run();

@@ -4,6 +4,7 @@
 #include <cairo.h>
 
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <stdexcept>
 
@@ -162,6 +163,35 @@ std::string PdfDocument(const VectorFigure& fig, const FigureSize& size, const s
     throw std::runtime_error(std::string("cairo could not draw the PDF: ") +
                              cairo_status_to_string(cs != CAIRO_STATUS_SUCCESS ? cs : ss));
   return bytes;
+}
+
+std::vector<std::uint8_t> RasterRgba(const VectorFigure& fig, int width, int height) {
+  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
+      cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height), cairo_surface_destroy);
+  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()), cairo_destroy);
+  cairo_scale(cr.get(), width / fig.width, height / fig.height);
+  Draw(cr.get(), fig);
+  const cairo_status_t cs = cairo_status(cr.get());
+  cr.reset();
+  cairo_surface_flush(surface.get());
+  if (cs != CAIRO_STATUS_SUCCESS)
+    throw std::runtime_error(std::string("cairo could not draw the image: ") +
+                             cairo_status_to_string(cs));
+  // Cairo's ARGB32 is premultiplied, native-endian 32-bit words: un-premultiply into RGBA bytes.
+  const unsigned char* data = cairo_image_surface_get_data(surface.get());
+  const int stride = cairo_image_surface_get_stride(surface.get());
+  std::vector<std::uint8_t> rgba(static_cast<std::size_t>(width) * height * 4);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      std::uint32_t px;
+      std::memcpy(&px, data + y * stride + x * 4, 4);
+      const unsigned a = px >> 24;
+      std::uint8_t* o = &rgba[(static_cast<std::size_t>(y) * width + x) * 4];
+      const unsigned c[3] = {(px >> 16) & 0xff, (px >> 8) & 0xff, px & 0xff};
+      for (int k = 0; k < 3; ++k) o[k] = a == 0 ? 0 : static_cast<std::uint8_t>((c[k] * 255 + a / 2) / a);
+      o[3] = static_cast<std::uint8_t>(a);
+    }
+  return rgba;
 }
 
 void WritePdf(const VectorFigure& fig, const FigureSize& size, const std::string& title,

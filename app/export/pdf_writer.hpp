@@ -3,7 +3,9 @@
 /// as text in embedded (subset) TrueType fonts with Unicode maps, so it can be selected,
 /// searched and extracted; lines as vector paths.
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "app/export/figure_size.hpp"
 #include "app/render/vector_canvas.hpp"
@@ -17,5 +19,9 @@ std::string PdfDocument(const VectorFigure& fig, const FigureSize& size, const s
 /// Writes PdfDocument atomically to `path`. Throws std::runtime_error naming the file.
 void WritePdf(const VectorFigure& fig, const FigureSize& size, const std::string& title,
               const std::string& path);
+
+/// `fig` rasterised by Cairo into a `width` x `height` RGBA image (straight alpha, top row first):
+/// the same drawing as the PDF, for pictures that must not need a GL context (the icon).
+std::vector<std::uint8_t> RasterRgba(const VectorFigure& fig, int width, int height);
 
 }  // namespace formsim::app

@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <vector>
 
+#include "sim/scenario/asset_dirs.hpp"
+
 namespace formsim::app {
 namespace {
 
@@ -37,8 +39,7 @@ const FontSpec& FontSpecOf(FontRole role) {
 
 std::string FindFont(const std::string& name) {
   std::vector<std::string> dirs;
-  if (const char* env = std::getenv("FORMSIM_ASSETS")) dirs.push_back(std::string(env) + "/fonts");
-  dirs.push_back(std::string(FORMSIM_SOURCE_DIR) + "/assets/fonts");
+  dirs.push_back(sim::AssetDir("fonts"));
   dirs.push_back("/usr/share/fonts/truetype/dejavu");
   for (const auto& d : dirs) {
     const std::string path = d + "/" + name;

@@ -23,7 +23,8 @@ struct FontSpec {
 /// legends) 16 px, title 17 px bold, mono (summary tables) 14 px.
 const FontSpec& FontSpecOf(FontRole role);
 
-/// Full path of a font file: $FORMSIM_ASSETS/fonts, the source tree's assets/fonts, then
+/// Full path of a font file: the assets' fonts folder (sim::AssetDir("fonts"): installed
+/// share/formsim/fonts, $FORMSIM_ASSETS/fonts or the source tree's), then Debian's
 /// /usr/share/fonts/truetype/dejavu. "" when absent.
 std::string FindFont(const std::string& file);
 

@@ -47,6 +47,17 @@ void LoadGl(GlGetProcAddress get_proc, const char* context_name) {
   if (g_flush == nullptr) throw std::runtime_error(std::string(context_name) + ": no glFlush");
 }
 
+std::string GlRendererText() {
+#ifndef GL_RENDERER
+#define GL_RENDERER 0x1F01
+#endif
+  const auto text = [](unsigned name) {
+    const GLubyte* s = glGetString(name);
+    return s == nullptr ? std::string("?") : std::string(reinterpret_cast<const char*>(s));
+  };
+  return text(GL_RENDERER) + ", OpenGL " + text(GL_VERSION);
+}
+
 void GlFinish() {
   g_finish();
 }

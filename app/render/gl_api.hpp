@@ -4,6 +4,7 @@
 /// libOSMesa exports every gl* symbol, so a direct call would bind to OSMesa even in a window.
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace formsim::app {
@@ -15,6 +16,9 @@ using GlGetProcAddress = GlProc (*)(const char*);
 /// Throws std::runtime_error when the context is not OpenGL 3.x or a pointer is missing.
 void LoadGl(GlGetProcAddress get_proc, const char* context_name);
 
+/// The current context's GL_RENDERER and GL_VERSION: "llvmpipe (LLVM 15.0.6, 256 bits), OpenGL
+/// 4.5 (Core Profile) Mesa 22.3.6" (formsim doctor).
+std::string GlRendererText();
 /// Sets the viewport to the framebuffer and clears all of it (scissor test off) with an sRGB
 /// colour in [0, 1].
 void GlClear(int width, int height, float r, float g, float b);

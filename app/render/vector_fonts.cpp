@@ -12,6 +12,8 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "sim/scenario/asset_dirs.hpp"
+
 namespace formsim::app {
 namespace {
 
@@ -68,7 +70,7 @@ VectorFonts::VectorFonts() {
   if (regular.empty())
     throw std::runtime_error(
         "SVG and PDF figures need the font DejaVuSans.ttf (Debian: fonts-dejavu-core), which "
-        "was not found in $FORMSIM_ASSETS/fonts, assets/fonts or /usr/share/fonts/truetype/dejavu");
+        "was not found in " + sim::AssetDir("fonts") + " or /usr/share/fonts/truetype/dejavu");
   for (FontRole role : {FontRole::kUi, FontRole::kTitle, FontRole::kMono}) {
     Face f;
     f.path = FindFont(FontSpecOf(role).file);

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "sim/core/yaml_reader.hpp"
+#include "sim/scenario/asset_dirs.hpp"
 
 namespace fs = std::filesystem;
 
@@ -19,12 +20,6 @@ bool GivenAsPath(const std::string& name) {
   std::error_code ec;
   return fs::is_regular_file(name, ec) ||
          (name.find('/') != std::string::npos && fs::exists(fs::symlink_status(name, ec)));
-}
-
-// A folder of the shipped assets ($FORMSIM_ASSETS or the source tree's assets/).
-std::string AssetDir(const std::string& sub) {
-  if (const char* env = std::getenv("FORMSIM_ASSETS")) return std::string(env) + "/" + sub;
-  return std::string(FORMSIM_SOURCE_DIR) + "/assets/" + sub;
 }
 
 std::vector<std::string> YamlFilesIn(const std::string& dir) {

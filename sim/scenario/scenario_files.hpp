@@ -7,8 +7,8 @@
 
 namespace formsim::sim {
 
-/// The folder holding the shipped scenarios (FORMSIM_SOURCE_DIR/assets/scenarios, or
-/// $FORMSIM_ASSETS/scenarios when set).
+/// The folder holding the shipped scenarios: AssetDir("scenarios") (asset_dirs.hpp: installed
+/// share/formsim, then $FORMSIM_ASSETS, then the source tree).
 std::string ScenarioDir();
 /// Resolves "formation_traj1", "formation_traj1.yaml" or a path to an existing file.
 /// Throws std::runtime_error listing close names when nothing matches.
@@ -17,7 +17,7 @@ std::string ResolveScenario(const std::string& name_or_path);
 std::vector<std::string> ShippedScenarios();
 
 /// The folder of the shipped lessons (scenarios with a `lesson:` block, lesson.hpp):
-/// FORMSIM_SOURCE_DIR/assets/lessons, or $FORMSIM_ASSETS/lessons when set.
+/// AssetDir("lessons").
 std::string LessonDir();
 /// Every shipped lesson file, sorted by name.
 std::vector<std::string> ShippedLessons();
