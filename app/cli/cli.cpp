@@ -386,7 +386,7 @@ int Main(int argc, char** argv) {
   CLI::Option* list_opt = gui_cmd->add_flag("--list-commands", list_commands,
                     "Print every command of the window (name, keys, menu path, arguments) and exit");
   gui_cmd->add_flag("--markdown", list_markdown,
-                    "With --list-commands: as the README's Markdown table")
+                    "With --list-commands: as the Markdown table of docs/window.md")
       ->needs(list_opt);
   gui_cmd->add_option("--out", gui.out_dir, "Write timeseries.csv and summary.json here on exit");
   gui_cmd->add_option("--session", gui.session_file,

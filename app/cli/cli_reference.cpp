@@ -1,5 +1,6 @@
 #include "app/cli/cli_reference.hpp"
 
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -67,32 +68,29 @@ std::string Synopsis(const CommandDoc& c) {
   return s;
 }
 
-// roff: a backslash, a leading dot or quote, and hyphens of option names.
-std::string Roff(const std::string& text) {
+// `text` with each character found in `map` replaced by its text.
+std::string Escape(const std::string& text, const std::map<char, const char*>& map) {
   std::string s;
   for (char ch : text) {
-    if (ch == '\\')
-      s += "\\e";
-    else if (ch == '-')
-      s += "\\-";
-    else
+    const auto it = map.find(ch);
+    if (it == map.end())
       s += ch;
+    else
+      s += it->second;
   }
+  return s;
+}
+
+// roff: a backslash, a leading dot or quote, and hyphens of option names.
+std::string Roff(const std::string& text) {
+  std::string s = Escape(text, {{'\\', "\\e"}, {'-', "\\-"}});
   if (!s.empty() && (s[0] == '.' || s[0] == '\'')) s = "\\&" + s;
   return s;
 }
 
+// A Markdown table cell: no column break, no line break, no HTML tag.
 std::string MdCell(const std::string& text) {
-  std::string s;
-  for (char ch : text) {
-    if (ch == '|')
-      s += "\\|";
-    else if (ch == '\n')
-      s += ' ';
-    else
-      s += ch;
-  }
-  return s;
+  return Escape(text, {{'|', "\\|"}, {'\n', " "}, {'<', "&lt;"}, {'>', "&gt;"}});
 }
 
 }  // namespace

@@ -34,7 +34,7 @@ std::string PaperNames() {
 
 ReproduceCommand::ReproduceCommand(CLI::App& app) {
   cmd_ = app.add_subcommand("reproduce",
-                            "Run a paper's cases over seeds, print the README's tables for it and write "
+                            "Run a paper's cases over seeds, print its tables (as docs/papers/ shows them) and write "
                             "its figures (PNG, SVG, PDF)");
   cmd_->add_option("paper", paper_, PaperNames())->required();
   cmd_->add_option("--seeds", seeds_, "Seeds: 1..10 (default), 1,2,5 or a mixture");

@@ -1,7 +1,7 @@
 #pragma once
 /// \file `formsim reproduce PAPER [--seeds 1..10] [--out DIR]` (a registered paper: formation,
 /// agv, inspection, velocity): runs a paper's cases (sim/<kind>/<kind>_paper.cpp) through the sweep
-/// engine for every seed and prints the README's tables for it, every number read from the runs'
+/// engine for every seed and prints the paper's tables (docs/papers/) for it, every number read from the runs'
 /// metrics. Writes into --out one sweep folder per case (manifest, records, runs.csv,
 /// aggregate.csv), tables.md (what it printed), cells.csv (each cell with the metric and statistics
 /// it shows) and the paper's bar charts (PNG and SVG).

@@ -9,7 +9,7 @@
 /// Cells show the mean over the completed runs with the sample standard deviation and/or the
 /// range of the per-seed values ("8.6 ± 2.8", "17.8 ± 2.3 [13.0–22.1]", "1.7 [1.2–2.3]"), a count
 /// of runs ("9/10"), or a text (the paper's own figures). Tables are printed as Markdown, so the
-/// README holds exactly what the command prints.
+/// docs/papers/ pages hold exactly what the command prints.
 
 #include <cstdint>
 #include <functional>
