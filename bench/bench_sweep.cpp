@@ -2,7 +2,7 @@
 // 5 seeds) on one and on two threads, against the same 200 runs done one after the other the
 // bare way (parse, build, step to the end, results). The difference per run is what the sweep
 // machinery costs (task pool, run overrides, records handed over, tables built at the end);
-// records on disk (one atomic, synced file per run) are measured by the CLI (BENCHMARKS.md).
+// records on disk (one atomic, synced file per run) are measured by the CLI (docs/benchmarks.md).
 #include <benchmark/benchmark.h>
 
 #include "sim/study/sweep.hpp"

@@ -22,7 +22,7 @@ PKGS=("${DEMO_PKGS[@]}"
       python3-scipy python3-matplotlib                         #     by the tests
       emscripten dpkg-dev chromium   # the browser page (scripts/web.sh) and its test in chromium
       lintian desktop-file-utils appstream man-db  # the .deb's checks (scripts/package.sh --check)
-      mkdocs)                        # the documentation site (scripts/docs.sh)
+      mkdocs python3-yaml)           # the documentation site (scripts/docs.sh) and its tests
 if [ "${1:-}" = "demo" ]; then PKGS=("${DEMO_PKGS[@]}"); fi
 missing=()
 for p in "${PKGS[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done

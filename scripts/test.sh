@@ -2,8 +2,8 @@
 # Installs what is missing, builds everything with every part explicitly ON and runs every suite:
 #   Release     the GoogleTest suites, the scripts' tests, the lessons and the install test (ctest)
 #   Python      the module's pytest suite and the notebooks (ctest runs them; counted by pytest)
-#   docs        every command in the docs, links, images, generated pages (ctest)
-#   site        mkdocs build --strict (scripts/docs.sh)
+#   docs        every command in the docs, links, images, generated pages, and the site built
+#               with mkdocs build --strict (ctest docs.*)
 #   package     the .deb built, inspected, validated, linted and run (scripts/package.sh --check)
 #   page        the browser page built with emcc, in headless chromium (scripts/web*.sh)
 #   sanitizers  the whole ctest suite again with AddressSanitizer + UndefinedBehaviorSanitizer
@@ -53,9 +53,6 @@ read -r n p f s < <(count junit build/pytest-*.xml)
 row "Python (pytest)" "$ctest_rc" "$s" "$n" "$p" "$f"
 read -r n p f s < <(count junit build/ctest-release.xml --only docs.)
 row "docs (ctest)" "$ctest_rc" "$s" "$n" "$p" "$f"
-
-timed "$LOGS/site.log" bash scripts/docs.sh
-row "site (mkdocs --strict)" "$RC" "$SECS" 1 $((RC == 0)) $((RC != 0))
 
 timed "$LOGS/package.log" bash scripts/package.sh --check
 row "package (.deb)" "$RC" "$SECS" 1 $((RC == 0)) $((RC != 0))

@@ -8,7 +8,7 @@
 #     --native FILE  the native formsim (default build/formsim; also FORMSIM_NATIVE)
 #     --out DIR      pictures, tables, logs (default out/web_test/; also FORMSIM_WEB_OUT)
 #     --scenarios A,B  --skip-equality   (see node tests/web/browser_test.mjs --help)
-#     --measure      size and speed for BENCHMARKS.md instead (tests/web/measure.mjs)
+#     --measure      size and speed for docs/benchmarks.md instead (tests/web/measure.mjs)
 # Installs what is missing first: chromium (apt, as root) and the test's npm packages (npm ci
 # from tests/web/package-lock.json). Exits non-zero when a check fails.
 set -euo pipefail

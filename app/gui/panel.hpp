@@ -9,7 +9,7 @@
 /// The panels: Scenario, Run, Parameters, View, Plots, Tables, Compare, History, Timeline,
 /// Lesson (app/gui/*_panel.hpp), and the Formation editor (app/gui/formation_editor_panel.hpp,
 /// the formation kind's own panel, created only when the experiment exposes
-/// formation::FormationEditing). docs/ARCHITECTURE.md has a table of what each owns.
+/// formation::FormationEditing). docs/architecture.md has a table of what each owns.
 
 #include <string>
 

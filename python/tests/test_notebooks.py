@@ -1,5 +1,9 @@
 """docs/notebooks executed with `jupyter nbconvert --execute` (Debian's python3 kernel): they run
-without error, and their key numbers are what formsim computes when asked again here."""
+without error, and their key numbers are what formsim computes when asked again here.
+
+With FORMSIM_NOTEBOOKS_WRITE=1 (scripts/notebooks.sh) a notebook that passes is written back
+into docs/notebooks with the outputs of this run (the timing metadata left out), so that the
+committed notebooks show what the tested run showed."""
 
 import hashlib
 import json
@@ -14,6 +18,7 @@ import pytest
 import formsim
 
 NOTEBOOKS = os.path.join(os.path.dirname(__file__), "..", "..", "docs", "notebooks")
+WRITE_BACK = os.environ.get("FORMSIM_NOTEBOOKS_WRITE") == "1"
 
 
 def execute(name, out_dir):
@@ -36,6 +41,17 @@ def execute(name, out_dir):
     return numbers
 
 
+def write_back(name, out_dir):
+    """With FORMSIM_NOTEBOOKS_WRITE=1: docs/notebooks/NAME.ipynb := the executed notebook."""
+    if not WRITE_BACK:
+        return
+    import nbformat
+    nb = nbformat.read(os.path.join(out_dir, name + ".ipynb"), as_version=4)
+    for cell in nb.cells:
+        cell.metadata.pop("execution", None)  # wall-clock times: a diff on every run
+    nbformat.write(nb, os.path.join(NOTEBOOKS, name + ".ipynb"))
+
+
 def test_tuning_notebook(tmp_path):
     k = execute("tuning", tmp_path)
     # The optimiser's best gain is at least as good as the shipped one, and its RMS is what a
@@ -47,6 +63,7 @@ def test_tuning_notebook(tmp_path):
     assert k["kp_shipped"] == formsim.load("agv_fused").tunables["control.cross.kp"].value
     assert k["sweep_kp"] == pytest.approx(list(np.linspace(0.5, 4, 8)))
     assert all(0 < r < 0.05 for r in k["sweep_rms_mean_m"])
+    write_back("tuning", tmp_path)
 
 
 def test_teaching_notebook(tmp_path):
@@ -67,3 +84,4 @@ def test_teaching_notebook(tmp_path):
     after = ts["t"] >= 5.0
     assert k["rms_e_l_m"] == float(np.sqrt(np.mean(ts["R1-R2.e_l"][after] ** 2)))
     assert 0 < k["rms_e_l_m"] < 0.5
+    write_back("teaching", tmp_path)

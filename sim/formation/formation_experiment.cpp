@@ -25,7 +25,7 @@ constexpr std::size_t kLinksPerTask = 16;
 constexpr std::size_t kAgentsPerTask = 128;
 // From this many links on (a task's worth), the filters' predictions run beside the Box2D step
 // (see PredictItems). Below, handing them to another core costs more than it saves: a round trip
-// between the two cores of the VM of BENCHMARKS.md is 0.5 µs and the filters' cache lines move
+// between the two cores of the VM of docs/benchmarks.md is 0.5 µs and the filters' cache lines move
 // with it, while three links predict in under a microsecond (the paper scenario ran 2.6 ms
 // instead of 2.0 beside Box2D; 18 links, 10 robots, gained 12%).
 constexpr std::size_t kPredictBesideLinks = kLinksPerTask;

@@ -1,7 +1,7 @@
 // The window's command table (app/gui/command_table.hpp) and everything generated from it: each
 // command is reachable three ways (a click on its menu item, the palette, `--script`), runs in
 // a window (an OSMesa context, in-process; under ASan in the sanitizer suite), refuses bad
-// arguments naming the argument; keys, F1 help and the README's table come from the same rows.
+// arguments naming the argument; keys, F1 help and docs/window.md's table come from the same rows.
 #include "app/gui/parameters_panel.hpp"
 #include "app/gui/command_table.hpp"
 
@@ -124,14 +124,14 @@ TEST(CommandTable, RowsAreWellFormed) {
     EXPECT_NE(FindCommand(old), nullptr) << old;
 }
 
-TEST(CommandTable, TheReadmeTableIsTheGeneratedOne) {
-  const std::string readme = testing::ReadText(std::string(FORMSIM_SOURCE_DIR) + "/README.md");
+TEST(CommandTable, TheWindowPageTableIsTheGeneratedOne) {
+  const std::string page = testing::ReadText(std::string(FORMSIM_SOURCE_DIR) + "/docs/window.md");
   const std::string begin = "<!-- commands:begin (formsim gui --list-commands --markdown) -->\n";
   const std::string end = "<!-- commands:end -->";
-  const auto a = readme.find(begin), b = readme.find(end);
-  ASSERT_NE(a, std::string::npos) << "README has no generated command table";
+  const auto a = page.find(begin), b = page.find(end);
+  ASSERT_NE(a, std::string::npos) << "docs/window.md has no generated command table";
   ASSERT_NE(b, std::string::npos);
-  EXPECT_EQ(readme.substr(a + begin.size(), b - a - begin.size()), CommandTableMarkdown())
+  EXPECT_EQ(page.substr(a + begin.size(), b - a - begin.size()), CommandTableMarkdown())
       << "regenerate it: formsim gui --list-commands --markdown";
 }
 

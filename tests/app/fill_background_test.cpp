@@ -236,7 +236,7 @@ TEST(FillBackground, PanelsShareTheViewsBackgroundInEveryTheme) {
 }
 
 // Square widget corners: a rounded frame is an anti-aliased fan of about 20 triangles, a square
-// one 2, and a software rasteriser pays per triangle (BENCHMARKS.md, frame budget, fifth round).
+// one 2, and a software rasteriser pays per triangle (docs/benchmarks.md: the window, fifth round).
 TEST(FillBackground, WidgetsHaveSquareCorners) {
   OffscreenContext ctx(64, 64);
   ImGuiLayer layer;

@@ -1,4 +1,4 @@
-# The direction of dependencies (docs/ARCHITECTURE.md), checked on every #include:
+# The direction of dependencies (docs/architecture.md), checked on every #include:
 #   control knows nothing of sim or app; sim knows nothing of app;
 #   sim's shared floors: core <- scenario <- session, study; the kinds (sim/<kind>) sit above all four;
 #   app/render (canvas, plots, themes, GL) knows nothing of the window, export or the CLI;

@@ -1,4 +1,4 @@
-// Size and speed of formsim's WebAssembly page (issue 29, item 5), for BENCHMARKS.md: a
+// Size and speed of formsim's WebAssembly page (issue 29, item 5), for docs/benchmarks.md: a
 // measurement, not a test (it prints the figures against the issue's limits and writes
 // OUT/measure.{json,md}; it fails only when it cannot measure).
 //   node measure.mjs [--web DIR] [--out DIR]   (--native is not used)
