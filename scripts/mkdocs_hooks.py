@@ -119,18 +119,23 @@ def on_nav(nav, config, files):
 
 
 def relist(markdown):
-    """Nested list items and their continuation lines re-indented by 4 spaces a level; fenced
-    code left as it is."""
+    """Nested list items and their continuation lines re-indented by 4 spaces a level, and a blank
+    line put before a list that follows a paragraph line (GitHub starts a list there,
+    Python-Markdown would run it into the paragraph); fenced code left as it is."""
     lines = markdown.split("\n")
     fenced = set()
     for b in doclinks.fenced_blocks(markdown):
         fenced.update(range(b["start"] - 1, b["end"]))
     out, stack, blank = [], [], False  # stack: the content column of each open item
+    paragraph = False  # the line before was a paragraph's (not a list's, heading's or table's)
     for i, line in enumerate(lines):
         if i in fenced or not line.strip():
             blank = blank or not line.strip()
+            paragraph = False
             out.append(line)
             continue
+        if LIST_ITEM.match(line) and not stack and paragraph:
+            out.append("")
         indent = len(line) - len(line.lstrip(" "))
         m = LIST_ITEM.match(line)
         if m:
@@ -145,6 +150,7 @@ def relist(markdown):
         else:
             k = sum(1 for col in stack if col <= indent)
             out.append(" " * (4 * k) + line[indent:] if k else line)
+        paragraph = not m and not stack and not line.startswith(("#", "|", "<", ">"))
         blank = False
     return "\n".join(out)
 
