@@ -76,7 +76,7 @@ PATH="$P/bin:$PATH" bash -c '
 grep -q "^Exec=formsim gui$" "$P/share/applications/formsim.desktop" || fail "desktop entry"
 
 # The Python module installed under the prefix finds the same assets.
-PYDIR=$(ls -d "$P"/lib/python3*/dist-packages 2>/dev/null | head -1)
+PYDIR=$(ls -d "$P"/lib/python3*/dist-packages 2>/dev/null | head -1 || true)
 if [ -n "$PYDIR" ]; then
   PYTHONPATH="$PYDIR" /usr/bin/python3 - "$P" <<'PY'
 import os, sys
