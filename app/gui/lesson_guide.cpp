@@ -170,11 +170,24 @@ sim::LiveCheck LessonGuide::Live(const std::string& id) {
   return r;
 }
 
+std::string LessonGuide::Render(const std::string& paragraph) {
+  return sim::RenderLessonParagraph(paragraph, [this](const std::string& id) {
+    const sim::LiveCheck r = Live(id);
+    sim::ShownCheck s;
+    s.measured = r.ready && r.error.empty();
+    s.value = r.value;
+    s.holds = r.holds;
+    const sim::LessonCheck* c = ctx_.session().lesson().Find(id);
+    s.some_seeds = c != nullptr && c->share < 1;
+    return s;
+  });
+}
+
 std::string LessonGuide::SeeLine(const std::string& id) {
   const sim::LessonDef& l = ctx_.session().lesson();
   const sim::LessonCheck* c = l.Find(id);
-  if (c == nullptr) return "{" + id + "}: no such check";
-  const std::string head = "{" + id + "}  " + sim::LessonRelationText(*c) + ":  ";
+  if (c == nullptr) return id + ": no such check";
+  const std::string head = id + "  " + sim::LessonRelationText(*c) + ":  ";
   const sim::LiveCheck r = Live(id);
   if (!r.ready) return head + "not yet (measured " + WhenReady(l, *c) + ")";
   if (!r.error.empty()) return head + r.error;
@@ -207,7 +220,7 @@ std::string LessonGuide::Verdict() {
   if (!r.error.empty()) return mine + ". Not on this run: " + r.error;
   const bool right = k - 1 == p.answer;
   std::string out = mine + (right ? " — right" : " — not quite (the answer is " + Letter(p.answer + 1) + ")");
-  out += ": {" + p.check + "} measured " + sim::FormatSignificant(r.value, 4) + ", " +
+  out += ": " + p.check + " measured " + sim::FormatSignificant(r.value, 4) + ", " +
          sim::LessonRelationText(*c);
   if (!r.holds) out += " (on this run the check does not hold)";
   return out;

@@ -57,6 +57,10 @@ class LessonGuide {
   /// Check `id` of the lesson measured on the current run (once ready; kept until the run
   /// changes).
   sim::LiveCheck Live(const std::string& id);
+  /// `paragraph` (the goal, a step's text, an explanation) as the student reads it: every
+  /// {check} replaced by its value on the current run and its verdict, "(…)" while pending
+  /// (sim::RenderLessonParagraph, the renderer `formsim lessons show` prints with).
+  std::string Render(const std::string& paragraph);
   /// "{tau_l} within [0.95, 1.05]: 1.002  √ holds", "…  not yet (the run reaches t = 3 s)", ...
   std::string SeeLine(const std::string& id);
   /// The step's prediction: "" when the step asks none; what was chosen and, once the run has

@@ -185,7 +185,7 @@ void LessonPanel::DrawStep(const Fonts& fonts) {
   }
   const sim::LessonStep step = *guide_.Current();  // a copy: a button may change the session
   ImGui::Spacing();
-  LongTextWrapped("step_text", step.text);
+  LongTextWrapped("step_text", guide_.Render(step.text));
   ImGui::Spacing();
   if (!step.predict.question.empty()) {
     Heading(fonts, "Predict, then run");
@@ -201,7 +201,7 @@ void LessonPanel::DrawStep(const Fonts& fonts) {
                       std::string(1, static_cast<char>('A' + k)) + ".  " + step.predict.options[k]);
     }
     LongTextWrapped("verdict", guide_.Verdict());
-    if (!step.predict.explain.empty() && guide_.Judged()) LongTextWrapped("explain", step.predict.explain);
+    if (!step.predict.explain.empty() && guide_.Judged()) LongTextWrapped("explain", guide_.Render(step.predict.explain));
     ImGui::Spacing();
   }
   if (!step.action.label.empty()) {
@@ -253,7 +253,7 @@ void LessonPanel::Draw(const Fonts& fonts) {
   ImGui::PopFont();
   ImGui::Spacing();
   Heading(fonts, "Goal");
-  LongTextWrapped("Goal", l.goal);
+  LongTextWrapped("Goal", guide_.Render(std::string(l.goal)));  // a copy: Render measures
   ImGui::Spacing();
   if (!l.equations.empty()) {
     Heading(fonts, "Equations");

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <set>
 
 namespace formsim::sim {
@@ -12,7 +15,14 @@ using Check = LessonCheck;
 
 constexpr const char* kStatNames[] = {"max_abs", "max",    "min",         "mean", "rms",
                                       "jitter",  "first_below", "tau", "final"};
-constexpr const char* kRelationNames[] = {"less", "greater", "within", "equal"};
+constexpr const char* kRelationNames[] = {"less", "greater", "within", "equal", "about"};
+
+std::string FormatRangeEnd(double v) {
+  if (std::isinf(v)) return v > 0 ? "+inf" : "-inf";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
 
 bool IsCheckId(const std::string& s) {
   if (s.empty() || s.size() > 64 || !(s[0] >= 'a' && s[0] <= 'z')) return false;
@@ -71,9 +81,16 @@ Check ReadCheck(YamlReader& c) {
   }
   k.ratio_to = c.String("ratio_to", "");
   if (!k.ratio_to.empty() && !IsCheckId(k.ratio_to)) c.Fail("ratio_to", "expected the id of a check");
+  if (c.Has("minus")) {
+    if (!k.ratio_to.empty()) c.Fail("minus", "a check has at most one of ratio_to, minus");
+    k.ratio_to = c.RequiredString("minus");
+    k.minus = true;
+    if (!IsCheckId(k.ratio_to)) c.Fail("minus", "expected the id of a check");
+  }
 
-  const int relations = c.Has("less") + c.Has("greater") + c.Has("within") + c.Has("equal");
-  if (relations != 1) c.Fail("id", "a check has exactly one of less, greater, within, equal");
+  const int relations =
+      c.Has("less") + c.Has("greater") + c.Has("within") + c.Has("equal") + c.Has("about");
+  if (relations != 1) c.Fail("id", "a check has exactly one of less, greater, within, equal, about");
   if (c.Has("less")) {
     k.relation = Check::Relation::kLess;
     ReadOperand(c, "less", k);
@@ -84,6 +101,11 @@ Check ReadCheck(YamlReader& c) {
     k.relation = Check::Relation::kEqual;
     ReadOperand(c, "equal", k);
     k.tolerance = c.Double("tolerance", 0.0, Tune("tolerance").AtLeast(0));
+  } else if (c.Has("about")) {
+    k.relation = Check::Relation::kAbout;
+    ReadOperand(c, "about", k);
+    if (k.against.empty() && k.value == 0.0) c.Fail("about", "about a value of 0 has no relative tolerance; use equal with a tolerance");
+    k.rel = c.Double("rel", 0.1, Tune("rel").Above(0).AtMost(0.5));
   } else {
     k.relation = Check::Relation::kWithin;
     const std::vector<double> r = c.Doubles("within", {}, 2);
@@ -92,6 +114,9 @@ Check ReadCheck(YamlReader& c) {
   }
   if (k.relation != Check::Relation::kEqual && c.Has("tolerance"))
     c.Fail("tolerance", "only an equal check has a tolerance");
+  if (k.relation != Check::Relation::kAbout && c.Has("rel"))
+    c.Fail("rel", "only an about check has a relative tolerance (rel)");
+  if (c.Has("share")) k.share = c.Double("share", 1.0, Tune("share").Above(0.5).AtMost(1));
 
   const YAML::Node seeds = c.Raw("seeds");
   if (!seeds.IsDefined() || seeds.IsNull())
@@ -175,7 +200,58 @@ LessonStep ReadStep(YamlReader& s, const std::set<std::string>& ids) {
   return out;
 }
 
+bool EndsWith(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+bool Contains(const std::string& s, const char* part) { return s.find(part) != std::string::npos; }
+
+// The range of a summary.json number, from its name (the metrics' naming conventions).
+LessonQuantityRange MetricRange(const std::string& name) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const std::string last = name.substr(name.rfind('.') == std::string::npos ? 0 : name.rfind('.') + 1);
+  // A flag or a share: 0 ... 1, both ends reached.
+  for (const char* f : {"recovered", "loop_completed", "tracking_finished", "fix_rate"})
+    if (last == f) return {0.0, 1.0, true, true};
+  // A count: never negative, zero is a real outcome.
+  for (const char* c : {"jumps", "avoidance_entries", "accepted_outliers", "rejected_good",
+                        "collisions_after_transient", "not_recovered"})
+    if (last == c) return {0.0, kInf, true, true};
+  if (Contains(name, "events.")) return {0.0, kInf, true, true};
+  // A recovery time: zero when the error never left its band.
+  if (EndsWith(last, "recover_s")) return {0.0, kInf, true, true};
+  // Sizes of errors: an RMS, a maximum of |x|, a distance, a NIS / NEES (a squared norm).
+  for (const char* m : {"rms", "max_abs", "nis", "nees", "position_", "linear_error",
+                        "angular_error", "cross_track.max_m"})
+    if (Contains(name, m)) return {0.0, kInf, false, true};
+  return {};
+}
+
 }  // namespace
+
+LessonQuantityRange QuantityRangeOf(const LessonCheck& c) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  switch (c.source) {
+    case Check::Source::kEvents:
+      return {0.0, kInf, true, true};
+    case Check::Source::kMetric:
+      return MetricRange(c.name);
+    case Check::Source::kColumn:
+      switch (c.stat) {
+        case Check::Stat::kMaxAbs:
+        case Check::Stat::kRms:
+        case Check::Stat::kJitter:
+          return {0.0, kInf, false, true};
+        case Check::Stat::kTau:
+          return {0.0, kInf, false, true};
+        case Check::Stat::kFirstBelow:
+          return {c.from, kInf, true, true};
+        default:
+          return {};
+      }
+  }
+  return {};
+}
 
 std::vector<std::string> LessonStep::Checks() const {
   std::vector<std::string> out;
@@ -249,10 +325,44 @@ LessonDef ReadLesson(YamlReader& b) {
     const LessonCheck& k = l.checks[i];
     for (const std::string* other : {&k.against, &k.ratio_to}) {
       if (other->empty()) continue;
-      if (!ids.count(*other)) items[i].Fail(other == &k.ratio_to ? "ratio_to" : LessonRelationName(k.relation),
+      if (!ids.count(*other)) items[i].Fail(other == &k.ratio_to ? (k.minus ? "minus" : "ratio_to") : LessonRelationName(k.relation),
                                             "no check '" + *other + "' in this lesson");
       if (*other == k.id) items[i].Fail("id", "a check cannot refer to itself");
     }
+  }
+  // A check that cannot fail: a bound at or beyond its quantity's range.
+  std::function<LessonQuantityRange(const LessonCheck&, int)> range = [&](const LessonCheck& k,
+                                                                         int depth) {
+    LessonQuantityRange r = QuantityRangeOf(k);
+    if (k.ratio_to.empty()) return r;
+    if (k.minus) return LessonQuantityRange{};
+    const LessonCheck* d = l.Find(k.ratio_to);
+    const LessonQuantityRange dr = d == nullptr || depth > 8 ? LessonQuantityRange{} : range(*d, depth + 1);
+    // A ratio of two non-negative quantities is non-negative (and 0 only where the numerator is).
+    if (r.lo >= 0 && dr.lo >= 0) return LessonQuantityRange{0.0, std::numeric_limits<double>::infinity(), r.lo_reached && r.lo == 0, true};
+    return LessonQuantityRange{};
+  };
+  for (std::size_t i = 0; i < l.checks.size(); ++i) {
+    const LessonCheck& k = l.checks[i];
+    const LessonQuantityRange r = range(k, 0);
+    auto at_lo = [&](double b) { return b < r.lo || (b == r.lo && !r.lo_reached); };
+    auto at_hi = [&](double b) { return b > r.hi || (b == r.hi && !r.hi_reached); };
+    const std::string span = "[" + FormatRangeEnd(r.lo) + ", " + FormatRangeEnd(r.hi) + "]";
+    const std::string why = " cannot fail: its quantity lies in " + span;
+    if (!k.against.empty()) continue;
+    if (k.relation == Check::Relation::kGreater && at_lo(k.value))
+      items[i].Fail("greater", "check '" + k.id + "' (greater: " + FormatRangeEnd(k.value) + ")" + why +
+                                   (r.lo_reached || k.value < r.lo ? "" : " and never equals " + FormatRangeEnd(r.lo)));
+    if (k.relation == Check::Relation::kLess && at_hi(k.value))
+      items[i].Fail("less", "check '" + k.id + "' (less: " + FormatRangeEnd(k.value) + ")" + why +
+                                (r.hi_reached || k.value > r.hi ? "" : " and never equals " + FormatRangeEnd(r.hi)));
+    if ((k.relation == Check::Relation::kGreater && k.value >= r.hi) ||
+        (k.relation == Check::Relation::kLess && k.value <= r.lo))
+      items[i].Fail(LessonRelationName(k.relation),
+                    "check '" + k.id + "' can never hold: its quantity lies in " + span);
+    if (k.relation == Check::Relation::kWithin && k.lo <= r.lo && k.hi >= r.hi)
+      items[i].Fail("within", "check '" + k.id + "' cannot fail: [" + FormatRangeEnd(k.lo) + ", " +
+                                  FormatRangeEnd(k.hi) + "] covers its quantity's range " + span);
   }
   for (const std::string& id : CheckReferences(l.goal))
     if (!ids.count(id)) b.Fail("goal", "names check {" + id + "}, which is not among the lesson's checks");

@@ -33,12 +33,38 @@
 ///                 (stat: max_abs | max | min | mean | rms | jitter | first_below | tau | final;
 ///                  level only for first_below; from / to default to the whole run)
 ///         ratio_to: other_id         (optional: the quantity divided by that check's, same seed)
+///         minus: other_id            (optional, instead: that check's value subtracted: a shift
+///                                     between two runs, "R6 is 4 mm off where it was")
 ///         # the relation, exactly one of (a number, or the id of a check: its value, same seed):
 ///         less: 0.01 | greater: other_id | within: [0.9, 1.1] | equal: 0  (tolerance: 0)
+///           | about: 6.7  (rel: 0.1)  (within ±rel of the value, relative: "6.7 s" is about: 6.7)
 ///         seeds: 5                   (at least 5: seeds 1..N; or `all`: every seed asked for)
+///         share: 0.9                 (optional, default 1: it holds on at least this share of
+///                                     the seeds; only for an effect that depends on the seed,
+///                                     whose text then states the measured share)
+///
+/// What the text says, as a check:
+///   "halves", "less than half of X"  ratio_to: x  less: 0.55      (a ratio to another check,
+///                                                                  of this run or of another)
+///   "6.7 s", "about 2 m"             about: 6.7  (rel: 0.1)        (a relative tolerance)
+///   "after 1 s", "in the last 5 s"   column: ...  from: 1  (or from: 31  to: 36 on a 36 s run:
+///                                    a time window, in seconds of the run)
+///   "R1 is behind" (a sign)          column: ... stat: mean  less: 0   (on a signed quantity;
+///                                    `greater: 0` on one that is never negative is refused)
+///   "in 27 of 30 seeds"              share: 0.9  (a count over seeds; `lessons check` fails such
+///                                    a check when its value is the same on every seed)
+///   (not yet: "every robot" / "any robot" over one column per robot; write one check per robot)
 ///
 /// A paragraph (goal, a step's text) names the checks backing its claims as `{id}`; the
 /// loader refuses a name that is no check, and a step's or a prediction's `check` that is none.
+///
+/// A check that cannot fail is refused too: every quantity has a range (QuantityRangeOf:
+/// an RMS, a maximum of |x|, a jitter, a count, a time constant are never negative; a flag or a
+/// rate lies in [0, 1]; a ratio of two non-negative quantities is non-negative), and a bound at
+/// or beyond it (`greater: 0` on an RMS, `less: 2` on a flag, `within` covering the whole range)
+/// is an error at the bound's line. A bound at the edge of the range is refused only where the
+/// quantity cannot sit on that edge: `greater: 0` on a count (at least one event) or on a
+/// recovery time (it left the band at all) says something, on an RMS it does not.
 
 #include <limits>
 #include <string>
@@ -52,7 +78,7 @@ namespace formsim::sim {
 struct LessonCheck {
   enum class Source { kMetric, kEvents, kColumn };
   enum class Stat { kMaxAbs, kMax, kMin, kMean, kRms, kJitter, kFirstBelow, kTau, kFinal };
-  enum class Relation { kLess, kGreater, kWithin, kEqual };
+  enum class Relation { kLess, kGreater, kWithin, kEqual, kAbout };
 
   std::string id;
   int line = 0;                   ///< line of the check in its file (for messages)
@@ -65,16 +91,34 @@ struct LessonCheck {
   Stat stat = Stat::kMaxAbs;
   double from = 0.0, to = std::numeric_limits<double>::infinity(), level = 0.0;
   std::string ratio_to;  ///< "" or the check whose value divides this one
+  bool minus = false;    ///< ratio_to's value is subtracted instead (`minus: id`)
 
   Relation relation = Relation::kLess;
   double value = 0.0;      ///< the number compared with (less, greater, equal)
   std::string against;     ///< or the check whose value is compared with
   double lo = 0.0, hi = 0.0;  ///< within [lo, hi]
   double tolerance = 0.0;     ///< equal: |x − value| <= tolerance
+  double rel = 0.1;           ///< about: |x − value| <= rel · |value|
 
   int seeds = 5;            ///< holds on seeds 1..seeds
   bool all_seeds = false;   ///< holds on every seed asked for
+  /// The share of the seeds it must hold on (1: every seed). Below 1 only where the effect
+  /// really depends on the seed, and then the text states the share measured.
+  double share = 1.0;
 };
+
+/// The values a check's quantity can take: [lo, hi]; `lo_reached` / `hi_reached`: the
+/// quantity can equal that end in a real run (a count can be 0, an RMS is 0 only for a run
+/// without any error, which no lesson measures).
+struct LessonQuantityRange {
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
+  bool lo_reached = true, hi_reached = true;
+};
+
+/// The range of a check's quantity before ratio_to (from its source: the stat of a column, the
+/// kind of metric by its name, a count of events).
+LessonQuantityRange QuantityRangeOf(const LessonCheck& check);
 
 /// Names of the stats and relations as written in lesson files.
 const char* LessonStatName(LessonCheck::Stat s);

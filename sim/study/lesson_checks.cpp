@@ -88,8 +88,8 @@ Slot Measure(const Check& c, const Experiment& exp,
 }
 
 std::string RelationText(const Check& c) {
-  const std::string rhs = c.against.empty() ? Num(c.value) : "{" + c.against + "}";
-  std::string q = c.ratio_to.empty() ? "" : " (ratio to {" + c.ratio_to + "})";
+  const std::string rhs = c.against.empty() ? Num(c.value) : c.against;
+  std::string q = c.ratio_to.empty() ? "" : (c.minus ? " (minus " : " (ratio to ") + c.ratio_to + ")";
   switch (c.relation) {
     case Check::Relation::kLess:
       return "< " + rhs + q;
@@ -99,6 +99,8 @@ std::string RelationText(const Check& c) {
       return "within [" + Num(c.lo) + ", " + Num(c.hi) + "]" + q;
     case Check::Relation::kEqual:
       return "= " + rhs + (c.tolerance > 0 ? " ± " + Num(c.tolerance) : "") + q;
+    case Check::Relation::kAbout:
+      return "= " + rhs + " ± " + Num(100 * c.rel) + " %" + q;
   }
   return "?";
 }
@@ -115,7 +117,10 @@ std::vector<std::uint64_t> OwnSeeds(const Check& c, const LessonCheckOptions& op
 
 bool LessonCheckResult::ok() const {
   if (!error.empty() || holds.empty()) return false;
-  return std::all_of(holds.begin(), holds.end(), [](bool b) { return b; });
+  if (SeedChangesNothing()) return false;
+  const auto n = std::count(holds.begin(), holds.end(), true);
+  // share < 1: at least that share of the seeds (27 of 30 for 0.9).
+  return static_cast<double>(n) >= share * static_cast<double>(holds.size()) - 1e-9;
 }
 
 double ColumnStat(const std::vector<double>& t, const std::vector<double>& x, const Check& c) {
@@ -190,6 +195,8 @@ bool RelationHolds(const Check& c, double v, double operand) {
       return v >= c.lo && v <= c.hi;
     case Check::Relation::kEqual:
       return std::abs(v - operand) <= c.tolerance;
+    case Check::Relation::kAbout:
+      return std::abs(v - operand) <= c.rel * std::abs(operand);
   }
   return false;
 }
@@ -234,7 +241,11 @@ std::vector<LessonCheckResult> CheckLesson(const std::string& file, const Lesson
   // Every distinct run once; each knows the checks measured on it.
   std::map<RunKey, std::vector<std::size_t>> runs;  // run -> checks
   for (std::size_t i = 0; i < checks.size(); ++i)
-    for (std::uint64_t s : seeds[i]) runs[{checks[i].sets, checks[i].duration, s}].push_back(i);
+    for (std::uint64_t s : seeds[i]) {
+      std::vector<std::string> sets = opt.extra_sets;
+      sets.insert(sets.end(), checks[i].sets.begin(), checks[i].sets.end());
+      runs[{sets, checks[i].duration, s}].push_back(i);
+    }
   std::vector<std::pair<RunKey, std::vector<std::size_t>>> list(runs.begin(), runs.end());
   std::vector<std::vector<Slot>> slots(list.size());
   TaskPool pool(std::max(1, opt.jobs));
@@ -266,8 +277,8 @@ std::vector<LessonCheckResult> CheckLesson(const std::string& file, const Lesson
     const Check& c = checks[i];
     if (v.error.empty() && !c.ratio_to.empty()) {
       const Slot d = value(static_cast<std::size_t>(index(c.ratio_to)), s);
-      if (!d.error.empty()) return Slot{kNaN, "{" + c.ratio_to + "}: " + d.error};
-      v.raw = v.raw / d.raw;
+      if (!d.error.empty()) return Slot{kNaN, c.ratio_to + ": " + d.error};
+      v.raw = c.minus ? v.raw - d.raw : v.raw / d.raw;
     }
     return v;
   };
@@ -281,13 +292,15 @@ std::vector<LessonCheckResult> CheckLesson(const std::string& file, const Lesson
     res.id = c.id;
     res.relation = RelationText(c);
     res.against_check = !c.against.empty();
+    res.share = c.share;
+    if (c.share < 1) res.relation += " on " + Num(100 * c.share) + " % of the seeds";
     res.seeds = OwnSeeds(c, opt);
     for (std::uint64_t s : res.seeds) {
       const Slot v = value(i, s);
       Slot rhs{c.value, ""};
       if (!c.against.empty()) {
         rhs = value(static_cast<std::size_t>(index(c.against)), s);
-        if (!rhs.error.empty()) rhs.error = "{" + c.against + "}: " + rhs.error;
+        if (!rhs.error.empty()) rhs.error = c.against + ": " + rhs.error;
       }
       if (res.error.empty() && !v.error.empty()) res.error = "seed " + std::to_string(s) + ": " + v.error;
       if (res.error.empty() && !rhs.error.empty()) res.error = "seed " + std::to_string(s) + ": " + rhs.error;
@@ -320,13 +333,13 @@ std::string NotTheRunOf(const Check& c, const Experiment& exp, const RunEdits& r
   if (have != want) {
     std::string edits;
     for (const std::string& e : c.sets) edits += (edits.empty() ? "" : ", ") + e;
-    return "{" + c.id + "} is measured on a run started with " +
+    return c.id + " is measured on a run started with " +
            (edits.empty() ? std::string("the lesson's own values") : edits);
   }
   if (run.changed_while_running) return "the run was changed while it ran; reset it (r) to measure";
   if (c.duration > 0 && std::abs(exp.setup().duration - c.duration) > 0.5 * exp.setup().dt &&
       !(c.source == Check::Source::kColumn && c.to <= c.duration && exp.setup().duration > c.duration))
-    return "{" + c.id + "} needs a " + Num(c.duration) + " s run";
+    return c.id + " needs a " + Num(c.duration) + " s run";
   return "";
 }
 
@@ -362,10 +375,10 @@ LiveCheck MeasureOnRun(const LessonDef& lesson, const Check& check, const Experi
     if (d == nullptr || depth > 8) return {kNaN, "no check '" + c.ratio_to + "'"};
     // The divisor is a check of another run (omega_ratio: L = 0.05 over the lesson's own run):
     // only its own run measures it.
-    if (d->sets != c.sets) return {kNaN, "{" + c.id + "} compares two runs; formsim lessons check runs both"};
+    if (d->sets != c.sets) return {kNaN, c.id + " compares two runs; formsim lessons check runs both"};
     const Slot dv = value(*d, depth + 1);
     if (!dv.error.empty()) return dv;
-    v.raw /= dv.raw;
+    v.raw = c.minus ? v.raw - dv.raw : v.raw / dv.raw;
     return v;
   };
   Slot v = value(check, 0);
@@ -374,7 +387,7 @@ LiveCheck MeasureOnRun(const LessonDef& lesson, const Check& check, const Experi
     const Check* o = lesson.Find(check.against);
     rhs = o == nullptr ? Slot{kNaN, "no check '" + check.against + "'"}
           : o->sets != check.sets
-              ? Slot{kNaN, "{" + check.id + "} compares two runs; formsim lessons check runs both"}
+              ? Slot{kNaN, check.id + " compares two runs; formsim lessons check runs both"}
               : value(*o, 1);
   }
   out.value = v.raw;
@@ -384,6 +397,63 @@ LiveCheck MeasureOnRun(const LessonDef& lesson, const Check& check, const Experi
 }
 
 std::string LessonRelationText(const Check& c) { return RelationText(c); }
+
+std::string RenderLessonParagraph(const std::string& text,
+                                  const std::function<ShownCheck(const std::string&)>& shown) {
+  std::string out;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const std::size_t open = text.find('{', i);
+    if (open == std::string::npos) break;
+    const std::size_t close = text.find('}', open);
+    if (close == std::string::npos) break;
+    const std::string id = text.substr(open + 1, close - open - 1);
+    out += text.substr(i, open - i);
+    if (CheckReferences("{" + id + "}").empty()) {
+      out += text.substr(open, close + 1 - open);  // not a check's name
+    } else {
+      const ShownCheck s = shown(id);
+      // NaN is shown as pending: it is no number a student can read; an infinite value (a level
+      // never crossed, an error that does not decay) as ∞.
+      if (!s.measured || std::isnan(s.value))
+        out += "(…)";
+      else
+        out += "(" + (std::isinf(s.value) ? std::string(s.value > 0 ? "∞" : "−∞") : Num(s.value)) +
+               (s.holds ? " √)" : s.some_seeds ? ", not on this seed)" : ", does not hold)");
+    }
+    i = close + 1;
+  }
+  out += text.substr(std::min(i, text.size()));
+  return out;
+}
+
+std::string RenderLessonText(const LessonDef& l,
+                             const std::function<ShownCheck(const std::string&)>& shown) {
+  auto para = [&](const std::string& p) { return RenderLessonParagraph(p, shown); };
+  std::string out = l.title + "\n\n" + para(l.goal) + "\n";
+  if (!l.equations.empty()) {
+    out += "\n";
+    for (const std::string& e : l.equations) out += "  " + e + "\n";
+  }
+  for (std::size_t i = 0; i < l.steps.size(); ++i) {
+    const LessonStep& s = l.steps[i];
+    out += "\nStep " + std::to_string(i + 1) + ". " + para(s.text) + "\n";
+    if (!s.action.label.empty()) out += "  [" + s.action.label + "]\n";
+    if (!s.predict.question.empty()) {
+      out += "  Predict: " + para(s.predict.question) + "\n";
+      for (std::size_t k = 0; k < s.predict.options.size(); ++k)
+        out += "    " + std::string(1, static_cast<char>('A' + k)) + ". " + para(s.predict.options[k]) +
+               (static_cast<int>(k) == s.predict.answer ? "   (the answer)" : "") + "\n";
+      if (!s.predict.explain.empty()) out += "  " + para(s.predict.explain) + "\n";
+    }
+  }
+  return out;
+}
+
+bool LessonCheckResult::SeedChangesNothing() const {
+  if (share >= 1 || values.size() < 2) return false;
+  return std::all_of(values.begin(), values.end(), [&](double v) { return v == values.front(); });
+}
 
 std::string FormatCheckResult(const LessonCheckResult& r) {
   std::string values;
@@ -397,6 +467,8 @@ std::string FormatCheckResult(const LessonCheckResult& r) {
                      values + "]" + against + "  " + r.relation + "  " +
                      (r.ok() ? "holds" : "FAILS");
   if (!r.error.empty()) line += "  (" + r.error + ")";
+  if (r.SeedChangesNothing())
+    line += "  (the same value on every seed, though the check says its effect depends on the seed)";
   return line;
 }
 

@@ -4,8 +4,18 @@
 /// use (RunScenarioOnce), on a TaskPool; each check's quantity is measured on its runs and its
 /// relation tested seed by seed. Results depend on the lesson and the seeds alone, never on the
 /// number of jobs.
+///
+/// The check language (each form documented in sim/scenario/lesson.hpp's header): a quantity
+/// (metric, events [of one robot], column stat over a time window from/to), optionally divided
+/// by another check's value (ratio_to: "halves" is `ratio_to: base  less: 0.55`) or shifted by it
+/// (minus: a displacement between two runs); a relation: less / greater (a sign: less: 0 on a
+/// signed quantity), within, equal (± tolerance), about (± rel, relative: "6.7 s" is `about: 6.7`),
+/// against a number or another check; seeds, and a share of them for an effect that depends on
+/// the seed ("in 27 of 30 seeds": share: 0.9). The loader refuses a bound at or beyond the
+/// quantity's range (QuantityRangeOf): a check that cannot fail.
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -23,10 +33,14 @@ struct LessonCheckResult {
   std::vector<double> values;    ///< the measured quantity per seed (after ratio_to)
   std::vector<double> operands;  ///< what it was compared with per seed (a number or a check's value)
   std::vector<bool> holds;       ///< per seed
-  std::string relation;          ///< "< 0.01", "within [0.9, 1.1]", "< {base}", ...
+  std::string relation;          ///< "< 0.01", "within [0.9, 1.1]", "< base", ...
   bool against_check = false;    ///< compared with another check's values (operands)
   std::string error;             ///< a run failed or the quantity does not exist ("" when measured)
-  bool ok() const;               ///< measured and holding on every seed
+  double share = 1.0;            ///< the share of the seeds it must hold on (the check's share)
+  /// measured and holding on every seed (or on its share of them); a check with a share < 1
+  /// whose value is the same on every seed fails: its text claims a seed effect there is not.
+  bool ok() const;
+  bool SeedChangesNothing() const;  ///< share < 1, yet the same value on every seed (2 or more)
 };
 
 struct LessonCheckOptions {
@@ -35,6 +49,9 @@ struct LessonCheckOptions {
   int jobs = 1;  ///< runs at once
   /// Only these check ids (empty: all).
   std::vector<std::string> only;
+  /// Edits ("path=value") applied to every run before each check's own `set` (a deliberate error
+  /// in the scenario: the mutation test expects some check to fail).
+  std::vector<std::string> extra_sets;
 };
 
 /// Measures a column over [from, to] (rows whose time lies in it; NotSampled and NaN cells are
@@ -80,8 +97,30 @@ double CheckNeedsTime(const LessonDef& lesson, const LessonCheck& check);
 LiveCheck MeasureOnRun(const LessonDef& lesson, const LessonCheck& check, const Experiment& exp,
                        const RunEdits& run = {});
 
-/// The relation as printed: "< 0.01", "within [0.9, 1.1] (ratio to {base})", ...
+/// The relation as printed: "< 0.01", "within [0.9, 1.1] (ratio to base)", ... (check ids bare: no {name} reaches a student)
 std::string LessonRelationText(const LessonCheck& check);
+
+/// A check's value as a paragraph shows it.
+struct ShownCheck {
+  bool measured = false;  ///< false: pending (not measured yet, or not on this run)
+  double value = 0.0;
+  bool holds = false;
+  bool some_seeds = false;  ///< the check claims its share of the seeds only (share < 1)
+};
+
+/// The one renderer of a lesson's text, shared by the window, the page and `formsim lessons
+/// show`: every `{id}` of `paragraph` becomes the check's value and verdict, "(0.995 √)" when
+/// it holds, "(0.9, does not hold)" when it does not ("(0.9, not on this seed)" for a check
+/// that claims a share of the seeds), "(…)" while pending (`shown` returns measured =
+/// false); no `{id}` is left. Text in braces that names no check is kept as it is.
+std::string RenderLessonParagraph(const std::string& paragraph,
+                                  const std::function<ShownCheck(const std::string& id)>& shown);
+
+/// A lesson's whole text as `formsim lessons show` prints it: title, goal, equations, then each
+/// step (its text, its prediction's question, options and answer, its explanation), every
+/// paragraph through RenderLessonParagraph with `shown`.
+std::string RenderLessonText(const LessonDef& lesson,
+                             const std::function<ShownCheck(const std::string& id)>& shown);
 
 /// One line per result: "lesson  id  values  relation  holds|FAILS".
 std::string FormatCheckResult(const LessonCheckResult& r);

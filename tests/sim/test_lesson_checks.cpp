@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -74,6 +75,83 @@ TEST(LessonChecks, Relations) {
   c.tolerance = 0.01;
   EXPECT_TRUE(RelationHolds(c, 1.005, 1.0));
   EXPECT_FALSE(RelationHolds(c, 1.02, 1.0));
+}
+
+// "6.7 s" is about: 6.7 (rel 0.1): within ±10 % of the value, relative.
+TEST(LessonChecks, AboutIsARelativeTolerance) {
+  LessonCheck c;
+  c.relation = LessonCheck::Relation::kAbout;
+  c.rel = 0.1;
+  EXPECT_TRUE(RelationHolds(c, 6.1, 6.7));
+  EXPECT_TRUE(RelationHolds(c, 7.3, 6.7));
+  EXPECT_FALSE(RelationHolds(c, 6.0, 6.7));
+  EXPECT_FALSE(RelationHolds(c, 7.4, 6.7));
+  EXPECT_TRUE(RelationHolds(c, -0.95, -1.0));
+  EXPECT_FALSE(RelationHolds(c, std::nan(""), 6.7));
+}
+
+// Each quantity's range, which the loader holds every bound against.
+TEST(LessonChecks, QuantitiesHaveRanges) {
+  LessonCheck c;
+  c.source = LessonCheck::Source::kEvents;
+  EXPECT_EQ(QuantityRangeOf(c).lo, 0.0);
+  EXPECT_TRUE(QuantityRangeOf(c).lo_reached);  // no event at all is a real outcome
+  c.source = LessonCheck::Source::kMetric;
+  c.name = "localisation.position_error_m.raw.rms";
+  EXPECT_EQ(QuantityRangeOf(c).lo, 0.0);
+  EXPECT_FALSE(QuantityRangeOf(c).lo_reached);
+  c.name = "switches.list.0.recovered";
+  EXPECT_EQ(QuantityRangeOf(c).hi, 1.0);
+  c.name = "switches.list.0.recover_s";
+  EXPECT_TRUE(QuantityRangeOf(c).lo_reached);
+  c.name = "robots.R1.floors.gravel.control.v_true_mean";  // signed: no range
+  EXPECT_TRUE(std::isinf(QuantityRangeOf(c).lo));
+  c = ColumnCheck(LessonCheck::Stat::kMean);
+  EXPECT_TRUE(std::isinf(QuantityRangeOf(c).lo));
+  c = ColumnCheck(LessonCheck::Stat::kJitter);
+  EXPECT_EQ(QuantityRangeOf(c).lo, 0.0);
+}
+
+// One renderer for the window, the page and `formsim lessons show`: a check's value and
+// verdict, "(…)" while pending, and never a {name}, "nan" or "pending" in what a student reads,
+// for every paragraph of every shipped lesson.
+TEST(LessonChecks, RendererLeavesNoPlaceholder) {
+  auto pending = [](const std::string&) { return ShownCheck{}; };
+  EXPECT_EQ(RenderLessonParagraph("τ is 1 s {tau_l}, see {x y}.", pending), "τ is 1 s (…), see {x y}.");
+  EXPECT_EQ(RenderLessonParagraph("τ {tau_l}",
+                                  [](const std::string&) { return ShownCheck{true, 0.9951, true}; }),
+            "τ (0.9951 √)");
+  EXPECT_EQ(RenderLessonParagraph("τ {tau_l}",
+                                  [](const std::string&) { return ShownCheck{true, 0.5, false}; }),
+            "τ (0.5, does not hold)");
+  EXPECT_EQ(RenderLessonParagraph("τ {tau_l}",
+                                  [](const std::string&) { return ShownCheck{true, 0.5, false, true}; }),
+            "τ (0.5, not on this seed)");
+  EXPECT_EQ(RenderLessonParagraph("{a}", [](const std::string&) {
+              return ShownCheck{true, std::nan(""), false};
+            }),
+            "(…)");
+  EXPECT_EQ(RenderLessonParagraph("{a}", [](const std::string&) {
+              return ShownCheck{true, std::numeric_limits<double>::infinity(), false};
+            }),
+            "(∞, does not hold)");
+  int rendered = 0;
+  for (const std::string& file : ShippedLessons()) {
+    const YAML::Node root = LoadYamlFile(file);
+    YamlReader r(root["lesson"], file, "lesson");
+    const LessonDef l = ReadLesson(r);
+    for (const bool measured : {false, true}) {
+      const std::string text = RenderLessonText(l, [&](const std::string& id) {
+        EXPECT_NE(l.Find(id), nullptr) << file << ": {" << id << "}";
+        return measured ? ShownCheck{true, 1.25, true} : ShownCheck{};
+      });
+      for (const char* bad : {"{", "}", "nan", "pending"})
+        EXPECT_EQ(text.find(bad), std::string::npos) << file << " shows '" << bad << "':\n" << text;
+      EXPECT_NE(text.find(measured ? "(1.25 √)" : "(…)"), std::string::npos) << file;
+      ++rendered;
+    }
+  }
+  EXPECT_GE(rendered, 24);
 }
 
 TEST(LessonChecks, ReferencesAndEffects) {
