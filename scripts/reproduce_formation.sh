@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The README's cascade-formation reproduction table (paper 000), kept as a thin wrapper: it is
+# The cascade-formation reproduction table of docs/papers/formation.md (paper 000), kept as a thin wrapper: it is
 # `formsim reproduce formation`, which runs the 18 cases through the sweep engine over the seeds
 # and reads their metrics (never printed text).
 # Usage: scripts/reproduce_formation.sh [path/to/formsim] [reproduce flags, e.g. --seeds 1..10]

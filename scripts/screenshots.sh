@@ -26,7 +26,7 @@ run formation_traj2_ukf --set duration=5.5 --out "$TMP/a" --snapshot "$OUT/world
 # The whole 7-robot cascade run seen at once (camera keeps everything since the start).
 run formation_cascade7 --out "$TMP/b" --snapshot "$OUT/world_cascade7_whole_run.png" --whole-run
 # Paper-style figures (Fig. 3 (a)-(e) and the UKF estimation error) of the figure-eight run;
-# (a) also as SVG, the vector figure of the README.
+# (a) also as SVG, the vector figure of docs/figures.md.
 for f in "$FIGS"/formation_traj2_ukf/*.png; do
   [ "$(basename "$f")" = world.png ] && continue
   cp "$f" "$OUT/traj2_ukf_$(basename "$f")"
@@ -168,7 +168,7 @@ if command -v xvfb-run >/dev/null; then
     --set duration=16.3 --size 1600x900 --speed max --exit-after 202 --script "$TMP/lesson.txt" \
     >/dev/null
 fi
-# A guided lesson at 1920x1080 (README "Lessons"): lphi_time_constant at step 3 after its run,
+# A guided lesson at 1920x1080 (docs/teaching.md): lphi_time_constant at step 3 after its run,
 # and step 4's prediction judged once the run has shown its check, in the light and the
 # high-contrast theme (each window with a settings folder of its own: no progress carried over).
 if command -v xvfb-run >/dev/null; then
@@ -197,6 +197,6 @@ if command -v xvfb-run >/dev/null; then
   xvfb-run -a -s "-screen 0 1600x900x24" "$BIN" gui formation_swarm_1000 --size 1600x900 \
     --speed max --exit-after 300 --script "$TMP/swarm.txt" >/dev/null
 fi
-# Teaching: the formation editor, overlays, presentation mode (README "Teaching").
+# Teaching: the formation editor, overlays, presentation mode (docs/teaching.md).
 bash scripts/screenshots_teaching.sh "$BIN"
 ls -1 "$OUT"/*.png "$OUT"/*.svg

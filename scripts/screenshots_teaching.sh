@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The teaching pictures of the README (formation editor, overlays, presentation mode), from the
+# The teaching pictures of docs/teaching.md (formation editor, overlays, presentation mode), from the
 # GUI under Xvfb driven by scripts and from headless runs. Called by scripts/screenshots.sh;
 # alone: scripts/screenshots_teaching.sh [path/to/formsim].
 set -euo pipefail

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The README's tuning examples, end to end: `formsim tune` on seeds 1-5, then the shipped and
+# The tuning examples of docs/sweeps-and-tuning.md, end to end: `formsim tune` on seeds 1-5, then the shipped and
 # the tuned gains each run on the held-out seeds 6-25 with `formsim sweep`, and a table of the
 # numbers (markdown) on stdout.
 #   1. formation_traj2_ukf: the two gains of each follower (R2: k_l, k_phi; R3: k_l, k_l2) for

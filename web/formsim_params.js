@@ -15,7 +15,7 @@
   /// Every parameter the page reads, with what it accepts (the text of the error message).
   const PARAMETERS = {
     scenario: 'a shipped scenario\'s name, e.g. formation_traj2_ukf',
-    lesson: 'a shipped lesson\'s name (formsim lessons lists them)',
+    lesson: 'a shipped lesson\'s name (formsim list lists them)',
     theme: 'light, dark, print or high-contrast',
     present: '1 or 0 (presentation mode: the world view fills the window)',
     paused: '1 or 0 (open paused)',

@@ -89,7 +89,7 @@ TEST(GuiLessonSteps, StepsActionsAndPredictionsThroughTheTable) {
             std::string::npos)
       << g.SeeLine("tau_half");
   RunTo(ui, 4.0);
-  // The README's example, word for word (seed 1).
+  // docs/teaching.md's example, word for word (seed 1).
   EXPECT_EQ(g.Verdict(), "You predicted A — right: tau_half measured 1.995, within [1.9, 2.1]");
   EXPECT_NE(g.SeeLine("tau_half").find("√ holds"), std::string::npos) << g.SeeLine("tau_half");
   // Another answer is judged against the same run.
