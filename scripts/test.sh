@@ -8,7 +8,9 @@
 #   page        the browser page built with emcc, in headless chromium (scripts/web*.sh)
 #   sanitizers  the whole ctest suite again with AddressSanitizer + UndefinedBehaviorSanitizer
 #   fuzzing     each libFuzzer harness for 20 s under the same sanitizers
-# Ends with one table (each suite: tests run, passed, failed, seconds). A failing suite, or one
+# Ends with one table (each suite: tests run, passed, failed, seconds; the seconds of a suite run
+# by itself are its wall time, those of the suites inside the Release ctest run the sum of their
+# tests' times). A failing suite, or one
 # that ran no test although its packages are installed, fails the run; every suite runs anyway,
 # so the table shows all of them.
 set -uo pipefail
