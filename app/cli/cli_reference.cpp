@@ -39,9 +39,8 @@ void Walk(const CLI::App& app, const std::string& path, std::vector<CommandDoc>*
     OptionDoc d = Describe(*o);
     (d.positional ? c.positionals : c.options).push_back(std::move(d));
   }
-  std::vector<const CLI::App*> subs;
-  for (const CLI::App* s : app.get_subcommands([](const CLI::App* a) { return !a->get_group().empty(); }))
-    subs.push_back(s);
+  const std::vector<const CLI::App*> subs =
+      app.get_subcommands([](const CLI::App* a) { return !a->get_group().empty(); });
   for (const CLI::App* s : subs) c.subcommands.push_back(s->get_name());
   out->push_back(std::move(c));
   for (const CLI::App* s : subs) Walk(*s, path.empty() ? s->get_name() : path + " " + s->get_name(), out);
@@ -173,8 +172,8 @@ std::string BashCompletion(const std::vector<CommandDoc>& commands) {
        "    case \"$path/$w\" in\n";
   for (const CommandDoc& c : commands)
     for (const std::string& s : c.subcommands)
-      b << "      \"" << c.path << "/" << s << "\") path=" << (c.path.empty() ? "" : "\"" + c.path + " \"")
-        << s << " ;;\n";
+      b << "      \"" << c.path << "/" << s << "\") path=\"" << (c.path.empty() ? "" : c.path + " ")
+        << s << "\" ;;\n";
   b << "    esac\n  done\n";
   // Values of the option before the cursor.
   b << "  case \"$prev\" in\n";

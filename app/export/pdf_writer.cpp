@@ -137,6 +137,16 @@ void Draw(cairo_t* cr, const VectorFigure& fig) {
   }
 }
 
+// Draws `fig` onto `surface`, scaled to `width` x `height` surface units. Returns the drawing's
+// status (the surface's own is the caller's to check).
+cairo_status_t DrawOnSurface(cairo_surface_t* surface, const VectorFigure& fig, double width,
+                             double height) {
+  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface), cairo_destroy);
+  cairo_scale(cr.get(), width / fig.width, height / fig.height);
+  Draw(cr.get(), fig);
+  return cairo_status(cr.get());
+}
+
 }  // namespace
 
 std::string PdfDocument(const VectorFigure& fig, const FigureSize& size, const std::string& title) {
@@ -152,11 +162,7 @@ std::string PdfDocument(const VectorFigure& fig, const FigureSize& size, const s
   // Cairo writes the wall-clock time as CreationDate unless told otherwise; a fixed date keeps
   // the same figure byte-identical from run to run (results are deterministic, so are files).
   cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATE_DATE, kPdfCreationDate);
-  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()), cairo_destroy);
-  cairo_scale(cr.get(), pt_w / fig.width, pt_h / fig.height);
-  Draw(cr.get(), fig);
-  const cairo_status_t cs = cairo_status(cr.get());
-  cr.reset();
+  const cairo_status_t cs = DrawOnSurface(surface.get(), fig, pt_w, pt_h);
   cairo_surface_finish(surface.get());
   const cairo_status_t ss = cairo_surface_status(surface.get());
   if (cs != CAIRO_STATUS_SUCCESS || ss != CAIRO_STATUS_SUCCESS)
@@ -168,11 +174,7 @@ std::string PdfDocument(const VectorFigure& fig, const FigureSize& size, const s
 std::vector<std::uint8_t> RasterRgba(const VectorFigure& fig, int width, int height) {
   std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
       cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height), cairo_surface_destroy);
-  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()), cairo_destroy);
-  cairo_scale(cr.get(), width / fig.width, height / fig.height);
-  Draw(cr.get(), fig);
-  const cairo_status_t cs = cairo_status(cr.get());
-  cr.reset();
+  const cairo_status_t cs = DrawOnSurface(surface.get(), fig, width, height);
   cairo_surface_flush(surface.get());
   if (cs != CAIRO_STATUS_SUCCESS)
     throw std::runtime_error(std::string("cairo could not draw the image: ") +
