@@ -89,15 +89,16 @@ void PythonRow(const fs::path& program) {
   const std::string probe =
       " -c 'import formsim, os; print(os.path.dirname(formsim.__file__))' 2>&1";
   int status = 0;
-  for (const fs::path& d : PythonModuleDirs(program)) {
+  // A module installed or built beside this program is the one to report; else any on the path.
+  if (const std::vector<fs::path> dirs = PythonModuleDirs(program); !dirs.empty()) {
+    const fs::path& d = dirs.front();
     const std::string line =
         FirstLine("PYTHONPATH=" + Quote(d.string()) + " " + python + probe, &status);
-    if (status == 0) {
+    if (status == 0)
       Row(true, "Python module", line + " (python3 with PYTHONPATH=" + d.string() + ")");
-      return;
-    }
-    Row(false, "Python module", d.string() + "/formsim does not import: " + line +
-                                    " (Debian: python3-numpy)");
+    else
+      Row(false, "Python module",
+          d.string() + "/formsim does not import: " + line + " (Debian: python3-numpy)");
     return;
   }
   const std::string line = FirstLine(python + probe, &status);
