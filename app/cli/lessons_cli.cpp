@@ -36,7 +36,10 @@ LessonsCommand::LessonsCommand(CLI::App& app) {
 
 int LessonsCommand::RunShow() {
   sim::LessonCheckOptions opt;
-  opt.seeds = {static_cast<std::uint64_t>(show_seed_)};
+  // One seed, 0 ... 2^64-1, refused by name when out of range or not one (never wrapped).
+  opt.seeds = sim::ParseSeeds(show_seed_, "--seed");
+  if (opt.seeds.size() != 1)
+    throw std::runtime_error("--seed '" + show_seed_ + "': expected one seed, 0 ... 2^64-1");
   opt.jobs = jobs_ > 0 ? jobs_ : sim::TaskPool::HardwareThreads();
   const std::string file = sim::ResolveLesson(show_name_);
   const auto results = sim::CheckLesson(file, opt);
@@ -57,7 +60,8 @@ int LessonsCommand::RunShow() {
     const auto it = shown.find(id);
     return it == shown.end() ? sim::ShownCheck{} : it->second;
   });
-  std::printf("%s\nChecks on seed %llu:\n", text.c_str(), show_seed_);
+  std::printf("%s\nChecks on seed %llu:\n", text.c_str(),
+              static_cast<unsigned long long>(opt.seeds.front()));
   for (const auto& r : results) std::printf("  %s\n", sim::FormatCheckResult(r).c_str());
   int missed = 0;
   for (const auto& r : results) missed += !r.ok() && r.share < 1;
@@ -77,6 +81,11 @@ int LessonsCommand::Run() {
   std::vector<std::string> files;
   if (names_.empty()) files = sim::ShippedLessons();
   for (const std::string& n : names_) files.push_back(sim::ResolveLesson(n));
+  // A --set that a lesson cannot take (an unknown key, a value out of range) is bad input, named
+  // and refused before anything runs, not a check that fails on every seed.
+  if (!sets_.empty())
+    for (const std::string& f : files)
+      sim::ParseScenario(sim::ScenarioSource::FromFile(f), sim::CliOverrides(sets_, -1));
   int checks = 0, failed = 0;
   for (const std::string& f : files) {
     const auto results = sim::CheckLesson(f, opt);

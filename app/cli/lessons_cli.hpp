@@ -33,7 +33,7 @@ class LessonsCommand {
   CLI::App* check_ = nullptr;
   CLI::App* show_ = nullptr;
   std::string show_name_;
-  unsigned long long show_seed_ = 1;
+  std::string show_seed_ = "1";  ///< --seed, parsed by ParseSeeds (one seed)
   int RunShow();
   std::vector<std::string> names_;
   std::string seeds_;

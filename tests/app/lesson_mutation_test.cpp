@@ -36,7 +36,7 @@ const std::vector<std::pair<std::string, std::string>> kMutations = {
     {"printed_vs_per_sample", "robots.R2.follow.k_l=1.5"},       // gain ×10
     {"switching_around_obstacles", "avoidance.safety_distance=0.03"},  // safety distance ÷10
     {"velocity_slippery_floor", "terrain.gravel.shear_slip=0.025"},    // gravel's slip ÷10
-    {"velocity_three_estimates", "camera.bearing_noise=0.02"},         // camera noise ×10
+    {"velocity_three_estimates", "sensors.camera.bearing_noise=0.02"},  // camera noise ×10
 };
 
 TEST(LessonMutation, EveryLessonCatchesADeliberateError) {
@@ -50,11 +50,32 @@ TEST(LessonMutation, EveryLessonCatchesADeliberateError) {
     // 1: a check failed (2 would be a refused edit: the mutation must be a real scenario edit).
     EXPECT_EQ(rc, 1) << lesson << " --set " << edit << " is not caught:\n" << out;
     EXPECT_NE(out.find(" FAILS"), std::string::npos) << lesson;
-    EXPECT_EQ(out.find("(run "), std::string::npos) << lesson << ": a run failed, not a check\n" << out;
+    EXPECT_EQ(out.find("run error"), std::string::npos) << lesson << ": a run failed, not a check\n" << out;
   }
   for (const std::string& file : sim::ShippedLessons()) {
     const std::string stem = file.substr(file.find_last_of('/') + 1, file.size() - file.find_last_of('/') - 6);
     EXPECT_TRUE(covered.count(stem)) << stem << " has no mutation in kMutations";
+  }
+}
+
+// Bad input to `lessons check --set` and `lessons show --seed` is refused by name (exit 2) before
+// anything runs: not a check failing on every seed, not a seed wrapped around 2^64.
+TEST(LessonMutation, BadSetsAndSeedsAreRefusedByName) {
+  const std::string dir = TempDir("lesson_bad_input");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"check lphi_time_constant --seeds 1 --set nosuch.key=1", "key 'nosuch': unknown key"},
+      {"check lphi_time_constant --seeds 1 --set robots.R2.follow.k_l=nan",
+       "--set robots.R2.follow.k_l=nan"},
+      {"show lphi_time_constant --seed -1", "--seed '-1'"},
+      {"show lphi_time_constant --seed 18446744073709551616", "--seed '18446744073709551616'"},
+      {"show lphi_time_constant --seed 1..3", "expected one seed"},
+  };
+  for (const auto& [args, message] : cases) {
+    const std::string log = dir + "/log.txt";
+    EXPECT_EQ(RunShell(Binary() + " lessons " + args, log), 2) << args;
+    const std::string out = ReadText(log);
+    EXPECT_NE(out.find(message), std::string::npos) << args << ":\n" << out;
+    EXPECT_EQ(out.find(" FAILS"), std::string::npos) << args << ": ran checks\n" << out;
   }
 }
 
