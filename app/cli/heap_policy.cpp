@@ -1,5 +1,9 @@
 #include "app/cli/heap_policy.hpp"
 
+// A C library header first: it defines __GLIBC__, which the test below needs. (Without one the
+// policy compiled to nothing whenever this file began a unity batch.)
+#include <cstdlib>
+
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
