@@ -49,6 +49,7 @@ int LessonsCommand::RunShow() {
     sim::ShownCheck s;
     s.measured = r.error.empty() && !r.values.empty();
     if (s.measured) s.value = r.values.front();
+    if (!r.deciders.empty()) s.robot = r.deciders.front();
     s.holds = r.ok();
     s.some_seeds = r.share < 1;
     shown[r.id] = s;
@@ -86,7 +87,7 @@ int LessonsCommand::Run() {
   if (!sets_.empty())
     for (const std::string& f : files)
       sim::ParseScenario(sim::ScenarioSource::FromFile(f), sim::CliOverrides(sets_, -1));
-  int checks = 0, failed = 0;
+  int checks = 0, failed = 0, warned = 0;
   for (const std::string& f : files) {
     const auto results = sim::CheckLesson(f, opt);
     if (results.empty()) std::printf("%s: no checks\n", f.c_str());
@@ -96,9 +97,17 @@ int LessonsCommand::Run() {
       ++checks;
       if (!r.ok()) ++failed;
     }
+    // A check the text says depends on the seed, with the same value on every seed checked.
+    const sim::ParsedScenario parsed = sim::ParseScenario(sim::ScenarioSource::FromFile(f), {});
+    for (const auto& w : sim::SeedEffectWarnings(parsed.lesson, results)) {
+      std::printf("%s\n", sim::FormatSeedEffectWarning(w).c_str());
+      ++warned;
+    }
   }
-  std::printf("%d checks, %d hold, %d fail\n", checks, checks - failed, failed);
-  return failed ? 1 : 0;
+  std::printf("%d checks, %d hold, %d fail", checks, checks - failed, failed);
+  if (warned) std::printf(", %d claim a seed effect their values do not show", warned);
+  std::printf("\n");
+  return failed || warned ? 1 : 0;
 }
 
 }  // namespace formsim::app

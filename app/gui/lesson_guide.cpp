@@ -177,6 +177,7 @@ std::string LessonGuide::Render(const std::string& paragraph) {
     s.measured = r.ready && r.error.empty();
     s.value = r.value;
     s.holds = r.holds;
+    s.robot = r.robot;
     const sim::LessonCheck* c = ctx_.session().lesson().Find(id);
     s.some_seeds = c != nullptr && c->share < 1;
     return s;

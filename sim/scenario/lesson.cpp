@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <functional>
 #include <set>
 
@@ -78,6 +79,33 @@ Check ReadCheck(YamlReader& c) {
       if (!c.Has("level")) c.Fail("level", "first_below needs a level");
       k.level = c.Double("level", 0.0, Tune("level").Above(0));
     }
+  }
+  // Over robots: `*` in the quantity's name stands for each robot of every: / any:.
+  if (c.Has("every") && c.Has("any")) c.Fail("any", "a check has at most one of every, any");
+  for (const char* key : {"every", "any"}) {
+    if (!c.Has(key)) continue;
+    k.over = std::string(key) == "every" ? Check::Over::kEvery : Check::Over::kAny;
+    k.robots = c.Strings(key, {});
+    if (k.robots.size() < 2 || k.robots.size() > 64)
+      c.Fail(key, "names 2 ... 64 robots (a check of one robot names it in its quantity)");
+    for (std::size_t i = 0; i < k.robots.size(); ++i) {
+      const std::string& r = k.robots[i];
+      if (r.empty() || r.size() > 64 || r.find_first_of("*{} \t\n,") != std::string::npos)
+        c.Fail(key, "'" + r + "' is no robot name");
+      for (std::size_t j = 0; j < i; ++j)
+        if (k.robots[j] == r) c.Fail(key, "robot '" + r + "' is named twice");
+    }
+  }
+  {
+    const bool star = k.name.find('*') != std::string::npos || k.robot == "*";
+    const char* key = k.source == Check::Source::kMetric   ? "metric"
+                      : k.source == Check::Source::kEvents ? (k.robot.empty() ? "events" : "robot")
+                                                           : "column";
+    if (k.over == Check::Over::kOne && star)
+      c.Fail(key, "'*' stands for each robot of every: or any:, and this check has neither");
+    if (k.over != Check::Over::kOne && !star)
+      c.Fail(key, std::string("a check over ") + (k.over == Check::Over::kEvery ? "every" : "any") +
+                      " robot writes '*' where the robot's name goes (column: \"*.x\", robot: \"*\")");
   }
   k.ratio_to = c.String("ratio_to", "");
   if (!k.ratio_to.empty() && !IsCheckId(k.ratio_to)) c.Fail("ratio_to", "expected the id of a check");
@@ -264,6 +292,16 @@ std::vector<std::string> LessonStep::Checks() const {
 const char* LessonStatName(LessonCheck::Stat s) { return kStatNames[static_cast<int>(s)]; }
 const char* LessonRelationName(LessonCheck::Relation r) { return kRelationNames[static_cast<int>(r)]; }
 
+LessonCheck LessonCheck::ForRobot(const std::string& r) const {
+  LessonCheck c = *this;
+  c.over = Over::kOne;
+  c.robots.clear();
+  for (std::size_t at = c.name.find('*'); at != std::string::npos; at = c.name.find('*', at + r.size()))
+    c.name.replace(at, 1, r);
+  if (c.robot == "*") c.robot = r;
+  return c;
+}
+
 const LessonCheck* LessonDef::Find(const std::string& id) const {
   for (const LessonCheck& c : checks)
     if (c.id == id) return &c;
@@ -281,29 +319,185 @@ std::vector<std::string> CheckReferences(const std::string& text) {
   return ids;
 }
 
-bool StatesAnEffect(const std::string& text) {
-  // Text outside the {id} references, lower-cased (ASCII).
+namespace {
+
+// Text outside the {id} references, lower-cased (ASCII).
+std::string PlainLower(const std::string& text) {
   std::string plain;
   for (std::size_t i = 0; i < text.size(); ++i) {
     if (text[i] == '{') {
       const std::size_t close = text.find('}', i);
-      if (close != std::string::npos) {
+      if (close != std::string::npos && IsCheckId(text.substr(i + 1, close - i - 1))) {
         i = close;
+        plain += ' ';
         continue;
       }
     }
     plain += static_cast<char>(std::tolower(static_cast<unsigned char>(text[i])));
   }
-  for (char c : plain)
-    if (c >= '0' && c <= '9') return true;
-  static const char* const kWords[] = {
-      "faster", "slower", "larger",  "smaller", "bigger", "more ",  " less",  "fewer",
-      "higher", "lower",  "longer",  "shorter", "grows",  "shrinks", "falls", "drops",
-      "twice",  "half",   "halves",  "doubles", "rises",  "worse",  "better", "than",
-      "exceed", "saturat", "overshoot", "within"};
-  for (const char* w : kWords)
-    if (plain.find(w) != std::string::npos) return true;
+  return plain;
+}
+
+bool IsWordChar(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || static_cast<unsigned char>(c) >= 0x80;
+}
+
+// The word at `at` starts a word (not "overshoot" inside "no_overshoot_x").
+bool StartsWord(const std::string& s, std::size_t at) {
+  return at == 0 || !(std::isalpha(static_cast<unsigned char>(s[at - 1])) || s[at - 1] == '_');
+}
+
+}  // namespace
+
+bool StatesAnEffect(const std::string& text) {
+  const std::string plain = PlainLower(text);
+  // A number: a digit that starts a token ("2 s", "0.5", "-3", "90°"), not one inside a name
+  // ("R3", "u1", "R4-R7", "formation_swarm_100").
+  for (std::size_t i = 0; i < plain.size(); ++i) {
+    if (!(plain[i] >= '0' && plain[i] <= '9')) continue;
+    if (i > 0 && (std::isalpha(static_cast<unsigned char>(plain[i - 1])) || plain[i - 1] == '_'))
+      continue;
+    // "R4-R7": a digit after '-' that follows a name's digit.
+    if (i > 1 && plain[i - 1] == '-' && IsWordChar(plain[i - 2])) continue;
+    if (i > 0 && plain[i - 1] >= '0' && plain[i - 1] <= '9') continue;  // within a number seen
+    return true;
+  }
+  // Comparisons and directions, as stems: "fall" is falls, fallen, falling; "grow" is grows,
+  // grown; matched at the start of a word. A count of things in words ("two sensors") states
+  // the setup, not a run: only the multiples compare ("twice", "four times", "threefold").
+  static const char* const kStems[] = {
+      "faster", "slower",  "larger",  "smaller", "bigger",  "more",     "less",     "fewer",
+      "higher", "lower",   "longer",  "shorter", "grow",    "shrink",   "fall",     "drop",
+      "twice",  "thrice",  "half",    "halve",   "double",  "threefold", "tenfold", "times",
+      "rise",   "rises",   "worse",   "better",  "best",    "worst",    "most",     "least",
+      "than",   "exceed",  "saturat", "overshoot", "within", "increase", "decrease", "reduc",
+      "behind", "ahead",   "lag",     "same",    "closer",  "farther",  "further",  "nearer",
+      "vanish", "decay"};
+  for (const char* w : kStems) {
+    const std::string stem = w;
+    for (std::size_t at = plain.find(stem); at != std::string::npos; at = plain.find(stem, at + 1)) {
+      if (!StartsWord(plain, at)) continue;
+      const std::size_t end = at + stem.size();
+      // Whole words: "less", not "lesson"; "most", not "mostly"; "lag" and lags, lagged, lagging.
+      const bool whole = stem == "most" || stem == "less" || stem == "more" || stem == "same" ||
+                         stem == "lag" || stem == "than";
+      if (whole && end < plain.size() && std::isalpha(static_cast<unsigned char>(plain[end]))) {
+        if (!(stem == "lag" && plain.compare(end, 1, "s") == 0) &&
+            !(stem == "lag" && plain.compare(end, 3, "ged") == 0) &&
+            !(stem == "lag" && plain.compare(end, 4, "ging") == 0))
+          continue;
+      }
+      return true;
+    }
+  }
   return false;
+}
+
+std::vector<std::string> SplitSentences(const std::string& text) {
+  std::vector<std::string> out;
+  std::string cur;
+  auto push = [&] {
+    const std::size_t a = cur.find_first_not_of(" \t\n");
+    if (a != std::string::npos) out.push_back(cur.substr(a, cur.find_last_not_of(" \t\n") + 1 - a));
+    cur.clear();
+  };
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    cur += text[i];
+    const char c = text[i];
+    if (c != '.' && c != '!' && c != '?') continue;
+    const bool end = i + 1 == text.size() || text[i + 1] == ' ' || text[i + 1] == '\n' || text[i + 1] == '\t';
+    if (!end) continue;
+    // "e.g." and "i.e." and "et al." do not end a sentence.
+    const std::string low = PlainLower(cur);
+    bool abbrev = false;
+    for (const char* a : {"e.g.", "i.e.", "et al.", "cf.", "vs."})
+      abbrev = abbrev || (low.size() >= std::strlen(a) && low.compare(low.size() - std::strlen(a), std::strlen(a), a) == 0);
+    if (abbrev) continue;
+    // A following `{id}` belongs to this sentence ("... doubles. {tau_half}" is rare; keep it).
+    push();
+  }
+  push();
+  return out;
+}
+
+const std::vector<std::string>& LessonInstructionVerbs() {
+  static const std::vector<std::string> kVerbs = {
+      "set",   "move",  "put",    "lower", "raise",   "halve", "double", "stretch", "restore",
+      "load",  "press", "choose", "pick",  "switch",  "turn",  "drag",   "pin",     "reset",
+      "play",  "open",  "watch",  "look",  "predict", "under", "give",   "add",     "remove",
+      "try",   "make",  "undo",   "run",   "step",    "replace"};
+  return kVerbs;
+}
+
+std::string ClaimPart(const std::string& sentence) {
+  const std::size_t a = sentence.find_first_not_of(" \t\n");
+  if (a == std::string::npos) return "";
+  std::size_t b = a;
+  while (b < sentence.size() && std::isalpha(static_cast<unsigned char>(sentence[b]))) ++b;
+  std::string first = sentence.substr(a, b - a);
+  for (char& c : first) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const auto& verbs = LessonInstructionVerbs();
+  if (std::find(verbs.begin(), verbs.end(), first) == verbs.end()) return sentence;
+  const std::size_t colon = sentence.find(':');
+  return colon == std::string::npos ? std::string() : sentence.substr(colon + 1);
+}
+
+std::vector<UnbackedSentence> SentencesWithoutCheck(const LessonDef& l) {
+  std::vector<UnbackedSentence> out;
+  auto scan = [&](const std::string& where, int line, const std::string& paragraph) {
+    for (const std::string& s : SplitSentences(paragraph))
+      if (CheckReferences(s).empty() && StatesAnEffect(ClaimPart(s))) out.push_back({where, line, s});
+  };
+  scan("goal", 0, l.goal);
+  for (std::size_t i = 0; i < l.steps.size(); ++i) {
+    const LessonStep& s = l.steps[i];
+    scan("step " + std::to_string(i + 1), s.line, s.text);
+    if (!s.predict.explain.empty())
+      scan("step " + std::to_string(i + 1) + "'s explanation", s.line, s.predict.explain);
+  }
+  return out;
+}
+
+bool ClaimsASeedEffect(const std::string& sentence) {
+  const std::string p = PlainLower(sentence);
+  for (const char* w : {"seed", "varies", "vary ", "varying", "depends on the noise",
+                        "depend on the noise", "on some seeds", "noise draw", "from run to run"})
+    if (p.find(w) != std::string::npos) return true;
+  // "in 27 of 30", "on 24 of the first 30": a count over runs.
+  for (std::size_t at = p.find(" of "); at != std::string::npos; at = p.find(" of ", at + 1)) {
+    std::size_t b = at;
+    while (b > 0 && p[b - 1] >= '0' && p[b - 1] <= '9') --b;
+    if (b == at) continue;
+    std::size_t e = at + 4;
+    if (p.compare(e, 10, "the first ") == 0) e += 10;
+    if (e < p.size() && p[e] >= '0' && p[e] <= '9') return true;
+  }
+  return false;
+}
+
+std::vector<std::pair<std::string, std::string>> ChecksClaimingASeedEffect(const LessonDef& l) {
+  std::vector<std::pair<std::string, std::string>> out;
+  auto add = [&](const std::string& id, const std::string& why) {
+    for (const auto& [have, _] : out)
+      if (have == id) return;
+    out.emplace_back(id, why);
+  };
+  std::vector<std::string> paragraphs = {l.goal};
+  for (const LessonStep& s : l.steps) {
+    paragraphs.push_back(s.text);
+    paragraphs.push_back(s.predict.explain);
+  }
+  for (const std::string& p : paragraphs)
+    for (const std::string& s : SplitSentences(p))
+      if (ClaimsASeedEffect(s))
+        for (const std::string& id : CheckReferences(s)) add(id, s);
+  for (const LessonCheck& c : l.checks)
+    if (c.share < 1) {
+      char buf[48];
+      std::snprintf(buf, sizeof buf, "share: %g", c.share);
+      add(c.id, buf);
+    }
+  return out;
 }
 
 LessonDef ReadLesson(YamlReader& b) {
@@ -328,6 +522,21 @@ LessonDef ReadLesson(YamlReader& b) {
       if (!ids.count(*other)) items[i].Fail(other == &k.ratio_to ? (k.minus ? "minus" : "ratio_to") : LessonRelationName(k.relation),
                                             "no check '" + *other + "' in this lesson");
       if (*other == k.id) items[i].Fail("id", "a check cannot refer to itself");
+    }
+  }
+  // A check over robots pairs robot by robot with the checks it refers to over robots: the
+  // same robots. A check of one quantity has one value to compare; it cannot refer to one over
+  // robots (which of them?).
+  for (std::size_t i = 0; i < l.checks.size(); ++i) {
+    const LessonCheck& k = l.checks[i];
+    for (const std::string* other : {&k.against, &k.ratio_to}) {
+      const LessonCheck* o = other->empty() ? nullptr : l.Find(*other);
+      if (o == nullptr || o->over == Check::Over::kOne) continue;
+      const char* key = other == &k.ratio_to ? (k.minus ? "minus" : "ratio_to") : LessonRelationName(k.relation);
+      if (k.over == Check::Over::kOne)
+        items[i].Fail(key, "check '" + o->id + "' is measured per robot; only a check over the same robots (every: or any:) can refer to it");
+      if (o->robots != k.robots)
+        items[i].Fail(key, "check '" + o->id + "' is over other robots; a check over robots refers to one over the same robots, in the same order");
     }
   }
   // A check that cannot fail: a bound at or beyond its quantity's range.

@@ -22,7 +22,7 @@
 ///           answer: "It doubles"     (one of the options)
 ///           check: tau_half          (required: the check that backs the answer)
 ///           explain: "τ_l = 1/k_l doubles {tau_half}"   (optional: shown once judged)
-///     checks:                                          (required when a paragraph states an effect)
+///     checks:                                          (required when a sentence states an effect)
 ///       - id: tau_l                  (required; [a-z][a-z0-9_]*, unique)
 ///         set: ["robots.R2.follow.k_l=0.5"]   (optional: the edits "try next" asks for)
 ///         duration: 4                (optional: a shorter run where the check allows)
@@ -53,10 +53,24 @@
 ///                                    `greater: 0` on one that is never negative is refused)
 ///   "in 27 of 30 seeds"              share: 0.9  (a count over seeds; `lessons check` fails such
 ///                                    a check when its value is the same on every seed)
-///   (not yet: "every robot" / "any robot" over one column per robot; write one check per robot)
+///   "every robot below R2 ..."       every: [R3, R4, R5, R6, R7]  column: "*.x" ...
+///   "some robot ..."                 any: [R2, R3]  metric: "robots.*.rms" ...
+///        (the quantity once per robot: `*` in the metric, the column or an event's robot
+///         stands for each robot named, or each link: every: [R1-R2, R2-R3]  column: "*.e_l"; the relation must hold for every robot / for at least
+///         one. The value shown is the robot that decides: for every, the one nearest to failing
+///         (or failing); for any, the one holding best. A ratio_to / minus / relation against
+///         another check over the same robots pairs them robot by robot; against a check of one
+///         quantity, every robot is compared with its value. A check of one quantity cannot
+///         refer to a check over robots.)
 ///
-/// A paragraph (goal, a step's text) names the checks backing its claims as `{id}`; the
-/// loader refuses a name that is no check, and a step's or a prediction's `check` that is none.
+/// Every sentence of a lesson's text (the goal, a step's text, a prediction's explanation)
+/// that states a claim, a number or a comparison (StatesAnEffect), names the checks backing it
+/// as `{id}` (SentencesWithoutCheck lists those that do not; the shipped lessons have none).
+/// An instruction (a sentence that starts with a verb of LessonInstructionVerbs: "Set r_xy to
+/// 0.1 and reset") states a setting, not a claim; only what follows its first ':' is a claim.
+/// A prediction's question and options are backed by its `check`.
+/// The loader refuses a `{name}` that is no check, and a step's or a prediction's `check` that is
+/// none.
 ///
 /// A check that cannot fail is refused too: every quantity has a range (QuantityRangeOf:
 /// an RMS, a maximum of |x|, a jitter, a count, a time constant are never negative; a flag or a
@@ -68,6 +82,7 @@
 
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sim/core/yaml_reader.hpp"
@@ -80,6 +95,9 @@ struct LessonCheck {
   enum class Stat { kMaxAbs, kMax, kMin, kMean, kRms, kJitter, kFirstBelow, kTau, kFinal };
   enum class Relation { kLess, kGreater, kWithin, kEqual, kAbout };
 
+  /// One quantity, or one per robot (`every:` / `any:` a list of robots; `*` in the name).
+  enum class Over { kOne, kEvery, kAny };
+
   std::string id;
   int line = 0;                   ///< line of the check in its file (for messages)
   std::vector<std::string> sets;  ///< "path=value" edits applied to the lesson's scenario
@@ -90,6 +108,12 @@ struct LessonCheck {
   std::string robot;  ///< events: only those involving this robot ("" = all)
   Stat stat = Stat::kMaxAbs;
   double from = 0.0, to = std::numeric_limits<double>::infinity(), level = 0.0;
+  Over over = Over::kOne;
+  std::vector<std::string> robots;  ///< every / any: the robots `*` stands for, in order
+  /// The check for one robot: `*` in the name (and an event's robot) replaced by `robot`, and
+  /// one quantity (over = kOne).
+  LessonCheck ForRobot(const std::string& robot) const;
+
   std::string ratio_to;  ///< "" or the check whose value divides this one
   bool minus = false;    ///< ratio_to's value is subtracted instead (`minus: id`)
 
@@ -165,10 +189,43 @@ struct LessonDef {
 /// The check ids a paragraph names (`{id}`), in order.
 std::vector<std::string> CheckReferences(const std::string& paragraph);
 
-/// True when a paragraph states an effect: a number (a digit) or a comparison word (faster,
-/// slower, larger, smaller, more, less, grows, falls, twice, half, ...). Such a paragraph must
-/// name a check.
-bool StatesAnEffect(const std::string& paragraph);
+/// True when a text states an effect: a number (a digit that starts a token: "2 s", "0.5",
+/// "90°", not the "3" of "R3" or "u1") or a comparison or direction word (faster, slower,
+/// larger, smaller, more, less, grows, falls, twice, half, best, worse, behind, ...). Such a
+/// sentence must name a check.
+bool StatesAnEffect(const std::string& text);
+
+/// A paragraph cut into sentences: at '.', '!' or '?' followed by a blank or the end ("0.5",
+/// "R4..R7" and "e.g." stay whole). A `{id}` stays with the sentence it is written in.
+std::vector<std::string> SplitSentences(const std::string& paragraph);
+
+/// The verbs an instruction starts with ("Set", "Halve", "Load", ...): such a sentence states a
+/// setting the student makes, not a claim about a run; only the part after its first ':' can
+/// state one.
+const std::vector<std::string>& LessonInstructionVerbs();
+
+/// The part of a sentence that can state a claim: all of it, or for an instruction what
+/// follows its first ':' ("" when nothing does).
+std::string ClaimPart(const std::string& sentence);
+
+/// A sentence of a lesson that states a claim (StatesAnEffect of its ClaimPart) without naming
+/// a check.
+struct UnbackedSentence {
+  std::string where;     ///< "goal", "step 3", "step 3's explanation"
+  int line = 0;          ///< the step's line (0 for the goal)
+  std::string sentence;
+};
+/// Every sentence of the goal, the steps' texts and the explanations that states a claim and
+/// names no check `{id}`.
+std::vector<UnbackedSentence> SentencesWithoutCheck(const LessonDef& lesson);
+
+/// True when a sentence says its effect depends on the seed ("seed", "varies", "depends on
+/// the noise", "on some seeds", "in 27 of 30 ...").
+bool ClaimsASeedEffect(const std::string& sentence);
+
+/// The checks the lesson's text says depend on the seed: those named in a sentence that
+/// ClaimsASeedEffect, and those with a share < 1; each with the sentence (or "share: 0.9").
+std::vector<std::pair<std::string, std::string>> ChecksClaimingASeedEffect(const LessonDef& lesson);
 
 /// Reads a `lesson:` block strictly (unknown or duplicate keys and empty texts are errors; a
 /// paragraph or step naming a missing check, a relation against a missing check, fewer than 5

@@ -36,11 +36,58 @@ struct RunKey {
   }
 };
 
-// The raw quantity of one check on one seed.
+// The raw quantity of one check on one seed: one value, or one per robot (every / any).
 struct Slot {
   double raw = kNaN;
   std::string error;
+  std::vector<double> per;  ///< over robots: the value of each robot (raw unused)
 };
+
+// The i-th value of a slot: its robot's, or the one value for every robot.
+double At(const Slot& s, std::size_t i) { return s.per.empty() ? s.raw : s.per[i]; }
+
+// `v` divided by (or minus) `d`, robot by robot; a slot of one value applies to every robot.
+Slot Combine(Slot v, const Slot& d, bool minus) {
+  if (v.per.empty() && d.per.empty()) {
+    v.raw = minus ? v.raw - d.raw : v.raw / d.raw;
+    return v;
+  }
+  const std::size_t n = std::max(v.per.size(), d.per.size());
+  std::vector<double> out(n);
+  for (std::size_t i = 0; i < n; ++i) out[i] = minus ? At(v, i) - At(d, i) : At(v, i) / At(d, i);
+  v.per = std::move(out);
+  return v;
+}
+
+// How far a value is inside its relation (negative, or 0 for < and >: it fails).
+double Margin(const Check& c, double v, double operand) {
+  if (std::isnan(v) || std::isnan(operand)) return -std::numeric_limits<double>::infinity();
+  switch (c.relation) {
+    case Check::Relation::kLess:
+      return operand - v;
+    case Check::Relation::kGreater:
+      return v - operand;
+    case Check::Relation::kWithin:
+      return std::min(v - c.lo, c.hi - v);
+    case Check::Relation::kEqual:
+      return c.tolerance - std::abs(v - operand);
+    case Check::Relation::kAbout:
+      return c.rel * std::abs(operand) - std::abs(v - operand);
+  }
+  return -std::numeric_limits<double>::infinity();
+}
+
+// The robot that decides a check over robots: for every, the one nearest to failing (or the
+// first failing); for any, the one holding best. 0 for a check of one value.
+std::size_t Decider(const Check& c, const Slot& v, const Slot& rhs) {
+  if (c.over == Check::Over::kOne) return 0;
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < c.robots.size(); ++i) {
+    const double m = Margin(c, At(v, i), At(rhs, i)), b = Margin(c, At(v, best), At(rhs, best));
+    if (c.over == Check::Over::kEvery ? m < b : m > b) best = i;
+  }
+  return best;
+}
 
 std::vector<Override> RunOverrides(const RunKey& k) {
   std::vector<Override> o = CliOverrides(k.sets, -1);
@@ -50,9 +97,25 @@ std::vector<Override> RunOverrides(const RunKey& k) {
   return o;
 }
 
-// The check's quantity on a finished run.
+Slot MeasureOne(const Check& c, const Experiment& exp,
+                const std::vector<std::pair<std::string, double>>& metrics);
+
+// The check's quantity on a finished run; over robots, each robot's (an error names the robot's
+// quantity that is missing).
 Slot Measure(const Check& c, const Experiment& exp,
              const std::vector<std::pair<std::string, double>>& metrics) {
+  if (c.over == Check::Over::kOne) return MeasureOne(c, exp, metrics);
+  Slot s;
+  for (const std::string& r : c.robots) {
+    const Slot one = MeasureOne(c.ForRobot(r), exp, metrics);
+    if (!one.error.empty() && s.error.empty()) s.error = one.error;
+    s.per.push_back(one.raw);
+  }
+  return s;
+}
+
+Slot MeasureOne(const Check& c, const Experiment& exp,
+                const std::vector<std::pair<std::string, double>>& metrics) {
   Slot s;
   switch (c.source) {
     case Check::Source::kMetric: {
@@ -90,6 +153,12 @@ Slot Measure(const Check& c, const Experiment& exp,
 std::string RelationText(const Check& c) {
   const std::string rhs = c.against.empty() ? Num(c.value) : c.against;
   std::string q = c.ratio_to.empty() ? "" : (c.minus ? " (minus " : " (ratio to ") + c.ratio_to + ")";
+  if (c.over != Check::Over::kOne) {
+    std::string robots;
+    for (const std::string& r : c.robots) robots += (robots.empty() ? "" : " ") + r;
+    q += std::string(c.over == Check::Over::kEvery ? " for each of [" : " for one of [") + robots +
+         (c.over == Check::Over::kEvery ? "]" : "] at least");
+  }
   switch (c.relation) {
     case Check::Relation::kLess:
       return "< " + rhs + q;
@@ -263,7 +332,7 @@ std::vector<LessonCheckResult> CheckLesson(const std::string& file, const Lesson
         });
     if (!rec || rec->status != "completed")
       for (Slot& s : out)
-        s = {kNaN, "run " + std::string(rec ? rec->status + ": " + rec->message : "stopped")};
+        s = {kNaN, "run " + std::string(rec ? rec->status + ": " + rec->message : "stopped"), {}};
   });
   // raw[check][seed]
   std::vector<std::map<std::uint64_t, Slot>> raw(checks.size());
@@ -277,8 +346,8 @@ std::vector<LessonCheckResult> CheckLesson(const std::string& file, const Lesson
     const Check& c = checks[i];
     if (v.error.empty() && !c.ratio_to.empty()) {
       const Slot d = value(static_cast<std::size_t>(index(c.ratio_to)), s);
-      if (!d.error.empty()) return Slot{kNaN, c.ratio_to + ": " + d.error};
-      v.raw = c.minus ? v.raw - d.raw : v.raw / d.raw;
+      if (!d.error.empty()) return Slot{kNaN, c.ratio_to + ": " + d.error, {}};
+      v = Combine(v, d, c.minus);
     }
     return v;
   };
@@ -297,16 +366,19 @@ std::vector<LessonCheckResult> CheckLesson(const std::string& file, const Lesson
     res.seeds = OwnSeeds(c, opt);
     for (std::uint64_t s : res.seeds) {
       const Slot v = value(i, s);
-      Slot rhs{c.value, ""};
+      Slot rhs{c.value, "", {}};
       if (!c.against.empty()) {
         rhs = value(static_cast<std::size_t>(index(c.against)), s);
         if (!rhs.error.empty()) rhs.error = c.against + ": " + rhs.error;
       }
       if (res.error.empty() && !v.error.empty()) res.error = "seed " + std::to_string(s) + ": " + v.error;
       if (res.error.empty() && !rhs.error.empty()) res.error = "seed " + std::to_string(s) + ": " + rhs.error;
-      res.values.push_back(v.raw);
-      res.operands.push_back(rhs.raw);
-      res.holds.push_back(v.error.empty() && rhs.error.empty() && RelationHolds(c, v.raw, rhs.raw));
+      // Over robots: the robot that decides stands for the check on this seed.
+      const std::size_t d = Decider(c, v, rhs);
+      res.values.push_back(At(v, d));
+      res.operands.push_back(At(rhs, d));
+      if (c.over != Check::Over::kOne) res.deciders.push_back(c.robots[d]);
+      res.holds.push_back(v.error.empty() && rhs.error.empty() && RelationHolds(c, At(v, d), At(rhs, d)));
     }
     out.push_back(std::move(res));
   }
@@ -368,31 +440,32 @@ LiveCheck MeasureOnRun(const LessonDef& lesson, const Check& check, const Experi
   // The value of a check on this run, through its ratio_to chain.
   std::function<Slot(const Check&, int)> value = [&](const Check& c, int depth) -> Slot {
     const std::string why = NotTheRunOf(c, exp, run);
-    if (!why.empty()) return {kNaN, why};
+    if (!why.empty()) return {kNaN, why, {}};
     Slot v = Measure(c, exp, metrics);
     if (!v.error.empty() || c.ratio_to.empty()) return v;
     const Check* d = lesson.Find(c.ratio_to);
-    if (d == nullptr || depth > 8) return {kNaN, "no check '" + c.ratio_to + "'"};
+    if (d == nullptr || depth > 8) return {kNaN, "no check '" + c.ratio_to + "'", {}};
     // The divisor is a check of another run (omega_ratio: L = 0.05 over the lesson's own run):
     // only its own run measures it.
-    if (d->sets != c.sets) return {kNaN, c.id + " compares two runs; formsim lessons check runs both"};
+    if (d->sets != c.sets) return {kNaN, c.id + " compares two runs; formsim lessons check runs both", {}};
     const Slot dv = value(*d, depth + 1);
     if (!dv.error.empty()) return dv;
-    v.raw = c.minus ? v.raw - dv.raw : v.raw / dv.raw;
-    return v;
+    return Combine(v, dv, c.minus);
   };
   Slot v = value(check, 0);
-  Slot rhs{check.value, ""};
+  Slot rhs{check.value, "", {}};
   if (v.error.empty() && !check.against.empty()) {
     const Check* o = lesson.Find(check.against);
-    rhs = o == nullptr ? Slot{kNaN, "no check '" + check.against + "'"}
+    rhs = o == nullptr ? Slot{kNaN, "no check '" + check.against + "'", {}}
           : o->sets != check.sets
-              ? Slot{kNaN, check.id + " compares two runs; formsim lessons check runs both"}
+              ? Slot{kNaN, check.id + " compares two runs; formsim lessons check runs both", {}}
               : value(*o, 1);
   }
-  out.value = v.raw;
+  const std::size_t d = Decider(check, v, rhs);
+  out.value = At(v, d);
+  if (check.over != Check::Over::kOne) out.robot = check.robots[d];
   out.error = !v.error.empty() ? v.error : rhs.error;
-  out.holds = out.error.empty() && RelationHolds(check, v.raw, rhs.raw);
+  out.holds = out.error.empty() && RelationHolds(check, At(v, d), At(rhs, d));
   return out;
 }
 
@@ -418,7 +491,8 @@ std::string RenderLessonParagraph(const std::string& text,
       if (!s.measured || std::isnan(s.value))
         out += "(…)";
       else
-        out += "(" + (std::isinf(s.value) ? std::string(s.value > 0 ? "∞" : "−∞") : Num(s.value)) +
+        out += "(" + (s.robot.empty() ? std::string() : s.robot + ": ") +
+               (std::isinf(s.value) ? std::string(s.value > 0 ? "∞" : "−∞") : Num(s.value)) +
                (s.holds ? " √)" : s.some_seeds ? ", not on this seed)" : ", does not hold)");
     }
     i = close + 1;
@@ -463,13 +537,44 @@ std::string FormatCheckResult(const LessonCheckResult& r) {
     for (std::size_t i = 0; i < r.operands.size(); ++i) against += (i ? " " : "") + Num(r.operands[i]);
     against = "  vs [" + against + "]";
   }
+  // Over robots: the robot each value is of (the one that decides), once when it is always the same.
+  std::string robots;
+  if (!r.deciders.empty()) {
+    const bool same = std::all_of(r.deciders.begin(), r.deciders.end(),
+                                  [&](const std::string& d) { return d == r.deciders.front(); });
+    if (same) {
+      robots = "  (" + r.deciders.front() + (r.deciders.size() > 1 ? " on every seed)" : ")");
+    } else {
+      for (std::size_t i = 0; i < r.deciders.size(); ++i) robots += (i ? " " : "") + r.deciders[i];
+      robots = "  (robots " + robots + ")";
+    }
+  }
   std::string line = r.lesson + "  " + r.id + "  seeds " + std::to_string(r.seeds.size()) + "  [" +
-                     values + "]" + against + "  " + r.relation + "  " +
+                     values + "]" + robots + against + "  " + r.relation + "  " +
                      (r.ok() ? "holds" : "FAILS");
   if (!r.error.empty()) line += "  (" + r.error + ")";
   if (r.SeedChangesNothing())
     line += "  (the same value on every seed, though the check says its effect depends on the seed)";
   return line;
+}
+
+std::vector<SeedEffectWarning> SeedEffectWarnings(const LessonDef& lesson,
+                                                  const std::vector<LessonCheckResult>& results) {
+  std::vector<SeedEffectWarning> out;
+  for (const auto& [id, claim] : ChecksClaimingASeedEffect(lesson))
+    for (const LessonCheckResult& r : results) {
+      if (r.id != id || !r.error.empty() || r.values.size() < 2) continue;
+      const bool same = std::all_of(r.values.begin(), r.values.end(),
+                                    [&](double v) { return v == r.values.front(); });
+      if (same) out.push_back({r.lesson, r.id, r.values.front(), r.values.size(), claim});
+    }
+  return out;
+}
+
+std::string FormatSeedEffectWarning(const SeedEffectWarning& w) {
+  return "warning: " + w.lesson + ": check " + w.id + " is " + Num(w.value) + " on every one of the " +
+         std::to_string(w.seeds) + " seeds checked, yet the lesson's text says it depends on the seed: \"" +
+         w.claim + "\"";
 }
 
 }  // namespace formsim::sim

@@ -33,6 +33,9 @@ struct LessonCheckResult {
   std::vector<double> values;    ///< the measured quantity per seed (after ratio_to)
   std::vector<double> operands;  ///< what it was compared with per seed (a number or a check's value)
   std::vector<bool> holds;       ///< per seed
+  /// Over robots (every / any): per seed, the robot whose value `values` holds, the one that
+  /// decides (every: nearest to failing; any: holding best). Empty for a check of one value.
+  std::vector<std::string> deciders;
   std::string relation;          ///< "< 0.01", "within [0.9, 1.1]", "< base", ...
   bool against_check = false;    ///< compared with another check's values (operands)
   std::string error;             ///< a run failed or the quantity does not exist ("" when measured)
@@ -75,6 +78,7 @@ struct LiveCheck {
   bool holds = false;
   std::string error;  ///< the run is not the check's (it needs other edits or another duration),
                       ///< or the quantity does not exist; "" when measured
+  std::string robot = std::string();  ///< over robots: the robot that decides (whose value `value` is)
 };
 
 /// How the run measured live came about.
@@ -106,11 +110,12 @@ struct ShownCheck {
   double value = 0.0;
   bool holds = false;
   bool some_seeds = false;  ///< the check claims its share of the seeds only (share < 1)
+  std::string robot = std::string();  ///< over robots: the robot that decides, shown before the value
 };
 
 /// The one renderer of a lesson's text, shared by the window, the page and `formsim lessons
 /// show`: every `{id}` of `paragraph` becomes the check's value and verdict, "(0.995 √)" when
-/// it holds, "(0.9, does not hold)" when it does not ("(0.9, not on this seed)" for a check
+/// it holds ("(R6: −0.0012 √)" for a check over robots, naming the robot that decides), "(0.9, does not hold)" when it does not ("(0.9, not on this seed)" for a check
 /// that claims a share of the seeds), "(…)" while pending (`shown` returns measured =
 /// false); no `{id}` is left. Text in braces that names no check is kept as it is.
 std::string RenderLessonParagraph(const std::string& paragraph,
@@ -124,5 +129,23 @@ std::string RenderLessonText(const LessonDef& lesson,
 
 /// One line per result: "lesson  id  values  relation  holds|FAILS".
 std::string FormatCheckResult(const LessonCheckResult& r);
+
+/// A check whose value is the same on every seed checked while the lesson's text says its
+/// effect depends on the seed (ChecksClaimingASeedEffect): the claim is not what the runs show.
+struct SeedEffectWarning {
+  std::string lesson, id;
+  double value = 0.0;
+  std::size_t seeds = 0;
+  std::string claim;  ///< the sentence (or "share: 0.9") that claims the effect
+};
+
+/// The warnings for one lesson's results (checked on 2 seeds or more; a check measured on one
+/// seed, or not measured, gives none).
+std::vector<SeedEffectWarning> SeedEffectWarnings(const LessonDef& lesson,
+                                                  const std::vector<LessonCheckResult>& results);
+
+/// "warning: LESSON: check ID is V on every one of the N seeds checked, yet the text says it
+/// depends on the seed: \"...\"".
+std::string FormatSeedEffectWarning(const SeedEffectWarning& w);
 
 }  // namespace formsim::sim

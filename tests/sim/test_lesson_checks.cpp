@@ -131,6 +131,11 @@ TEST(LessonChecks, RendererLeavesNoPlaceholder) {
               return ShownCheck{true, std::nan(""), false};
             }),
             "(…)");
+  // Over robots: the robot that decides, before the value.
+  EXPECT_EQ(RenderLessonParagraph("every robot {a}", [](const std::string&) {
+              return ShownCheck{true, -0.0012, true, false, "R6"};
+            }),
+            "every robot (R6: -0.0012 √)");
   EXPECT_EQ(RenderLessonParagraph("{a}", [](const std::string&) {
               return ShownCheck{true, std::numeric_limits<double>::infinity(), false};
             }),
@@ -285,6 +290,218 @@ TEST(LessonChecks, ShippedLessonsBackEveryClaim) {
   EXPECT_GE(predictions, 8);
   for (const char* paper : {"formation", "agv", "inspection", "velocity"})
     EXPECT_GE(per_paper[paper], 2) << paper;
+}
+
+// The sentences that state a claim yet name no check, which a shipped lesson may keep: each
+// states no claim about a run, for the reason given. Keep this list short; a sentence that
+// states what a run shows names the check that shows it.
+const std::map<std::string, std::string> kNoClaim = {
+    {"A follower R2 keeps a distance l and a bearing φ to its leader R1, measured from R1 to R2's "
+     "control point M, a distance L ahead of R2's wheels.",
+     "a definition of the outputs: where M sits on the robot ('ahead' is its place, not a run's)"},
+};
+
+// Every sentence of every shipped lesson (goal, steps, explanations) that states a number, a
+// comparison or a direction names the check backing it; the test lists each that does not.
+TEST(LessonChecks, EverySentenceThatClaimsNamesACheck) {
+  std::string missing;
+  int sentences = 0;
+  std::set<std::string> allowed_used;
+  for (const std::string& file : ShippedLessons()) {
+    const YAML::Node root = LoadYamlFile(file);
+    YamlReader r(root["lesson"], file, "lesson");
+    const LessonDef l = ReadLesson(r);
+    sentences += static_cast<int>(SplitSentences(l.goal).size());
+    for (const LessonStep& s : l.steps) sentences += static_cast<int>(SplitSentences(s.text).size());
+    for (const UnbackedSentence& u : SentencesWithoutCheck(l)) {
+      if (kNoClaim.count(u.sentence)) {
+        allowed_used.insert(u.sentence);
+        continue;
+      }
+      missing += "  " + fs::path(file).filename().string() + (u.line ? ":" + std::to_string(u.line) : "") +
+                 " " + u.where + ": " + u.sentence + "\n";
+    }
+  }
+  EXPECT_TRUE(missing.empty()) << "sentences that state a claim and name no check {id}:\n" << missing;
+  // The allow-list holds nothing stale.
+  for (const auto& [sentence, why] : kNoClaim)
+    EXPECT_TRUE(allowed_used.count(sentence)) << "kNoClaim holds a sentence no lesson has: " << sentence;
+  EXPECT_GE(sentences, 100);
+}
+
+// The detector itself: numbers (not a robot's name), comparisons and directions; sentences cut
+// where they end, not at a decimal point; an instruction's settings are no claim.
+TEST(LessonChecks, SentencesAndWhatTheyClaim) {
+  EXPECT_EQ(SplitSentences("τ is 0.5 s {a}. R4..R7 follow, e.g. R5! Why? {b}"),
+            (std::vector<std::string>{"τ is 0.5 s {a}.", "R4..R7 follow, e.g. R5!", "Why?", "{b}"}));
+  EXPECT_TRUE(SplitSentences("  ").empty());
+  for (const char* claim :
+       {"It settles in 2 s.", "The error halves.", "R6 falls behind.", "odometry is best",
+        "R1 is faster than R2", "a gain -3 does it", "it drifts 90° off", "four times the offset",
+        "the error lags the command", "the error grows", "R2 is worse", "the same at depth 10"})
+    EXPECT_TRUE(StatesAnEffect(claim)) << claim;
+  for (const char* plain :
+       {"R3 follows R1 and R2.", "Watch the plots and the ghost {tau_1}.", "u1 and u2 drive the wheels",
+        "The links R4-R7 and R1-R2 are drawn.", "Load formation_swarm_100.", "the lesson ends",
+        "regardless of it", "an unlessened moreover"})
+    EXPECT_FALSE(StatesAnEffect(plain)) << plain;
+  // An instruction: its settings are no claim, what follows its ':' is.
+  EXPECT_EQ(ClaimPart("Set r_xy to 0.1 and reset."), "");
+  EXPECT_FALSE(StatesAnEffect(ClaimPart("Set r_xy to 0.1, ten times the noise, and reset.")));
+  EXPECT_TRUE(StatesAnEffect(ClaimPart("Halve k_l and reset: τ doubles.")));
+  EXPECT_TRUE(StatesAnEffect(ClaimPart("The error is 2 mm.")));
+  // Per sentence: one sentence with a check does not back the next one.
+  LessonDef l;
+  l.goal = "The error halves {a}. It falls to 2 mm. The ghost is R2's slot.";
+  LessonStep s;
+  s.text = "Set k to 0.5 and reset. τ doubles {b}.";
+  s.predict.explain = "It doubles, as the gain halves.";
+  l.steps = {s};
+  const auto u = SentencesWithoutCheck(l);
+  ASSERT_EQ(u.size(), 2u);
+  EXPECT_EQ(u[0].where, "goal");
+  EXPECT_EQ(u[0].sentence, "It falls to 2 mm.");
+  EXPECT_EQ(u[1].where, "step 1's explanation");
+}
+
+// "Every robot" and "any robot": the quantity once per robot (`*` in its name), the relation
+// for every one of them or for one at least; the value shown is the robot that decides. Here the
+// "robots" are the test kind's two columns x and y (x ≈ 1.15 m, y ≈ 0.29 m after 1 s).
+TEST(LessonChecks, EveryAndAnyRobot) {
+  const std::string file = WriteLesson(
+      "circle_every",
+      "    - {id: x_end, metric: x, within: [1.1, 1.2], seeds: 5}\n"
+      "    - {id: x_ratio, set: [\"v=0.6\"], metric: x, ratio_to: x_end, within: [0.49, 0.51], seeds: 5}\n"
+      "    - {id: both_out, every: [x, y], column: \"*\", stat: final, greater: 0.2, seeds: 5}\n"
+      "    - {id: both_far, every: [x, y], column: \"*\", stat: final, greater: 1, seeds: 5}\n"
+      "    - {id: one_far, any: [x, y], column: \"*\", stat: final, greater: 1, seeds: 5}\n"
+      "    - {id: none_far, any: [x, y], column: \"*\", stat: final, greater: 2, seeds: 5}\n"
+      "    - {id: slow_half, every: [x, y], set: [\"v=0.6\"], column: \"*\", stat: final, ratio_to: both_out, within: [0.49, 0.51], seeds: 5}\n"
+      "    - {id: slow_scalar, every: [x, y], set: [\"v=0.6\"], column: \"*\", stat: final, ratio_to: x_end, within: [0.1, 0.51], seeds: 5}\n"
+      "    - {id: typo, every: [x, z], column: \"*\", stat: final, greater: 0.2, seeds: 5}\n",
+      "    - {text: \"{both_out} {both_far} {one_far} {none_far} {slow_half} {slow_scalar} {typo}\"}\n");
+  LessonCheckOptions opt;
+  opt.jobs = 2;
+  std::map<std::string, LessonCheckResult> by;
+  for (const auto& r : CheckLesson(file, opt)) by[r.id] = r;
+  // Every: y (0.29) is the robot nearest to failing > 0.2.
+  EXPECT_TRUE(by["both_out"].ok()) << FormatCheckResult(by["both_out"]);
+  EXPECT_EQ(by["both_out"].deciders, std::vector<std::string>(5, "y"));
+  EXPECT_NEAR(by["both_out"].values[0], 0.2938, 5e-3);  // the last row, on the discrete circle
+  // Every fails when one robot fails, and shows the failing one.
+  EXPECT_FALSE(by["both_far"].ok());
+  EXPECT_EQ(by["both_far"].deciders.front(), "y");
+  EXPECT_NE(FormatCheckResult(by["both_far"]).find("(y on every seed)"), std::string::npos)
+      << FormatCheckResult(by["both_far"]);
+  EXPECT_NE(by["both_far"].relation.find("for each of [x y]"), std::string::npos);
+  EXPECT_NE(by["one_far"].relation.find("for one of [x y] at least"), std::string::npos);
+  // Any holds when one robot holds, and shows it.
+  EXPECT_TRUE(by["one_far"].ok()) << FormatCheckResult(by["one_far"]);
+  EXPECT_EQ(by["one_far"].deciders.front(), "x");
+  EXPECT_FALSE(by["none_far"].ok());
+  // Robot by robot against a check over the same robots; against one value for every robot.
+  EXPECT_TRUE(by["slow_half"].ok()) << FormatCheckResult(by["slow_half"]);
+  EXPECT_TRUE(by["slow_scalar"].ok()) << FormatCheckResult(by["slow_scalar"]);
+  // A robot whose quantity does not exist is named.
+  EXPECT_FALSE(by["typo"].ok());
+  EXPECT_NE(by["typo"].error.find("no column 'z'"), std::string::npos) << by["typo"].error;
+
+  // Measured live, on one run, the same way.
+  const ParsedScenario p = ParseScenario(ScenarioSource::FromFile(file), {});
+  auto exp = BuildExperiment(p);
+  while (!exp->finished()) exp->Step();
+  const LiveCheck live = MeasureOnRun(p.lesson, *p.lesson.Find("both_out"), *exp);
+  EXPECT_TRUE(live.ready && live.holds && live.error.empty()) << live.error;
+  EXPECT_EQ(live.robot, "y");
+  EXPECT_NEAR(live.value, by["both_out"].values[0], 1e-3);
+  const LiveCheck any = MeasureOnRun(p.lesson, *p.lesson.Find("one_far"), *exp);
+  EXPECT_TRUE(any.holds);
+  EXPECT_EQ(any.robot, "x");
+}
+
+// The checks WriteLesson's goal names.
+const std::string kCircleChecks =
+    "    - {id: x_end, metric: x, within: [1.1, 1.2], seeds: 5}\n"
+    "    - {id: x_ratio, set: [\"v=0.6\"], metric: x, ratio_to: x_end, within: [0.49, 0.51], seeds: 5}\n";
+
+// The loader is as strict with every / any as with the other forms: each mistake is an error
+// naming the file, the line and the key.
+TEST(LessonChecks, EveryAndAnyAreReadStrictly) {
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"{id: a, every: [x, y], any: [x, y], column: \"*\", stat: final, greater: 0.2, seeds: 5}", "any"},
+      {"{id: a, every: [x, y], column: x, stat: final, greater: 0.2, seeds: 5}", "column"},
+      {"{id: a, column: \"*\", stat: final, greater: 0.2, seeds: 5}", "column"},
+      {"{id: a, every: [x], column: \"*\", stat: final, greater: 0.2, seeds: 5}", "every"},
+      {"{id: a, every: [x, x], column: \"*\", stat: final, greater: 0.2, seeds: 5}", "every"},
+      {"{id: a, every: [x, \"y z\"], column: \"*\", stat: final, greater: 0.2, seeds: 5}", "every"},
+      {"{id: a, any: [x, y], events: saturation, greater: 0, seeds: 5}", "events"},
+      {"{id: a, every: [x, y], every: [x, y], column: \"*\", stat: final, greater: 0.2, seeds: 5}", "every"},
+  };
+  for (const auto& [check, key] : bad) {
+    const std::string file = WriteLesson("circle_bad_every", kCircleChecks + "    - " + check + "\n",
+                                         "    - {text: \"{a}\"}\n");
+    try {
+      ParseScenario(ScenarioSource::FromFile(file), {});
+      ADD_FAILURE() << "accepted: " << check;
+    } catch (const std::exception& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find(file), std::string::npos) << m;
+      EXPECT_NE(m.find(key), std::string::npos) << check << "\n  " << m;
+    }
+  }
+  // References: a check of one value cannot refer to one over robots; over robots, the same ones.
+  const std::vector<std::string> bad_refs = {
+      "    - {id: a, every: [x, y], column: \"*\", stat: final, greater: 0.2, seeds: 5}\n"
+      "    - {id: b, metric: x, ratio_to: a, less: 3, seeds: 5}\n",
+      "    - {id: a, every: [x, y], column: \"*\", stat: final, greater: 0.2, seeds: 5}\n"
+      "    - {id: b, metric: x, greater: a, seeds: 5}\n",
+      "    - {id: a, every: [x, y], column: \"*\", stat: final, greater: 0.2, seeds: 5}\n"
+      "    - {id: b, every: [y, x], column: \"*\", stat: final, minus: a, less: 3, seeds: 5}\n"};
+  for (const std::string& checks : bad_refs) {
+    const std::string file = WriteLesson("circle_bad_ref", kCircleChecks + checks, "    - {text: \"{a} {b}\"}\n");
+    EXPECT_THROW(ParseScenario(ScenarioSource::FromFile(file), {}), std::exception) << checks;
+  }
+  // A per-robot check is one check per robot.
+  LessonCheck c;
+  c.source = LessonCheck::Source::kEvents;
+  c.name = "links.*.e_l";
+  c.robot = "*";
+  c.over = LessonCheck::Over::kEvery;
+  c.robots = {"R3", "R6"};
+  const LessonCheck one = c.ForRobot("R6");
+  EXPECT_EQ(one.name, "links.R6.e_l");
+  EXPECT_EQ(one.robot, "R6");
+  EXPECT_EQ(one.over, LessonCheck::Over::kOne);
+}
+
+// `lessons check` flags a check whose value is the same on every seed checked while the
+// lesson's text says it depends on the seed: x after 1 s does not depend on the seed (the noise
+// is in the speed sensor only), the measured speed's RMS does.
+TEST(LessonChecks, FlagsASeedEffectTheRunsDoNotShow) {
+  const std::string file = WriteLesson(
+      "circle_seed_claim",
+      "    - {id: x_end, metric: x, within: [1.1, 1.2], seeds: 5}\n"
+      "    - {id: x_ratio, set: [\"v=0.6\"], metric: x, ratio_to: x_end, within: [0.49, 0.51], seeds: 5}\n"
+      "    - {id: noisy, column: measured_v, stat: rms, from: 0.5, to: 1, within: [1, 1.5], seeds: 5}\n",
+      "    - {text: \"Where it ends varies from seed to seed {x_end}. The measured speed depends on the noise {noisy}.\"}\n");
+  const ParsedScenario p = ParseScenario(ScenarioSource::FromFile(file), {});
+  EXPECT_TRUE(ClaimsASeedEffect("on 24 of the first 30 seeds"));
+  EXPECT_TRUE(ClaimsASeedEffect("in 27 of 30 runs"));
+  EXPECT_FALSE(ClaimsASeedEffect("one of the robots"));
+  EXPECT_FALSE(ClaimsASeedEffect("R2 keeps 2 of its 3 links"));
+  LessonCheckOptions opt;
+  opt.jobs = 2;
+  const auto results = CheckLesson(file, opt);
+  const auto w = SeedEffectWarnings(p.lesson, results);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0].id, "x_end");
+  EXPECT_EQ(w[0].seeds, 5u);
+  const std::string line = FormatSeedEffectWarning(w[0]);
+  EXPECT_EQ(line.rfind("warning: circle_seed_claim: check x_end is ", 0), 0u) << line;
+  EXPECT_NE(line.find("varies from seed to seed"), std::string::npos) << line;
+  // One seed shows no seed effect either way: nothing to flag.
+  opt.seeds = {4};
+  EXPECT_TRUE(SeedEffectWarnings(p.lesson, CheckLesson(file, opt)).empty());
 }
 
 // Steps: each step's checks (its `check`, then those its text names, once each); a prediction's
