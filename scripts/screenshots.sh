@@ -199,4 +199,5 @@ if command -v xvfb-run >/dev/null; then
 fi
 # Teaching: the formation editor, overlays, presentation mode (docs/teaching.md).
 bash scripts/screenshots_teaching.sh "$BIN"
+bash scripts/screenshots_lecture.sh "$BIN"
 ls -1 "$OUT"/*.png "$OUT"/*.svg

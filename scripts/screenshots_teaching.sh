@@ -93,21 +93,4 @@ cat >"$TMP/present.txt" <<'SCRIPT'
 SCRIPT
 xvfb-run -a -s "-screen 0 1920x1080x24" "$BIN" gui formation_cascade7 --size 1920x1080 \
   --theme high-contrast --speed 1 --exit-after 245 --script "$TMP/present.txt" >/dev/null
-# The same at a lecture's defaults: the paper's UKF cascade in the light theme with every
-# overlay, once the camera has flown in; and the normal window at UI scale 2, which must fit
-# 1920x1080 (issue 24: nothing clipped, no label over another).
-cat >"$TMP/present_light.txt" <<'SCRIPT'
-1 ui-scale 2
-2 present on
-240 screenshot screenshots/teach_presentation_light.png
-SCRIPT
-xvfb-run -a -s "-screen 0 1920x1080x24" "$BIN" gui formation_traj2_ukf --size 1920x1080 \
-  --theme light --overlay all --speed 1 --exit-after 242 --script "$TMP/present_light.txt" \
-  >/dev/null
-cat >"$TMP/window_scale2.txt" <<'SCRIPT'
-1 ui-scale 2
-240 screenshot screenshots/window_scale2.png
-SCRIPT
-xvfb-run -a -s "-screen 0 1920x1080x24" "$BIN" gui formation_traj2_ukf --size 1920x1080 \
-  --theme light --overlay all --speed 1 --exit-after 242 --script "$TMP/window_scale2.txt" \
-  >/dev/null
+# The window at lecture sizes and scales: scripts/screenshots_lecture.sh.

@@ -133,6 +133,9 @@ void Draw(cairo_t* cr, const VectorFigure& fig) {
       case VectorOp::Kind::kPopClip:
         cairo_restore(cr);
         break;
+      case VectorOp::Kind::kBeginGroup:  // groups only structure SVG files
+      case VectorOp::Kind::kEndGroup:
+        break;
     }
   }
 }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
 
 #include "app/render/label_markup.hpp"
 #include "app/render/vector_fonts.hpp"
@@ -16,7 +17,7 @@ std::string Num(double v) {
   return sim::FormatFixed(v, 2, /*trim=*/true);
 }
 
-std::string Hex(sim::Color c) {
+std::string SvgHex(sim::Color c) {
   auto byte = [](float v) {
     return static_cast<int>(std::lround(std::fmin(1.f, std::fmax(0.f, v)) * 255));
   };
@@ -51,7 +52,7 @@ std::string Escape(const std::string& s) {
 
 // fill="#rrggbb" with fill-opacity when translucent (same for stroke).
 std::string Paint(const char* what, sim::Color c) {
-  std::string s = std::string(" ") + what + "=\"" + Hex(c) + "\"";
+  std::string s = std::string(" ") + what + "=\"" + SvgHex(c) + "\"";
   if (c.a < 0.999f) s += std::string(" ") + what + "-opacity=\"" + Num(c.a) + "\"";
   return s;
 }
@@ -99,6 +100,20 @@ std::string TextContent(const VectorOp& op, float em) {
 
 }  // namespace
 
+std::string XmlId(const std::string& raw) {
+  // XML 1.0 Name characters in ASCII: letters, digits, '-', '_', '.'; a letter or '_' first.
+  std::string out;
+  for (char c : raw) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '-' || c == '_' || c == '.';
+    out += ok ? c : '_';
+  }
+  if (out.empty() || !((out[0] >= 'a' && out[0] <= 'z') || (out[0] >= 'A' && out[0] <= 'Z') ||
+                       out[0] == '_'))
+    out.insert(out.begin(), '_');
+  return out;
+}
+
 std::string SvgDocument(const VectorFigure& fig, const FigureSize& size, const std::string& title) {
   const VectorFonts& fonts = VectorFonts::Get();
   std::string out;
@@ -111,6 +126,7 @@ std::string SvgDocument(const VectorFigure& fig, const FigureSize& size, const s
   if (!title.empty()) out += "<title>" + Escape(PlainText(title)) + "</title>\n";
   out += "<desc>formsim figure</desc>\n";
   int clip_id = 0, open_groups = 0;
+  std::map<std::string, int> ids;
   for (const VectorOp& op : fig.ops) {
     switch (op.kind) {
       case VectorOp::Kind::kFillRect:
@@ -126,7 +142,8 @@ std::string SvgDocument(const VectorFigure& fig, const FigureSize& size, const s
                "\" stroke-linejoin=\"round\"" + Dash(op.dash) + "/>\n";
         break;
       case VectorOp::Kind::kFillPath:
-        out += "<path d=\"" + PathData(op.pts, true) + "\"" + Paint("fill", op.color) + "/>\n";
+        out += "<path" + (op.cls.empty() ? "" : " class=\"" + Escape(op.cls) + "\"") + " d=\"" +
+               PathData(op.pts, true) + "\"" + Paint("fill", op.color) + "/>\n";
         break;
       case VectorOp::Kind::kFillCircle:
         out += "<circle cx=\"" + Num(op.pts[0].x) + "\" cy=\"" + Num(op.pts[0].y) + "\" r=\"" +
@@ -158,6 +175,18 @@ std::string SvgDocument(const VectorFigure& fig, const FigureSize& size, const s
         ++open_groups;
         break;
       }
+      case VectorOp::Kind::kBeginGroup: {
+        // Ids unique in the document: a second "robot-R1" becomes "robot-R1-2".
+        std::string id = XmlId(op.text);
+        const int seen = ++ids[id];
+        if (seen > 1) id += "-" + std::to_string(seen);
+        out += "<g id=\"" + id + "\"";
+        if (!op.cls.empty()) out += " class=\"" + Escape(op.cls) + "\"";
+        out += ">\n";
+        ++open_groups;
+        break;
+      }
+      case VectorOp::Kind::kEndGroup:
       case VectorOp::Kind::kPopClip:
         if (open_groups > 0) {
           out += "</g>\n";

@@ -10,6 +10,11 @@
 
 namespace formsim::app {
 
+/// `raw` as an XML id: every character but ASCII letters, digits, '-', '_' and '.' becomes '_',
+/// and a '_' goes first unless it starts with a letter or '_' ("robot-R 1" -> "robot-R_1").
+/// SvgDocument names groups so (a repeated id gets "-2", "-3"...).
+std::string XmlId(const std::string& raw);
+
 /// The SVG document of `fig`, `size` giving its physical width and height.
 std::string SvgDocument(const VectorFigure& fig, const FigureSize& size, const std::string& title);
 

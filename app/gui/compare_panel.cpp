@@ -4,6 +4,8 @@
 /// edits, and goes when unpinned or when another scenario is loaded.
 #include "app/gui/compare_panel.hpp"
 
+#include "app/gui/fitted_field.hpp"
+
 #include <imgui.h>
 
 #include <algorithm>
@@ -244,8 +246,8 @@ void ComparePanel::Draw(const Fonts&) {
   SameLineIfFits(TextWidth(edits));
   ImGui::TextDisabled("%s", edits);
 
-  ImGui::SetNextItemWidth(-110);
-  ImGui::InputText("##session", ctx_.state->session_path, sizeof(ctx_.state->session_path));
+  ImGui::SetNextItemWidth(WidthBeside("Save session"));
+  FittedInputText("##session", ctx_.state->session_path, sizeof(ctx_.state->session_path));
   ImGui::SameLine();
   if (ImGui::Button("Save session"))
     ctx_.run(std::string("save-session ") + ctx_.state->session_path);

@@ -79,6 +79,7 @@ class ComparePanel : public Panel {
     std::string header;                     ///< "now (9.4 of 11.0 s)", "pin 1 (9.4 s)"
     const sim::Metrics* metrics = nullptr;  ///< over the common span; null while replayed
     std::string why;                        ///< why there are no metrics yet
+    bool no_data = false;  ///< the live run has not started: nothing to show, nothing to wait for
   };
   /// The runs of the comparison table, the live run then each ready pin, every one cut to the
   /// common span (the shortest run's time) by an exact replay; `title` gets the table's title,

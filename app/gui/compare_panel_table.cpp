@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 
 #include "app/export/figure_data.hpp"
 #include "app/gui/table_header.hpp"
@@ -100,8 +101,12 @@ std::vector<ComparePanel::CompareRun> ComparePanel::CompareRuns(const sim::Metri
   // it by an exact replay of its log (span_), so a pin that stops at 9.4 s is not measured
   // against 11 s of the live run.
   const sim::Experiment& live = ctx_.session().exp();
-  double span = live.time();
+  // A live run that has not started (just reset, or loaded paused) has no data: it neither
+  // cuts the others to 0 s nor shows zeros of its own.
+  const bool started = live.steps() > 0;
+  double span = started ? live.time() : std::numeric_limits<double>::infinity();
   for (const PinnedRun* p : pins) span = std::min(span, p->exp->time());
+  if (!std::isfinite(span)) span = live.time();
   constexpr double kSameTime = 1e-9;
   bool cut = false;
   // The live run is the shortest and still running: the span moves every step, so the longer
@@ -125,10 +130,18 @@ std::vector<ComparePanel::CompareRun> ComparePanel::CompareRuns(const sim::Metri
     }
     runs.push_back(std::move(c));
   };
-  column("now", "now:" + std::to_string(ctx_.session().run_id()), live, now, [this] {
-    return SpanMetrics::Replayed{std::make_shared<sim::ScenarioSource>(ctx_.session().source()),
-                                 ctx_.session().run_log()};
-  });
+  if (started) {
+    column("now", "now:" + std::to_string(ctx_.session().run_id()), live, now, [this] {
+      return SpanMetrics::Replayed{std::make_shared<sim::ScenarioSource>(ctx_.session().source()),
+                                   ctx_.session().run_log()};
+    });
+  } else {
+    CompareRun c;
+    c.header = "now (no data yet)";
+    c.why = "the run has not started: press Play (space)";
+    c.no_data = true;
+    runs.push_back(std::move(c));
+  }
   for (const PinnedRun* p : pins)
     column("pin " + std::to_string(p->id), "pin:" + std::to_string(p->id), *p->exp, *p->results,
            [p] { return SpanMetrics::Replayed{p->source, p->log}; });
@@ -184,7 +197,8 @@ void ComparePanel::DrawCompareTable(const sim::Metrics& now) {
     for (std::size_t i = 0; i < v.size(); ++i) {
       ImGui::TableSetColumnIndex(1 + static_cast<int>(i));
       if (better != sim::Better::kNone && finite > 1 && differ && v[i] == best) MarkBestCell();
-      const std::string text = runs[i].metrics == nullptr ? "..."
+      const std::string text = runs[i].no_data            ? "-"
+                               : runs[i].metrics == nullptr ? "..."
                                : std::isnan(v[i])         ? "-"
                                                           : sim::FormatCell(v[i] * k, kDigits);
       ImGui::TextUnformatted(text.c_str());

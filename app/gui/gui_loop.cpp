@@ -202,6 +202,7 @@ bool GuiLoop::Frame() {
     swap_pending_ = false;
   }
   layer_.Render(fw, fh, bg.x, bg.y, bg.z);
+  ui.AfterRender();
   GlFlush();
   if (opt_.timing) {
     // GL: issuing this frame's draws and waiting for the previous frame's pixels.

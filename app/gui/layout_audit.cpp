@@ -3,6 +3,8 @@
 #include <imgui.h>
 #include <imgui_internal.h>
 
+#include "app/gui/atlas_glyphs.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -10,30 +12,6 @@
 
 namespace formsim::app {
 namespace {
-
-// The code point of every glyph of the atlas, by the UV of its top-left corner.
-struct AtlasGlyph {
-  float u1, v1;
-  unsigned code;
-  float x0, x1, advance;  ///< the glyph's box and advance in font pixels
-  float space;            ///< the advance of its font's space
-};
-std::map<std::pair<float, float>, AtlasGlyph> GlyphsByUv() {
-  std::map<std::pair<float, float>, AtlasGlyph> out;
-  for (const ImFont* font : ImGui::GetIO().Fonts->Fonts) {
-    const ImFontGlyph* sp = font->FindGlyphNoFallback(' ');
-    const float space = sp ? sp->AdvanceX : 0.5f * font->FontSize;
-    for (const ImFontGlyph& g : font->Glyphs)
-      out[{g.U0, g.V0}] = {g.U1, g.V1, g.Codepoint, g.X0, g.X1, g.AdvanceX, space};
-  }
-  return out;
-}
-
-void AppendUtf8(std::string& s, unsigned c) {
-  char buf[5] = {};
-  ImTextCharToUtf8(buf, c);
-  s += buf;
-}
 
 // A glyph quad of a draw list: 4 vertices in PrimRectUV's order (a, b, c, d).
 struct Glyph {
@@ -76,19 +54,27 @@ std::vector<Glyph> Glyphs(const ImDrawList& dl,
 // items end; the strip between them is padding no laid-out item reaches). ImGui drops glyphs
 // wholly outside the clip rectangle, so a checkbox whose label starts past the edge leaves only
 // its box, ending in that strip.
-std::vector<std::pair<float, float>> BandsPast(const ImDrawList& dl, float right, float work_right) {
+std::vector<std::pair<float, float>> BandsPast(const ImDrawList& dl, float right, float work_left,
+                                               float work_right) {
   std::vector<std::pair<float, float>> bands;
   for (const ImDrawCmd& cmd : dl.CmdBuffer) {
     if (cmd.UserCallback || std::abs(cmd.ClipRect.z - right) > 1.0f) continue;
     for (unsigned k = 0; k + 2 < cmd.ElemCount; k += 3) {
       float x1 = -1e30f, y0 = 1e30f, y1 = -1e30f;
+      float x0 = 1e30f;
       for (unsigned v = 0; v < 3; ++v) {
         const ImDrawVert& p = dl.VtxBuffer[cmd.VtxOffset + dl.IdxBuffer[cmd.IdxOffset + k + v]];
-        x1 = std::max(x1, p.pos.x), y0 = std::min(y0, p.pos.y), y1 = std::max(y1, p.pos.y);
+        x0 = std::min(x0, p.pos.x), x1 = std::max(x1, p.pos.x);
+        y0 = std::min(y0, p.pos.y), y1 = std::max(y1, p.pos.y);
       }
-      // An anti-aliased fill's fringe reaches half a pixel past an item that fits; a square
-      // frame that reaches a pixel past the content region belongs to an item cut there.
-      if (x1 > work_right + 0.75f && y1 > y0) bands.push_back({y0, y1});
+      // A full-width frame (a collapsing header) spans from the left edge to the clip edge by
+      // design (ImGui widens it by half the padding): nothing of it is cut.
+      if (x0 <= work_left + 1.0f && x1 <= right + 1.5f) continue;
+      // Nor is its right border, a few pixels wide, drawn up to that edge.
+      if (x1 - x0 <= 4.0f && x1 <= right + 1.5f) continue;
+      // An anti-aliased frame's border and fringe reach a pixel and a half past an item that
+      // fits; more than that belongs to an item cut there.
+      if (x1 > work_right + 1.5f && y1 > y0) bands.push_back({y0, y1});
     }
   }
   // Merged where they overlap: one band per cut line.
@@ -108,7 +94,7 @@ std::vector<std::pair<float, float>> BandsPast(const ImDrawList& dl, float right
 std::vector<ClippedText> FindClippedText() {
   std::vector<ClippedText> out;
   ImGuiContext& g = *ImGui::GetCurrentContext();
-  const auto by_uv = GlyphsByUv();
+  const auto by_uv = AtlasGlyphsByUv();
   for (ImGuiWindow* w : g.Windows) {
     if (!w->Active || w->Hidden || w->ScrollbarX) continue;
     if (w->Flags & (ImGuiWindowFlags_Tooltip | ImGuiWindowFlags_AlwaysAutoResize)) continue;
@@ -117,7 +103,26 @@ std::vector<ClippedText> FindClippedText() {
     // (ImGui rounds item sizes: a pixel over is not a cut.)
     if (w->DC.CursorMaxPos.x <= right + 1.5f) continue;
     const std::vector<Glyph> glyphs = Glyphs(*w->DrawList, by_uv);
-    for (const auto& [top, bottom] : BandsPast(*w->DrawList, right, w->WorkRect.Max.x)) {
+    // Each band grown to the glyphs it meets (a frame's thin top border stands for its line);
+    // a thin band that meets no glyph is a frame's bottom border, already counted.
+    std::vector<std::pair<float, float>> bands;
+    for (auto [top, bottom] : BandsPast(*w->DrawList, right, w->WorkRect.Min.x, w->WorkRect.Max.x)) {
+      // (A frame's padding lies between its border and its text.)
+      const float pad = ImGui::GetStyle().FramePadding.y + 1.0f;
+      auto meets = [&](const Glyph& gl) { return gl.y1 > top - pad && gl.y0 < bottom + pad; };
+      bool met = false;
+      for (const Glyph& gl : glyphs) met = met || meets(gl);
+      if (!met && bottom - top < 4.0f) continue;
+      float grown_top = top, grown_bottom = bottom;
+      for (const Glyph& gl : glyphs)
+        if (meets(gl)) grown_top = std::min(grown_top, gl.y0), grown_bottom = std::max(grown_bottom, gl.y1);
+      top = grown_top, bottom = grown_bottom;
+      if (!bands.empty() && top <= bands.back().second)
+        bands.back().second = std::max(bands.back().second, bottom);
+      else
+        bands.push_back({top, bottom});
+    }
+    for (const auto& [top, bottom] : bands) {
       if (bottom < w->InnerClipRect.Min.y || top > w->InnerClipRect.Max.y) continue;  // not shown
       // The line's text as it shows: the glyphs whose middles lie in the band, left to right.
       std::vector<Glyph> line;

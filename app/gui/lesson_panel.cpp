@@ -161,6 +161,23 @@ std::vector<Command> LessonPanel::Rows() {
   return t;
 }
 
+bool LessonPanel::Unanswered() const {
+  const sim::LessonStep* step = guide_.Current();
+  return step != nullptr && !step->predict.question.empty() &&
+         guide_.Progress().predicted.count(guide_.Step()) == 0;
+}
+
+bool LessonPanel::QuestionOpen() const {
+  if (ImGui::GetCurrentContext() == nullptr) return false;
+  // Drawn in this frame or the one before (the run advances before the frame draws), or about
+  // to be: the Lesson tab was just asked for (a lesson opened, a step shown).
+  const UiState& st = *ctx_.state;
+  const int frame = ImGui::GetFrameCount();
+  // A tab bar shows a tab asked for at the frame after: held until then too.
+  if (st.select_tab == "lesson" && !st.present) asked_frame_ = std::max(asked_frame_, frame + 1);
+  return asked_frame_ >= frame - 1 && Unanswered();
+}
+
 void LessonPanel::DrawStep(const Fonts& fonts) {
   const int n = guide_.Steps(), at = guide_.Step();
   if (n == 0) return;
@@ -189,6 +206,7 @@ void LessonPanel::DrawStep(const Fonts& fonts) {
   ImGui::Spacing();
   if (!step.predict.question.empty()) {
     Heading(fonts, "Predict, then run");
+    if (Unanswered()) asked_frame_ = ImGui::GetFrameCount();
     LongTextWrapped("question", step.predict.question);
     const auto chosen = prog.predicted.find(at);
     for (std::size_t k = 0; k < step.predict.options.size(); ++k) {
@@ -237,8 +255,9 @@ void LessonPanel::DrawAllChecks() {
   const sim::LessonDef& l = ctx_.session().lesson();
   if (l.checks.empty()) return;
   ImGui::Separator();
-  if (!ImGui::CollapsingHeader("Every check of the lesson (formsim lessons check runs them on their seeds)"))
-    return;
+  const bool open = ImGui::CollapsingHeader("Every check of the lesson");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("formsim lessons check runs them on their seeds");
+  if (!open) return;
   std::vector<std::string> ids;
   for (const sim::LessonCheck& c : l.checks) ids.push_back(c.id);  // SeeLine may re-read the lesson
   for (std::size_t i = 0; i < ids.size() && i < 200; ++i)

@@ -26,14 +26,24 @@ class LessonPanel : public Panel {
 
   /// The guided steps of the session's lesson.
   LessonGuide& guide() { return guide_; }
+  /// A prediction question is open: the Lesson tab showed it in the last frame drawn and it is
+  /// still unanswered (no option chosen for the step shown). The run is held meanwhile
+  /// (RunPanel::Advance); a tab brought over it, another step, presentation mode or another
+  /// scenario closes it.
+  bool QuestionOpen() const;
   const LessonGuide& guide() const { return guide_; }
 
  private:
   void DrawStep(const Fonts& fonts);
   void DrawAllChecks();
 
+  /// True while the step shown has a prediction and no option is chosen for it.
+  bool Unanswered() const;
+
   const PanelContext& ctx_;
   LessonGuide guide_;
+  /// The ImGui frame that last drew an unanswered question (or will: the tab was asked for).
+  mutable int asked_frame_ = -1000;
 };
 
 }  // namespace formsim::app

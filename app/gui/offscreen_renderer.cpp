@@ -83,7 +83,9 @@ const std::vector<std::uint8_t>& OffscreenRenderer::RenderUi(AppUi& ui) {
   ui.Draw(ImVec2(static_cast<float>(logical_w_), static_cast<float>(logical_h_)), layer_.fonts(),
           false);
   const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
-  return End({bg.x, bg.y, bg.z, 1.0f});
+  const std::vector<std::uint8_t>& pixels = End({bg.x, bg.y, bg.z, 1.0f});
+  ui.AfterRender();
+  return pixels;
 }
 
 const std::vector<std::uint8_t>& OffscreenRenderer::RenderFigure(const PlotData& data, int width,

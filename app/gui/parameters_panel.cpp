@@ -17,7 +17,10 @@
 #include <unordered_map>
 
 #include "app/gui/command_row_makers.hpp"
+#include "app/gui/fitted_field.hpp"
 #include "app/gui/table_header.hpp"
+#include "app/gui/tunable_label.hpp"
+#include "app/render/label_markup.hpp"
 #include "app/gui/ui.hpp"
 #include "app/gui/value_entry.hpp"
 #include "app/render/display_unit.hpp"
@@ -122,21 +125,22 @@ RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks&
   ImGui::TableNextRow();
   ImGui::TableSetColumnIndex(0);
   ImGui::AlignTextToFramePadding();
-  std::string label = p.tune.label.empty() ? p.key : p.tune.label;
-  if (!du.unit.empty()) label += " [" + du.unit + "]";
+  // The tunable's one name (app/gui/tunable_label.hpp: the palette shows the same), with its
+  // subscripts.
+  const std::string name = ShortenMarkup(TunableLabel(p), 200);
+  const std::string unit = du.unit.empty() ? "" : " [" + du.unit + "]";
   const bool colour = !marks.refusal.empty() || marks.edited;
   if (colour)
     ImGui::PushStyleColor(ImGuiCol_Text, !marks.refusal.empty() ? ImVec4(0.75f, 0.1f, 0.1f, 1)
                                                                 : ImVec4(0.15f, 0.45f, 0.9f, 1));
   // Too long for its column (a narrow panel, a large UI scale): shortened in its name, the unit
   // kept whole, as the tables' headers are; the tooltip has it in full.
-  const std::string full = Shorten(label, 200);
-  label = FitHeader(full, ImGui::GetContentRegionAvail().x,
-                    [](const std::string& s) { return ImGui::CalcTextSize(s.c_str()).x; });
-  ImGui::TextUnformatted(label.c_str());
+  const std::string full = name + EscapeMarkup(unit);
+  const std::string label = FitMarkupLabel(name, unit, ImGui::GetContentRegionAvail().x);
+  MarkupTextItem(label);
   if (colour) ImGui::PopStyleColor();
   if (ImGui::IsItemHovered()) {
-    std::string tip = label == full ? p.key : full + "\n" + p.key;
+    std::string tip = label == full ? p.key : MarkupText(full) + "\n" + p.key;
     if (!p.tune.help.empty()) tip += "\n" + p.tune.help;
     if (p.kind == sim::Param::Kind::kDouble || p.kind == sim::Param::Kind::kInt)
       tip += "\nvalid: " + p.tune.ValidityText() +
@@ -230,7 +234,7 @@ RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks&
       break;
     }
     case sim::Param::Kind::kChoice: {
-      if (ImGui::BeginCombo("##v", shown.c_str())) {
+      if (FittedCombo("##v", shown)) {
         for (const auto& c : p.choices)
           if (ImGui::Selectable(c.c_str(), c == shown) && c != shown) out = c;
         ImGui::EndCombo();

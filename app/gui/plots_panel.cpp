@@ -1,5 +1,7 @@
 #include "app/gui/plots_panel.hpp"
 
+#include "app/gui/frame_audit.hpp"
+
 #include "app/gui/flow_layout.hpp"
 
 #include <imgui.h>
@@ -122,6 +124,9 @@ struct CachedPlot {
   Clock::time_point at;
   std::string decoration;  ///< the pins and Monte Carlo bands it was drawn with
   bool valid = false;
+  /// Height added to the cell so that its data area keeps kSmallestPlotPx (a legend below the
+  /// axes, a large UI scale).
+  float extra_h = 0;
 };
 
 struct PlotsPanel::Cache {
@@ -213,12 +218,12 @@ void PlotsPanel::Draw(const Fonts& fonts) {
       if (ImGui::Checkbox(("log y##" + figures[i].id).c_str(), &log_y))
         ctx_.run("log-y " + figures[i].id + (log_y ? " on" : " off"));
     }
+    CachedPlot& plot = cache.plots[figures[i].id];
     const ImVec2 p0 = ImGui::GetCursorScreenPos();
-    const ImVec2 p1(p0.x + w, p0.y + h);
-    ImGui::Dummy(ImVec2(w, h));
+    const ImVec2 p1(p0.x + w, p0.y + h + plot.extra_h);
+    ImGui::Dummy(ImVec2(w, h + plot.extra_h));
     if (!ImGui::IsItemVisible()) return;  // scrolled away: skip the work
     ImDrawList* dl = ImGui::GetWindowDrawList();
-    CachedPlot& plot = cache.plots[figures[i].id];
     const bool moved = p0.x != plot.p0.x || p0.y != plot.p0.y || p1.x != plot.p1.x || p1.y != plot.p1.y;
     if (!plot.valid || moved || plot.rows != cache.rows || plot.at < cache.figures_at ||
         plot.decoration != decoration) {
@@ -231,12 +236,19 @@ void PlotsPanel::Draw(const Fonts& fonts) {
       const DrawMark mark = Mark(dl);
       plot.layout = DrawPlot(canvas, p0, p1, plot.data, style);
       plot.geometry = Capture(dl, mark);
+      // A data area under kSmallestPlotPx (in pixels: logical units times the UI scale) grows
+      // its cell from the next frame on.
+      const float want = kSmallestPlotPx / std::max(1.0f, ImGui::GetIO().DisplayFramebufferScale.x) + 1;
+      const float area_h = plot.layout.area_max.y - plot.layout.area_min.y;
+      if (area_h < want) plot.extra_h = std::min(plot.extra_h + want - area_h, 2000.0f);
       plot.p0 = p0, plot.p1 = p1, plot.rows = cache.rows, plot.at = now, plot.valid = true;
     } else {
       Replay(dl, plot.geometry);
     }
     const PlotData& data = plot.data;
     const PlotLayout& L = plot.layout;
+    ctx_.state->frame_plots.push_back(
+        {figures[i].id, ImVec4(L.area_min.x, L.area_min.y, L.area_max.x, L.area_max.y)});
     // The time cursor, as DrawPlot draws it.
     const double cursor = data.x_is_time ? ctx_.shown().time() : std::nan("");
     if (std::isfinite(cursor) && cursor >= L.x0 && cursor <= L.x1 && L.x1 > L.x0) {

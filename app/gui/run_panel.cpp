@@ -11,6 +11,7 @@
 
 #include "app/gui/command_row_makers.hpp"
 #include "app/gui/history_panel.hpp"
+#include "app/gui/lesson_panel.hpp"
 #include "app/gui/timeline_panel.hpp"
 #include "app/gui/ui.hpp"
 #include "app/render/imgui_canvas.hpp"
@@ -47,18 +48,34 @@ std::vector<std::string> SpeedNames() {
 
 std::string RunPanel::CmdPlay() {
   ctx_.run("live");  // playing resumes from the live end
+  if (held_) {
+    // The question stays open: the run plays as soon as it is answered or closed.
+    resume_ = true;
+    ctx_.SetStatus("the run plays once the lesson's prediction is answered (Lesson tab)");
+    return "";
+  }
   ctx_.state->playing = true;
   return "";
 }
 
 std::string RunPanel::CmdPause() {
   ctx_.state->playing = false;
+  resume_ = false;
   return "";
+}
+
+bool RunPanel::Playing() const { return ctx_.state->playing || (held_ && resume_); }
+
+std::string RunPanel::HeldText() const {
+  if (!held_) return "";
+  return resume_ ? "paused for the prediction: plays once you choose (Lesson tab)"
+                 : "paused for the prediction (Lesson tab)";
 }
 
 std::string RunPanel::CmdStep() {
   ctx_.run("live");
   ctx_.state->playing = false;
+  resume_ = false;
   if (ctx_.session().exp().finished()) {
     return ctx_.Refuse("the run has reached its duration: reset (r) to run again");
   }
@@ -112,6 +129,23 @@ void RunPanel::Advance(double wall_dt) {
   } catch (const std::exception& e) {
     ctx_.SetStatus(std::string("could not apply the edits: ") + e.what(), true);
   }
+  // Between two steps, as the pending changes: while a lesson's prediction question is open
+  // the run is held; once it is answered or closed the run goes on as it was (it plays again
+  // if it played, or if Play was pressed meanwhile; paused, it stays paused).
+  const LessonPanel* lesson = ctx_.Find<LessonPanel>();
+  const bool asking = lesson != nullptr && lesson->QuestionOpen();
+  if (asking && !held_) {
+    held_ = true;
+    resume_ = ctx_.state->playing;
+    if (ctx_.state->playing) {
+      ctx_.state->playing = false;
+      ctx_.SetStatus("paused while the prediction is open: choose an option, and the run goes on");
+    }
+  } else if (!asking && held_) {
+    held_ = false;
+    if (resume_ && !exp.finished()) ctx_.state->playing = true;
+    resume_ = false;
+  }
   if (ctx_.state->playing && ctx_.Find<TimelinePanel>()->Active()) ctx_.state->playing = false;  // the timeline pauses
   if (ctx_.state->playing && !exp.finished()) {
     try {
@@ -156,8 +190,7 @@ void RunPanel::Advance(double wall_dt) {
 }
 
 void RunPanel::Draw(const Fonts&) {
-  if (ImGui::Button(ctx_.state->playing ? "Pause" : "Play", ImVec2(70, 0)))
-    ctx_.state->playing ? CmdPause() : CmdPlay();
+  if (ImGui::Button(Playing() ? "Pause" : "Play", ImVec2(70, 0))) Playing() ? CmdPause() : CmdPlay();
   SameLineIfFits(ButtonWidth("Step"));
   if (ImGui::Button("Step")) CmdStep();
   SameLineIfFits(ButtonWidth("Reset"));
@@ -185,6 +218,7 @@ void RunPanel::Draw(const Fonts&) {
   std::snprintf(buf, sizeof(buf), "t = %.2f / %.1f s", exp.time(), dur);
   ImGui::ProgressBar(static_cast<float>(std::clamp(exp.time() / dur, 0.0, 1.0)), ImVec2(-1, 0),
                      buf);
+  if (const std::string held = HeldText(); !held.empty()) ImGui::TextWrapped("%s", held.c_str());
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
   ImGui::TextWrapped("%ld steps of %.3g s; last frame: %d steps, sim %.1f ms, frame %.1f ms",
                      exp.steps(), exp.dt(), steps_last_frame_, sim_ms_,
@@ -234,7 +268,7 @@ std::vector<Command> RunPanel::Rows() {
        .menu = "Run/Play or pause",
        .help = "Play when paused, pause when playing",
        .run = [panel](AppUi& ui, const CommandArgs&, Src) {
-         return ui.state().playing ? panel(ui)->CmdPause() : panel(ui)->CmdPlay();
+         return panel(ui)->Playing() ? panel(ui)->CmdPause() : panel(ui)->CmdPlay();
        }});
   row({.name = "play",
        .menu = "Run/Play",

@@ -35,8 +35,15 @@ class RunPanel : public Panel {
   /// frame of the window).
   void Advance(double wall_dt);
 
+  /// Play. While a lesson's prediction question is open the run stays held, and plays once it
+  /// is answered or closed.
   std::string CmdPlay();
   std::string CmdPause();
+  /// Whether the run plays, or will play once the prediction question holding it is closed.
+  bool Playing() const;
+  /// The run is held while a lesson's prediction question is open (Advance checks it between
+  /// two steps, as it applies the pending changes): what the holding says, "" when not held.
+  std::string HeldText() const;
   std::string CmdStep();
   std::string CmdReset();
   /// Reset with a seed given as text (0 ... 2^64 - 1).
@@ -61,6 +68,11 @@ class RunPanel : public Panel {
   SpeedMeter speed_meter_;  ///< the achieved speed and whether the run is behind the chosen one
   double sim_ms_ = 0;
   int steps_last_frame_ = 0;
+  /// A prediction question is open (app/gui/lesson_panel.hpp): the run was paused for it.
+  bool held_ = false;
+  /// Whether the run plays again when the question closes: it played when the question
+  /// opened, or Play was pressed while it was open (Pause and Step clear it).
+  bool resume_ = false;
 };
 
 }  // namespace formsim::app

@@ -1,5 +1,7 @@
 #include "app/gui/scenario_panel.hpp"
 
+#include "app/gui/fitted_field.hpp"
+
 #include <imgui.h>
 
 #include <cstdio>
@@ -130,8 +132,8 @@ void ScenarioPanel::Draw(const Fonts&) {
   if (!shipped_.empty()) {
     const std::string preview =
         shipped_index_ >= 0 ? ListName(shipped_[shipped_index_]) : std::string("(a file of yours)");
-    ImGui::SetNextItemWidth(-70);
-    if (ImGui::BeginCombo("##shipped", preview.c_str())) {
+    ImGui::SetNextItemWidth(WidthBeside("Load"));
+    if (FittedCombo("##shipped", preview)) {
       for (std::size_t i = 0; i < shipped_.size(); ++i) {
         const std::string name = ListName(shipped_[i]);
         if (ImGui::Selectable(name.c_str(), static_cast<int>(i) == shipped_index_))
@@ -142,15 +144,15 @@ void ScenarioPanel::Draw(const Fonts&) {
     ImGui::SameLine();
     if (ImGui::Button("Load") && shipped_index_ >= 0) CmdOpen(shipped_[shipped_index_]);
   }
-  ImGui::SetNextItemWidth(-70);
-  ImGui::InputText("##open", open_path_, sizeof open_path_);
+  ImGui::SetNextItemWidth(WidthBeside("Open"));
+  FittedInputText("##open", open_path_, sizeof open_path_);
   ImGui::SameLine();
   if (ImGui::Button("Open")) CmdOpen(open_path_);
   if (ImGui::Button("Reload file")) CmdReload();
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Reload from disk, dropping the tuned values");
 
-  ImGui::SetNextItemWidth(-70);
-  ImGui::InputText("##save", save_path_, sizeof save_path_);
+  ImGui::SetNextItemWidth(WidthBeside("Save"));
+  FittedInputText("##save", save_path_, sizeof save_path_);
   ImGui::SameLine();
   if (ImGui::Button("Save")) CmdSave(save_path_, false);
   if (ImGui::IsItemHovered())

@@ -87,7 +87,13 @@ void TablesPanel::Draw(const Fonts&) {
       (cache.paused || Clock::now() - cache.tables_at >= kTableRefresh))
     cache.tables_valid = false;
   HasTables();
+  // A run that has not started (reset, or loaded paused) has no results: an honest empty
+  // state, never a table of zeros.
+  const bool no_data = exp.steps() == 0;
+  if (no_data) DrawNoData();
   ctx_.Find<ComparePanel>()->DrawCompareTable(cache.results);
+  if (no_data) return;
+  if (cache.tables.empty()) ImGui::TextDisabled("This scenario has no tables of results.");
   const std::vector<sim::TableSpec>& tables = cache.tables;
   for (std::size_t t = 0; t < tables.size(); ++t) {
     const sim::TableSpec& spec = tables[t];
@@ -157,9 +163,19 @@ void TablesPanel::Draw(const Fonts&) {
   }
 }
 
+void TablesPanel::DrawNoData() {
+  ImGui::TextWrapped("No data yet: the run has not started. Press Play (space) and the results "
+                     "fill in as it runs.");
+  ImGui::Spacing();
+}
+
 void TablesPanel::DrawSummary(const Fonts& fonts) {
   Cache& cache = Fresh();
   const sim::Experiment& exp = ctx_.session().exp();
+  if (exp.steps() == 0) {
+    DrawNoData();
+    return;
+  }
   const bool paused = cache.paused;
   const Clock::time_point now = Clock::now();
   if (cache.summary_steps != exp.steps() &&

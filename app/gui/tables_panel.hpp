@@ -20,10 +20,13 @@ class TablesPanel : public Panel {
   const char* Name() const override { return "Tables"; }
   /// The Tables tab's content: the comparison table, then every table of the results.
   void Draw(const Fonts& fonts) override;
-  /// The run has tables to show (the window shows the Tables tab only then).
+  /// The run has tables to show.
   bool HasTables();
   /// The Summary tab's content: the summary text, then the events.
   void DrawSummary(const Fonts& fonts);
+  /// What the Tables and Summary tabs show for a run that has not started (just reset, or
+  /// loaded paused): "No data yet ... press Play", never a table of zeros.
+  static void DrawNoData();
 
  private:
   struct Cache;

@@ -12,6 +12,7 @@
 #include "app/gui/formation_editor_panel.hpp"
 #include "app/gui/compare_panel.hpp"
 #include "app/gui/history_panel.hpp"
+#include "app/gui/frame_audit.hpp"
 #include "app/gui/layout_audit.hpp"
 #include "sim/core/json.hpp"
 #include "app/gui/parameters_panel.hpp"
@@ -270,6 +271,9 @@ void AppUi::HandleKeys() {
 }
 
 void AppUi::Draw(ImVec2 display, const Fonts& fonts, bool interactive) {
+  frame_display_ = display;
+  world_rect_ = ImVec4();
+  state_.frame_plots.clear();
   UpdateBackground();
   SyncKindPanel();
   // Over everything else: the palette, a command's argument dialog, the About box.
@@ -283,28 +287,32 @@ void AppUi::Draw(ImVec2 display, const Fonts& fonts, bool interactive) {
   };
   if (state_.present) {
     // Presentation: the world view fills the window; a small bar keeps the essentials.
+    layout_ = Layout::kPresentation;
     DrawWorldWindow(ImVec2(0, 0), display, fonts, interactive);
     view_->DrawPresentationBar(ImVec2(0, 0), display);
     if (state_.help) view_->DrawHelpOverlay(ImVec2(0, 0), display);
     overlays();
-    WriteLayoutReport(display);
     return;
   }
   const float top = DrawMenuBar();
   const float h = std::max(1.0f, display.y - top);
-  // Narrow (in font units: 1280x800 at UI scale 1.5 is 853 wide): two columns, the control
-  // panel a tab beside the plots, so that the world view keeps more than a third of the width.
-  if (display.x < kNarrowLayoutWidth) {
-    const float left_w = std::clamp(display.x * 0.42f, 300.0f, 420.0f);
+  // The world view keeps at least kWorldViewShare of the window, whatever the UI scale (a
+  // lecture at scale 2 shows the robots first): three columns when both side panels still fit
+  // beside it, else two, the control panel a tab beside the plots.
+  const float world_h = std::max(1.0f, h - WorldWindowChrome());
+  const float world_w_min = std::min(display.x, kWorldViewShare * display.x * display.y / world_h);
+  const float side = display.x - world_w_min;
+  layout_ = side >= kSidePanelsMin ? Layout::kThreeColumns : Layout::kNarrow;
+  if (layout_ == Layout::kNarrow) {
+    const float left_w = std::max(1.0f, std::min(std::clamp(display.x * 0.40f, 250.0f, 420.0f), side));
     DrawPlotsWindow(ImVec2(0, top), ImVec2(left_w, h), fonts, true);
     DrawWorldWindow(ImVec2(left_w, top), ImVec2(display.x - left_w, h), fonts, interactive);
     if (state_.help) view_->DrawHelpOverlay(ImVec2(left_w, top), display);
     overlays();
-    WriteLayoutReport(display);
     return;
   }
-  const float left_w = std::clamp(display.x * 0.24f, 290.0f, 400.0f);
-  const float right_w = std::clamp(display.x * 0.34f, 340.0f, 640.0f);
+  const float left_w = std::clamp(std::floor(side * 0.42f), 290.0f, 400.0f);
+  const float right_w = std::clamp(side - left_w, 340.0f, 640.0f);
   const float mid_w = std::max(200.0f, display.x - left_w - right_w);
 
   ImGui::SetNextWindowPos(ImVec2(0, top));
@@ -321,24 +329,73 @@ void AppUi::Draw(ImVec2 display, const Fonts& fonts, bool interactive) {
   DrawPlotsWindow(ImVec2(left_w + mid_w, top), ImVec2(display.x - left_w - mid_w, h), fonts);
   if (state_.help) view_->DrawHelpOverlay(ImVec2(left_w, top), ImVec2(left_w + mid_w, display.y));
   overlays();
-  WriteLayoutReport(display);
 }
 
-void AppUi::WriteLayoutReport(ImVec2 display) {
-  if (state_.layout_report_path.empty()) return;
+void AppUi::AfterRender() {
+  if (!state_.layout_report_path.empty()) WriteLayoutReport();
+}
+
+namespace {
+
+sim::Json RectJson(const ImVec4& r) {
+  sim::Json a = sim::Json::Array();
+  for (float v : {r.x, r.y, r.z - r.x, r.w - r.y}) a.Push(sim::Json(std::round(10.0 * v) / 10.0));
+  return a;
+}
+
+// One list of findings: each with its window, text, rectangle [x, y, w, h] in pixels, and what
+// `other` and `value` mean for the list.
+sim::Json FindingsJson(const std::vector<AuditFinding>& list, const char* other, const char* value) {
+  sim::Json out = sim::Json::Array();
+  for (const AuditFinding& f : list) {
+    sim::Json e = sim::Json::Object();
+    e["widget"] = sim::Json(f.window);
+    e["text"] = sim::Json(f.text);
+    e["rect"] = RectJson(f.rect);
+    if (other) e[other] = sim::Json(f.other);
+    if (value) e[value] = sim::Json(std::round(100.0 * f.value) / 100.0);
+    out.Push(e);
+  }
+  return out;
+}
+
+}  // namespace
+
+void AppUi::WriteLayoutReport() {
   const std::string path = state_.layout_report_path;
   state_.layout_report_path.clear();
+  const ImDrawData* draw = ImGui::GetDrawData();
+  if (draw == nullptr || !draw->Valid) {
+    SetStatus("layout-report: the frame has no draw data", true);
+    return;
+  }
+  const ImVec2 display = frame_display_;
   // The window in pixels: the layout itself is in font units (pixels over the UI scale).
-  const double scale = ImGui::GetIO().DisplayFramebufferScale.x;
+  const float scale = ImGui::GetIO().DisplayFramebufferScale.x;
+  AuditMarks marks;
+  marks.pixel_scale = scale;
+  marks.ui_scale = state_.settings.ui_scale;
+  marks.display = display;
+  marks.world_view = world_rect_;
+  marks.clear_colour = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
+  for (const auto& r : world_report_.robots) marks.robots.push_back({r.name, r.centre, r.radius});
+  if (state_.legend && world_report_.legend_box.z > world_report_.legend_box.x)
+    marks.over_world.push_back({"legend", world_report_.legend_box});
+  for (const auto& [id, rect] : state_.frame_plots) marks.plots.push_back({id, rect});
+  const FrameAudit audit = AuditFrame(*draw, marks);
+
   sim::Json report = sim::Json::Object();
   sim::Json window = sim::Json::Array();
   window.Push(sim::Json(std::round(display.x * scale)));
   window.Push(sim::Json(std::round(display.y * scale)));
   report["window"] = window;
   report["ui_scale"] = sim::Json(static_cast<double>(state_.settings.ui_scale));
-  report["layout"] = sim::Json(state_.present                     ? "presentation"
-                               : display.x < kNarrowLayoutWidth ? "narrow"
+  report["layout"] = sim::Json(layout_ == Layout::kPresentation ? "presentation"
+                               : layout_ == Layout::kNarrow      ? "narrow"
                                                                  : "three columns");
+  report["theme"] = sim::Json(GetTheme(state_.theme).name);
+  // Cut text: lines whose items reach past a window's edge (read before the frame's end), and
+  // glyphs cut at a clip edge (from the draw data).
   sim::Json clipped = sim::Json::Array();
   for (const ClippedText& c : FindClippedText()) {
     sim::Json e = sim::Json::Object();
@@ -348,7 +405,15 @@ void AppUi::WriteLayoutReport(ImVec2 display) {
     e["needed"] = sim::Json(static_cast<double>(c.needed));
     clipped.Push(e);
   }
+  const sim::Json cut = FindingsJson(audit.cut, nullptr, nullptr);
+  for (const sim::Json& e : cut.items()) clipped.Push(e);
   report["clipped"] = clipped;
+  report["overlaps"] = FindingsJson(audit.overlaps, "over", nullptr);
+  report["small_text"] = FindingsJson(audit.small_text, nullptr, "px");
+  report["low_contrast"] = FindingsJson(audit.low_contrast, "colours", "ratio");
+  report["small_plots"] = FindingsJson(audit.small_plots, nullptr, "px");
+  report["world_view_share"] = sim::Json(std::round(1000.0 * audit.world_view_share) / 1000.0);
+  report["text_runs"] = sim::Json(static_cast<double>(audit.text_runs));
   report["world_labels"] = sim::Json(static_cast<double>(world_report_.labels));
   report["overlapping_labels"] = sim::Json(static_cast<double>(world_report_.overlapping_labels));
   report["formation_fraction"] = sim::Json(world_report_.formation_fraction);

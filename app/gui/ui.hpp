@@ -72,6 +72,8 @@ struct UiState {
   /// Where presentation mode's buttons ended last frame (logical pixels from the top; 0: none):
   /// the camera frames the formation below them.
   float present_bar_bottom = 0;
+  /// Presentation mode's bar as last drawn (x0, y0, x1, y1): scene labels keep off it.
+  ImVec4 present_bar;
   /// The presentation camera frames the formation outside presentation mode too.
   bool frame_formation = false;
   PresentationCamera camera;  ///< view-only: frames and follows the formation (app/render/camera)
@@ -80,6 +82,8 @@ struct UiState {
 
   // The command table's window parts (app/gui/ui_menu.cpp, app/gui/ui_palette.cpp).
   std::string layout_report_path;  ///< `layout-report`: written at the end of the next frame
+  /// This frame's plots (figure id, data area in logical pixels), for the layout report.
+  std::vector<std::pair<std::string, ImVec4>> frame_plots;
   bool quit_requested = false;     ///< `quit`: the window closes after this frame
   bool about = false;              ///< the About box
   bool palette = false;            ///< the command palette (Ctrl+K)
@@ -98,7 +102,10 @@ struct UiState {
 struct PaletteEntry {
   bool tunable = false;
   std::string name;    ///< the command or the tunable's key
-  std::string detail;  ///< help, or the tunable's label and value
+  std::string detail;  ///< help, or the tunable's label and value (plain text)
+  /// `detail` as label markup, drawn with its subscripts: a tunable's name is
+  /// TunableLabel (app/gui/tunable_label.hpp), the name the Parameters panel shows.
+  std::string detail_markup;
   std::string keys;
   int score = 0;  ///< lower first
 };
@@ -108,9 +115,16 @@ std::string AboutText();
 
 class AppUi {
  public:
-  /// Below this width in font units (the window's pixels over the UI scale) the window has two
-  /// columns: the tabs with the control panel as the first, and the world view.
-  static constexpr float kNarrowLayoutWidth = 900.0f;
+  /// The least share of the window's area the world view's drawing takes outside presentation
+  /// mode (0.5 and a margin; presentation mode gives it all but the timeline's strip).
+  static constexpr float kWorldViewShare = 0.54f;
+  /// The least width, in font units (the window's pixels over the UI scale), of the two side
+  /// panels together; with less beside the world view the window has two columns: the tabs
+  /// with the control panel as the first, and the world view.
+  static constexpr float kSidePanelsMin = 630.0f;
+  enum class Layout { kThreeColumns, kNarrow, kPresentation };
+  /// The layout of the last frame drawn.
+  Layout layout() const { return layout_; }
   explicit AppUi(std::unique_ptr<sim::Session> session);
   /// Borrows a session owned by the caller (headless --ui frames); loading another scenario
   /// then makes the interface own the new one.
@@ -133,6 +147,9 @@ class AppUi {
   /// Builds all windows for a display of `display` pixels. `interactive` = false draws the same
   /// panels without reading mouse or keyboard (headless --ui frames).
   void Draw(ImVec2 display, const Fonts& fonts, bool interactive);
+  /// After ImGui::Render() of a frame Draw built: writes the `layout-report` asked for, from the
+  /// frame's draw data.
+  void AfterRender();
   /// With "whole run" on, adds the experiment's current bounds to the camera's union (headless
   /// runs that draw only a final snapshot call this while stepping).
   void TrackBounds();
@@ -216,8 +233,13 @@ class AppUi {
 
  private:
   void HandleKeys();
-  /// `layout-report`: what this frame cut off, as JSON.
-  void WriteLayoutReport(ImVec2 display);
+  /// `layout-report`: what a person sees of this frame (app/gui/frame_audit.hpp), as JSON.
+  void WriteLayoutReport();
+  ImVec2 frame_display_;  ///< this frame's window size, logical
+  Layout layout_ = Layout::kThreeColumns;
+  /// The height the world window takes besides its drawing: the timeline's strip.
+  float WorldWindowChrome() const;
+  ImVec4 world_rect_;     ///< this frame's world view drawing area (x0, y0, x1, y1); none: empty
   WorldViewReport world_report_;  ///< what the last world view drawing placed
   FocusSet frame_focus_;          ///< this frame's robots and recent trails (camera, world view)
   /// The menu bar, generated from the command table; returns its height.

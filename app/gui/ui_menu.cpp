@@ -7,6 +7,7 @@
 
 #include "app/export/figure_data.hpp"
 #include "app/export/figure_export.hpp"
+#include "app/gui/run_panel.hpp"
 #include "app/gui/ui.hpp"
 #include "sim/core/run_output.hpp"
 
@@ -67,7 +68,10 @@ float AppUi::DrawMenuBar() {
   // The status on the right of the bar: where the window stands, readable at a glance.
   const sim::Experiment& exp = session_->exp();
   char where[96];
-  std::snprintf(where, sizeof where, "%s  t = %.2f s", state_.playing ? "playing" : "paused",
+  std::snprintf(where, sizeof where, "%s  t = %.2f s",
+                state_.playing                 ? "playing"
+                : !run_->HeldText().empty() ? "paused for the prediction"
+                                             : "paused",
                 exp.time());
   const float w = ImGui::CalcTextSize(where).x;
   if (ImGui::GetContentRegionAvail().x > w + 20) {

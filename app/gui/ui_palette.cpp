@@ -6,6 +6,8 @@
 #include <cctype>
 
 #include "app/gui/parameters_panel.hpp"
+#include "app/gui/tunable_label.hpp"
+#include "app/render/label_markup.hpp"
 #include "app/gui/ui.hpp"
 
 namespace formsim::app {
@@ -65,19 +67,19 @@ std::vector<PaletteEntry> AppUi::PaletteEntries(const std::string& filter) const
     const auto r = std::find(state_.recent_commands.begin(), state_.recent_commands.end(), c.name);
     if (words.empty() && r != state_.recent_commands.end())
       score = -100 + static_cast<int>(r - state_.recent_commands.begin());
-    entries.push_back({false, c.name, c.help, c.KeysText(), score});
+    entries.push_back({false, c.name, c.help, EscapeMarkup(c.help), c.KeysText(), score});
   }
   // Tunables, only once something is typed (there can be thousands).
   if (!words.empty())
     for (const sim::Param& p : session_->params().all()) {
-      const std::string label =
-          p.tune.label + (p.tune.unit.empty() ? "" : " [" + p.tune.unit + "]");
+      const std::string unit = p.tune.unit.empty() ? "" : " [" + p.tune.unit + "]";
+      // The tunable's one name, as the Parameters panel shows it (with its subscripts).
+      const std::string markup =
+          EscapeMarkup(p.tune.group.empty() ? "" : p.tune.group + ": ") + TunableLabel(p) +
+          EscapeMarkup(unit + " = " + p.Text());
       int score = 0;
-      if (!Matches(words, p.key, label + " " + p.tune.group, &score)) continue;
-      entries.push_back(
-          {true, p.key,
-           (p.tune.group.empty() ? "" : p.tune.group + ": ") + label + " = " + p.Text(), "",
-           score + 1});
+      if (!Matches(words, p.key, p.tune.label + unit + " " + p.tune.group, &score)) continue;
+      entries.push_back({true, p.key, MarkupText(markup), markup, "", score + 1});
     }
   std::stable_sort(entries.begin(), entries.end(),
                    [](const PaletteEntry& a, const PaletteEntry& b) { return a.score < b.score; });
@@ -120,9 +122,20 @@ void AppUi::DrawPalette(ImVec2 display) {
     const PaletteEntry& e = entries[i];
     ImGui::PushID(i);
     const std::string left = (e.tunable ? "tunable  " : "") + e.name;
-    if (ImGui::Selectable(left.c_str(), i == state_.palette_selected)) chosen = i;
+    // One highlighted row: the selection. The mouse moves the selection (a row hovered after
+    // the mouse moved becomes the selected one) instead of lighting a second row.
+    const bool selected = i == state_.palette_selected;
+    if (!selected) {
+      ImGui::PushStyleColor(ImGuiCol_HeaderHovered, ImVec4(0, 0, 0, 0));
+      ImGui::PushStyleColor(ImGuiCol_HeaderActive, ImGui::GetStyleColorVec4(ImGuiCol_Header));
+    }
+    if (ImGui::Selectable(left.c_str(), selected)) chosen = i;
+    if (!selected) ImGui::PopStyleColor(2);
+    const ImVec2 moved = ImGui::GetIO().MouseDelta;
+    if (ImGui::IsItemHovered() && (moved.x != 0 || moved.y != 0)) state_.palette_selected = i;
     ImGui::SameLine(std::max(230.0f, ImGui::CalcTextSize(left.c_str()).x + 30));
-    ImGui::TextDisabled("%s", e.detail.substr(0, 90).c_str());
+    MarkupTextItem(ShortenMarkup(e.detail_markup, 90),
+                   ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
     if (!e.keys.empty()) {
       ImGui::SameLine(w - ImGui::CalcTextSize(e.keys.c_str()).x - 20);
       ImGui::TextDisabled("%s", e.keys.c_str());

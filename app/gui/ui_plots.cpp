@@ -26,9 +26,17 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool wi
     if (select) state_.select_tab.clear();
     return select ? ImGuiTabItemFlags_SetSelected : ImGuiTabItemFlags_None;
   };
-  if (ImGui::BeginTabBar("tabs")) {
+  // The control panel is a tab only in the narrow layout; elsewhere it is always in view.
+  if (!with_controls && state_.select_tab == "controls") state_.select_tab.clear();
+  // Every tab stays reachable however narrow the window: tabs that do not fit shrink, and the
+  // list button at the left of the bar names them all (the narrow layout).
+  const ImGuiTabBarFlags bar_flags =
+      with_controls ? ImGuiTabBarFlags_TabListPopupButton | ImGuiTabBarFlags_FittingPolicyResizeDown
+                    : ImGuiTabBarFlags_None;
+  if (ImGui::BeginTabBar("tabs", bar_flags)) {
     if (with_controls && ImGui::BeginTabItem("Controls", nullptr, tab("Controls"))) {
-      ImGui::BeginChild("controls");
+      // With the window's padding: full-width items end inside the clip rectangle, not under it.
+      ImGui::BeginChild("controls", ImVec2(0, 0), false, ImGuiWindowFlags_AlwaysUseWindowPadding);
       DrawControlPanel(fonts, true);
       ImGui::EndChild();
       ImGui::EndTabItem();
@@ -42,7 +50,8 @@ void AppUi::DrawPlotsWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool wi
       plots_->Draw(fonts);
       ImGui::EndTabItem();
     }
-    if (tables_->HasTables() && ImGui::BeginTabItem("Tables", nullptr, tab("Tables"))) {
+    // Always there (a run not started yet says so): `tab tables` is never left waiting.
+    if (ImGui::BeginTabItem("Tables", nullptr, tab("Tables"))) {
       tables_->Draw(fonts);
       ImGui::EndTabItem();
     }

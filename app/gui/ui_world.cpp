@@ -114,25 +114,35 @@ void AppUi::DrawWorldMouse(const View& view) {
     const Vec2 m = view.ToWorld(io.MousePos);
     char buf[64];
     std::snprintf(buf, sizeof(buf), "x %.3f m, y %.3f m", m.x, m.y);
-    const ImVec2 at =
-        CoordinateReadoutPos(view, ImGui::CalcTextSize(buf), world_report_.scale_bar_box);
-    ImGui::GetWindowDrawList()->AddText(at, ToImColor(GetTheme(state_.theme).coordinates), buf);
+    const ImVec2 ext = ImGui::CalcTextSize(buf);
+    const ImVec2 at = CoordinateReadoutPos(view, ext, world_report_.scale_bar_box,
+                                           state_.legend ? world_report_.legend_box : ImVec4());
+    // On the theme's backdrop, as the view's labels are: readable over grid lines and trails.
+    const Theme& th = GetTheme(state_.theme);
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    dl->AddRectFilled(ImVec2(at.x - 3, at.y - 1), ImVec2(at.x + ext.x + 3, at.y + ext.y + 1),
+                      ToImColor(th.backdrop.WithAlpha(0.85f)), 2.0f);
+    dl->AddText(at, ToImColor(th.text), buf);
   }
 }
+
+float AppUi::WorldWindowChrome() const { return ImGui::GetFrameHeight() + 8; }
 
 void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool interactive) {
   ImGui::SetNextWindowPos(pos);
   ImGui::SetNextWindowSize(size);
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
   const std::string title = Shorten(session_->exp().setup().name, 200) + "###world";
+  // No title bar: the view names the scenario under its time, and keeps the height.
   ImGui::Begin(title.c_str(), nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                    ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse |
+                   ImGuiWindowFlags_NoTitleBar |
                    ImGuiWindowFlags_NoBackground);  // the world view paints it
   const ImVec2 min = ImGui::GetCursorScreenPos();
   const ImVec2 avail = ImGui::GetContentRegionAvail();
   // The timeline takes a strip at the bottom.
-  const float strip = ImGui::GetFrameHeight() + 8;
+  const float strip = WorldWindowChrome();
   const ImVec2 max(min.x + std::max(avail.x, 10.0f), min.y + std::max(avail.y - strip, 10.0f));
   // The robots, once a frame for the camera and the world view, and of their recent trails what
   // is needed: every point when the legend chooses its corner (once a second), their box while
@@ -145,6 +155,7 @@ void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool in
                : FocusTrails::kNone;
   FocusOf(ShownExperiment(), kFocusTrailSeconds, &frame_focus_, trails);
   UpdateView(min, max);
+  world_rect_ = ImVec4(min.x, min.y, max.x, max.y);
   ImGui::InvisibleButton("world", ImVec2(max.x - min.x, max.y - min.y),
                          ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
                              ImGuiButtonFlags_MouseButtonMiddle);
@@ -157,6 +168,8 @@ void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool in
   opt.clock = ImGui::GetTime();
   opt.degrees = state_.settings.degrees;
   opt.report = &world_report_;
+  opt.caption = Shorten(session_->exp().setup().name, 80);
+  if (state_.present && state_.present_bar.z > state_.present_bar.x) opt.keep_clear.push_back(state_.present_bar);
   opt.focus = &frame_focus_;
   opt.level_of_detail = true;
   compare_->AddWorldOverlays(opt);  // the pins, faded

@@ -1,5 +1,7 @@
 #include "app/gui/view_panel.hpp"
 
+#include "app/gui/fitted_field.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -116,7 +118,7 @@ void ViewPanel::Draw(const Fonts&) {
           ? robots[ctx_.state->follow]->name()
           : "nobody";
   ImGui::SetNextItemWidth(140);
-  if (ImGui::BeginCombo("follow", preview.c_str())) {
+  if (FittedCombo("follow", preview)) {
     if (ImGui::Selectable("nobody", ctx_.state->follow < 0)) ctx_.state->follow = -1;
     for (std::size_t i = 0; i < robots.size(); ++i)
       if (ImGui::Selectable(robots[i]->name().c_str(), ctx_.state->follow == static_cast<int>(i))) {
@@ -221,6 +223,9 @@ void ViewPanel::DrawPresentationBar(ImVec2 min, ImVec2 max) {
   if (ImGui::Button("Exit presentation")) CmdPresent(false);
   ctx_.Find<RunPanel>()->DrawAchievedSpeed();
   ctx_.state->present_bar_bottom = ImGui::GetWindowPos().y + ImGui::GetWindowSize().y;
+  ctx_.state->present_bar = ImVec4(ImGui::GetWindowPos().x, ImGui::GetWindowPos().y,
+                                   ImGui::GetWindowPos().x + ImGui::GetWindowSize().x,
+                                   ctx_.state->present_bar_bottom);
   ImGui::End();
 }
 
@@ -339,11 +344,17 @@ std::vector<Command> ViewPanel::Rows() {
          return std::string();
        }});
   row({.name = "tab",
-       .args = {Choice("NAME", {"plots", "tables", "history", "summary", "lesson"})},
+       .args = {Choice("NAME", {"controls", "lesson", "plots", "tables", "history", "summary"})},
        .menu = "View/Show tab",
-       .help = "Bring a tab of the right-hand window to the front",
-       .run = [](AppUi& ui, const CommandArgs& a, Src) {
-         ui.state().select_tab = a.Text(0);
+       .help = "Bring a tab to the front, in every layout (presentation mode is left for it; "
+               "controls: the control panel, a tab in the narrow layout)",
+       .run = [panel](AppUi& ui, const CommandArgs& a, Src) {
+         const std::string name = a.Text(0);
+         if (name == "lesson" && !ui.session().lesson().present)
+           return std::string("this scenario is no lesson: it has no Lesson tab (open one: lesson NAME)");
+         // Presentation mode shows the world view alone: the tabs come back with the panels.
+         if (ui.state().present) panel(ui)->CmdPresent(false);
+         ui.state().select_tab = name;
          return std::string();
        }});
   row({.name = "help",

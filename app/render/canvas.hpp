@@ -56,6 +56,18 @@ class Canvas {
   virtual void FillPolygonAliased(const ImVec2* pts, int n, sim::Color color) {
     FillPolygon(pts, n, color);
   }
+  /// A filled polygon star-shaped from its first point (every point of it sees pts[0]), e.g. a
+  /// robot's heading arrow, tip first; `cls` names what it is for vector files (SVG `class`).
+  /// ImGui: anti-aliased triangles fanned from pts[0] (a concave arrow keeps smooth edges);
+  /// vector canvases: one path. By default FillPolygon.
+  virtual void FillFan(const ImVec2* pts, int n, sim::Color color, const std::string& /*cls*/) {
+    FillPolygon(pts, n, color);
+  }
+  /// Opens a group of what is drawn until EndGroup (groups nest): vector canvases keep it (SVG
+  /// `<g id class>`), so that a figure's parts (a robot) can be styled and found; others ignore
+  /// it.
+  virtual void BeginGroup(const std::string& /*id*/, const std::string& /*cls*/) {}
+  virtual void EndGroup() {}
   /// The area between two curves sampled at the same x (upper[i].x == lower[i].x, ascending):
   /// a plot's band. The curves may touch or cross. By default the outline (upper forward, lower
   /// back) filled with the non-zero rule, which fills every lobe of a crossing band.

@@ -1,11 +1,17 @@
 #include "app/render/canvas_draw_sink.hpp"
 
+#include "app/render/contrast.hpp"
+
 #include <algorithm>
 #include <cmath>
 
 #include "app/render/polyline_simplify.hpp"
 
 namespace formsim::app {
+
+// Scene labels' contrast against the theme's backdrop: 4.5:1 with a margin for what shows
+// through the backdrop.
+constexpr double kLabelContrast = 6.0;
 
 namespace {
 constexpr float kSmallShapePx = 12.0f;
@@ -114,6 +120,29 @@ void CanvasDrawSink::Polygon(const std::vector<Vec2>& pts, sim::Color fill, sim:
   }
   if (outline.a <= 0) return;
   cv_.Polyline(s.data(), n, {theme_.Ink(outline), Width(small ? 1.0f : 1.5f)}, true);
+}
+
+void CanvasDrawSink::Heading(const std::vector<Vec2>& pts, sim::Color fill, sim::Color body) {
+  if (pts.size() < 3 || fill.a <= 0) return;
+  std::vector<ImVec2>& s = screen_;
+  s.clear();
+  for (const Vec2& p : pts) s.push_back(view_.ToScreen(p));
+  const sim::Color ink = theme_.HeadingInk(body).WithAlpha(fill.a);
+  const int n = static_cast<int>(s.size());
+  if (level_of_detail_) {
+    // Under kSmallShapePx (the window's level of detail): filled without anti-aliasing fringes,
+    // as the body under it.
+    float lo_x = s[0].x, hi_x = s[0].x, lo_y = s[0].y, hi_y = s[0].y;
+    for (const ImVec2& p : s) {
+      lo_x = std::min(lo_x, p.x), hi_x = std::max(hi_x, p.x);
+      lo_y = std::min(lo_y, p.y), hi_y = std::max(hi_y, p.y);
+    }
+    if (std::max(hi_x - lo_x, hi_y - lo_y) < kSmallShapePx) {
+      cv_.FillPolygonAliased(s.data(), n, ink);
+      return;
+    }
+  }
+  cv_.FillFan(s.data(), n, ink, "heading");
 }
 
 void CanvasDrawSink::Circle(Vec2 center, double radius, sim::Color fill, sim::Color outline) {
@@ -306,14 +335,16 @@ void CanvasDrawSink::FlushLabels() {
     const ImVec4 box = box_at(pos);
     placed_.push_back(box);
     taken.Add(box);
-    const sim::Color ink = theme_.TextInk(q.color);
+    // Readable over whatever passes under the backdrop (a trail, a robot, a filled triangle):
+    // a margin over 4.5:1 against the backdrop itself.
+    const sim::Color ink = WithContrast(theme_.TextInk(q.color), theme_.backdrop, kLabelContrast);
     if (moved) {
       // A thin leader from the anchor to the nearest point of the label's box.
       const ImVec2 to(std::clamp(q.anchor.x, box.x, box.z), std::clamp(q.anchor.y, box.y, box.w));
       cv_.Line(q.anchor, to, {ink.WithAlpha(0.7f), 1.0f});
     }
     // A translucent backdrop keeps labels readable over grid lines and trails.
-    cv_.FillRect(ImVec2(box.x, box.y), ImVec2(box.z, box.w), theme_.backdrop.WithAlpha(0.67f),
+    cv_.FillRect(ImVec2(box.x, box.y), ImVec2(box.z, box.w), theme_.backdrop.WithAlpha(0.92f),
                  2.0f);
     cv_.Text(pos, font_, ink, q.text);
   }

@@ -34,6 +34,13 @@ class CanvasDrawSink : public sim::DrawSink {
   void Label(Vec2 p, const std::string& text, sim::Color color, sim::LabelRole role, float dx_px,
              float dy_px) override;
   void Flash(Vec2 p, double radius, sim::Color color, float age) override;
+  /// The theme's HeadingInk() of `body` (its alpha `fill`'s), a fan from the tip of class
+  /// "heading" (Canvas::FillFan).
+  void Heading(const std::vector<Vec2>& pts, sim::Color fill, sim::Color body) override;
+  void BeginGroup(const std::string& id, const std::string& cls) override {
+    cv_.BeginGroup(id, cls);
+  }
+  void EndGroup() override { cv_.EndGroup(); }
   bool Shows(const std::string& name) const override {
     return overlays_ == nullptr ? sim::OverlayOnByDefault(name) : overlays_->count(name) > 0;
   }

@@ -30,6 +30,9 @@ class FadedDrawSink : public sim::DrawSink {
     in_.CovarianceEllipse(center, sxx, sxy, syy, n_sigma, Fade(color));
   }
   void Cross(Vec2 p, double size, sim::Color color) override { in_.Cross(p, size, Fade(color)); }
+  void Heading(const std::vector<Vec2>& pts, sim::Color fill, sim::Color body) override {
+    in_.Heading(pts, Fade(fill), Fade(body));
+  }
   void Text(Vec2, const std::string&, sim::Color, float, float) override {}
   void Flash(Vec2, double, sim::Color, float) override {}
   bool Shows(const std::string& name) const override { return in_.Shows(name); }

@@ -189,6 +189,20 @@ void ImGuiCanvas::FillPolygonAliased(const ImVec2* pts, int n, sim::Color color)
   dl_->Flags = flags;
 }
 
+void ImGuiCanvas::FillFan(const ImVec2* pts, int n, sim::Color color, const std::string&) {
+  if (n < 3 || color.a <= 0) return;
+  const ImU32 col = ToImColor(color);
+  for (int i = 1; i + 1 < n; ++i) {
+    ImVec2 tri[3] = {pts[0], pts[i], pts[i + 1]};
+    // ImGui's anti-aliased fill wants clockwise points on screen (y down): a positive area.
+    if (SignedArea(tri, 3) < 0) std::swap(tri[1], tri[2]);
+    dl_->AddConvexPolyFilled(tri, 3, col);
+  }
+  // The triangles' fringes meet half covered along the inner edges, which would show as a light
+  // seam: a one-pixel line along each covers it.
+  for (int i = 2; i + 1 < n; ++i) dl_->AddLine(pts[0], pts[i], col, 1.0f);
+}
+
 // Concave polygons (floor patches may be any simple polygon) are ear-clipped into triangles;
 // convex ones go to ImGui's anti-aliased convex fill.
 void ImGuiCanvas::FillPolygon(const ImVec2* pts, int n, sim::Color color) {

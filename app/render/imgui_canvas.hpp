@@ -34,6 +34,8 @@ class ImGuiCanvas : public Canvas {
   /// ImGui's fill without its one-pixel fringe of anti-aliasing triangles.
   void FillPolygonAliased(const ImVec2* pts, int n, sim::Color color) override;
   void FillBetween(const ImVec2* upper, const ImVec2* lower, int n, sim::Color color) override;
+  /// Each triangle of the fan through ImGui's anti-aliased convex fill, wound as it wants.
+  void FillFan(const ImVec2* pts, int n, sim::Color color, const std::string& cls) override;
   void FillCircle(ImVec2 center, float radius, sim::Color color) override;
   void StrokeCircle(ImVec2 center, float radius, sim::Color color, float width) override;
   void Text(ImVec2 pos, FontRole font, sim::Color color, const std::string& text) override;

@@ -38,6 +38,45 @@ std::vector<std::size_t> Lines(const std::string& text) {
   return starts;
 }
 
+// `text` wrapped to the content region at spaces only: ImGui's own wrap also breaks after
+// '.' and ',', which splits a number ("0." / "99") at a large UI scale. A word wider than the
+// whole line is left to ImGui's wrap.
+void WrapAtSpaces(const std::string& text) {
+  const float width = std::max(1.0f, ImGui::GetContentRegionAvail().x);
+  ImFont* font = ImGui::GetFont();
+  const float size = ImGui::GetFontSize();
+  auto wide = [&](const char* b, const char* e) { return font->CalcTextSizeA(size, 1e30f, 0.0f, b, e).x; };
+  const char* p = text.c_str();
+  const char* const end = p + text.size();
+  while (p <= end) {
+    const char* nl = std::find(p, end, '\n');
+    // One paragraph [p, nl): lines of whole words.
+    const char* line = p;
+    while (line < nl) {
+      const char* fit_end = nullptr;  // the end of the last word that fits
+      const char* q = line;
+      while (q < nl) {
+        const char* word_end = std::find(q, nl, ' ');
+        if (fit_end != nullptr && wide(line, word_end) > width) break;
+        fit_end = word_end;
+        q = word_end < nl ? word_end + 1 : nl;
+      }
+      if (fit_end != nullptr && wide(line, fit_end) > width) {
+        // One word wider than the line: ImGui's wrap (any break beats text past the edge).
+        ImGui::PushTextWrapPos(0.0f);
+        ImGui::TextUnformatted(line, fit_end);
+        ImGui::PopTextWrapPos();
+      } else {
+        ImGui::TextUnformatted(line, fit_end);
+      }
+      line = fit_end;
+      while (line < nl && *line == ' ') ++line;
+    }
+    if (nl == p) ImGui::TextUnformatted("");  // an empty line keeps its height
+    p = nl + 1;
+  }
+}
+
 }  // namespace
 
 std::string Shorten(const std::string& text, std::size_t max_bytes) {
@@ -47,15 +86,10 @@ std::string Shorten(const std::string& text, std::size_t max_bytes) {
 
 void LongTextWrapped(const char* id, const std::string& text, std::size_t inline_bytes) {
   if (text.size() <= inline_bytes) {
-    ImGui::PushTextWrapPos(0.0f);
-    ImGui::TextUnformatted(text.c_str(), text.c_str() + text.size());
-    ImGui::PopTextWrapPos();
+    WrapAtSpaces(text);
     return;
   }
-  const std::string cut = Shorten(text, inline_bytes);
-  ImGui::PushTextWrapPos(0.0f);
-  ImGui::TextUnformatted(cut.c_str(), cut.c_str() + cut.size());
-  ImGui::PopTextWrapPos();
+  WrapAtSpaces(Shorten(text, inline_bytes));
   ImGui::PushID(id);
   const std::string label = "whole text (" + std::to_string(text.size()) + " bytes)";
   if (ImGui::TreeNode("##whole", "%s", label.c_str())) {

@@ -18,7 +18,7 @@ constexpr std::size_t kInlineTextBytes = 1200;
 /// it was cut.
 std::string Shorten(const std::string& text, std::size_t max_bytes);
 
-/// Wrapped text: a short one as it is; a long one cut with "…", plus a "whole text (N
+/// Wrapped text, at spaces only (a number such as "0.99" never breaks): a short one as it is; a long one cut with "…", plus a "whole text (N
 /// characters)" node opening a scrolling child of its lines (only the visible ones drawn).
 /// `id` must be unique in the window.
 void LongTextWrapped(const char* id, const std::string& text,

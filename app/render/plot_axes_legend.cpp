@@ -128,7 +128,8 @@ void PlotFrame::DrawLegend() {
     const auto& s = data.series[legend_items[k]];
     SeriesLook look = th.Series(s.color, s.style_index, s.dashed);
     if (s.dash_style > 0) look.dash = DashStyle(s.dash_style);
-    const float x = lo.x + col_w * static_cast<float>(k % leg_cols);
+    const float x = lo.x + (col_x.empty() ? col_w * static_cast<float>(k % leg_cols)
+                                          : col_x[static_cast<std::size_t>(k % leg_cols)]);
     const float y = lo.y + 4 + row_h * static_cast<float>(k / leg_cols);
     const float cy = y + row_h / 2;
     const ImVec2 p0(x + 7, cy), p1(x + 7 + sample_w, cy);

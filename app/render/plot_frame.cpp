@@ -290,11 +290,27 @@ void PlotFrame::PlaceLegend() {
     } else if (best > 0 || heat) {
       // No free corner and no room above the data: the legend goes below the axes, in as many
       // columns as fit the figure's width (the axes keep their width).
+      // Each column as wide as its own widest entry: one long label (a pinned run's) does not
+      // make every column that wide, and the legend keeps few rows, the axes their height.
       const int n = static_cast<int>(legend_items.size());
-      const int cols = std::clamp(static_cast<int>((max.x - min.x - 2 * pad) / col_w), 1, n);
-      const int rows = (n + cols - 1) / cols;
-      leg_cols = cols;
-      leg_size = ImVec2(cols * col_w, row_h * rows + 8);
+      std::vector<float> item_w;
+      for (int i : legend_items)
+        item_w.push_back(sample_w + 14 + LegendTextSize(cv, st.label_font, data.series[i].label).x + 8);
+      const float room = max.x - min.x - 2 * pad;
+      for (int cols = n; cols >= 1; --cols) {
+        std::vector<float> w(static_cast<std::size_t>(cols), 0.0f);
+        for (int k = 0; k < n; ++k) w[k % cols] = std::max(w[k % cols], item_w[k]);
+        float total = 0;
+        col_x.clear();
+        for (float c : w) col_x.push_back(total), total += c;
+        if (total <= room || cols == 1) {
+          leg_cols = cols;
+          leg_size.x = total;
+          break;
+        }
+      }
+      const int rows = (n + leg_cols - 1) / leg_cols;
+      leg_size.y = row_h * rows + 8;
       bottom_reserve = leg_size.y + 6;
       LayOutOnce();
       if (data.equal_aspect) Equalize();

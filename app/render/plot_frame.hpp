@@ -96,6 +96,8 @@ struct PlotFrame {
   ImVec2 leg_size{0, 0};
   float row_h = 0, sample_w = 26, col_w = 0;
   int leg_cols = 1;
+  /// Each legend column's left offset from the legend's left (empty: col_w apart).
+  std::vector<float> col_x;
   int corner = 1;  ///< 0..3: top-left, top-right, bottom-left, bottom-right; -1: below the axes
 
   PlotLayout L;  ///< what DrawPlot returns

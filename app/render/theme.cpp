@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 namespace formsim::app {
 namespace {
@@ -200,6 +201,10 @@ sim::Color Theme::Fill(sim::Color c) const {
   return MapInk(*this, c);
 }
 
+sim::Color Theme::HeadingInk(sim::Color body) const {
+  return sim::HeadingInk(Over(Fill(body), background));
+}
+
 sim::Color Theme::TextInk(sim::Color c) const {
   return Remembered(*this, c, kTextContrast);
 }
@@ -282,6 +287,10 @@ ThemeId ParseTheme(const std::string& text, const std::string& flag) {
   throw std::runtime_error(flag + " '" + text + "': expected one of " + ThemeNames());
 }
 
+// Makes the style meet the text contrast (4.5:1, WCAG 1.4.3) for text, grey text, check marks
+// and the edges of checkboxes and radio buttons, on every surface they are drawn on.
+static void MeetTextContrast(ImGuiStyle& style);
+
 void ApplyImGuiTheme(const Theme& theme) {
   ImGuiStyle& style = ImGui::GetStyle();
   auto c = [](sim::Color k) { return ImVec4(k.r, k.g, k.b, k.a); };
@@ -318,6 +327,52 @@ void ApplyImGuiTheme(const Theme& theme) {
   // Slider handles stay translucent: the value's digits, drawn over the handle, keep their
   // contrast wherever it sits (sliders of few steps have wide handles).
   for (ImGuiCol k : {ImGuiCol_SliderGrab, ImGuiCol_SliderGrabActive}) style.Colors[k].w = 0.35f;
+  MeetTextContrast(style);
+}
+
+static void MeetTextContrast(ImGuiStyle& style) {
+  // A little above 4.5:1, so that rounding to 8-bit channels never takes a pair below it.
+  constexpr double kRatio = kTextContrast + 0.1;
+  auto col = [&](ImGuiCol k) {
+    const ImVec4& v = style.Colors[k];
+    return sim::Color{v.x, v.y, v.z, v.w};
+  };
+  auto set = [&](ImGuiCol k, sim::Color c) { style.Colors[k] = ImVec4(c.r, c.g, c.b, c.a); };
+  const sim::Color window = Over(col(ImGuiCol_WindowBg), sim::Color{0, 0, 0, 1});
+  const std::vector<sim::Color> bases = {window, Over(col(ImGuiCol_PopupBg), window),
+                                         Over(col(ImGuiCol_ChildBg), window)};
+  const sim::Color text = Over(col(ImGuiCol_Text), window);
+  // Every surface text is drawn on (frames, headers, buttons, tabs, table rows) keeps the text
+  // readable: one that does not is moved away from the text's colour (its hue kept), opaque.
+  static const ImGuiCol kSurfaces[] = {
+      ImGuiCol_FrameBg,       ImGuiCol_FrameBgHovered, ImGuiCol_FrameBgActive,
+      ImGuiCol_Header,        ImGuiCol_HeaderHovered,  ImGuiCol_HeaderActive,
+      ImGuiCol_Button,        ImGuiCol_ButtonHovered,  ImGuiCol_ButtonActive,
+      ImGuiCol_Tab,           ImGuiCol_TabHovered,     ImGuiCol_TabActive,
+      ImGuiCol_TableHeaderBg, ImGuiCol_TableRowBgAlt,  ImGuiCol_MenuBarBg};
+  std::vector<sim::Color> surfaces = bases;
+  for (ImGuiCol k : kSurfaces) {
+    bool reads = true;
+    for (const sim::Color& b : bases) reads = reads && ContrastRatio(text, Over(col(k), b)) >= kRatio;
+    if (!reads) set(k, WithContrast(Over(col(k), window), text, kRatio));
+    for (const sim::Color& b : bases) surfaces.push_back(Over(col(k), b));
+  }
+  // Secondary (grey) text reads on every one of them, as text does: "grey on blue" included.
+  for (int pass = 0; pass < 2; ++pass)
+    for (const sim::Color& bg : surfaces)
+      set(ImGuiCol_TextDisabled, WithContrast(Over(col(ImGuiCol_TextDisabled), bg), bg, kRatio));
+  // Checkboxes and radio buttons: the mark reads on the box, and the box's edge (drawn, with a
+  // frame border of 1) on what is around it.
+  for (int pass = 0; pass < 2; ++pass)
+    for (ImGuiCol frame : {ImGuiCol_FrameBg, ImGuiCol_FrameBgHovered, ImGuiCol_FrameBgActive})
+      for (const sim::Color& b : bases) {
+        const sim::Color bg = Over(col(frame), b);
+        set(ImGuiCol_CheckMark, WithContrast(Over(col(ImGuiCol_CheckMark), bg), bg, kRatio));
+      }
+  for (int pass = 0; pass < 2; ++pass)
+    for (const sim::Color& b : bases)
+      set(ImGuiCol_Border, WithContrast(Over(col(ImGuiCol_Border), b), b, kRatio));
+  style.FrameBorderSize = std::max(style.FrameBorderSize, 1.0f);
 }
 
 }  // namespace formsim::app

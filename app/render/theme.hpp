@@ -59,9 +59,13 @@ struct Theme {
   /// Ink() of a label: opaque, with at least 4.5:1 contrast against the background (WCAG 2.1
   /// for text).
   sim::Color TextInk(sim::Color c) const;
-  /// Ink() of a filled area (a robot's body, a heading wedge): mapped to the theme but not
-  /// pushed away from the background, since its outline carries the contrast.
+  /// Ink() of a filled area (a robot's body): mapped to the theme but not pushed away from the
+  /// background, since its outline carries the contrast.
   sim::Color Fill(sim::Color c) const;
+  /// The ink of a robot's heading arrow on a body of colour `body` (before the theme, its alpha
+  /// the body's): sim::HeadingInk of the body as this theme shows it (Fill() over the
+  /// background), white or near-black, opaque. The world view and its legend both draw with it.
+  sim::Color HeadingInk(sim::Color body) const;
   /// Colour, dash and marker of a plot series with palette index `index` (dashed: the figure
   /// asks for a dashed line, e.g. a reference path). Colour themes: past the palette's
   /// kPaletteSize colours, series repeat colours and differ by dash pattern. Print: series

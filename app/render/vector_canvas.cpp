@@ -54,6 +54,22 @@ void VectorCanvas::FillPolygon(const ImVec2* pts, int n, sim::Color color) {
   op.closed = true;
 }
 
+void VectorCanvas::FillFan(const ImVec2* pts, int n, sim::Color color, const std::string& cls) {
+  if (n < 3 || color.a <= 0) return;
+  FillPolygon(pts, n, color);
+  fig_.ops.back().cls = cls;
+}
+
+void VectorCanvas::BeginGroup(const std::string& id, const std::string& cls) {
+  VectorOp& op = Add(VectorOp::Kind::kBeginGroup, {});
+  op.text = id;
+  op.cls = cls;
+}
+
+void VectorCanvas::EndGroup() {
+  Add(VectorOp::Kind::kEndGroup, {});
+}
+
 void VectorCanvas::FillCircle(ImVec2 center, float radius, sim::Color color) {
   if (color.a <= 0 || !(radius > 0)) return;
   VectorOp& op = Add(VectorOp::Kind::kFillCircle, color);

@@ -20,7 +20,9 @@ struct VectorOp {
     kStrokeCircle,
     kText,
     kPushClip,
-    kPopClip
+    kPopClip,
+    kBeginGroup,  ///< text: the group's id, cls: its class
+    kEndGroup
   };
   Kind kind = Kind::kFillRect;
   std::vector<ImVec2> pts;  ///< rect: min, max; path: its points; circle, text: one point
@@ -33,6 +35,7 @@ struct VectorOp {
   bool vertical = false;  ///< text rotated 90° counter-clockwise about pts[0]
   std::string text;       ///< text: pts[0] is the left end of the baseline (before rotating)
   bool markup = false;    ///< `text` is label markup: drawn as its runs (ParseMarkup)
+  std::string cls;        ///< fill path, group: what it is (SVG `class`, e.g. "heading")
 };
 
 /// A figure as drawing calls in logical pixels (1/96 inch), y down.
@@ -50,6 +53,9 @@ class VectorCanvas : public Canvas {
   void StrokeRect(ImVec2 min, ImVec2 max, sim::Color color, float width, float rounding) override;
   void Polyline(const ImVec2* pts, int n, const Stroke& stroke, bool closed) override;
   void FillPolygon(const ImVec2* pts, int n, sim::Color color) override;
+  void FillFan(const ImVec2* pts, int n, sim::Color color, const std::string& cls) override;
+  void BeginGroup(const std::string& id, const std::string& cls) override;
+  void EndGroup() override;
   void FillCircle(ImVec2 center, float radius, sim::Color color) override;
   void StrokeCircle(ImVec2 center, float radius, sim::Color color, float width) override;
   void Text(ImVec2 pos, FontRole font, sim::Color color, const std::string& text) override;

@@ -15,9 +15,18 @@ void DrawSample(Canvas& cv, const Theme& th, sim::LegendMark mark, sim::Color co
   const float lw = 2.0f * th.line_scale;
   switch (mark) {
     case sim::LegendMark::kBody: {
-      cv.FillRect(ImVec2(cx - 9, cy - 6), ImVec2(cx + 9, cy + 6), c, 1.0f);
-      const ImVec2 wedge[3] = {ImVec2(cx + 6, cy), ImVec2(cx - 3, cy - 4), ImVec2(cx - 3, cy + 4)};
-      cv.FillPolygon(wedge, 3, sim::Color{1, 1, 1, 0.9f});
+      // The robot as the world view draws it (sim::DrawRobotBody): its fill, dark outline and
+      // heading arrow, in the theme's inks for that body.
+      const sim::Color body = color.WithAlpha(sim::kBodyAlpha);
+      const ImVec2 box[4] = {ImVec2(cx + 9, cy - 6), ImVec2(cx - 9, cy - 6), ImVec2(cx - 9, cy + 6),
+                             ImVec2(cx + 9, cy + 6)};
+      cv.FillPolygon(box, 4, th.Fill(body));
+      cv.Polyline(box, 4, {th.Ink(sim::Color{0.1f, 0.1f, 0.1f, 1.0f}), 1.5f * th.line_scale}, true);
+      ImVec2 arrow[4];
+      int k = 0;
+      for (const Vec2& p : sim::HeadingArrow(-9, 9, 6))
+        arrow[k++] = ImVec2(cx + static_cast<float>(p.x), cy - static_cast<float>(p.y));
+      cv.FillFan(arrow, 4, th.HeadingInk(body), "heading-legend");
       break;
     }
     case sim::LegendMark::kLine:
@@ -126,6 +135,10 @@ void DrawWorldLegend(Canvas& cv, const View& view, const Theme& th,
         layouts.push_back(l);
         if (collapsed) return;  // folded: every layout is the same title tab
       }
+    // Last, the title tab alone: where every fuller layout would cover a robot in every corner,
+    // the legend folds rather than hide one.
+    const Layout tab = Measure(cv, entries, 0, 1, true, title_w);
+    if (!layouts.empty() && fits(tab)) layouts.push_back(tab);
   };
   const float x_left = view.min.x + 40;
   const float y_top = view.min.y + top_reserved;
@@ -150,7 +163,7 @@ void DrawWorldLegend(Canvas& cv, const View& view, const Theme& th,
     return count;
   };
   int corner = state != nullptr ? state->corner : -1;
-  const bool due = LegendCornerDue(state, clock);
+  bool due = LegendCornerDue(state, clock);
   Layout l;
   bool have = false;
   // Between choices, the layout chosen with the corner while the entries, the fold and the fit
@@ -159,6 +172,9 @@ void DrawWorldLegend(Canvas& cv, const View& view, const Theme& th,
       state->shown <= n) {
     l = Measure(cv, entries, state->shown, state->columns, collapsed || state->shown == 0, title_w);
     have = fits(l) || state->shown == 0;
+    // A robot driven under the kept legend: the corner is chosen anew now, not a second later.
+    const ImVec2 lo = corner_min(l, corner);
+    if (have && robots_under(lo, ImVec2(lo.x + l.w, lo.y + l.h)) > 0) due = true, have = false;
   }
   if (!have) {
     add_layouts();

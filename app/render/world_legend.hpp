@@ -1,7 +1,8 @@
 #pragma once
 /// \file The world view's legend: a sample and a label for each kind of mark drawn this frame,
 /// compact (two columns where they fit), collapsible, never more than 15% of the view, in the
-/// corner that covers the fewest robots and trail points (re-chosen at most once a second).
+/// corner that covers the fewest robots and trail points (re-chosen at most once a second, and
+/// at once when a robot comes under it).
 
 #include <vector>
 

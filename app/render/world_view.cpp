@@ -12,6 +12,14 @@
 namespace formsim::app {
 namespace {
 
+// A grid value at `at`, on a backdrop: a trail or robot passing under it leaves it readable.
+void CoordinateText(Canvas& cv, const Theme& th, ImVec2 at, const std::string& s) {
+  const ImVec2 ext = cv.TextSize(FontRole::kSmall, s);
+  cv.FillRect(ImVec2(at.x - 2, at.y), ImVec2(at.x + ext.x + 2, at.y + ext.y),
+              th.backdrop, 2.0f);
+  cv.Text(at, FontRole::kSmall, th.coordinates, s);
+}
+
 void Label(Canvas& cv, const Theme& th, FontRole f, ImVec2 pos, sim::Color col,
            const std::string& s) {
   const ImVec2 ext = cv.TextSize(f, s);
@@ -174,7 +182,8 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
   // The legend as last drawn (it moves at most once a second): labels keep off it too.
   const bool has_legend_box =
       opt.legend && opt.legend_state && opt.legend_state->box_max.x > opt.legend_state->box_min.x;
-  if (has_legend_box) {
+  for (const ImVec4& b : opt.keep_clear) bodies.push_back(b);
+  if (has_legend_box) {  // last: the report below counts labels over it
     const LegendState& ls = *opt.legend_state;
     bodies.push_back(ImVec4(ls.box_min.x, ls.box_min.y, ls.box_max.x, ls.box_max.y));
   }
@@ -202,6 +211,12 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
       if (has_legend_box && !hit) hit = overlap(placed[i], keep_clear.back());
       n += hit;
     }
+    opt.report->robots.clear();
+    const auto& robots = exp.world().robots();
+    for (std::size_t i = 0; i < focus.bodies.size(); ++i)
+      opt.report->robots.push_back({i < robots.size() ? robots[i]->name() : "#" + std::to_string(i + 1),
+                                    view.ToScreen(focus.bodies[i]),
+                                    static_cast<float>(focus.radii[i] * view.scale)});
     opt.report->labels = static_cast<int>(placed.size());
     opt.report->overlapping_labels = n;
     opt.report->formation_fraction = FormationFraction(view, focus);
@@ -214,15 +229,13 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
       const float sx = view.ToScreen({x, 0}).x;
       if (sx < view.min.x + 40 || sx > view.max.x - 30) continue;
       const std::string s = MetreText(x, major);
-      const float w = cv.TextSize(FontRole::kSmall, s).x;
-      cv.Text(ImVec2(std::round(sx - w / 2), view.max.y - fs - 3), FontRole::kSmall, th.coordinates,
-              s);
+      CoordinateText(cv, th, ImVec2(std::round(sx - cv.TextSize(FontRole::kSmall, s).x / 2),
+                                    view.max.y - fs - 3), s);
     }
     for (double y = std::ceil(wlo.y / major) * major; y <= whi.y; y += major) {
       const float sy = view.ToScreen({0, y}).y;
       if (sy < view.min.y + 60 || sy > view.max.y - 40) continue;
-      cv.Text(ImVec2(view.min.x + 4, std::round(sy - fs / 2)), FontRole::kSmall, th.coordinates,
-              MetreText(y, major));
+      CoordinateText(cv, th, ImVec2(view.min.x + 4, std::round(sy - fs / 2)), MetreText(y, major));
     }
   }
 
@@ -263,6 +276,11 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
                            : (cv.FontSize(FontRole::kSmall) + 6) * opt.overlays.size() + 14;
     DrawWorldLegend(cv, view, th, sink.legend(), avoid, opt.legend_state, opt.clock, 60.0f + pins,
                     56.0f);
+    if (opt.report && opt.legend_state)
+      opt.report->legend_box = ImVec4(opt.legend_state->box_min.x, opt.legend_state->box_min.y,
+                                      opt.legend_state->box_max.x, opt.legend_state->box_max.y);
+  } else if (opt.report) {
+    opt.report->legend_box = ImVec4();
   }
   // Legend of the overlays, top right: a dashed sample in the entry's colour and its label.
   if (!opt.overlays.empty()) {
@@ -285,11 +303,16 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
   cv.PopClip();
 }
 
-ImVec2 CoordinateReadoutPos(const View& view, ImVec2 ext, const ImVec4& bar) {
+ImVec2 CoordinateReadoutPos(const View& view, ImVec2 ext, const ImVec4& bar, const ImVec4& legend) {
   ImVec2 at(view.min.x + 44, view.max.y - 42);
   constexpr float kGap = 6;
-  if (bar.z > bar.x && at.x + ext.x + kGap > bar.x && at.y + ext.y > bar.y && at.y < bar.w)
-    at.y = bar.y - ext.y - 4;
+  auto hits = [&](const ImVec4& b) {
+    return b.z > b.x && at.x + ext.x + kGap > b.x && at.x - kGap < b.z && at.y + ext.y + kGap > b.y &&
+           at.y - kGap < b.w;
+  };
+  if (hits(bar)) at.y = bar.y - ext.y - 4;
+  // Above the legend when it holds the bottom left corner (a readout over it reads as neither).
+  if (hits(legend)) at.y = legend.y - ext.y - kGap;
   return at;
 }
 

@@ -27,6 +27,14 @@ struct WorldViewReport {
   int overlapping_labels = 0;     ///< drawn labels that overlap another drawn label or a robot body
   double formation_fraction = 0;  ///< FormationFraction() of the robots in this view
   ImVec4 scale_bar_box;           ///< the scale bar's backdrop (x0, y0, x1, y1); empty: none
+  /// The robots as drawn (screen centre and circumscribed radius), for the layout report.
+  struct Robot {
+    std::string name;
+    ImVec2 centre;
+    float radius = 0;
+  };
+  std::vector<Robot> robots;
+  ImVec4 legend_box;  ///< the legend's box as drawn (x0, y0, x1, y1); empty: none
 };
 
 struct WorldViewOptions {
@@ -44,6 +52,9 @@ struct WorldViewOptions {
   double clock = 0.0;                   ///< seconds, for the legend's once-a-second corner choice
   bool degrees = true;                  ///< angles in the scene's labels in degrees (else radians)
   WorldViewReport* report = nullptr;    ///< when set, filled with what this drawing placed
+  /// Screen boxes (x0, y0, x1, y1) drawn over the view by others (presentation mode's bar):
+  /// scene labels keep off them.
+  std::vector<ImVec4> keep_clear;
   /// FocusOf(exp, kFocusTrailSeconds) when the caller has it for this frame (else computed).
   const FocusSet* focus = nullptr;
   /// Level of detail for the window's frame rate: shapes under 12 px (a zoomed-out swarm's
@@ -75,7 +86,9 @@ void FrameWorldView(const sim::Experiment& exp, float width, float height, View&
 
 /// Where the pointer's coordinates (text of size `ext`) are written in `view`: bottom left, above
 /// the grid's values; above the scale bar's backdrop `bar` (WorldViewReport::scale_bar_box) where
-/// the two would meet (a narrow view, a large UI scale).
-ImVec2 CoordinateReadoutPos(const View& view, ImVec2 ext, const ImVec4& bar);
+/// the two would meet (a narrow view, a large UI scale); above the `legend`'s box when that
+/// holds the bottom left corner.
+ImVec2 CoordinateReadoutPos(const View& view, ImVec2 ext, const ImVec4& bar,
+                            const ImVec4& legend = ImVec4());
 
 }  // namespace formsim::app

@@ -61,7 +61,7 @@ void AgvExperiment::DrawScene(DrawSink& draw) const {
   // The true robot with its four wheels; a wheel at its friction limit turns red.
   const Pose2 truth = robot_->pose();
   DrawRobotBody(draw, truth, outline, PaletteColor(kTruthColor),
-                cfg_.body.name + " [" + ModeName(cfg_.mode) + "]");
+                cfg_.body.name + " [" + ModeName(cfg_.mode) + "]", false, robot_->name());
   const double r = cfg_.drive.geometry.wheel_radius, hw = 0.035;
   for (int i = 0; i < kMecanumWheels; ++i) {
     const Vec2 c = cfg_.drive.geometry.WheelPosition(i);

@@ -20,15 +20,40 @@ Color PaletteColor(int index) {
   return kPalette[((index % n) + n) % n];
 }
 
+std::array<Vec2, 4> HeadingArrow(double back, double front, double half_width) {
+  // Length : width 5 : 2 (tip to barbs : barb to barb), the notch a quarter of the length deep:
+  // barbs wide enough to read at a 20 px robot, the tip clearly the point farthest from the
+  // centroid (0.58 of the length from it, the barbs 0.46).
+  const double length = std::min(0.8 * (front - back), 2.5 * 0.6 * 2.0 * half_width);
+  const double w = length / 5.0, tail = 0.5 * (back + front) - 0.5 * length;
+  return {Vec2{tail + length, 0.0}, Vec2{tail, w}, Vec2{tail + 0.25 * length, 0.0}, Vec2{tail, -w}};
+}
+
+Color HeadingInk(Color body) {
+  // WCAG relative luminance; white and the outlines' near-black (luminance 0.01).
+  auto lin = [](float v) {
+    return v <= 0.04045f ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+  };
+  const double y = 0.2126 * lin(body.r) + 0.7152 * lin(body.g) + 0.0722 * lin(body.b);
+  constexpr Color kLight{1, 1, 1, 1}, kDark{0.1f, 0.1f, 0.1f, 1};
+  const double dark_y = 0.2126 * lin(kDark.r) + 0.7152 * lin(kDark.g) + 0.0722 * lin(kDark.b);
+  const double on_white = 1.05 / (y + 0.05), on_dark = (y + 0.05) / (dark_y + 0.05);
+  return on_white >= on_dark ? kLight : kDark;
+}
+
 void DrawRobotBody(DrawSink& draw, const Pose2& pose, const std::vector<Vec2>& body_polygon,
-                   Color color, const std::string& name, bool ghost) {
+                   Color color, const std::string& name, bool ghost, const std::string& id) {
   double extent = 0.0;
   for (const Vec2& b : body_polygon) extent = std::max(extent, b.Norm());
   const double extent_px = PixelsOf(draw, 2.0 * extent);
+  if (!ghost) draw.BeginGroup("robot-" + (id.empty() ? name : id), "robot");
   if (extent_px < 2.0) {
     // A dot of at least a pixel and a half, so that a formation seen from afar stays visible.
     const double metres_per_px = 2.0 * extent / extent_px;
-    if (!ghost) draw.Circle(pose.p(), std::max(extent, 0.75 * metres_per_px), color, Color{0, 0, 0, 0});
+    if (!ghost) {
+      draw.Circle(pose.p(), std::max(extent, 0.75 * metres_per_px), color, Color{0, 0, 0, 0});
+      draw.EndGroup();
+    }
     return;
   }
   // Pose2::ToWorld's arithmetic with one cosine and sine per robot, into storage kept between
@@ -37,12 +62,13 @@ void DrawRobotBody(DrawSink& draw, const Pose2& pose, const std::vector<Vec2>& b
   auto to_world = [&](const Vec2& b) {
     return Vec2{pose.x + c * b.x - s * b.y, pose.y + s * b.x + c * b.y};
   };
-  thread_local std::vector<Vec2> world, wedge;
+  thread_local std::vector<Vec2> world, arrow;
   world.clear();
-  double front = 0.0, half_width = 0.0;
+  double front = 0.0, back = 0.0, half_width = 0.0;
   for (const Vec2& b : body_polygon) {
     world.push_back(to_world(b));
     front = std::max(front, b.x);
+    back = std::min(back, b.x);
     half_width = std::max(half_width, std::abs(b.y));
   }
   if (ghost) {
@@ -52,13 +78,16 @@ void DrawRobotBody(DrawSink& draw, const Pose2& pose, const std::vector<Vec2>& b
   // A small body without its dark outline, which would hide its colour.
   if (extent_px < 6.0) {
     draw.Polygon(world, color.WithAlpha(0.9f), Color{0, 0, 0, 0});
+    draw.EndGroup();
     return;
   }
-  draw.Polygon(world, color.WithAlpha(0.85f), Color{0.1f, 0.1f, 0.1f, 1.0f});
-  // Heading wedge: a light triangle pointing forward inside the body.
-  wedge.assign({to_world({front * 0.9, 0.0}), to_world({front * 0.1, half_width * 0.6}),
-                to_world({front * 0.1, -half_width * 0.6})});
-  draw.Polygon(wedge, Color{1, 1, 1, 0.9f}, Color{1, 1, 1, 0.0f});
+  const Color fill = color.WithAlpha(kBodyAlpha);
+  draw.Polygon(world, fill, Color{0.1f, 0.1f, 0.1f, 1.0f});
+  // Heading: a slender notched arrow along the body's x axis, its tip on the axis.
+  arrow.clear();
+  for (const Vec2& b : HeadingArrow(back, front, half_width)) arrow.push_back(to_world(b));
+  draw.Heading(arrow, HeadingInk(fill), fill);
+  draw.EndGroup();
   // The name sits just above the body's circumscribed circle, whatever the zoom, once the body
   // is large enough for a name to sit beside its neighbours'.
   if (!name.empty() && extent_px >= 12.0)

@@ -3,6 +3,7 @@
 /// b2Draw works): sim calls these, app implements them with ImGui draw lists. Coordinates are
 /// world metres; sizes in pixels are marked `_px`.
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,19 @@ class DrawSink {
   /// Names a kind of mark the scene drew, for the view's legend (called once per kind per
   /// frame; repeated calls with the same label are ignored). Default: no legend.
   virtual void Legend(LegendMark /*mark*/, Color /*color*/, const std::string& /*label*/) {}
+  /// Opens a group of marks that belong together, closed by EndGroup (groups nest): a robot is
+  /// `id` "robot-NAME" of `cls` "robot". Vector files keep groups (SVG `<g id class>`, the id
+  /// made a valid XML id there) so that figures can be styled and checked; other sinks ignore
+  /// them.
+  virtual void BeginGroup(const std::string& /*id*/, const std::string& /*cls*/) {}
+  virtual void EndGroup() {}
+  /// A robot's heading arrow (HeadingArrow(), tip first: its tip is the point farthest from its
+  /// centroid and lies on the body's heading axis), `fill` its ink (HeadingInk() of `body`) and
+  /// `body` the fill of the body under it, so that a themed sink can pick the ink that contrasts
+  /// with the body as it shows it. Default: Polygon() with no outline.
+  virtual void Heading(const std::vector<Vec2>& pts, Color fill, Color /*body*/) {
+    Polygon(pts, fill, Color{0, 0, 0, 0});
+  }
   /// Whether angles in labels are wanted in degrees (else radians); the window's setting.
   virtual bool AnglesInDegrees() const { return true; }
   /// Pixels per metre of the view, for level of detail: a scene of a thousand robots skips what
@@ -94,11 +108,29 @@ inline double PixelsOf(const DrawSink& draw, double metres) {
   return ppm > 0.0 ? metres * ppm : 1e9;
 }
 
-/// Draws a robot body (polygon in the body frame, metres) at `pose` with a heading wedge and
-/// its name. `ghost` draws it as a dashed-looking translucent outline (desired slots). Level of
-/// detail: below 12 px across no name, below 6 px neither wedge nor outline, below 2 px a dot
-/// (ghosts: nothing).
+/// The alpha of a robot body's fill (DrawRobotBody; legends show the same).
+inline constexpr float kBodyAlpha = 0.85f;
+
+/// A robot's heading arrow in its body frame, for a body spanning x in [back, front] and y in
+/// [-half_width, half_width]: a notched arrow along +x, 2.5 times as long (tip to barbs) as it
+/// is wide, its notch a quarter of its length deep; 80 % of the body's length (shorter where the
+/// body is long and narrow, so that its width stays within 60 % of the body's), centred on the
+/// body's length. Points: tip (on the x axis), left barb, notch (on the x axis), right barb;
+/// the tip is the point farthest from the arrow's centroid, and every point sees the tip (a fan
+/// from it).
+std::array<Vec2, 4> HeadingArrow(double back, double front, double half_width);
+
+/// The ink of a heading arrow on a body of colour `body` (opaque, as seen): white or near-black,
+/// whichever has the larger WCAG contrast against it.
+Color HeadingInk(Color body);
+
+/// Draws a robot body (polygon in the body frame, metres) at `pose` with a heading arrow
+/// (HeadingArrow, HeadingInk) and its name `name`, the whole in a group "robot-ID" of class
+/// "robot" (`id`: the robot's name, "" = `name`). `ghost` draws it as a dashed-looking
+/// translucent outline (desired slots), without a group. Level of detail: below 12 px across no
+/// name, below 6 px neither arrow nor outline, below 2 px a dot (ghosts: nothing).
 void DrawRobotBody(DrawSink& draw, const Pose2& pose, const std::vector<Vec2>& body_polygon,
-                   Color color, const std::string& name, bool ghost = false);
+                   Color color, const std::string& name, bool ghost = false,
+                   const std::string& id = "");
 
 }  // namespace formsim::sim

@@ -222,7 +222,7 @@ void FormationExperiment::DrawScene(DrawSink& draw) const {
     DrawRobotBody(draw, a.robot->pose(), a.robot->outline(),
                   PaletteColor(cfg_.robots[i].body.color_index), a.robot->name());
     draw.Legend(LegendMark::kBody, PaletteColor(cfg_.robots[i].body.color_index),
-                "robot (white wedge: heading)");
+                "robot (arrow: heading)");
   }
   const bool show_m = draw.Shows("control_points");
   if (body_px >= 6.0 && (show_m || show_links)) {

@@ -19,12 +19,12 @@
 namespace formsim::app {
 namespace {
 
-constexpr int kKeysW = 1280, kKeysH = 800;
+constexpr int kKeysW = 1600, kKeysH = 900;  // three columns: the control panel in view
 
 using Window = testing::UiWindow;
 
 TEST(GuiKeys, TypingIntoAFieldNeverTriggersAShortcut) {
-  Window w;
+  Window w("formation_traj2", kKeysW, kKeysH);
   const ImVec2 seed = w.Find("formsim", "seed", 60);
   ASSERT_GE(seed.y, 0) << "the seed field was not found";
   const long steps = w.ui().session().exp().steps();

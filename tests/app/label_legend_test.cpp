@@ -185,7 +185,7 @@ TEST(WorldLegend, ShrinksRatherThanCoverARobot) {
   EXPECT_EQ(st.box_max.y, hi.y);
 }
 
-TEST(WorldLegend, CornerIsReChosenAtMostOnceASecondAndCollapses) {
+TEST(WorldLegend, CornerIsReChosenOnceASecondAtOnceForARobotAndCollapses) {
   VectorCanvas cv(1280, 800);
   const View view = Screen(1280, 800);
   LegendState st;
@@ -193,15 +193,21 @@ TEST(WorldLegend, CornerIsReChosenAtMostOnceASecondAndCollapses) {
   DrawWorldLegend(cv, view, GetTheme(ThemeId::kLight), Entries(6), avoid, &st, 10.0, 60, 56);
   const int first = st.corner;
   const float open_h = st.box_max.y - st.box_min.y;
-  // The robots arrive in its corner: it stays for the rest of the second, then moves.
+  // Trail points arriving in its corner wait for the next choice, a second later.
   for (int k = 0; k < 20; ++k)
-    avoid.bodies.push_back(ImVec2(0.5f * (st.box_min.x + st.box_max.x), st.box_min.y + 3.0f * k));
+    avoid.trails.push_back(ImVec2(0.5f * (st.box_min.x + st.box_max.x), st.box_min.y + 3.0f * k));
   DrawWorldLegend(cv, view, GetTheme(ThemeId::kLight), Entries(6), avoid, &st, 10.5, 60, 56);
   EXPECT_EQ(st.corner, first);
   DrawWorldLegend(cv, view, GetTheme(ThemeId::kLight), Entries(6), avoid, &st, 11.1, 60, 56);
   EXPECT_NE(st.corner, first);
-  st.collapsed = true;
+  // A robot driven under it moves it at once (issue 46: the legend never hides a robot).
+  const int second = st.corner;
+  avoid.bodies.push_back(ImVec2(0.5f * (st.box_min.x + st.box_max.x), 0.5f * (st.box_min.y + st.box_max.y)));
+  avoid.body_radii.push_back(10.0f);
   DrawWorldLegend(cv, view, GetTheme(ThemeId::kLight), Entries(6), avoid, &st, 11.2, 60, 56);
+  EXPECT_NE(st.corner, second);
+  st.collapsed = true;
+  DrawWorldLegend(cv, view, GetTheme(ThemeId::kLight), Entries(6), avoid, &st, 11.3, 60, 56);
   EXPECT_LT(st.box_max.y - st.box_min.y, 0.5f * open_h) << "collapsed: a title tab";
 }
 

@@ -45,6 +45,7 @@ class UiWindow {
     ui_.Advance(1.0 / 60.0);
     ui_.Draw(ImVec2(static_cast<float>(w_), static_cast<float>(h_)), layer_.fonts(), true);
     ImGui::Render();
+    ui_.AfterRender();
     io.MouseDown[0] = false;
     io.KeyCtrl = io.KeyShift = false;
     for (bool& k : io.KeysDown) k = false;
@@ -57,6 +58,7 @@ class UiWindow {
   /// Where the widget `label` of window `window` is, scanning a column x of the panel.
   ImVec2 Find(const char* window, const char* label, float x) {
     const ImGuiWindow* w = ImGui::FindWindowByName(window);
+    if (w == nullptr) return ImVec2(-1, -1);  // not in this layout
     const ImGuiID id = ImHashStr(label, 0, w->ID);
     for (float y = 0; y < static_cast<float>(h_); y += 4)
       if (Hover(ImVec2(x, y)) == id) return ImVec2(x, y);

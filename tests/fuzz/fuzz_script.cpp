@@ -77,6 +77,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     ui->Advance(1.0 / 60.0);
     ui->Draw(ImVec2(kW, kH), layer.fonts(), true);
     ImGui::Render();
+    ui->AfterRender();
   }
   // Background work (pins, seeds) stops with the window.
   ui->Find<formsim::app::ComparePanel>()->CmdCancelSeeds();
