@@ -8,9 +8,9 @@
 namespace formsim::app {
 namespace {
 
-bool Continuation(unsigned char c) { return (c & 0xC0) == 0x80; }
+bool IsUtf8Continuation(unsigned char c) { return (c & 0xC0) == 0x80; }
 
-float Wide(const std::string& s) { return ImGui::CalcTextSize(s.c_str(), s.c_str() + s.size()).x; }
+float FittedTextWidth(const std::string& s) { return ImGui::CalcTextSize(s.c_str(), s.c_str() + s.size()).x; }
 
 }  // namespace
 
@@ -20,23 +20,23 @@ float WidthBeside(const char* button) {
 }
 
 std::string FitText(const std::string& text, float width, bool keep_end) {
-  if (Wide(text) <= width) return text;
+  if (FittedTextWidth(text) <= width) return text;
   const std::string dots = "…";
   // The most characters that fit with the dots, counted from the kept end.
   std::size_t lo = 0, hi = text.size();
   auto cut = [&](std::size_t n) {
     if (keep_end) {
       std::size_t from = text.size() - n;
-      while (from < text.size() && Continuation(static_cast<unsigned char>(text[from]))) ++from;
+      while (from < text.size() && IsUtf8Continuation(static_cast<unsigned char>(text[from]))) ++from;
       return dots + text.substr(from);
     }
     std::size_t to = n;
-    while (to > 0 && to < text.size() && Continuation(static_cast<unsigned char>(text[to]))) --to;
+    while (to > 0 && to < text.size() && IsUtf8Continuation(static_cast<unsigned char>(text[to]))) --to;
     return text.substr(0, to) + dots;
   };
   while (lo < hi) {
     const std::size_t mid = (lo + hi + 1) / 2;
-    if (Wide(cut(mid)) <= width) lo = mid;
+    if (FittedTextWidth(cut(mid)) <= width) lo = mid;
     else hi = mid - 1;
   }
   return cut(lo);
@@ -52,7 +52,7 @@ bool FittedInputText(const char* id, char* buf, std::size_t size) {
   // and stays a field while it is edited.
   const int asked = storage->GetInt(key, 0);
   const int frame = ImGui::GetFrameCount();
-  if (asked == 0 && Wide(text) > width - 2 * pad) {
+  if (asked == 0 && FittedTextWidth(text) > width - 2 * pad) {
     const std::string shown = FitText(text, width - 2 * pad, true);
     ImGui::PushID(id);
     ImGui::PushStyleColor(ImGuiCol_Button, ImGui::GetStyleColorVec4(ImGuiCol_FrameBg));
@@ -73,7 +73,7 @@ bool FittedInputText(const char* id, char* buf, std::size_t size) {
   ImGui::SetNextItemWidth(width);
   const bool changed = ImGui::InputText(id, buf, size);
   if (asked != 0 && frame > asked + 3 && !ImGui::IsItemActive()) storage->SetInt(key, 0);
-  if (ImGui::IsItemHovered() && !ImGui::IsItemActive() && Wide(text) > width - 2 * pad) SafeTooltip(text);
+  if (ImGui::IsItemHovered() && !ImGui::IsItemActive() && FittedTextWidth(text) > width - 2 * pad) SafeTooltip(text);
   return changed;
 }
 

@@ -14,14 +14,14 @@
 namespace formsim::app {
 namespace {
 
-ImVec4 Intersect(const ImVec4& a, const ImVec4& b) {
+ImVec4 BoxIntersect(const ImVec4& a, const ImVec4& b) {
   return ImVec4(std::max(a.x, b.x), std::max(a.y, b.y), std::min(a.z, b.z), std::min(a.w, b.w));
 }
-float Width(const ImVec4& r) { return r.z - r.x; }
-float Height(const ImVec4& r) { return r.w - r.y; }
-bool Contains(const ImVec4& r, ImVec2 p) { return p.x >= r.x && p.x <= r.z && p.y >= r.y && p.y <= r.w; }
+float BoxWidth(const ImVec4& r) { return r.z - r.x; }
+float BoxHeight(const ImVec4& r) { return r.w - r.y; }
+bool BoxContains(const ImVec4& r, ImVec2 p) { return p.x >= r.x && p.x <= r.z && p.y >= r.y && p.y <= r.w; }
 
-sim::Color ToColor(ImU32 c) {
+sim::Color ColorOfU32(ImU32 c) {
   const ImVec4 v = ImGui::ColorConvertU32ToFloat4(c);
   return {v.x, v.y, v.z, v.w};
 }
@@ -42,7 +42,7 @@ struct DrawnGlyph {
 };
 
 // A solid (not anti-aliasing fringe) untextured triangle.
-struct Fill {
+struct SolidFill {
   ImVec2 a, b, c;
   ImVec4 box, clip;
   sim::Color col;
@@ -51,7 +51,7 @@ struct Fill {
 };
 
 // A run of glyphs read as one piece of text.
-struct Run {
+struct TextRun {
   std::string text;
   ImVec4 box, clip;
   float size = 0;
@@ -62,7 +62,7 @@ struct Run {
   bool cut = false;
 };
 
-bool InTriangle(ImVec2 p, const Fill& f) {
+bool InFillTriangle(ImVec2 p, const SolidFill& f) {
   auto side = [](ImVec2 a, ImVec2 b, ImVec2 p) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); };
   const float d1 = side(f.a, f.b, p), d2 = side(f.b, f.c, p), d3 = side(f.c, f.a, p);
   const bool neg = d1 < 0 || d2 < 0 || d3 < 0, pos = d1 > 0 || d2 > 0 || d3 > 0;
@@ -70,9 +70,9 @@ bool InTriangle(ImVec2 p, const Fill& f) {
 }
 
 // The fills bucketed by 32-unit cells, each cell's list in draw order.
-class FillGrid {
+class SolidFillGrid {
  public:
-  FillGrid(const std::vector<Fill>& fills, ImVec2 size) : fills_(fills) {
+  SolidFillGrid(const std::vector<SolidFill>& fills, ImVec2 size) : fills_(fills) {
     nx_ = std::max(1, static_cast<int>(size.x / kCell) + 1);
     ny_ = std::max(1, static_cast<int>(size.y / kCell) + 1);
     cells_.resize(static_cast<std::size_t>(nx_) * ny_);
@@ -90,9 +90,9 @@ class FillGrid {
     *opaque_list = -1;
     *opaque_order = -1;
     for (std::size_t i : cells_[static_cast<std::size_t>(CellY(p.y)) * nx_ + CellX(p.x)]) {
-      const Fill& f = fills_[i];
+      const SolidFill& f = fills_[i];
       if (f.order >= before) break;
-      if (!Contains(f.box, p) || !Contains(f.clip, p) || !InTriangle(p, f)) continue;
+      if (!BoxContains(f.box, p) || !BoxContains(f.clip, p) || !InFillTriangle(p, f)) continue;
       bg = Over(f.col, bg);
       if (f.col.a >= 0.99f) *opaque_list = f.list, *opaque_order = f.order;
     }
@@ -103,13 +103,13 @@ class FillGrid {
   static constexpr float kCell = 32.0f;
   int CellX(float x) const { return std::clamp(static_cast<int>(x / kCell), 0, nx_ - 1); }
   int CellY(float y) const { return std::clamp(static_cast<int>(y / kCell), 0, ny_ - 1); }
-  const std::vector<Fill>& fills_;
+  const std::vector<SolidFill>& fills_;
   int nx_ = 1, ny_ = 1;
   std::vector<std::vector<std::size_t>> cells_;
 };
 
 // Reads the glyphs and solid fills of every draw list, in draw order.
-void ReadDrawData(const ImDrawData& dd, ImVec2 display, std::vector<DrawnGlyph>* glyphs, std::vector<Fill>* fills) {
+void ReadDrawData(const ImDrawData& dd, ImVec2 display, std::vector<DrawnGlyph>* glyphs, std::vector<SolidFill>* fills) {
   const auto atlas = AtlasGlyphsByUv();
   const ImVec2 white = ImGui::GetIO().Fonts->TexUvWhitePixel;
   const ImVec4 screen(0, 0, display.x, display.y);
@@ -118,7 +118,7 @@ void ReadDrawData(const ImDrawData& dd, ImVec2 display, std::vector<DrawnGlyph>*
     const ImDrawList& dl = *dd.CmdLists[li];
     for (const ImDrawCmd& cmd : dl.CmdBuffer) {
       if (cmd.UserCallback) continue;
-      const ImVec4 clip = Intersect(cmd.ClipRect, screen);
+      const ImVec4 clip = BoxIntersect(cmd.ClipRect, screen);
       const ImDrawIdx* idx = dl.IdxBuffer.Data + cmd.IdxOffset;
       const ImDrawVert* vtx = dl.VtxBuffer.Data + cmd.VtxOffset;
       for (unsigned k = 0; k + 2 < cmd.ElemCount; ++order) {
@@ -148,10 +148,10 @@ void ReadDrawData(const ImDrawData& dd, ImVec2 display, std::vector<DrawnGlyph>*
         // An anti-aliasing fringe fades to nothing across the triangle: not a fill.
         const ImU32 alpha = a.col & IM_COL32_A_MASK;
         if (alpha == 0 || (b.col & IM_COL32_A_MASK) != alpha || (c.col & IM_COL32_A_MASK) != alpha) continue;
-        Fill f{a.pos, b.pos, c.pos, ImVec4(), clip, ToColor(a.col), li, order};
+        SolidFill f{a.pos, b.pos, c.pos, ImVec4(), clip, ColorOfU32(a.col), li, order};
         f.box = ImVec4(std::min({a.pos.x, b.pos.x, c.pos.x}), std::min({a.pos.y, b.pos.y, c.pos.y}),
                        std::max({a.pos.x, b.pos.x, c.pos.x}), std::max({a.pos.y, b.pos.y, c.pos.y}));
-        if (Width(Intersect(f.box, clip)) <= 0 || Height(Intersect(f.box, clip)) <= 0) continue;
+        if (BoxWidth(BoxIntersect(f.box, clip)) <= 0 || BoxHeight(BoxIntersect(f.box, clip)) <= 0) continue;
         fills->push_back(f);
       }
     }
@@ -160,8 +160,8 @@ void ReadDrawData(const ImDrawData& dd, ImVec2 display, std::vector<DrawnGlyph>*
 
 // Glyphs in a row of one command, of one colour, with pens that follow on (a space or less
 // between them), are one run.
-std::vector<Run> Runs(const std::vector<DrawnGlyph>& glyphs) {
-  std::vector<Run> runs;
+std::vector<TextRun> TextRunsOf(const std::vector<DrawnGlyph>& glyphs) {
+  std::vector<TextRun> runs;
   const DrawnGlyph* prev = nullptr;
   for (const DrawnGlyph& g : glyphs) {
     const bool joins = prev && prev->list == g.list && prev->col == g.col &&
@@ -170,12 +170,12 @@ std::vector<Run> Runs(const std::vector<DrawnGlyph>& glyphs) {
                        g.pen >= prev->next - 1.0f && g.pen <= prev->next + 1.6f * g.space;
     if (!joins) {
       runs.push_back({});
-      Run& r = runs.back();
+      TextRun& r = runs.back();
       r.box = g.box, r.clip = g.clip, r.col = g.col, r.list = g.list, r.first = g.order;
     } else if (g.pen - prev->next > 0.5f * g.space) {
       runs.back().text += ' ';
     }
-    Run& r = runs.back();
+    TextRun& r = runs.back();
     AppendUtf8(r.text, g.code);
     r.box = ImVec4(std::min(r.box.x, g.box.x), std::min(r.box.y, g.box.y), std::max(r.box.z, g.box.z),
                    std::max(r.box.w, g.box.w));
@@ -193,7 +193,7 @@ std::vector<Run> Runs(const std::vector<DrawnGlyph>& glyphs) {
   return runs;
 }
 
-std::string ListName(const ImDrawData& dd, int li) {
+std::string DrawListName(const ImDrawData& dd, int li) {
   const char* n = dd.CmdLists[li]->_OwnerName;
   return n ? n : "";
 }
@@ -203,7 +203,7 @@ bool CanScrollSideways(const std::string& window) {
   return w && w->ScrollbarX;
 }
 
-ImVec4 Px(const ImVec4& r, float s) { return ImVec4(r.x * s, r.y * s, r.z * s, r.w * s); }
+ImVec4 ToPixels(const ImVec4& r, float s) { return ImVec4(r.x * s, r.y * s, r.z * s, r.w * s); }
 
 // Whether a circle of radius `r` at `c` reaches into rectangle `b`.
 bool CircleHitsBox(ImVec2 c, float r, const ImVec4& b) {
@@ -223,11 +223,11 @@ std::string ColourHex(sim::Color c) {
 FrameAudit AuditFrame(const ImDrawData& dd, const AuditMarks& marks) {
   FrameAudit out;
   std::vector<DrawnGlyph> glyphs;
-  std::vector<Fill> fills;
+  std::vector<SolidFill> fills;
   ReadDrawData(dd, marks.display, &glyphs, &fills);
-  const std::vector<Run> runs = Runs(glyphs);
+  const std::vector<TextRun> runs = TextRunsOf(glyphs);
   out.text_runs = static_cast<int>(runs.size());
-  const FillGrid grid(fills, marks.display);
+  const SolidFillGrid grid(fills, marks.display);
   const sim::Color clear{marks.clear_colour.x, marks.clear_colour.y, marks.clear_colour.z, 1.0f};
   const float px = marks.pixel_scale;
   // A robot's body, for text that would hide it: most of its circumscribed circle.
@@ -235,12 +235,12 @@ FrameAudit AuditFrame(const ImDrawData& dd, const AuditMarks& marks) {
 
   std::vector<int> opaque_list(runs.size(), -1);
   for (std::size_t i = 0; i < runs.size(); ++i) {
-    const Run& r = runs[i];
-    const ImVec4 shown = Intersect(r.box, r.clip);
-    if (Width(shown) <= 0.5f || Height(shown) <= 0.5f) continue;  // clipped away: nobody sees it
-    const std::string window = ListName(dd, r.list);
-    AuditFinding f{window, r.text, "", Px(r.box, px), 0};
-    out.runs.push_back({window, r.text, "", Px(r.box, px), r.size * px});
+    const TextRun& r = runs[i];
+    const ImVec4 shown = BoxIntersect(r.box, r.clip);
+    if (BoxWidth(shown) <= 0.5f || BoxHeight(shown) <= 0.5f) continue;  // clipped away: nobody sees it
+    const std::string window = DrawListName(dd, r.list);
+    AuditFinding f{window, r.text, "", ToPixels(r.box, px), 0};
+    out.runs.push_back({window, r.text, "", ToPixels(r.box, px), r.size * px});
     if (r.cut && !CanScrollSideways(window)) out.cut.push_back(f);
     // Contrast at the first, middle and last glyph, against what was drawn there before it.
     double worst = 1e9;
@@ -249,10 +249,10 @@ FrameAudit AuditFrame(const ImDrawData& dd, const AuditMarks& marks) {
     const std::size_t n = r.glyph_mid_x.size();
     for (std::size_t k : {std::size_t{0}, n / 2, n - 1}) {
       const ImVec2 p(r.glyph_mid_x[k], mid_y);
-      if (!Contains(r.clip, p)) continue;
+      if (!BoxContains(r.clip, p)) continue;
       long opaque_order = -1;
       const sim::Color bg = grid.Behind(p, r.first, clear, &opaque_list[i], &opaque_order);
-      const sim::Color fg = Over(ToColor(r.col), bg);
+      const sim::Color fg = Over(ColorOfU32(r.col), bg);
       const double ratio = ContrastRatio(fg, bg);
       if (ratio < worst) worst = ratio, worst_fg = fg, worst_bg = bg;
     }
@@ -272,37 +272,37 @@ FrameAudit AuditFrame(const ImDrawData& dd, const AuditMarks& marks) {
   // Text over text: two runs whose boxes cross where both show, the later not hiding the earlier
   // behind an opaque fill of its own.
   for (std::size_t i = 0; i < runs.size(); ++i) {
-    const ImVec4 si = Intersect(runs[i].box, runs[i].clip);
-    if (Width(si) <= 0 || Height(si) <= 0) continue;
+    const ImVec4 si = BoxIntersect(runs[i].box, runs[i].clip);
+    if (BoxWidth(si) <= 0 || BoxHeight(si) <= 0) continue;
     for (std::size_t j = i + 1; j < runs.size(); ++j) {
-      const ImVec4 both = Intersect(si, Intersect(runs[j].box, runs[j].clip));
-      const float h = std::min(Height(runs[i].box), Height(runs[j].box));
-      if (Width(both) <= 1.0f || Height(both) <= 0.3f * h) continue;
+      const ImVec4 both = BoxIntersect(si, BoxIntersect(runs[j].box, runs[j].clip));
+      const float h = std::min(BoxHeight(runs[i].box), BoxHeight(runs[j].box));
+      if (BoxWidth(both) <= 1.0f || BoxHeight(both) <= 0.3f * h) continue;
       int list = -1;
       long order = -1;
       const ImVec2 centre(0.5f * (both.x + both.z), 0.5f * (both.y + both.w));
       grid.Behind(centre, runs[j].first, clear, &list, &order);
       if (order > runs[i].last) continue;  // covered before the later text was drawn
-      out.overlaps.push_back({ListName(dd, runs[j].list), runs[j].text, runs[i].text, Px(both, px), 0});
+      out.overlaps.push_back({DrawListName(dd, runs[j].list), runs[j].text, runs[i].text, ToPixels(both, px), 0});
     }
   }
   // Text over a robot of the world view (text on a panel over the view is not over a robot),
   // and boxes drawn over the view (the legend) that cover one.
   int world_list = -1;
   for (int li = 0; li < dd.CmdListsCount; ++li)
-    if (ListName(dd, li).find("###world") != std::string::npos) world_list = li;
+    if (DrawListName(dd, li).find("###world") != std::string::npos) world_list = li;
   for (const AuditMarks::Robot& rb : marks.robots) {
-    if (!Contains(marks.world_view, rb.centre)) continue;
+    if (!BoxContains(marks.world_view, rb.centre)) continue;
     const float r = kBodyShare * rb.radius;
     for (std::size_t i = 0; i < runs.size(); ++i) {
       if (opaque_list[i] != world_list || runs[i].list != world_list) continue;
-      const ImVec4 shown = Intersect(runs[i].box, runs[i].clip);
+      const ImVec4 shown = BoxIntersect(runs[i].box, runs[i].clip);
       if (CircleHitsBox(rb.centre, r, shown))
-        out.overlaps.push_back({ListName(dd, runs[i].list), runs[i].text, "robot " + rb.name, Px(shown, px), 0});
+        out.overlaps.push_back({DrawListName(dd, runs[i].list), runs[i].text, "robot " + rb.name, ToPixels(shown, px), 0});
     }
     for (const AuditMarks::Box& b : marks.over_world)
       if (CircleHitsBox(rb.centre, r, b.rect))
-        out.overlaps.push_back({"world view", b.name, "robot " + rb.name, Px(b.rect, px), 0});
+        out.overlaps.push_back({"world view", b.name, "robot " + rb.name, ToPixels(b.rect, px), 0});
   }
 
   const ImVec4 screen(0, 0, marks.display.x, marks.display.y);
@@ -310,14 +310,14 @@ FrameAudit AuditFrame(const ImDrawData& dd, const AuditMarks& marks) {
     // A squashed plot's data area may be upside down: its size is then 0.
     const ImVec4 r(std::min(p.rect.x, p.rect.z), std::min(p.rect.y, p.rect.w),
                    std::max(p.rect.x, p.rect.z), std::max(p.rect.y, p.rect.w));
-    const ImVec4 shown = Intersect(ImVec4(r.x, r.y, r.z + 1, r.w + 1), screen);
-    if (Width(shown) <= 0 || Height(shown) <= 0) continue;
+    const ImVec4 shown = BoxIntersect(ImVec4(r.x, r.y, r.z + 1, r.w + 1), screen);
+    if (BoxWidth(shown) <= 0 || BoxHeight(shown) <= 0) continue;
     const float side = std::max(0.0f, std::min(p.rect.z - p.rect.x, p.rect.w - p.rect.y)) * px;
-    if (side < kSmallestPlotPx) out.small_plots.push_back({"plots", p.name, "", Px(p.rect, px), side});
+    if (side < kSmallestPlotPx) out.small_plots.push_back({"plots", p.name, "", ToPixels(p.rect, px), side});
   }
-  const ImVec4 world = Intersect(marks.world_view, screen);
-  if (Width(world) > 0 && Height(world) > 0 && marks.display.x > 0 && marks.display.y > 0)
-    out.world_view_share = Width(world) * Height(world) / (marks.display.x * marks.display.y);
+  const ImVec4 world = BoxIntersect(marks.world_view, screen);
+  if (BoxWidth(world) > 0 && BoxHeight(world) > 0 && marks.display.x > 0 && marks.display.y > 0)
+    out.world_view_share = BoxWidth(world) * BoxHeight(world) / (marks.display.x * marks.display.y);
   return out;
 }
 

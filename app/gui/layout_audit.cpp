@@ -106,7 +106,8 @@ std::vector<ClippedText> FindClippedText() {
     // Each band grown to the glyphs it meets (a frame's thin top border stands for its line);
     // a thin band that meets no glyph is a frame's bottom border, already counted.
     std::vector<std::pair<float, float>> bands;
-    for (auto [top, bottom] : BandsPast(*w->DrawList, right, w->WorkRect.Min.x, w->WorkRect.Max.x)) {
+    for (const auto& band : BandsPast(*w->DrawList, right, w->WorkRect.Min.x, w->WorkRect.Max.x)) {
+      float top = band.first, bottom = band.second;  // (a lambda below cannot take a binding)
       // (A frame's padding lies between its border and its text.)
       const float pad = ImGui::GetStyle().FramePadding.y + 1.0f;
       auto meets = [&](const Glyph& gl) { return gl.y1 > top - pad && gl.y0 < bottom + pad; };
