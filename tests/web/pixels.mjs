@@ -6,10 +6,11 @@ import {PNG} from 'pngjs';
 /// dark themes fill robot bodies and draw trails.
 export const ROBOT_COLOURS = {R1: [0x00, 0x72, 0xb2], R2: [0xd5, 0x5e, 0x00], R3: [0x00, 0x9e, 0x73]};
 
-/// The world view in the window's normal layout: between the control panel (left) and the
-/// tabs (right), below the menu bar. A band that stays inside it from 1280x800 up.
+/// The world view at the page's 1280x800: the window's two-column layout (issue 46: the world
+/// view keeps at least half the window), the tabs on the left (420 px), the world view right of
+/// them, below the menu bar and above the timeline.
 export function worldRegion(width, height) {
-  return {x0: Math.round(0.26 * width), x1: Math.round(0.64 * width),
+  return {x0: Math.round(0.34 * width), x1: Math.round(0.99 * width),
           y0: Math.round(0.06 * height), y1: Math.round(0.94 * height)};
 }
 
