@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "app/render/imgui_canvas.hpp"
 #include "app/render/label_markup.hpp"
 #include "sim/core/param_table.hpp"
 
@@ -115,12 +116,7 @@ std::string TunableLabel(const sim::Param& p) {
 }
 
 float MarkupTextWidth(const std::string& markup) {
-  ImFont* f = ImGui::GetFont();
-  const float size = ImGui::GetFontSize();
-  float w = 0;
-  for (const MarkupRun& run : AtlasRuns(markup))
-    w += f->CalcTextSizeA(PlacementOf(run.kind).scale * size, FLT_MAX, 0.0f, run.text.c_str()).x;
-  return w;
+  return MarkupRunsWidth(ImGui::GetFont(), ImGui::GetFontSize(), markup);
 }
 
 void MarkupTextItem(const std::string& markup, ImVec4 color) {
@@ -133,16 +129,7 @@ void MarkupTextItem(const std::string& markup, ImVec4 color) {
   ImGui::ItemSize(bb.GetSize(), 0.0f);
   if (!ImGui::ItemAdd(bb, 0)) return;
   const ImU32 col = color.w > 0 ? ImGui::GetColorU32(color) : ImGui::GetColorU32(ImGuiCol_Text);
-  // Each run's top so that its baseline is the line's, moved by its shift (as ImGuiCanvas::Label).
-  const float ascent = f->Ascent / f->FontSize;
-  float x = pos.x;
-  for (const MarkupRun& run : AtlasRuns(markup)) {
-    const RunPlacement place = PlacementOf(run.kind);
-    const float run_size = place.scale * size;
-    const float y = pos.y + ascent * size + place.shift_em * size - ascent * run_size;
-    window->DrawList->AddText(f, run_size, ImVec2(x, std::round(y)), col, run.text.c_str());
-    x += f->CalcTextSizeA(run_size, FLT_MAX, 0.0f, run.text.c_str()).x;
-  }
+  DrawMarkupRuns(window->DrawList, f, size, pos, col, markup, 1.0f, false);
 }
 
 std::string FitMarkupLabel(const std::string& name, const std::string& suffix, float width) {

@@ -323,18 +323,15 @@ void ImGuiCanvas::TextVertical(ImVec2 center, FontRole font, sim::Color color,
               [&] { Text(ImVec2(center.x - ext.x / 2, center.y - ext.y / 2), font, color, text); });
 }
 
-ImVec2 ImGuiCanvas::LabelSize(FontRole font, const std::string& markup) const {
-  ImFont* f = fonts_.Get(font);
-  const float size = f->FontSize / fonts_.scale;
+float MarkupRunsWidth(ImFont* f, float size, const std::string& markup) {
   float w = 0;
   for (const MarkupRun& run : AtlasRuns(markup))
     w += f->CalcTextSizeA(PlacementOf(run.kind).scale * size, FLT_MAX, 0.0f, run.text.c_str()).x;
-  return ImVec2(w, size);
+  return w;
 }
 
-void ImGuiCanvas::Label(ImVec2 pos, FontRole font, sim::Color color, const std::string& markup) {
-  ImFont* f = fonts_.Get(font);
-  const float s = fonts_.scale, size = f->FontSize / s;
+void DrawMarkupRuns(ImDrawList* dl, ImFont* f, float size, ImVec2 pos, ImU32 col,
+                    const std::string& markup, float snap, bool snap_x) {
   // A run's top so that its baseline is the line's, moved by its shift (ascents scale with size).
   const float ascent = f->Ascent / f->FontSize;
   float x = pos.x;
@@ -342,10 +339,22 @@ void ImGuiCanvas::Label(ImVec2 pos, FontRole font, sim::Color color, const std::
     const RunPlacement place = PlacementOf(run.kind);
     const float run_size = place.scale * size;
     const float y = pos.y + ascent * size + place.shift_em * size - ascent * run_size;
-    dl_->AddText(f, run_size, ImVec2(std::round(x * s) / s, std::round(y * s) / s),
-                 ToImColor(color), run.text.c_str());
+    dl->AddText(f, run_size,
+                ImVec2(snap_x ? std::round(x * snap) / snap : x, std::round(y * snap) / snap), col,
+                run.text.c_str());
     x += f->CalcTextSizeA(run_size, FLT_MAX, 0.0f, run.text.c_str()).x;
   }
+}
+
+ImVec2 ImGuiCanvas::LabelSize(FontRole font, const std::string& markup) const {
+  ImFont* f = fonts_.Get(font);
+  const float size = f->FontSize / fonts_.scale;
+  return ImVec2(MarkupRunsWidth(f, size, markup), size);
+}
+
+void ImGuiCanvas::Label(ImVec2 pos, FontRole font, sim::Color color, const std::string& markup) {
+  ImFont* f = fonts_.Get(font);
+  DrawMarkupRuns(dl_, f, f->FontSize / fonts_.scale, pos, ToImColor(color), markup, fonts_.scale, true);
 }
 
 void ImGuiCanvas::LabelVertical(ImVec2 center, FontRole font, sim::Color color,

@@ -13,6 +13,15 @@
 
 namespace formsim::app {
 
+/// Draws `markup`'s runs (label_markup.hpp's AtlasRuns) with its top left at `pos`, in font `f`
+/// at `size`: each run's baseline is the line's, moved by its shift. y is rounded to 1/`snap`
+/// (x too with `snap_x`). The window's label items and ImGuiCanvas::Label share it.
+void DrawMarkupRuns(ImDrawList* dl, ImFont* f, float size, ImVec2 pos, ImU32 col,
+                    const std::string& markup, float snap, bool snap_x);
+/// The width DrawMarkupRuns takes for `markup` in `f` at `size`.
+float MarkupRunsWidth(ImFont* f, float size, const std::string& markup);
+
+
 inline ImU32 ToImColor(sim::Color c) {
   return ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, c.a));
 }
