@@ -381,6 +381,8 @@ void AppUi::WriteLayoutReport() {
   for (const auto& r : world_report_.robots) marks.robots.push_back({r.name, r.centre, r.radius});
   if (state_.legend && world_report_.legend_box.z > world_report_.legend_box.x)
     marks.over_world.push_back({"legend", world_report_.legend_box});
+  if (world_report_.scale_bar_box.z > world_report_.scale_bar_box.x)
+    marks.over_world.push_back({"scale bar", world_report_.scale_bar_box});
   for (const auto& [id, rect] : state_.frame_plots) marks.plots.push_back({id, rect});
   const FrameAudit audit = AuditFrame(*draw, marks);
 

@@ -264,11 +264,16 @@ void DrawWorldView(Canvas& cv, const View& view, const sim::Experiment& exp, con
   if (opt.time_label) {
     char buf[64];
     std::snprintf(buf, sizeof(buf), "t = %.2f s", exp.time());
-    Label(cv, th, FontRole::kTitle, ImVec2(view.min.x + 12, view.min.y + 10), th.text,
-          buf + (opt.time_note.empty() ? std::string() : "  " + opt.time_note));
+    const std::string time = buf + (opt.time_note.empty() ? std::string() : "  " + opt.time_note);
+    // Below a box drawn over the view's top left (presentation mode's bar in a narrow window).
+    float top = view.min.y;
+    const float right = view.min.x + 12 + std::max(cv.TextSize(FontRole::kTitle, time).x,
+                                                   cv.TextSize(FontRole::kSmall, opt.caption).x);
+    for (const ImVec4& b : opt.keep_clear)
+      if (b.x < right && b.y < top + 40 + cv.FontSize(FontRole::kSmall)) top = std::max(top, b.w);
+    Label(cv, th, FontRole::kTitle, ImVec2(view.min.x + 12, top + 10), th.text, time);
     if (!opt.caption.empty())
-      Label(cv, th, FontRole::kSmall, ImVec2(view.min.x + 12, view.min.y + 36), th.axis,
-            opt.caption);
+      Label(cv, th, FontRole::kSmall, ImVec2(view.min.x + 12, top + 36), th.axis, opt.caption);
   }
   if (opt.legend) {
     const float pins = opt.overlays.empty()
