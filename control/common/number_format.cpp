@@ -116,6 +116,15 @@ std::string FormatClock(double seconds) {
                    : Sprintf("%ld:%02ld", t / 60, t % 60);
 }
 
+void Print(std::FILE* out, const char* fmt, ...) {
+  std::va_list args;
+  va_start(args, fmt);
+  std::vfprintf(out, fmt, args);
+  va_end(args);
+}
+
+std::string FormatSimTime(double t) { return "t = " + FormatFixed(t, 2) + " s"; }
+
 std::string Sprintf(const char* fmt, ...) {
   char buf[256];
   std::va_list args;

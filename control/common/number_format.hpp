@@ -6,6 +6,7 @@
 /// (sim/core/number_format.hpp).
 
 #include <cstdint>
+#include <cstdio>
 #include <string>
 
 namespace formsim::control {
@@ -44,6 +45,12 @@ std::string FormatClock(double seconds);
 std::string Sprintf(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
 /// The same text appended to `out` (no temporary: allocates only when `out` must grow).
 void AppendSprintf(std::string& out, const char* fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/// printf-style text written to `out` (stdout, stderr): the CLI's messages and reports. The one
+/// place outside this module's files where text reaches a stream with numbers in it.
+void Print(std::FILE* out, const char* fmt, ...) __attribute__((format(printf, 2, 3)));
+/// Simulated time as people read it on screen: "t = 12.34 s" (two decimals).
+std::string FormatSimTime(double t);
 
 /// Parses the whole of `text` as a finite double. Returns false on anything else (empty, junk
 /// after the number, out of range, nan, inf).

@@ -19,6 +19,8 @@ using control::FormatWholeOrShortest;
 using control::ParseFiniteDouble;
 using control::ParseInteger;
 using control::ParseUint64;
+using control::Print;
+using control::FormatSimTime;
 using control::Sprintf;
 
 }  // namespace formsim::sim
