@@ -91,4 +91,6 @@ row "fuzzing (20 s each)" "$RC" "$SECS" "$n" "$p" "$f"
 
 echo
 count table "$ROWS"
+# The failed tests by name, last, where a CI log's tail shows them.
+count failures build/ctest-release.xml build/pytest-*.xml build-asan/ctest-asan.xml
 exit $status

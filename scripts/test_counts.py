@@ -9,6 +9,9 @@
   test_counts.py fuzz LOG
       the libFuzzer harnesses of scripts/fuzz.sh's log: each started one is run, each that found
       a failing input failed
+  test_counts.py failures FILE...
+      the names of the failed tests in ctest's or pytest's JUnit XML files, a line each
+      (the table's closing lines, so that a CI log's tail names them)
   test_counts.py table ROWS_FILE
       prints the table of rows "suite<TAB>run<TAB>passed<TAB>failed<TAB>seconds<TAB>note", then
       the closing line "total: N passed, N failed"
@@ -79,6 +82,16 @@ def main(argv):
         except OSError:
             pass
         print(run, run - failed, failed)
+    elif mode == "failures":
+        for f in argv[2:]:
+            try:
+                root = ET.parse(f).getroot()
+            except (OSError, ET.ParseError):
+                continue
+            for case in root.iter("testcase"):
+                if case.get("status") == "fail" or case.find("failure") is not None or \
+                        case.find("error") is not None:
+                    print(f"failed: {case.get('name', '?')}  ({f})")
     elif mode == "table":
         rows = [l.rstrip("\n").split("\t") for l in open(argv[2], encoding="utf-8") if l.strip()]
         head = ("suite", "run", "passed", "failed", "seconds", "")

@@ -71,7 +71,7 @@ std::string Stem(const std::string& file) {
 // A tall window, so that every row of the Parameters panel is drawn (ImGui skips the widgets of
 // rows scrolled out of view, and the slider's assertion is in what it draws).
 std::string TallXvfb(const std::string& cmd) {
-  return "xvfb-run -a -s '-screen 0 1280x4000x24' " + cmd;
+  return XvfbRun("1280x4000") + cmd;
 }
 
 TEST(GuiSafety, EveryTunableAtItsDeclaredExtremesDrawsWithoutAnAssertion) {
@@ -283,7 +283,7 @@ void Start(Background& b, const std::string& dir, const std::string& args) {
   const std::string inner = "FORMSIM_STATE_DIR=" + dir + "/state " + Binary() + " gui " + args +
                             " & echo \\$! > " + dir + "/pid; wait \\$!; echo \\$? > " + dir + "/rc";
   const std::string cmd =
-      "xvfb-run -a -s '-screen 0 1280x800x24' sh -c \"" + inner + "\" >" + dir + "/log.txt 2>&1 &";
+      XvfbRun("1280x800") + "sh -c \"" + inner + "\" >" + dir + "/log.txt 2>&1 &";
   EXPECT_EQ(std::system(cmd.c_str()), 0);
   EXPECT_TRUE(WaitFor(dir + "/pid", 30));
   b.pid = std::atol(ReadText(dir + "/pid").c_str());

@@ -52,7 +52,7 @@ TEST(GuiTeach, EveryEditorActionAndRefusalKeepsTheGuiAlive) {
          << "65 editor bogus\n66 click nan 0\n"                          // refused
          << "67 editor off\n";
   script.close();
-  const std::string cmd = "XDG_CONFIG_HOME=" + dir + "/config xvfb-run -a -s '-screen 0 1280x800x24' " +
+  const std::string cmd = "XDG_CONFIG_HOME=" + dir + "/config " + XvfbRun("1280x800") +
                           Binary() + " gui formation_traj2 --paused --size 1000x600 --speed max " +
                           "--set duration=3 --exit-after 70 --script " + dir + "/script.txt " +
                           "--session " + dir + "/s.yaml --out " + dir + "/A";

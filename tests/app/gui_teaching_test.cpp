@@ -77,7 +77,7 @@ TEST(GuiTeaching, LessonWindowAndScriptedSwitch) {
            << "3 switch-formation column\n"
            << "40 screenshot " << dir << "/lesson.png\n";
   }
-  const int rc = RunShell("xvfb-run -a -s '-screen 0 1600x900x24' " + Binary() +
+  const int rc = RunShell(XvfbRun("1600x900") + Binary() +
                               " gui --lesson switching_around_obstacles --set 'switching.schedule=[]' "
                               "--size 1600x900 --speed max --exit-after 45 --script " + dir +
                               "/script.txt --out " + dir + "/out",

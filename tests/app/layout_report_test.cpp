@@ -115,7 +115,7 @@ YAML::Node Report(const std::string& name, Size size, bool present, const std::s
   script.close();
   const std::string screen = std::to_string(size.width) + "x" + std::to_string(size.height);
   const int rc = RunShell("FORMSIM_STATE_DIR=" + dir + " XDG_CONFIG_HOME=" + dir +
-                              " xvfb-run -a -s '-screen 0 " + screen + "x24' " + Binary() + " gui " +
+                              " " + XvfbRun(screen) + Binary() + " gui " +
                               scenario + " --size " + screen + " --script " + dir + "/script.txt",
                           dir + "/log.txt");
   EXPECT_EQ(rc, 0) << ReadText(dir + "/log.txt");

@@ -2,6 +2,7 @@
 /// \file Helpers shared by the app tests: temp folders, running the formsim binary, pixels.
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -102,10 +103,19 @@ inline std::string SignalOnceRecorded(const std::string& cmd, const std::string&
          " ] && break; sleep 0.005; done; kill " + signal + " $pid; wait $pid)";
 }
 
-/// `cmd` run under a virtual X server (1280x800), for the GUI tests.
-inline std::string Xvfb(const std::string& cmd) {
-  return "xvfb-run -a -s '-screen 0 1280x800x24' " + cmd;
+/// The start of a command line that runs what follows under a virtual X server of `screen`
+/// ("1280x800") pixels. ctest runs GUI tests side by side and `xvfb-run -a` alone searches for a
+/// free display from the same number (99) in each: two that start together can take the same
+/// one, and one then fails with "Xvfb failed to start". Each call here starts its search from
+/// its own number (the process id and a count), so they do not meet.
+inline std::string XvfbRun(const std::string& screen) {
+  static int calls = 0;
+  const int from = 100 + static_cast<int>((static_cast<long>(getpid()) * 37 + 211 * calls++) % 3000);
+  return "xvfb-run -n " + std::to_string(from) + " -a -s '-screen 0 " + screen + "x24' ";
 }
+
+/// `cmd` run under a virtual X server (1280x800), for the GUI tests.
+inline std::string Xvfb(const std::string& cmd) { return XvfbRun("1280x800") + cmd; }
 
 inline std::string ReadText(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
