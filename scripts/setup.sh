@@ -9,6 +9,7 @@ DEMO_PKGS=(build-essential cmake pkg-config libbox2d-dev libeigen3-dev libimgui-
            libosmesa6-dev libstb-dev libyaml-cpp-dev libcli11-dev libfuzzylite-dev zlib1g-dev
            fonts-dejavu-core
            libnlopt-dev                             # formsim tune: NLopt's methods
+           libfmt-dev                               # numbers as text (header only)
            libcairo2-dev libfreetype-dev)           # vector figures (PDF)
 PKGS=("${DEMO_PKGS[@]}"
       libgtest-dev libgmock-dev libbenchmark-dev

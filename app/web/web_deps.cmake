@@ -27,6 +27,15 @@ set_property(TARGET formsim_freetype APPEND PROPERTY INTERFACE_INCLUDE_DIRECTORI
 add_library(Eigen3::Eigen INTERFACE IMPORTED GLOBAL)
 set_target_properties(Eigen3::Eigen PROPERTIES INTERFACE_INCLUDE_DIRECTORIES /usr/include/eigen3)
 
+# {fmt}: Debian's headers, header only (FMT_HEADER_ONLY), through a folder holding just them (the
+# rest of /usr/include is the host's C library, not emscripten's).
+file(MAKE_DIRECTORY ${CMAKE_BINARY_DIR}/fmt_include)
+file(CREATE_LINK /usr/include/fmt ${CMAKE_BINARY_DIR}/fmt_include/fmt SYMBOLIC)
+add_library(fmt::fmt-header-only INTERFACE IMPORTED GLOBAL)
+set_target_properties(fmt::fmt-header-only PROPERTIES
+                      INTERFACE_INCLUDE_DIRECTORIES ${CMAKE_BINARY_DIR}/fmt_include
+                      INTERFACE_COMPILE_DEFINITIONS FMT_HEADER_ONLY=1)
+
 # No threads in the page (a pthread build needs cross-origin isolation, which a page opened
 # from a USB stick or a plain web server does not have): one thread, as `--threads 1`.
 add_library(Threads::Threads INTERFACE IMPORTED GLOBAL)

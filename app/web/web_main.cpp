@@ -20,8 +20,9 @@
 #include "app/gui/gui_loop.hpp"
 #include "app/gui/ui.hpp"
 #include "app/render/gl_api.hpp"
-#include "control/common/shortest_double.hpp"
+#include "control/common/shortest_double_format.hpp"
 #include "sim/core/json.hpp"
+#include "sim/core/number_format.hpp"
 #include "sim/core/provenance.hpp"
 #include "sim/core/run_output.hpp"
 #include "sim/scenario/scenario_files.hpp"
@@ -100,7 +101,7 @@ void Frame() {
   if (!app.loop->Frame()) {
     // `quit` in a page: stop drawing; the page stays as it was.
     emscripten_cancel_main_loop();
-    std::fprintf(stderr, "formsim: the window was closed (quit); reload the page to start again\n");
+    std::fputs("formsim: the window was closed (quit); reload the page to start again\n", stderr);
   }
 }
 
@@ -198,7 +199,7 @@ double TimeSimulation(const std::string& scenario) {
     while (!exp.finished()) exp.Step();
     return 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "formsim: %s\n", e.what());
+    formsim::sim::Print(stderr, "formsim: %s\n", e.what());
     return -1;
   }
 }
@@ -264,7 +265,7 @@ int main(int argc, char** argv) {
   try {
     return formsim::app::Start(argc, argv);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "formsim: %s\n", e.what());
+    formsim::sim::Print(stderr, "formsim: %s\n", e.what());
     formsim_js_fatal(e.what());
     return 1;
   }

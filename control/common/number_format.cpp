@@ -7,7 +7,10 @@
 #include <cstdio>
 #include <system_error>
 
-#include "control/common/shortest_double.hpp"
+#include "control/common/shortest_double_format.hpp"
+
+#include <fmt/compile.h>
+#include <fmt/format.h>
 
 namespace formsim::control {
 
@@ -33,7 +36,7 @@ std::string FormatDouble(double v) {
 std::string FormatSignificant(double v, int digits) {
   if (std::isnan(v)) return "nan";
   if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  return Sprintf("%.*g", std::clamp(digits, 1, 17), v);
+  return fmt::format(FMT_COMPILE("{:.{}g}"), v, std::clamp(digits, 1, 17));
 }
 
 std::string FormatFixed(double v, int decimals, bool trim) {
@@ -41,7 +44,7 @@ std::string FormatFixed(double v, int decimals, bool trim) {
   decimals = std::clamp(decimals, 0, 17);
   // Below half a unit of the last digit the text would read "-0.00": write zero.
   if (std::abs(v) < 0.5 * std::pow(10.0, -decimals)) v = 0.0;
-  std::string s = Sprintf("%.*f", decimals, v);
+  std::string s = fmt::format(FMT_COMPILE("{:.{}f}"), v, decimals);
   if (trim && s.find('.') != std::string::npos) {
     while (s.back() == '0') s.pop_back();
     if (s.back() == '.') s.pop_back();

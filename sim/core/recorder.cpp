@@ -14,7 +14,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "control/common/shortest_double.hpp"
+#include "control/common/shortest_double_format.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/thread_pool.hpp"
 
