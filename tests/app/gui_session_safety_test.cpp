@@ -33,6 +33,7 @@ using testing::ReadText;
 using testing::RunShell;
 using testing::TempDir;
 using testing::Xvfb;
+using testing::XvfbRun;
 
 bool HaveXvfb() {
   return !FindOnPath("xvfb-run").empty();

@@ -24,6 +24,7 @@ using testing::NonBackgroundFraction;
 using testing::ReadText;
 using testing::RunShell;
 using testing::TempDir;
+using testing::XvfbRun;
 
 TEST(GuiTeach, EveryEditorActionAndRefusalKeepsTheGuiAlive) {
   if (FindOnPath("xvfb-run").empty()) GTEST_SKIP() << "xvfb-run not installed";

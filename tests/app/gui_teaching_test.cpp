@@ -26,6 +26,7 @@ using testing::ReadText;
 using testing::RunShell;
 using testing::Scenario;
 using testing::TempDir;
+using testing::XvfbRun;
 
 constexpr int kW = 1280, kH = 800;
 

@@ -27,6 +27,7 @@ using testing::Binary;
 using testing::ReadText;
 using testing::RunShell;
 using testing::TempDir;
+using testing::XvfbRun;
 
 // One frame of a fixed 150-px window holding `items`; the audit runs before Render, as the
 // window's layout-report does.
