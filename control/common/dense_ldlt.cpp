@@ -110,23 +110,14 @@ LdltPath DefaultLdltPath() {
 }
 
 void DenseLdlt::Factor() {
-  using Eigen::Block;
-  using Eigen::Dynamic;
   using Eigen::Index;
-  using Eigen::MatrixXd;
   const Index size = m_.rows();
   transpositions_.resize(size);
   temp_.resize(size);
   sign_ = Sign::kZero;
   ok_ = true;
   if (path_ == LdltPath::kEigen) {
-    const Eigen::LDLT<Eigen::MatrixXd> eigen(m_);
-    m_ = eigen.matrixLDLT();
-    transpositions_ = eigen.transpositionsP();
-    ok_ = eigen.info() == Eigen::Success;
-    // Eigen tells the sign through isPositive / isNegative only.
-    sign_ = eigen.isPositive() ? (eigen.isNegative() ? Sign::kZero : Sign::kPositiveSemiDef)
-                               : (eigen.isNegative() ? Sign::kNegativeSemiDef : Sign::kIndefinite);
+    FactorWithEigen();
     return;
   }
   // The step's kernel: AVX2 only after the CPU check.
@@ -151,113 +142,149 @@ void DenseLdlt::Factor() {
   columns_.resize(static_cast<std::size_t>(size));
   bool found_zero_pivot = false;
   for (Index k = 0; k < size; ++k) {
-    // The largest diagonal entry of the corner (the first of equals) becomes the pivot.
-    // (Eigen's maxCoeff on the diagonal's magnitudes, which pivots on the matrix's own diagonal
-    // entries; kept in a contiguous copy, swapped with the matrix.)
-    Index biggest = k;
-    double largest = std::abs(diag_[static_cast<std::size_t>(k)]);
-    for (Index i = k + 1; i < size; ++i) {
-      const double v = std::abs(diag_[static_cast<std::size_t>(i)]);
-      if (v > largest) {
-        largest = v;
-        biggest = i;
-      }
-    }
-    transpositions_.coeffRef(k) = static_cast<int>(biggest);
-    if (k != biggest) {
-      // The transposition, touching only the lower triangle.
-      const Index s = size - biggest - 1;
-      m_.row(k).head(k).swap(m_.row(biggest).head(k));
-      m_.col(k).tail(s).swap(m_.col(biggest).tail(s));
-      std::swap(m_.coeffRef(k, k), m_.coeffRef(biggest, biggest));
-      std::swap(diag_[static_cast<std::size_t>(k)], diag_[static_cast<std::size_t>(biggest)]);
-      for (Index i = k + 1; i < biggest; ++i) {
-        const double tmp = m_.coeffRef(i, k);
-        m_.coeffRef(i, k) = m_.coeffRef(biggest, i);
-        m_.coeffRef(biggest, i) = tmp;
-      }
-    }
-
-    const Index rs = size - k - 1;
-    Block<MatrixXd, Dynamic, 1> A21(m_, k + 1, k, rs, 1);
-    Block<MatrixXd, 1, Dynamic> A10(m_, k, 0, 1, k);
-    if (k > 0) {
-      // Eigen's D·A10ᵀ, from a contiguous copy of D.
-      for (Index j = 0; j < k; ++j) temp_(j) = d_[static_cast<std::size_t>(j)] * m_.coeff(k, j);
-      m_.coeffRef(k, k) -= (A10 * temp_.head(k)).value();
-      if (rs == 1) {
-        // One row: Eigen's product falls back to a dot product (a sum from its first term).
-        Block<MatrixXd, Dynamic, Dynamic> A20(m_, k + 1, 0, rs, k);
-        A21.noalias() -= A20 * temp_.head(k);
-      } else if (rs > 1) {
-        // Eigen's matrix-vector kernel takes all columns at once below 128 and blocks of 16
-        // from there (while a column is under 32000 bytes; 4 beyond).
-        const Index block = k < 128 ? k : (size * Index(sizeof(double)) < 32000 ? 16 : 4);
-        block_ends_.clear();
-        int n = 0;
-        for (Index b = 0; b < k; b += block) {
-          const Index end = std::min(b + block, k);
-          for (Index j = b; j < end; ++j) {
-            columns_[static_cast<std::size_t>(n)] = static_cast<int>(j);
-            n += temp_(j) != 0.0 || !finite_[static_cast<std::size_t>(j)];
-          }
-          block_ends_.push_back(n);
-        }
-        double* col = &m_.coeffRef(k + 1, k);
-        const double* a = &m_.coeffRef(k + 1, 0);
-        const int blocks = static_cast<int>(block_ends_.size());
-#ifdef FORMSIM_LDLT_AVX2
-        if (avx2)
-          UpdateAvx2(col, a, m_.outerStride(), rs, temp_.data(), columns_.data(),
-                     block_ends_.data(), blocks);
-        else
-#endif
-          UpdatePortable(col, a, m_.outerStride(), rs, temp_.data(), columns_.data(),
-                         block_ends_.data(), blocks);
-      }
-    }
-
+    SwapInLargestPivot(k);
+    UpdateColumn(k, avx2);
     // As Eigen: only a zero pivot is refused (LDLT reveals no rank), and a zero pivot with a
     // non-zero column below it fails the factorisation.
     const double akk = m_.coeff(k, k);
     const bool pivot_is_valid = std::abs(akk) > 0.0;
     if (k == 0 && !pivot_is_valid) {
-      sign_ = Sign::kZero;
-      for (Index j = 0; j < size; ++j) {
-        transpositions_.coeffRef(j) = static_cast<int>(j);
-        ok_ = ok_ && (m_.col(j).tail(size - j - 1).array() == 0.0).all();
-      }
+      FinishZeroDiagonal();
       return;
     }
-    bool finite = true;
-    if (rs > 0 && pivot_is_valid) {
-#ifdef FORMSIM_LDLT_AVX2
-      if (avx2)
-        finite = DivideAvx2(&m_.coeffRef(k + 1, k), rs, akk);
-      else
-#endif
-        finite = DividePortable(&m_.coeffRef(k + 1, k), rs, akk);
-    } else if (rs > 0) {
-      finite = A21.allFinite();
-      ok_ = ok_ && (A21.array() == 0.0).all();
-    }
+    const bool finite = DivideColumn(k, akk, pivot_is_valid, avx2);
     if (found_zero_pivot && pivot_is_valid)
       ok_ = false;
     else if (!pivot_is_valid)
       found_zero_pivot = true;
-    if (sign_ == Sign::kPositiveSemiDef) {
-      if (akk < 0.0) sign_ = Sign::kIndefinite;
-    } else if (sign_ == Sign::kNegativeSemiDef) {
-      if (akk > 0.0) sign_ = Sign::kIndefinite;
-    } else if (sign_ == Sign::kZero) {
-      if (akk > 0.0)
-        sign_ = Sign::kPositiveSemiDef;
-      else if (akk < 0.0)
-        sign_ = Sign::kNegativeSemiDef;
-    }
+    TrackSign(akk);
     // Column k of L is final now (later swaps only reorder its entries).
     finite_[static_cast<std::size_t>(k)] = finite ? 1 : 0;
     d_[static_cast<std::size_t>(k)] = akk;
+  }
+}
+
+void DenseLdlt::FactorWithEigen() {
+  const Eigen::LDLT<Eigen::MatrixXd> eigen(m_);
+  m_ = eigen.matrixLDLT();
+  transpositions_ = eigen.transpositionsP();
+  ok_ = eigen.info() == Eigen::Success;
+  // Eigen tells the sign through isPositive / isNegative only.
+  sign_ = eigen.isPositive() ? (eigen.isNegative() ? Sign::kZero : Sign::kPositiveSemiDef)
+                             : (eigen.isNegative() ? Sign::kNegativeSemiDef : Sign::kIndefinite);
+}
+
+void DenseLdlt::SwapInLargestPivot(Eigen::Index k) {
+  using Eigen::Index;
+  const Index size = m_.rows();
+  // The largest diagonal entry of the corner (the first of equals) becomes the pivot.
+  // (Eigen's maxCoeff on the diagonal's magnitudes, which pivots on the matrix's own diagonal
+  // entries; kept in a contiguous copy, swapped with the matrix.)
+  Index biggest = k;
+  double largest = std::abs(diag_[static_cast<std::size_t>(k)]);
+  for (Index i = k + 1; i < size; ++i) {
+    const double v = std::abs(diag_[static_cast<std::size_t>(i)]);
+    if (v > largest) {
+      largest = v;
+      biggest = i;
+    }
+  }
+  transpositions_.coeffRef(k) = static_cast<int>(biggest);
+  if (k == biggest) return;
+  // The transposition, touching only the lower triangle.
+  const Index s = size - biggest - 1;
+  m_.row(k).head(k).swap(m_.row(biggest).head(k));
+  m_.col(k).tail(s).swap(m_.col(biggest).tail(s));
+  std::swap(m_.coeffRef(k, k), m_.coeffRef(biggest, biggest));
+  std::swap(diag_[static_cast<std::size_t>(k)], diag_[static_cast<std::size_t>(biggest)]);
+  for (Index i = k + 1; i < biggest; ++i) {
+    const double tmp = m_.coeffRef(i, k);
+    m_.coeffRef(i, k) = m_.coeffRef(biggest, i);
+    m_.coeffRef(biggest, i) = tmp;
+  }
+}
+
+void DenseLdlt::UpdateColumn(Eigen::Index k, [[maybe_unused]] bool avx2) {
+  using Eigen::Block;
+  using Eigen::Dynamic;
+  using Eigen::Index;
+  using Eigen::MatrixXd;
+  if (k == 0) return;
+  const Index size = m_.rows();
+  const Index rs = size - k - 1;
+  Block<MatrixXd, Dynamic, 1> A21(m_, k + 1, k, rs, 1);
+  Block<MatrixXd, 1, Dynamic> A10(m_, k, 0, 1, k);
+  // Eigen's D·A10ᵀ, from a contiguous copy of D.
+  for (Index j = 0; j < k; ++j) temp_(j) = d_[static_cast<std::size_t>(j)] * m_.coeff(k, j);
+  m_.coeffRef(k, k) -= (A10 * temp_.head(k)).value();
+  if (rs == 1) {
+    // One row: Eigen's product falls back to a dot product (a sum from its first term).
+    Block<MatrixXd, Dynamic, Dynamic> A20(m_, k + 1, 0, rs, k);
+    A21.noalias() -= A20 * temp_.head(k);
+    return;
+  }
+  if (rs <= 1) return;
+  // Eigen's matrix-vector kernel takes all columns at once below 128 and blocks of 16
+  // from there (while a column is under 32000 bytes; 4 beyond).
+  const Index block = k < 128 ? k : (size * Index(sizeof(double)) < 32000 ? 16 : 4);
+  block_ends_.clear();
+  int n = 0;
+  for (Index b = 0; b < k; b += block) {
+    const Index end = std::min(b + block, k);
+    for (Index j = b; j < end; ++j) {
+      columns_[static_cast<std::size_t>(n)] = static_cast<int>(j);
+      n += temp_(j) != 0.0 || !finite_[static_cast<std::size_t>(j)];
+    }
+    block_ends_.push_back(n);
+  }
+  double* col = &m_.coeffRef(k + 1, k);
+  const double* a = &m_.coeffRef(k + 1, 0);
+  const int blocks = static_cast<int>(block_ends_.size());
+#ifdef FORMSIM_LDLT_AVX2
+  if (avx2)
+    UpdateAvx2(col, a, m_.outerStride(), rs, temp_.data(), columns_.data(), block_ends_.data(),
+               blocks);
+  else
+#endif
+    UpdatePortable(col, a, m_.outerStride(), rs, temp_.data(), columns_.data(), block_ends_.data(),
+                   blocks);
+}
+
+void DenseLdlt::FinishZeroDiagonal() {
+  const Eigen::Index size = m_.rows();
+  sign_ = Sign::kZero;
+  for (Eigen::Index j = 0; j < size; ++j) {
+    transpositions_.coeffRef(j) = static_cast<int>(j);
+    ok_ = ok_ && (m_.col(j).tail(size - j - 1).array() == 0.0).all();
+  }
+}
+
+bool DenseLdlt::DivideColumn(Eigen::Index k, double akk, bool pivot_is_valid,
+                             [[maybe_unused]] bool avx2) {
+  const Eigen::Index rs = m_.rows() - k - 1;
+  if (rs <= 0) return true;
+  if (pivot_is_valid) {
+#ifdef FORMSIM_LDLT_AVX2
+    if (avx2) return DivideAvx2(&m_.coeffRef(k + 1, k), rs, akk);
+#endif
+    return DividePortable(&m_.coeffRef(k + 1, k), rs, akk);
+  }
+  const Eigen::Block<Eigen::MatrixXd, Eigen::Dynamic, 1> A21(m_, k + 1, k, rs, 1);
+  const bool finite = A21.allFinite();
+  ok_ = ok_ && (A21.array() == 0.0).all();
+  return finite;
+}
+
+void DenseLdlt::TrackSign(double akk) {
+  if (sign_ == Sign::kPositiveSemiDef) {
+    if (akk < 0.0) sign_ = Sign::kIndefinite;
+  } else if (sign_ == Sign::kNegativeSemiDef) {
+    if (akk > 0.0) sign_ = Sign::kIndefinite;
+  } else if (sign_ == Sign::kZero) {
+    if (akk > 0.0)
+      sign_ = Sign::kPositiveSemiDef;
+    else if (akk < 0.0)
+      sign_ = Sign::kNegativeSemiDef;
   }
 }
 

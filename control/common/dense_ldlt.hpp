@@ -74,6 +74,21 @@ class DenseLdlt {
  private:
   enum class Sign { kPositiveSemiDef, kNegativeSemiDef, kZero, kIndefinite };
   void Factor();
+  /// Factor on LdltPath::kEigen: Eigen::LDLT itself.
+  void FactorWithEigen();
+  // The steps of Factor's column k, in order:
+  /// Picks the largest remaining diagonal entry as pivot k and swaps it in (lower triangle).
+  void SwapInLargestPivot(Eigen::Index k);
+  /// A(k, k) -= A10 (D A10ᵀ) and A21 -= A20 (D A10ᵀ), the O(n³) part (in our kernel).
+  void UpdateColumn(Eigen::Index k, bool avx2);
+  /// A21 /= A(k, k) when the pivot is valid; whether the column is finite. A zero pivot with a
+  /// non-zero column below it clears ok_.
+  bool DivideColumn(Eigen::Index k, double akk, bool pivot_is_valid, bool avx2);
+  /// Folds pivot `akk` into sign_ (Eigen's isPositive / isNegative).
+  void TrackSign(double akk);
+  /// The first pivot, the largest diagonal entry, is zero: the whole diagonal is. The factor
+  /// stops there (identity transpositions), and fails unless nothing is below the diagonal.
+  void FinishZeroDiagonal();
 
   LdltPath path_;
   Eigen::MatrixXd m_;

@@ -260,120 +260,124 @@ void SlidingWindowEstimator::RepropagateIfNeeded() {
   }
 }
 
-double SlidingWindowEstimator::Linearize(const std::deque<KeyframeState>& frames,
-                                         const std::map<int, Track>& tracks, const Layout& layout,
-                                         Selection sel, Eigen::MatrixXd* H, Eigen::VectorXd* g,
-                                         int* n_obs) const {
-  const bool lin = H != nullptr;
-  if (lin) {
-    H->setZero(layout.dim, layout.dim);
-    g->setZero(layout.dim);
-  }
-  const bool marg = sel == Selection::kMarginalisation;
+void SlidingWindowEstimator::LinearizePrior(const std::deque<KeyframeState>& frames,
+                                            const std::map<int, Track>& tracks,
+                                            const Layout& layout, LinearTerms& out) const {
   const long id0 = frames.front().id;
-  double cost = 0.0;
-  const Eigen::Matrix<double, 1, 1> none;  // placeholder Jacobian for one-block residuals
-
-  // Marginalisation prior: cost gᵀdx + ½ dxᵀ H dx about its linearisation point.
-  if (!prior_.vars.empty()) {
-    const int n = prior_.dim();
-    Eigen::VectorXd dx(n);
-    std::vector<int> at(prior_.vars.size()), offset(prior_.vars.size());
-    int pos = 0;
-    for (std::size_t a = 0; a < prior_.vars.size(); ++a) {
-      const PriorVar& v = prior_.vars[a];
-      at[a] = pos;
-      if (v.frame) {
-        const std::size_t slot = static_cast<std::size_t>(v.id - id0);
-        dx.segment<kD>(pos) = StateDiff(frames[slot].x, v.x_lin);
-        offset[a] = layout.frame_offset[slot];
-      } else {
-        dx.segment(pos, v.dim) = LandmarkValue(tracks.at(static_cast<int>(v.id))) - v.x_lin;
-        if (inverse_depth()) dx(pos) = WrapToPi(dx(pos));  // ψ
-        auto it = layout.landmark_offset.find(static_cast<int>(v.id));
-        offset[a] = it == layout.landmark_offset.end() ? -1 : it->second;
-      }
-      pos += v.dim;
+  const int n = prior_.dim();
+  Eigen::VectorXd dx(n);
+  std::vector<int> at(prior_.vars.size()), offset(prior_.vars.size());
+  int pos = 0;
+  for (std::size_t a = 0; a < prior_.vars.size(); ++a) {
+    const PriorVar& v = prior_.vars[a];
+    at[a] = pos;
+    if (v.frame) {
+      const std::size_t slot = static_cast<std::size_t>(v.id - id0);
+      dx.segment<kD>(pos) = StateDiff(frames[slot].x, v.x_lin);
+      offset[a] = layout.frame_offset[slot];
+    } else {
+      dx.segment(pos, v.dim) = LandmarkValue(tracks.at(static_cast<int>(v.id))) - v.x_lin;
+      if (inverse_depth()) dx(pos) = WrapToPi(dx(pos));  // ψ
+      auto it = layout.landmark_offset.find(static_cast<int>(v.id));
+      offset[a] = it == layout.landmark_offset.end() ? -1 : it->second;
     }
-    const Eigen::VectorXd Hdx = prior_.H * dx;
-    cost += prior_.g.dot(dx) + 0.5 * dx.dot(Hdx);
-    if (lin) {
-      const Eigen::VectorXd grad = prior_.g + Hdx;
-      for (std::size_t a = 0; a < prior_.vars.size(); ++a) {
-        const int oa = offset[a], da = prior_.vars[a].dim;
-        if (oa < 0) continue;
-        g->segment(oa, da) += grad.segment(at[a], da);
-        for (std::size_t b = 0; b < prior_.vars.size(); ++b) {
-          const int ob = offset[b], db = prior_.vars[b].dim;
-          if (ob >= 0) H->block(oa, ob, da, db) += prior_.H.block(at[a], at[b], da, db);
-        }
-      }
+    pos += v.dim;
+  }
+  const Eigen::VectorXd Hdx = prior_.H * dx;
+  out.cost += prior_.g.dot(dx) + 0.5 * dx.dot(Hdx);
+  if (!out.H) return;
+  const Eigen::VectorXd grad = prior_.g + Hdx;
+  for (std::size_t a = 0; a < prior_.vars.size(); ++a) {
+    const int oa = offset[a], da = prior_.vars[a].dim;
+    if (oa < 0) continue;
+    out.g->segment(oa, da) += grad.segment(at[a], da);
+    for (std::size_t b = 0; b < prior_.vars.size(); ++b) {
+      const int ob = offset[b], db = prior_.vars[b].dim;
+      if (ob >= 0) out.H->block(oa, ob, da, db) += prior_.H.block(at[a], at[b], da, db);
     }
   }
+}
 
+void SlidingWindowEstimator::LinearizeMotion(const std::deque<KeyframeState>& frames,
+                                             const Layout& layout, bool marg,
+                                             LinearTerms& out) const {
+  const bool lin = out.H != nullptr;
   // IMU and odometry between consecutive keyframes (only the oldest pair when marginalising).
   const std::size_t pairs = marg ? std::min<std::size_t>(1, imu_.size()) : imu_.size();
   for (std::size_t k = 0; k < pairs; ++k) {
     const int oi = layout.frame_offset[k], oj = layout.frame_offset[k + 1];
     const ImuFactor fi = EvaluateImuFactor(imu_[k], frames[k], frames[k + 1]);
-    cost += 0.5 * fi.r.squaredNorm();
-    if (lin) Accumulate(*H, *g, fi.r, oi, fi.Ji, oj, fi.Jj);
+    out.cost += 0.5 * fi.r.squaredNorm();
+    if (lin) Accumulate(*out.H, *out.g, fi.r, oi, fi.Ji, oj, fi.Jj);
     const OdometryFactor fo = EvaluateOdometryFactor(odo_[k], frames[k], frames[k + 1]);
     if (def_.use_odometry) {
-      cost += 0.5 * fo.r.squaredNorm();
-      if (lin) Accumulate(*H, *g, fo.r, oi, fo.Ji, oj, fo.Jj);
+      out.cost += 0.5 * fo.r.squaredNorm();
+      if (lin) Accumulate(*out.H, *out.g, fo.r, oi, fo.Ji, oj, fo.Jj);
     } else {
       // Without odometry the odometry biases only keep their random walk, so that the system
       // stays well posed; they do not influence the motion.
       const Eigen::Vector2d r = fo.r.tail<2>();
-      cost += 0.5 * r.squaredNorm();
-      if (lin) Accumulate(*H, *g, r, oi, fo.Ji.bottomRows<2>(), oj, fo.Jj.bottomRows<2>());
+      out.cost += 0.5 * r.squaredNorm();
+      if (lin) Accumulate(*out.H, *out.g, r, oi, fo.Ji.bottomRows<2>(), oj, fo.Jj.bottomRows<2>());
     }
   }
 
-  if (def_.use_nonholonomic) {
-    const std::size_t n = marg ? 1 : frames.size();
-    for (std::size_t k = 0; k < n; ++k) {
-      const NonholonomicFactor f = EvaluateNonholonomicFactor(frames[k], def_.nonholonomic_sigma);
-      cost += 0.5 * f.r * f.r;
-      if (lin)
-        Accumulate(*H, *g, Eigen::Matrix<double, 1, 1>(f.r), layout.frame_offset[k], f.J, -1, none);
-    }
+  if (!def_.use_nonholonomic) return;
+  const Eigen::Matrix<double, 1, 1> none;  // placeholder Jacobian for one-block residuals
+  const std::size_t n = marg ? 1 : frames.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const NonholonomicFactor f = EvaluateNonholonomicFactor(frames[k], def_.nonholonomic_sigma);
+    out.cost += 0.5 * f.r * f.r;
+    if (lin)
+      Accumulate(*out.H, *out.g, Eigen::Matrix<double, 1, 1>(f.r), layout.frame_offset[k], f.J, -1,
+                 none);
   }
+}
 
-  // Bearings of initialised landmarks (only the residuals that touch the oldest keyframe when
-  // marginalising; with inverse depth, every residual of a landmark anchored there). In the
-  // one-number form the anchor's own bearing is taken as exact, no residual.
+int SlidingWindowEstimator::LinearizeAnchoredBearings(const std::deque<KeyframeState>& frames,
+                                                      const Layout& layout, const Track& track,
+                                                      int ol, bool marg, LinearTerms& out) const {
+  const long id0 = frames.front().id;
+  const std::size_t a = static_cast<std::size_t>(track.anchor - id0);
+  int count = 0;
+  for (const auto& [fid, z] : track.obs) {
+    if (marg && fid != id0 && track.anchor != id0) continue;
+    if (one_depth() && fid == track.anchor) continue;
+    ++count;
+    if (fid == track.anchor) {
+      // From its anchor the landmark's bearing is ψ itself.
+      const double w = 1.0 / std::max(def_.bearing_sigma, 1e-12);
+      const double r = w * WrapToPi(track.psi - z);
+      out.cost += 0.5 * r * r;
+      if (out.H) AccumulateRow(*out.H, *out.g, r, {{ol, Eigen::RowVector2d(w, 0.0)}});
+      continue;
+    }
+    const std::size_t s = static_cast<std::size_t>(fid - id0);
+    const InverseDepthBearingFactor f =
+        EvaluateInverseDepthBearingFactor(frames[s], frames[a], track.psi, track.inv_depth, z,
+                                          def_.bearing_sigma, def_.camera_offset);
+    out.cost += 0.5 * f.r * f.r;
+    if (out.H)
+      AccumulateRow(*out.H, *out.g, f.r,
+                    {{layout.frame_offset[s], f.Jk},
+                     {layout.frame_offset[a], f.Ja},
+                     {ol, f.Jl.rightCols(landmark_dim())}});  // ρ alone: its column
+  }
+  return count;
+}
+
+int SlidingWindowEstimator::LinearizeBearings(const std::deque<KeyframeState>& frames,
+                                              const std::map<int, Track>& tracks,
+                                              const Layout& layout, bool marg,
+                                              LinearTerms& out) const {
+  const long id0 = frames.front().id;
   int count = 0;
   for (const auto& [id, track] : tracks) {
     if (!track.initialized) continue;
     auto it = layout.landmark_offset.find(id);
     const int ol = it == layout.landmark_offset.end() ? -1 : it->second;
     if (anchored()) {
-      const std::size_t a = static_cast<std::size_t>(track.anchor - id0);
-      for (const auto& [fid, z] : track.obs) {
-        if (marg && fid != id0 && track.anchor != id0) continue;
-        if (one_depth() && fid == track.anchor) continue;
-        ++count;
-        if (fid == track.anchor) {
-          // From its anchor the landmark's bearing is ψ itself.
-          const double w = 1.0 / std::max(def_.bearing_sigma, 1e-12);
-          const double r = w * WrapToPi(track.psi - z);
-          cost += 0.5 * r * r;
-          if (lin) AccumulateRow(*H, *g, r, {{ol, Eigen::RowVector2d(w, 0.0)}});
-          continue;
-        }
-        const std::size_t s = static_cast<std::size_t>(fid - id0);
-        const InverseDepthBearingFactor f =
-            EvaluateInverseDepthBearingFactor(frames[s], frames[a], track.psi, track.inv_depth, z,
-                                              def_.bearing_sigma, def_.camera_offset);
-        cost += 0.5 * f.r * f.r;
-        if (lin)
-          AccumulateRow(*H, *g, f.r,
-                        {{layout.frame_offset[s], f.Jk},
-                         {layout.frame_offset[a], f.Ja},
-                         {ol, f.Jl.rightCols(landmark_dim())}});  // ρ alone: its column
-      }
+      count += LinearizeAnchoredBearings(frames, layout, track, ol, marg, out);
       continue;
     }
     for (const auto& [fid, z] : track.obs) {
@@ -381,13 +385,30 @@ double SlidingWindowEstimator::Linearize(const std::deque<KeyframeState>& frames
       const std::size_t s = static_cast<std::size_t>(fid - id0);
       const BearingFactor f = EvaluateBearingFactor(frames[s], track.position, z,
                                                     def_.bearing_sigma, def_.camera_offset);
-      cost += 0.5 * f.r * f.r;
+      out.cost += 0.5 * f.r * f.r;
       ++count;
-      if (lin) AccumulateRow(*H, *g, f.r, {{layout.frame_offset[s], f.Jk}, {ol, f.Jf}});
+      if (out.H) AccumulateRow(*out.H, *out.g, f.r, {{layout.frame_offset[s], f.Jk}, {ol, f.Jf}});
     }
   }
+  return count;
+}
+
+double SlidingWindowEstimator::Linearize(const std::deque<KeyframeState>& frames,
+                                         const std::map<int, Track>& tracks, const Layout& layout,
+                                         Selection sel, Eigen::MatrixXd* H, Eigen::VectorXd* g,
+                                         int* n_obs) const {
+  if (H != nullptr) {
+    H->setZero(layout.dim, layout.dim);
+    g->setZero(layout.dim);
+  }
+  const bool marg = sel == Selection::kMarginalisation;
+  // The terms in a fixed order (the cost is their sum in this order): prior, motion, bearings.
+  LinearTerms out{H, g, 0.0};
+  if (!prior_.vars.empty()) LinearizePrior(frames, tracks, layout, out);
+  LinearizeMotion(frames, layout, marg, out);
+  const int count = LinearizeBearings(frames, tracks, layout, marg, out);
   if (n_obs) *n_obs = count;
-  return cost;
+  return out.cost;
 }
 
 bool SlidingWindowEstimator::Optimize(UpdateReport& report) {

@@ -49,8 +49,8 @@
 ///
 /// Why hand-written rather than Ceres: the problem is planar and small (≤ 10 keyframes × 10
 /// states + a few dozen landmarks of two numbers each, about 200 unknowns), so a dense LDLT
-/// solve costs well under a millisecond; the angles are plain numbers (SO(2) is commutative, no local
-/// parameterisation needed); and the marginalisation prior needs the same linearised H and g
+/// solve costs well under a millisecond; the angles are plain numbers (SO(2) is commutative, no
+/// local parameterisation needed); and the marginalisation prior needs the same linearised H and g
 /// that the solver already builds. Ceres would add a large dependency (and its build time on
 /// CI) for an automatic-differentiation and sparse-solver machinery this size does not need.
 /// The result is the same Gauss-Newton / LM step Ceres' dense solver would take.
@@ -175,7 +175,7 @@ class SlidingWindowEstimator {
     long anchor = -1;                ///< inverse depth: the anchor keyframe's id
     /// Inverse depth: the ray's bearing from the anchor, rad (one-number form: the measured one).
     double psi = 0.0;
-    double inv_depth = 0.0;          ///< inverse depth: ρ along that ray, 1/m
+    double inv_depth = 0.0;  ///< inverse depth: ρ along that ray, 1/m
   };
   /// A variable of the marginalisation prior: a keyframe (by id) or a landmark (by track id).
   struct PriorVar {
@@ -236,6 +236,29 @@ class SlidingWindowEstimator {
   };
   void ReanchorPrior(const std::vector<Reanchoring>& moves);
   void RepropagateIfNeeded();
+  /// Where Linearize adds its terms: the cost, and the normal equations H and g (both null when
+  /// only the cost is wanted).
+  struct LinearTerms {
+    Eigen::MatrixXd* H;
+    Eigen::VectorXd* g;
+    double cost;
+  };
+  /// Adds the marginalisation prior: cost gᵀdx + ½ dxᵀ H dx about its linearisation point.
+  void LinearizePrior(const std::deque<KeyframeState>& frames, const std::map<int, Track>& tracks,
+                      const Layout& layout, LinearTerms& out) const;
+  /// Adds IMU and odometry between consecutive keyframes and the no-side-slip constraint (only
+  /// the oldest keyframe's when marginalising).
+  void LinearizeMotion(const std::deque<KeyframeState>& frames, const Layout& layout, bool marg,
+                       LinearTerms& out) const;
+  /// Adds the bearings of initialised landmarks (only the residuals that touch the oldest
+  /// keyframe when marginalising; with inverse depth, every residual of a landmark anchored
+  /// there); returns how many.
+  int LinearizeBearings(const std::deque<KeyframeState>& frames, const std::map<int, Track>& tracks,
+                        const Layout& layout, bool marg, LinearTerms& out) const;
+  /// The bearings of one landmark in an inverse-depth form, at variable offset `ol`. In the
+  /// one-number form the anchor's own bearing is taken as exact, no residual.
+  int LinearizeAnchoredBearings(const std::deque<KeyframeState>& frames, const Layout& layout,
+                                const Track& track, int ol, bool marg, LinearTerms& out) const;
   /// Cost ½Σ‖r‖² of the selected factors at the given states; fills H and g when non-null.
   double Linearize(const std::deque<KeyframeState>& frames, const std::map<int, Track>& tracks,
                    const Layout& layout, Selection sel, Eigen::MatrixXd* H, Eigen::VectorXd* g,

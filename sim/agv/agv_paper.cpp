@@ -12,11 +12,9 @@ namespace {
 using namespace sim::repro;  // NOLINT: the table builders
 
 // ---- Paper 002: Mecanum AGV ----
-ReproPaper AgvPaper() {
-  ReproPaper p;
-  p.name = "agv";
-  p.number = 2;
-  p.title = "Omnidirectional Mecanum AGV (paper 002)";
+
+// The runs: one per localisation, outlier rate, beacon noise and R, and the wet corner.
+void AddAgvCases(ReproPaper& p) {
   auto add = [&](const std::string& id, const std::string& scenario,
                  std::vector<std::string> sets) {
     p.cases.push_back({id, scenario, sets});
@@ -43,19 +41,25 @@ ReproPaper AgvPaper() {
       {"beacon.sigma_xy=0.03", "estimation.r_xy=0.003", "estimation.adaptive_r=true"});
   add("slippery_plain_kf", "agv_slippery_corner", {plain});
   add("slippery_gate", "agv_slippery_corner", {});
+}
 
-  const ReproColumn rms = Stat("cross-track RMS [mm]", "cross_track.rms_m", CellStat::kMeanStdRange,
-                               1000.0),
-                    max = Stat("cross-track max [mm]", "cross_track.max_m", CellStat::kMeanStdRange,
-                               1000.0),
-                    loops = Count("loop completed", "loop_completed"),
-                    jumps =
-                        Stat("estimate jumps > 5 cm", "localisation.{}.jumps", CellStat::kMeanStd);
+// The columns most of the paper's tables share.
+struct AgvColumns {
+  ReproColumn rms =
+      Stat("cross-track RMS [mm]", "cross_track.rms_m", CellStat::kMeanStdRange, 1000.0);
+  ReproColumn max =
+      Stat("cross-track max [mm]", "cross_track.max_m", CellStat::kMeanStdRange, 1000.0);
+  ReproColumn loops = Count("loop completed", "loop_completed");
+  ReproColumn jumps = Stat("estimate jumps > 5 cm", "localisation.{}.jumps", CellStat::kMeanStd);
+};
+
+// Fig. 6: the true cross-track error of each localisation (table and bar chart).
+void AddAgvLocalisation(ReproPaper& p, const AgvColumns& c) {
   ReproTable loc;
   loc.id = "localisation";
   loc.title = "AGV, true cross-track error by localisation (cf. Fig. 6): 5% beacon outliers";
   loc.label_headers = {"localisation", "paper"};
-  loc.columns = {rms, max, loops, jumps,
+  loc.columns = {c.rms, c.max, c.loops, c.jumps,
                  Stat("loop rate [Hz]", "control.rate_hz", CellStat::kMeanStd, 1.0, 2)};
   loc.rows = {
       Row({"odometry only", "fails"}, "odometry", "odometry"),
@@ -81,12 +85,15 @@ ReproPaper AgvPaper() {
   loc_fig.series = {{"RMS", "{}", "cross_track.rms_m"}, {"max", "{}", "cross_track.max_m"}};
   loc_fig.scale = 1000.0;
   p.figures.push_back(loc_fig);
+}
 
+// The fused filters against the beacon's outlier rate (table and bar chart).
+void AddAgvOutliers(ReproPaper& p, const AgvColumns& c) {
   ReproTable out;
   out.id = "outliers";
   out.title = "AGV, fused localisation against the beacon's outlier rate";
   out.label_headers = {"filter", "outliers"};
-  out.columns = {rms, max, loops, jumps};
+  out.columns = {c.rms, c.max, c.loops, c.jumps};
   out.rows = {Row({"the paper's plain KF", "0%"}, "plain_kf_outliers_0", "fused"),
               Row({"the paper's plain KF", "1%"}, "plain_kf_outliers_0.01", "fused"),
               Row({"the paper's plain KF", "5%"}, "plain_kf", "fused"),
@@ -104,13 +111,16 @@ ReproPaper AgvPaper() {
                     {"KF + χ² gate (ours)", "gate{}", "cross_track.rms_m"}};
   out_fig.scale = 1000.0;
   p.figures.push_back(out_fig);
+}
 
+// Beacon noise against the R the filter assumes.
+void AddAgvSensitivity(ReproPaper& p, const AgvColumns& c) {
   ReproTable sens;
   sens.id = "sensitivity";
   sens.title =
       "AGV, beacon noise against the R the filter assumes (estimation.r_xy), KF + χ² gate (ours)";
   sens.label_headers = {"beacon σ", "estimation.r_xy"};
-  sens.columns = {rms, max, loops};
+  sens.columns = {c.rms, c.max, c.loops};
   sens.rows = {Row({"10 mm", "10 mm (= σ)"}, "gate")};
   for (double sigma : {0.02, 0.03, 0.05}) {
     const std::string mm = Str(sigma * 1000);
@@ -125,27 +135,47 @@ ReproPaper AgvPaper() {
       "beacon's σ; left at 10 mm (rows \"too small\") the filter trusts the beacon too much. The "
       "gate's threshold follows R.";
   p.tables.push_back(sens);
+}
 
+// A fixed R ten times too small against the adaptive R.
+void AddAgvAdaptive(ReproPaper& p, const AgvColumns& c) {
   ReproTable adapt;
   adapt.id = "adaptive";
   adapt.title = "AGV, R ten times too small (beacon σ 30 mm, estimation.r_xy 3 mm), KF + χ² gate";
   adapt.label_headers = {"R"};
   adapt.columns = {
-      rms, max, loops,
+      c.rms, c.max, c.loops,
       Stat("R in use at the end [mm]", "filter.r_xy_in_use_m", CellStat::kMeanStdRange, 1000.0)};
   adapt.rows = {Row({"fixed (3 mm)"}, "r_small"), Row({"adaptive R (ours)"}, "r_small_adaptive")};
   p.tables.push_back(adapt);
+}
 
+// A wet patch on the first corner.
+void AddAgvSlippery(ReproPaper& p, const AgvColumns& c) {
   ReproTable slip;
   slip.id = "slippery";
   slip.title = "AGV, a wet patch (μ 0.05) on the first corner (`agv_slippery_corner`)";
   slip.label_headers = {"filter"};
-  slip.columns = {rms, max, loops,
+  slip.columns = {c.rms, c.max, c.loops,
                   Stat("odometry estimate max error [mm]", "localisation.odometry.position_max_m",
                        CellStat::kMeanStdRange, 1000.0)};
   slip.rows = {Row({"the paper's plain KF"}, "slippery_plain_kf"),
                Row({"KF + χ² gate (ours)"}, "slippery_gate")};
   p.tables.push_back(slip);
+}
+
+ReproPaper AgvPaper() {
+  ReproPaper p;
+  p.name = "agv";
+  p.number = 2;
+  p.title = "Omnidirectional Mecanum AGV (paper 002)";
+  AddAgvCases(p);
+  const AgvColumns columns;
+  AddAgvLocalisation(p, columns);
+  AddAgvOutliers(p, columns);
+  AddAgvSensitivity(p, columns);
+  AddAgvAdaptive(p, columns);
+  AddAgvSlippery(p, columns);
   return p;
 }
 

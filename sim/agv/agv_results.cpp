@@ -1,8 +1,8 @@
 // Results of the Mecanum AGV experiment: summary.json's `results`, the printed and GUI tables.
 #include <cmath>
-#include <cstdio>
 
 #include "sim/agv/agv_experiment.hpp"
+#include "sim/core/number_format.hpp"
 
 namespace formsim::sim::agv {
 
@@ -60,26 +60,21 @@ Metrics AgvExperiment::Results() const {
   m.Set("filter.r_xy_in_use_m", std::sqrt(filter_.measurement_cov()(0, 0)));
   m.Set("filter.r_theta_in_use_rad", std::sqrt(filter_.measurement_cov()(2, 2)));
 
-  char line[200];
-  std::snprintf(line, sizeof line, "Mecanum AGV, %s localisation, path %.2f m: %s",
-                ModeName(cfg_.mode).c_str(), cfg_.path.length(),
-                !tracking_done_ ? "did not finish (duration too short?)"
-                : completed()   ? "completed"
-                                : "finished in its own belief, but off the path");
-  m.AddNote(line);
-  std::snprintf(
-      line, sizeof line, "true cross-track error: RMS %.1f mm, max %.1f mm (tolerance %.0f mm)",
-      cross_track_.rms() * 1000, cross_track_.max_abs * 1000, cfg_.completion_tolerance * 1000);
-  m.AddNote(line);
+  m.AddNote(Sprintf("Mecanum AGV, %s localisation, path %.2f m: %s",
+                    ModeName(cfg_.mode).c_str(), cfg_.path.length(),
+                    !tracking_done_ ? "did not finish (duration too short?)"
+                    : completed()   ? "completed"
+                                    : "finished in its own belief, but off the path"));
+  m.AddNote(Sprintf("true cross-track error: RMS %.1f mm, max %.1f mm (tolerance %.0f mm)",
+                    cross_track_.rms() * 1000, cross_track_.max_abs * 1000,
+                    cfg_.completion_tolerance * 1000));
   // Wall-clock cost of one loop: printed, never in summary.json (which must be reproducible).
-  std::snprintf(
-      line, sizeof line,
+  m.AddNote(Sprintf(
       "control loop: %.2f Hz measured (%ld iterations in %.1f s); one iteration "
       "(estimators + tracker) %.1f us mean, %.1f us max of wall clock",
       T > 0.0 ? static_cast<double>(control_updates_) / T : 0.0, control_updates_, T,
       control_updates_ ? 1000.0 * loop_ms_sum_ / static_cast<double>(control_updates_) : 0.0,
-      1000.0 * loop_ms_max_);
-  m.AddNote(line);
+      1000.0 * loop_ms_max_));
 
   Metrics::Table loc;
   loc.title = "Localisation against the truth";

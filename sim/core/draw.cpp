@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+
+#include "sim/core/number_format.hpp"
 
 namespace formsim::sim {
 
@@ -96,12 +97,8 @@ void DrawRobotBody(DrawSink& draw, const Pose2& pose, const std::vector<Vec2>& b
 }
 
 std::string AngleLabel(const DrawSink& draw, double rad) {
-  char buf[32];
-  if (draw.AnglesInDegrees())
-    std::snprintf(buf, sizeof buf, "%.1f°", rad * 180.0 / 3.14159265358979323846);
-  else
-    std::snprintf(buf, sizeof buf, "%.3f rad", rad);
-  return buf;
+  if (draw.AnglesInDegrees()) return Sprintf("%.1f°", rad * 180.0 / 3.14159265358979323846);
+  return Sprintf("%.3f rad", rad);
 }
 
 const std::vector<OverlayInfo>& Overlays() {

@@ -1,7 +1,6 @@
 #include "sim/core/json.hpp"
 
 #include <cmath>
-#include <cstdio>
 
 #include "sim/core/number_format.hpp"
 
@@ -61,9 +60,7 @@ static void Escape(std::string& out, const std::string& s) {
       case '\t': out += "\\t"; break;
       default:
         if (c < 0x20 || c == 0x7f) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          out += buf;
+          AppendSprintf(out, "\\u%04x", c);
         } else if (c < 0x80) {
           out += static_cast<char>(c);
         } else if (const std::size_t n = Utf8Length(s, i)) {
@@ -71,9 +68,7 @@ static void Escape(std::string& out, const std::string& s) {
           i += n - 1;
         } else {
           // Not UTF-8: keep the byte visible as the Latin-1 character of the same value.
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          out += buf;
+          AppendSprintf(out, "\\u%04x", c);
         }
     }
   }

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
 #include "sim/core/number_format.hpp"
@@ -209,9 +208,7 @@ std::string Metrics::Cell(const std::string& path, const std::string& format) co
   if (e->is_text) return e->text;
   if (e->is_flag) return e->value != 0 ? "yes" : "no";
   if (format.empty()) return FormatDouble(e->value);
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format.c_str(), e->value);
-  return buf;
+  return Sprintf(format.c_str(), e->value);
 }
 
 std::vector<TableSpec> Metrics::GuiTables() const {

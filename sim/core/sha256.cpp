@@ -1,7 +1,8 @@
 #include "sim/core/sha256.hpp"
 
 #include <cstdint>
-#include <cstdio>
+
+#include "sim/core/number_format.hpp"
 
 namespace formsim::sim {
 namespace {
@@ -63,11 +64,7 @@ std::string Sha256Hex(const std::string& data) {
   Block(h, tail);
   if (tail_len == 128) Block(h, tail + 64);
   std::string out;
-  char buf[9];
-  for (std::uint32_t v : h) {
-    std::snprintf(buf, sizeof buf, "%08x", v);
-    out += buf;
-  }
+  for (std::uint32_t v : h) AppendSprintf(out, "%08x", v);
   return out;
 }
 

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 
 namespace formsim::sim {
@@ -394,9 +393,8 @@ void World::Draw(DrawSink& draw) const {
     double cx = 0, cy = 0;
     for (const Vec2& p : patch.polygon) { cx += p.x; cy += p.y; }
     const double n = static_cast<double>(patch.polygon.size());
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%s μ=%.2f", patch.name.c_str(), patch.friction);
-    draw.Text({cx / n, cy / n}, buf, Color{0.2f, 0.3f, 0.45f, 1});
+    draw.Text({cx / n, cy / n}, Sprintf("%s μ=%.2f", patch.name.c_str(), patch.friction),
+              Color{0.2f, 0.3f, 0.45f, 1});
   }
   const Color fill{0.55f, 0.55f, 0.58f, 1}, edge{0.25f, 0.25f, 0.28f, 1};
   for (const auto& o : obstacle_defs_) {

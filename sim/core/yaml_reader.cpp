@@ -1,7 +1,6 @@
 #include "sim/core/yaml_reader.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <sstream>
 
@@ -40,9 +39,7 @@ std::string Printable(const std::string& s) {
   std::string out;
   for (unsigned char c : s) {
     if (c < 0x20 || c == 0x7f) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\x%02x", c);
-      out += buf;
+      AppendSprintf(out, "\\x%02x", c);
     } else {
       out += static_cast<char>(c);
     }

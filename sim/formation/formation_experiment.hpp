@@ -223,10 +223,45 @@ class FormationExperiment : public ExperimentOf<FormationConfig>, public Formati
   double DesiredL(const Link& l) const;
   Pose2 EstimatedPose(const Agent& a) const;
   Pose2 DesiredPose(int robot) const;
+  /// Figures' estimation error of link `n` with its ±2σ band (from the recorded σ).
+  void AddEstimationSeries(FigureSpec& est, const std::string& n, int color) const;
+  /// Figures' switching and avoidance figures: formation error, distance to obstacles.
+  void AddSwitchingFigures(std::vector<FigureSpec>& figs, std::size_t n_robots) const;
+  /// Results' per-link metrics and table (errors, estimation, events).
+  void AddLinkResults(Metrics& m) const;
+  /// Results' switching and avoidance metrics (collisions after the transient, recoveries).
+  void AddSwitchResults(Metrics& m) const;
+  // The layers of DrawScene, bottom to top (body_px: a body's size on screen; in_view: a point
+  // is in the view or near enough to it to be drawn).
+  void DrawTrails(DrawSink& draw, double body_px) const;
+  /// Desired slots (ghosts) and the leader -> control point links.
+  void DrawSlotsAndLinks(DrawSink& draw, double body_px,
+                         const std::function<bool(Vec2)>& in_view) const;
+  /// Control points M and the links' labels (l, and φ for l-φ links).
+  void DrawControlPointsAndLinkLabels(DrawSink& draw, double body_px,
+                                      const std::function<bool(Vec2)>& in_view) const;
+  /// Each follower's active law (and, while it avoids, its virtual leader).
+  void DrawLawTags(DrawSink& draw, double body_px, const std::function<bool(Vec2)>& in_view) const;
+  /// Estimated positions and the UKF's 2σ position ellipses.
+  void DrawEstimatedPoses(DrawSink& draw, double body_px,
+                          const std::function<bool(Vec2)>& in_view) const;
+  /// Rings around the robots of recent events.
+  void DrawEventFlashes(DrawSink& draw) const;
   /// The optional layers of "what the law sees" (measured arcs, error vectors, l-l triangles,
   /// feed-forward / feedback velocity, formation graph), each when the sink Shows() it.
   void DrawLawOverlays(DrawSink& draw, double body_px,
                        const std::function<bool(Vec2)>& in_view) const;
+  // The layers of DrawLawOverlays; j is a follower and m its control point M.
+  /// An arrow from each leader to each follower, with the law on the edge.
+  void DrawFormationGraph(DrawSink& draw, const std::function<bool(Vec2)>& in_view) const;
+  /// The measured l and φ of j's links as arcs (and the estimates the law uses).
+  void DrawMeasuredLinks(DrawSink& draw, std::size_t j, Vec2 m) const;
+  /// An arrow from M to where M should be, with its length.
+  void DrawErrorVector(DrawSink& draw, std::size_t j, Vec2 m) const;
+  /// An l-l follower's triangle with its leaders and their singular line, coloured by |sin|.
+  void DrawSingularTriangle(DrawSink& draw, const Agent& a, Vec2 m) const;
+  /// M's velocity split into feed-forward and feedback arrows.
+  void DrawCommandSplit(DrawSink& draw, std::size_t j, Vec2 m) const;
   cf::LinkState ForControl(const Link& link) const;
 
   std::vector<Agent> agents_;

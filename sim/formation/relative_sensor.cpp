@@ -1,15 +1,10 @@
 #include "sim/formation/relative_sensor.hpp"
 
+#include "sim/core/fnv_hash.hpp"
+
 namespace formsim::sim::formation {
 
-std::uint64_t SensorStreamId(const std::string& name) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : name) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return h;
-}
+std::uint64_t SensorStreamId(const std::string& name) { return Fnv1a64(name); }
 
 control::formation::LinkState RelativeSensor::Sample(const Pose2& leader, const Pose2& follower, double L,
                                           control::formation::BearingConvention convention, double sigma_l,

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "control/common/angle.hpp"
 #include "control/inspection/paper_frame.hpp"
 #include "sim/core/bounded_file.hpp"
+#include "sim/core/number_format.hpp"
 
 namespace formsim::sim::inspection {
 
@@ -238,10 +238,8 @@ void InspectionExperiment::Control(double t) {
   fz_ = fuzzy_.Process(s_ctrl_, Deg(dphi_ctrl_));
   // One event per entry into a stretch where no rule fires.
   events_.Update(no_rule_, t, !fz_.ok, [&] {
-    char msg[160];
-    std::snprintf(msg, sizeof msg, "no fuzzy rule fired at s = %.2f m, dphi = %.1f deg: stopping",
-                  s_ctrl_, Deg(dphi_ctrl_));
-    return std::string(msg);
+    return Sprintf("no fuzzy rule fired at s = %.2f m, dphi = %.1f deg: stopping", s_ctrl_,
+                   Deg(dphi_ctrl_));
   });
   if (!fz_.ok) {
     ++no_rule_steps_;
@@ -285,11 +283,10 @@ void InspectionExperiment::Sense(double t) {
   }
   // One event per entry into a run of steps with a Kalman fault; every fault is counted.
   events_.Update(filter_fault_, t, fault_ != Fault::kNone, [&] {
-    char when[32];
-    std::snprintf(when, sizeof when, "%.2f", t);
+    const std::string when = FormatSimTime(t);
     return fault_ == Fault::kPredict
-               ? "Kalman prediction at t = " + std::string(when) + " s gave a non-finite state; step skipped"
-               : "Kalman update at t = " + std::string(when) + " s gave a non-finite state; fix ignored";
+               ? "Kalman prediction at " + when + " gave a non-finite state; step skipped"
+               : "Kalman update at " + when + " gave a non-finite state; fix ignored";
   });
   // The row recorded after this step (if any) shows the fixes that arrived since the last row.
   if (steps() % setup_.record_every == 0) {

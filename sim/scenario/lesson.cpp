@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <set>
+
+#include "sim/core/number_format.hpp"
 
 namespace formsim::sim {
 namespace {
@@ -20,9 +21,7 @@ constexpr const char* kRelationNames[] = {"less", "greater", "within", "equal", 
 
 std::string FormatRangeEnd(double v) {
   if (std::isinf(v)) return v > 0 ? "+inf" : "-inf";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
+  return FormatSignificant(v);
 }
 
 bool IsCheckId(const std::string& s) {
@@ -492,11 +491,7 @@ std::vector<std::pair<std::string, std::string>> ChecksClaimingASeedEffect(const
       if (ClaimsASeedEffect(s))
         for (const std::string& id : CheckReferences(s)) add(id, s);
   for (const LessonCheck& c : l.checks)
-    if (c.share < 1) {
-      char buf[48];
-      std::snprintf(buf, sizeof buf, "share: %g", c.share);
-      add(c.id, buf);
-    }
+    if (c.share < 1) add(c.id, "share: " + FormatSignificant(c.share));
   return out;
 }
 

@@ -1,10 +1,10 @@
 #include "sim/session/session.hpp"
 
-#include <cstdio>
 #include <filesystem>
 #include <iterator>
 #include <stdexcept>
 
+#include "sim/core/number_format.hpp"
 #include "sim/core/run_output.hpp"
 #include "sim/scenario/scenario_files.hpp"
 #include "sim/scenario/scenario_save.hpp"
@@ -33,9 +33,7 @@ void Session::SetRunSetup(std::function<void(Experiment&)> setup) {
 }
 
 void Session::Reject(const std::string& key, const std::string& why) {
-  char t[32];
-  std::snprintf(t, sizeof(t), "t=%.2f s ", exp_->time());
-  rejected_.push_back(t + key + ": " + why);
+  rejected_.push_back(Sprintf("t=%.2f s ", exp_->time()) + key + ": " + why);
   if (rejected_.size() > 50) rejected_.erase(rejected_.begin());
   refusals_[key] = why;
 }

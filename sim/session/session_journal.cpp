@@ -17,6 +17,7 @@
 #include <stdexcept>
 
 #include "sim/core/bounded_file.hpp"
+#include "sim/core/fnv_hash.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/wall_clock.hpp"
 
@@ -29,19 +30,8 @@ constexpr char kMagic[] = "formsim-journal 1\n";
 // A journal larger than this is not read back (a scenario text is at most a few MB).
 constexpr std::uintmax_t kMaxJournalBytes = std::uintmax_t{256} << 20;
 
-std::uint64_t Fnv1a(const std::string& s) {
-  std::uint64_t h = 1469598103934665603ULL;
-  for (unsigned char c : s) {
-    h ^= c;
-    h *= 1099511628211ULL;
-  }
-  return h;
-}
-
 std::string Hex(std::uint64_t v) {
-  char buf[17];
-  std::snprintf(buf, sizeof(buf), "%016llx", static_cast<unsigned long long>(v));
-  return buf;
+  return Sprintf("%016llx", static_cast<unsigned long long>(v));
 }
 
 // Fields of an entry: "<length>:<bytes>" one after the other (any bytes, no escaping).
@@ -152,7 +142,7 @@ RecoveredSession ParseJournal(const std::string& text, const std::string& path) 
       break;
     }
     const std::string payload = text.substr(eol + 1, len);
-    if (Hex(Fnv1a(payload)) != sum) {
+    if (Hex(Fnv1a64(payload)) != sum) {
       out.torn = true;
       break;
     }
@@ -300,7 +290,7 @@ SessionJournal::~SessionJournal() {
 
 void SessionJournal::WriteEntry(const std::string& payload) {
   if (file_ == nullptr || !error_.empty()) return;
-  const std::string head = "J " + std::to_string(payload.size()) + " " + Hex(Fnv1a(payload)) + "\n";
+  const std::string head = "J " + std::to_string(payload.size()) + " " + Hex(Fnv1a64(payload)) + "\n";
   const bool ok = std::fwrite(head.data(), 1, head.size(), file_) == head.size() &&
                   std::fwrite(payload.data(), 1, payload.size(), file_) == payload.size() &&
                   std::fputc('\n', file_) != EOF && std::fflush(file_) == 0 &&

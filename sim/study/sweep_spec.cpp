@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
@@ -21,9 +20,7 @@ namespace {
 // A computed design value rounded to 12 significant digits, so ranges read as 0.15, not
 // 0.15000000000000002 (a change far below anything a sweep resolves).
 double Tidy(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.12g", v);
-  return std::strtod(buf, nullptr);
+  return std::strtod(FormatSignificant(v, 12).c_str(), nullptr);
 }
 
 // a * b, or SIZE_MAX when that overflows.

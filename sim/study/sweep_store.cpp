@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <sstream>
@@ -190,9 +189,7 @@ std::string ManifestPath(const std::string& dir) {
 }
 
 std::string RecordPath(const std::string& dir, std::size_t run) {
-  char name[32];
-  std::snprintf(name, sizeof name, "%06zu.run", run);
-  return (fs::path(dir) / "runs" / name).string();
+  return (fs::path(dir) / "runs" / Sprintf("%06zu.run", run)).string();
 }
 
 std::string ManifestText(const SweepDefinition& def) {

@@ -115,43 +115,51 @@ int SweepTables::MetricIndex(const std::string& metric) const {
   return -1;
 }
 
-SweepTables BuildSweepTables(const SweepDefinition& def, std::vector<SweepRecord> records) {
-  std::sort(records.begin(), records.end(),
-            [](const SweepRecord& a, const SweepRecord& b) { return a.run < b.run; });
-  for (std::size_t i = 1; i < records.size(); ++i)
-    if (records[i].run == records[i - 1].run)
-      throw std::runtime_error("run " + std::to_string(records[i].run) + " is recorded twice");
-  SweepTables t;
-  std::unordered_map<std::string, std::size_t> column;
-  std::unordered_map<std::string, std::size_t> setting_column;
+namespace {
+
+// Where each metric's and each setting's column is, by name.
+struct SweepColumnIndex {
+  std::unordered_map<std::string, std::size_t> metric;
+  std::unordered_map<std::string, std::size_t> setting;
+};
+
+// The metrics and settings of all runs (in the order they first appear) and what the kind
+// declared about each metric.
+SweepColumnIndex CollectSweepColumns(const std::vector<SweepRecord>& records, SweepTables* t) {
+  SweepColumnIndex column;
   for (const SweepRecord& r : records) {
     for (const auto& m : r.metrics)
-      if (column.emplace(m.first, t.metrics.size()).second) t.metrics.push_back(m.first);
+      if (column.metric.emplace(m.first, t->metrics.size()).second) t->metrics.push_back(m.first);
     for (const auto& m : r.settings)
-      if (setting_column.emplace(m.first, t.settings.size()).second) t.settings.push_back(m.first);
+      if (column.setting.emplace(m.first, t->settings.size()).second)
+        t->settings.push_back(m.first);
   }
   // What the kind declared about each metric: from the first run (in run order) that says.
-  t.info.resize(t.metrics.size());
-  std::vector<bool> described(t.metrics.size(), false);
+  t->info.resize(t->metrics.size());
+  std::vector<bool> described(t->metrics.size(), false);
   for (const SweepRecord& r : records)
     for (const auto& [name, info] : r.info) {
-      const auto it = column.find(name);
-      if (it == column.end() || described[it->second]) continue;
+      const auto it = column.metric.find(name);
+      if (it == column.metric.end() || described[it->second]) continue;
       described[it->second] = true;
-      t.info[it->second] = info;
+      t->info[it->second] = info;
     }
+  return column;
+}
 
-  // runs.csv
-  std::string& csv = t.runs_csv;
+// runs.csv: one row per run, its axes' values, seed, metrics, settings and status.
+void WriteSweepRunsCsv(const SweepDefinition& def, const std::vector<SweepRecord>& records,
+                       const SweepColumnIndex& column, SweepTables* t) {
+  std::string& csv = t->runs_csv;
   csv = "run";
   const bool multi = def.MultiScenario();
   if (multi) csv += ",scenario";
   for (const SweepAxis& a : def.axes) csv += "," + CsvField(a.key);
   csv += ",seed";
-  for (const std::string& m : t.metrics) csv += "," + CsvField(m);
-  for (const std::string& m : t.settings) csv += "," + CsvField("settings." + m);
+  for (const std::string& m : t->metrics) csv += "," + CsvField(m);
+  for (const std::string& m : t->settings) csv += "," + CsvField("settings." + m);
   csv += ",status,message\n";
-  std::vector<double> row(t.metrics.size());
+  std::vector<double> row(t->metrics.size());
   for (const SweepRecord& r : records) {
     const std::size_t p = def.PointOf(r.run);
     csv += std::to_string(r.run);
@@ -159,82 +167,119 @@ SweepTables BuildSweepTables(const SweepDefinition& def, std::vector<SweepRecord
     for (std::size_t a = 0; a < def.axes.size(); ++a) csv += "," + CsvField(def.Value(p, a));
     csv += "," + std::to_string(def.SeedOf(r.run));
     std::fill(row.begin(), row.end(), kNaN);
-    std::vector<bool> has(t.metrics.size(), false);
+    std::vector<bool> has(t->metrics.size(), false);
     for (const auto& m : r.metrics) {
-      row[column[m.first]] = m.second;
-      has[column[m.first]] = true;
+      row[column.metric.at(m.first)] = m.second;
+      has[column.metric.at(m.first)] = true;
     }
     for (std::size_t c = 0; c < row.size(); ++c) {
       csv += ',';
       if (has[c]) AppendDouble(csv, row[c]);  // a computed NaN stays visible as nan
     }
-    std::vector<std::string> setting_cells(t.settings.size());
-    for (const auto& m : r.settings) AppendDouble(setting_cells[setting_column[m.first]], m.second);
+    std::vector<std::string> setting_cells(t->settings.size());
+    for (const auto& m : r.settings)
+      AppendDouble(setting_cells[column.setting.at(m.first)], m.second);
     for (const std::string& cell : setting_cells) csv += "," + cell;
     csv += "," + CsvField(r.status) + "," + CsvField(r.message) + "\n";
   }
+}
 
-  // Statistics per point (per scenario and point) over its completed runs, in seed order.
-  std::vector<std::vector<std::vector<double>>> values;  // [entry][metric] -> values
+// The completed runs' values per entry (one point of one scenario), for the statistics.
+struct SweepEntryValues {
+  std::vector<std::vector<std::vector<double>>> metrics;  // [entry][metric] -> values
   // [entry][setting]: the completed runs' common value ("" when they differ or none has it).
   std::vector<std::vector<std::string>> setting_text;
+};
+
+// Sorts the runs into entries (t's points, scenarios, runs and failed) and gathers the values
+// of their completed runs, in seed order.
+SweepEntryValues GatherSweepEntries(const SweepDefinition& def,
+                                    const std::vector<SweepRecord>& records,
+                                    const SweepColumnIndex& column, SweepTables* t) {
+  SweepEntryValues values;
   std::vector<std::vector<bool>> setting_seen;
   std::size_t last_cell = 0;
   for (const SweepRecord& r : records) {
     // A cell: one point of one scenario (the point itself for one scenario).
     const std::size_t cell = r.run / def.seeds.size();
-    if (t.points.empty() || last_cell != cell) {
+    if (t->points.empty() || last_cell != cell) {
       last_cell = cell;
-      t.points.push_back(def.PointOf(r.run));
-      t.scenarios.push_back(def.ScenarioOf(r.run));
-      t.runs.push_back(0);
-      t.failed.push_back(0);
-      values.emplace_back(t.metrics.size());
-      setting_text.emplace_back(t.settings.size());
-      setting_seen.emplace_back(t.settings.size(), false);
+      t->points.push_back(def.PointOf(r.run));
+      t->scenarios.push_back(def.ScenarioOf(r.run));
+      t->runs.push_back(0);
+      t->failed.push_back(0);
+      values.metrics.emplace_back(t->metrics.size());
+      values.setting_text.emplace_back(t->settings.size());
+      setting_seen.emplace_back(t->settings.size(), false);
     }
-    ++t.runs.back();
+    ++t->runs.back();
     if (r.failed()) {
-      ++t.failed.back();
+      ++t->failed.back();
       continue;
     }
     for (const auto& m : r.metrics)
-      if (std::isfinite(m.second)) values.back()[column[m.first]].push_back(m.second);
+      if (std::isfinite(m.second))
+        values.metrics.back()[column.metric.at(m.first)].push_back(m.second);
     for (const auto& m : r.settings) {
-      const std::size_t c = setting_column[m.first];
+      const std::size_t c = column.setting.at(m.first);
       std::string text;
       AppendDouble(text, m.second);
+      std::string& common = values.setting_text.back()[c];
       if (!setting_seen.back()[c])
-        setting_text.back()[c] = text;
-      else if (setting_text.back()[c] != text)
-        setting_text.back()[c].clear();
+        common = text;
+      else if (common != text)
+        common.clear();
       setting_seen.back()[c] = true;
     }
   }
-  std::string& agg = t.aggregate_csv;
+  return values;
+}
+
+// aggregate.csv: per entry, its axes' values, run counts, each metric's statistics (kept in
+// t->stats) and the common settings.
+void WriteSweepAggregateCsv(const SweepDefinition& def, const SweepEntryValues& values,
+                            SweepTables* t) {
+  const bool multi = def.MultiScenario();
+  std::string& agg = t->aggregate_csv;
   agg = "point";
   if (multi) agg += ",scenario";
   for (const SweepAxis& a : def.axes) agg += "," + CsvField(a.key);
   agg += ",runs,failed";
-  for (const std::string& m : t.metrics)
+  for (const std::string& m : t->metrics)
     for (const std::string& s : AggregateSuffixes()) agg += "," + CsvField(m + s);
-  for (const std::string& m : t.settings) agg += "," + CsvField("settings." + m);
+  for (const std::string& m : t->settings) agg += "," + CsvField("settings." + m);
   agg += "\n";
-  for (std::size_t e = 0; e < t.points.size(); ++e) {
-    const std::size_t p = t.points[e];
+  for (std::size_t e = 0; e < t->points.size(); ++e) {
+    const std::size_t p = t->points[e];
     agg += std::to_string(p);
-    if (multi) agg += "," + CsvField(def.scenarios[t.scenarios[e]].Name());
+    if (multi) agg += "," + CsvField(def.scenarios[t->scenarios[e]].Name());
     for (std::size_t a = 0; a < def.axes.size(); ++a) agg += "," + CsvField(def.Value(p, a));
-    agg += "," + std::to_string(t.runs[e]) + "," + std::to_string(t.failed[e]);
-    t.stats.emplace_back();
-    for (std::size_t c = 0; c < t.metrics.size(); ++c) {
-      t.stats.back().push_back(StatsOf(values[e][c]));
-      AppendStats(agg, t.stats.back().back());
+    agg += "," + std::to_string(t->runs[e]) + "," + std::to_string(t->failed[e]);
+    t->stats.emplace_back();
+    for (std::size_t c = 0; c < t->metrics.size(); ++c) {
+      t->stats.back().push_back(StatsOf(values.metrics[e][c]));
+      AppendStats(agg, t->stats.back().back());
     }
-    for (const std::string& text : setting_text[e]) agg += "," + text;
+    for (const std::string& text : values.setting_text[e]) agg += "," + text;
     agg += "\n";
   }
-  if (multi) BuildPooled(def, values, &t);
+}
+
+}  // namespace
+
+SweepTables BuildSweepTables(const SweepDefinition& def, std::vector<SweepRecord> records) {
+  std::sort(records.begin(), records.end(),
+            [](const SweepRecord& a, const SweepRecord& b) { return a.run < b.run; });
+  for (std::size_t i = 1; i < records.size(); ++i)
+    if (records[i].run == records[i - 1].run)
+      throw std::runtime_error("run " + std::to_string(records[i].run) + " is recorded twice");
+  SweepTables t;
+  const SweepColumnIndex column = CollectSweepColumns(records, &t);
+  WriteSweepRunsCsv(def, records, column, &t);
+  // Statistics per point (per scenario and point) over its completed runs, in seed order.
+  const SweepEntryValues values = GatherSweepEntries(def, records, column, &t);
+  WriteSweepAggregateCsv(def, values, &t);
+  if (def.MultiScenario()) BuildPooled(def, values.metrics, &t);
   return t;
 }
 

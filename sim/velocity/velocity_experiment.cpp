@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
+
+#include "sim/core/number_format.hpp"
 
 namespace formsim::sim::velocity {
 
@@ -212,10 +213,8 @@ void VelocityExperiment::AfterUpdate(RobotUnit& u, double t) {
   auto fault = [&](EventLog::ConditionId id, const cv::UpdateReport& rep, const char* which) {
     if (!rep.ok) ++u.faults;
     events_.Update(id, t, !rep.ok, [&] {
-      char buf[256];
-      std::snprintf(buf, sizeof buf, "%s estimator fault at t=%.3f s: %s (window restarted)", which,
-                    t, rep.message.c_str());
-      return std::string(buf);
+      return Sprintf("%s estimator fault at t=%.3f s: %s (window restarted)", which, t,
+                     rep.message.c_str());
     });
   };
   fault(u.fused_fault, u.fused_report, "fused");
@@ -310,12 +309,10 @@ void VelocityExperiment::Sense(double t) {
     // One slip event on each entry into slipping or skidding.
     const bool slipping = u.drive->slipping() || u.drive->skidding();
     events_.Update(u.slip, t, slipping, [&] {
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "%s at t=%.2f s on '%s' (μ=%.2f)",
-                    u.drive->skidding() ? "side skid" : "wheel slip", t,
-                    world_.PatchNameAt(u.robot->pose().p()).c_str(),
-                    world_.FrictionAt(u.robot->pose().p()));
-      return std::string(buf);
+      return Sprintf("%s at t=%.2f s on '%s' (μ=%.2f)",
+                     u.drive->skidding() ? "side skid" : "wheel slip", t,
+                     world_.PatchNameAt(u.robot->pose().p()).c_str(),
+                     world_.FrictionAt(u.robot->pose().p()));
     });
     if (k % 10 == 0) {
       u.trail.push_back(u.robot->pose().p());

@@ -12,25 +12,24 @@ namespace {
 using namespace sim::repro;  // NOLINT: the table builders
 
 // ---- Paper 004: velocity control from fused camera, odometry and IMU ----
-ReproPaper VelocityPaper() {
-  ReproPaper p;
-  p.name = "velocity";
-  p.number = 4;
-  p.title = "Velocity control from fused camera, odometry and IMU (paper 004)";
-  // The paper's estimator: one inverse depth per feature along its anchor's measured bearing,
-  // no side-slip constraint. Ours: (ψ, ρ) and the no-side-slip constraint (the shipped default).
-  const std::vector<std::string> paper = {"estimator.landmarks=inverse_depth_1d",
-                                          "estimator.nonholonomic=false"};
-  p.cases = {{"paper", "velocity_constant", paper},
-             {"paper_nhc", "velocity_constant", {"estimator.landmarks=inverse_depth_1d"}},
-             {"psi_rho", "velocity_constant", {"estimator.nonholonomic=false"}},
-             {"shipped", "velocity_constant", {}},
-             {"world_points", "velocity_constant", {"estimator.landmarks=world_point"}}};
 
+// The paper's estimator: one inverse depth per feature along its anchor's measured bearing, no
+// side-slip constraint. Ours: (ψ, ρ) and the no-side-slip constraint (the shipped default).
+const std::vector<std::string>& VelocityPaperEstimator() {
+  static const std::vector<std::string> settings = {"estimator.landmarks=inverse_depth_1d",
+                                                    "estimator.nonholonomic=false"};
+  return settings;
+}
+
+// A cell of the tables: mean ± standard deviation over the seeds.
+ReproColumn VelocityMeanStd(const std::string& header, const std::string& metric) {
+  return Stat(header, metric, CellStat::kMeanStd, 1.0, 4);
+}
+
+// Fig. 5-6: the speed estimate's RMSE of each estimator, with the paper's and ours.
+ReproTable VelocitySpeedTable() {
   const std::string rmse = "robots.{}.speed_rmse.";
-  auto ms = [](const std::string& h, const std::string& m) {
-    return Stat(h, m, CellStat::kMeanStd, 1.0, 4);
-  };
+  const auto ms = VelocityMeanStd;
   ReproTable f6;
   f6.id = "fig6";
   f6.title =
@@ -60,8 +59,12 @@ ReproPaper VelocityPaper() {
       "visual-inertial-only estimators. The paper reports fused < visual-inertial < odometry "
       "without printing numbers. Speed error from distance: |distance travelled - commanded| / "
       "time after the settle time (the paper's control metric).";
-  p.tables.push_back(f6);
+  return f6;
+}
 
+// The speed estimate's RMSE floor by floor.
+ReproTable VelocityFloorsTable() {
+  const auto ms = VelocityMeanStd;
   ReproTable floors;
   floors.id = "floors";
   floors.title = "Velocity, speed-estimate RMSE [m/s] per floor, R_fused (`velocity_constant`)";
@@ -78,8 +81,11 @@ ReproPaper VelocityPaper() {
     floors.rows.push_back(Row({label, "the paper's"}, "paper", key));
     floors.rows.push_back(Row({label, "(ψ, ρ) + no-side-slip (ours; shipped)"}, "shipped", key));
   }
-  p.tables.push_back(floors);
+  return floors;
+}
 
+// Fig. 6: the speed estimate's RMSE per floor as bars.
+ReproFigure VelocitySpeedFigure() {
   ReproFigure fig;
   fig.id = "fig6_speed_rmse";
   fig.table = "fig6";
@@ -96,45 +102,78 @@ ReproPaper VelocityPaper() {
       {"fused, the paper's estimator", "paper", "robots.R_fused.{}speed_rmse.fused"},
       {"fused, (ψ, ρ) + no-side-slip (ours; shipped)", "shipped",
        "robots.R_fused.{}speed_rmse.fused"}};
-  p.figures.push_back(fig);
+  return fig;
+}
 
-  // Tables 2-3: speed and yaw-rate control over a grid of commands on two floors; each case
-  // with the paper's estimator and with ours. The odometry-fed robot does not use the estimator.
-  auto control_table = [&](const std::string& id, const std::string& title, const std::string& kind,
-                           const std::string& key, const std::vector<double>& values,
-                           const std::string& metric, const std::string& unit) {
-    ReproTable t;
-    t.id = id;
-    t.title = title;
-    t.label_headers = {"floor", unit};
-    const std::string fused = "robots.R_fused.control." + metric,
-                      odo = "robots.R_odo.control." + metric;
-    t.columns = {InCase(ms("fused-fed, the paper's estimator", fused), "{}_paper"),
-                 InCase(ms("fused-fed, shipped estimator (ours)", fused), "{}"),
-                 InCase(ms("odometry-fed", odo), "{}"),
-                 InCase(Below("paper's fused-fed better", fused, odo), "{}_paper"),
-                 InCase(Below("shipped fused-fed better (ours)", fused, odo), "{}")};
-    for (const auto& [floor, label] : std::vector<std::pair<std::string, std::string>>{
-             {"high", "asphalt μ 0.9"}, {"low", "wet μ 0.15"}}) {
-      for (double v : values) {
-        const std::string c = kind + "_" + floor + "_" + Str(v);
-        const std::string scenario = "velocity_" + kind + "_" + floor;
-        p.cases.push_back({c + "_paper", scenario, {key + "=" + Str(v), paper[0], paper[1]}});
-        p.cases.push_back({c, scenario, {key + "=" + Str(v)}});
-        t.rows.push_back(Row({label, Str(v)}, "", c));
-      }
+// One of Tables 2-3: a grid of commands (key = each of values) on two floors.
+struct VelocityControlSweep {
+  std::string id, title, kind, key;
+  std::vector<double> values;
+  std::string metric, unit;
+};
+
+// Tables 2-3: speed and yaw-rate control over a grid of commands on two floors; each case with
+// the paper's estimator and with ours. The odometry-fed robot does not use the estimator.
+void AddVelocityControlTable(ReproPaper& p, const VelocityControlSweep& sweep) {
+  const std::vector<std::string>& paper = VelocityPaperEstimator();
+  const auto ms = VelocityMeanStd;
+  const std::string& kind = sweep.kind;
+  const std::string& key = sweep.key;
+  ReproTable t;
+  t.id = sweep.id;
+  t.title = sweep.title;
+  t.label_headers = {"floor", sweep.unit};
+  const std::string fused = "robots.R_fused.control." + sweep.metric,
+                    odo = "robots.R_odo.control." + sweep.metric;
+  t.columns = {InCase(ms("fused-fed, the paper's estimator", fused), "{}_paper"),
+               InCase(ms("fused-fed, shipped estimator (ours)", fused), "{}"),
+               InCase(ms("odometry-fed", odo), "{}"),
+               InCase(Below("paper's fused-fed better", fused, odo), "{}_paper"),
+               InCase(Below("shipped fused-fed better (ours)", fused, odo), "{}")};
+  for (const auto& [floor, label] : std::vector<std::pair<std::string, std::string>>{
+           {"high", "asphalt μ 0.9"}, {"low", "wet μ 0.15"}}) {
+    for (double v : sweep.values) {
+      const std::string c = kind + "_" + floor + "_" + Str(v);
+      const std::string scenario = "velocity_" + kind + "_" + floor;
+      p.cases.push_back({c + "_paper", scenario, {key + "=" + Str(v), paper[0], paper[1]}});
+      p.cases.push_back({c, scenario, {key + "=" + Str(v)}});
+      t.rows.push_back(Row({label, Str(v)}, "", c));
     }
-    t.note =
-        "Control error: |distance (angle) travelled - commanded| / time after the settle time"
-        " (`velocity_" +
-        kind + "_{high,low}` with --set " + key + "=...).";
-    p.tables.push_back(t);
-  };
-  control_table("table2", "Velocity, Table 2: linear-speed control error Δv [m/s]", "linear",
-                "command.v", {0.2, 0.35, 0.5, 0.65, 0.8}, "linear_error", "v [m/s]");
-  control_table("table3", "Velocity, Table 3: yaw-rate control error Δω [rad/s] at v = 0.5 m/s",
-                "angular", "command.omega", {0.2, 0.4, 0.6, 0.8, 1.0}, "angular_error",
-                "ω [rad/s]");
+  }
+  t.note =
+      "Control error: |distance (angle) travelled - commanded| / time after the settle time"
+      " (`velocity_" +
+      kind + "_{high,low}` with --set " + key + "=...).";
+  p.tables.push_back(t);
+}
+
+ReproPaper VelocityPaper() {
+  ReproPaper p;
+  p.name = "velocity";
+  p.number = 4;
+  p.title = "Velocity control from fused camera, odometry and IMU (paper 004)";
+  p.cases = {{"paper", "velocity_constant", VelocityPaperEstimator()},
+             {"paper_nhc", "velocity_constant", {"estimator.landmarks=inverse_depth_1d"}},
+             {"psi_rho", "velocity_constant", {"estimator.nonholonomic=false"}},
+             {"shipped", "velocity_constant", {}},
+             {"world_points", "velocity_constant", {"estimator.landmarks=world_point"}}};
+  p.tables.push_back(VelocitySpeedTable());
+  p.tables.push_back(VelocityFloorsTable());
+  p.figures.push_back(VelocitySpeedFigure());
+  AddVelocityControlTable(p, {"table2",
+                              "Velocity, Table 2: linear-speed control error Δv [m/s]",
+                              "linear",
+                              "command.v",
+                              {0.2, 0.35, 0.5, 0.65, 0.8},
+                              "linear_error",
+                              "v [m/s]"});
+  AddVelocityControlTable(p, {"table3",
+                              "Velocity, Table 3: yaw-rate control error Δω [rad/s] at v = 0.5 m/s",
+                              "angular",
+                              "command.omega",
+                              {0.2, 0.4, 0.6, 0.8, 1.0},
+                              "angular_error",
+                              "ω [rad/s]"});
   return p;
 }
 

@@ -1,7 +1,6 @@
 // Metrics of the velocity-control experiment (summary.json, the printed and GUI tables) and the
 // estimator timing table.
 #include <cmath>
-#include <cstdio>
 
 #include "sim/core/number_format.hpp"
 #include "sim/velocity/velocity_experiment.hpp"
@@ -82,13 +81,10 @@ Metrics VelocityExperiment::Results() const {
   // reproducible).
   for (const auto& up : units_) {
     const RobotUnit& u = *up;
-    char buf[256];
-    std::snprintf(
-        buf, sizeof buf,
+    m.AddNote(Sprintf(
         "%s fused estimator: %.2f ms mean, %.2f ms max per update, one update every %.0f ms",
         u.spec.name.c_str(), u.updates ? u.update_ms_sum / u.updates : 0.0, u.update_ms_max,
-        1000.0 * keyframe_period());
-    m.AddNote(buf);
+        1000.0 * keyframe_period()));
   }
   // Comparing runs (the GUI's pins, history, Monte Carlo): errors and faults are better low.
   for (const char* p : {"robots.*.speed_rmse.*", "robots.*.yaw_rate_rmse.*",

@@ -1,10 +1,10 @@
 // Figures and the scene drawing of the velocity-control experiment.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <string>
 
+#include "sim/core/number_format.hpp"
 #include "sim/velocity/velocity_experiment.hpp"
 
 namespace formsim::sim::velocity {
@@ -46,6 +46,7 @@ void VelocityExperiment::DrawScene(DrawSink& draw) const {
   const Color grey{0.45f, 0.45f, 0.45f, 0.7f};
   for (const Landmark& l : landmarks_) draw.Circle(l.p, 0.03, grey, grey);
 
+  std::string label;  // reused: the scene is drawn every frame
   for (const auto& up : units_) {
     const RobotUnit& u = *up;
     const Color c = PaletteColor(u.index);
@@ -97,9 +98,9 @@ void VelocityExperiment::DrawScene(DrawSink& draw) const {
     }
     if (u.drive->slipping() || u.drive->skidding())
       draw.Flash(pose.p(), 0.35, Color{0.85f, 0.1f, 0.1f, 1.0f}, 0.5f);
-    char label[128];
-    std::snprintf(label, sizeof label, "v %.3f | odo %.3f | fused %.3f m/s",
-                  u.robot->forward_speed(), u.odo.speed, u.est_fused.v);
+    label.clear();
+    AppendSprintf(label, "v %.3f | odo %.3f | fused %.3f m/s", u.robot->forward_speed(),
+                  u.odo.speed, u.est_fused.v);
     draw.Text(pose.p(), label, Color{0.1f, 0.1f, 0.1f, 1.0f}, 10.0f, 14.0f);
   }
 }
