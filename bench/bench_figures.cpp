@@ -8,8 +8,8 @@
 
 #include "app/export/figure_data.hpp"
 #include "app/export/figure_export.hpp"
-#include "app/gui/offscreen_renderer.hpp"
 #include "app/export/png_writer.hpp"
+#include "app/render/offscreen_renderer.hpp"
 #include "app/render/world_view.hpp"
 #include "sim/session/session.hpp"
 

@@ -9,9 +9,11 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <vector>
 
+#include "app/cli/cli_messages.hpp"
 #include "app/cli/cli_reference.hpp"
 #include "app/cli/doctor_command.hpp"
 #include "app/cli/figures_command.hpp"
@@ -19,20 +21,23 @@
 #include "app/cli/progress.hpp"
 #include "app/cli/replay_command.hpp"
 #include "app/cli/reproduce_cli.hpp"
-#include "app/cli/stop_signal.hpp"
 #include "app/cli/study_cli.hpp"
 #include "app/export/app_icon.hpp"
 #include "app/export/export.hpp"
 #include "app/export/figure_requests.hpp"
 #include "app/gui/command_table.hpp"
 #include "app/gui/gui.hpp"
+#include "app/gui/ui_offscreen.hpp"
+#include "sim/core/number_format.hpp"
 #include "sim/core/run_output.hpp"
+#include "sim/core/stop_signal.hpp"
 #include "sim/core/thread_pool.hpp"
 #include "sim/scenario/scenario.hpp"
 #include "sim/scenario/scenario_files.hpp"
 #include "sim/session/session.hpp"
 
 namespace formsim::app {
+
 namespace {
 
 struct RunOptions {
@@ -56,10 +61,10 @@ struct RunOptions {
 
 // Stops `exp` when a stop signal arrived. Returns true when it did.
 bool CheckStopSignal(sim::Experiment& exp) {
-  const int sig = StopSignal();
+  const int sig = sim::StopSignal();
   if (sig == 0) return false;
-  exp.Interrupt("interrupted by " + StopSignalName(sig) + " at t = " + std::to_string(exp.time()) +
-                " s");
+  exp.Interrupt("interrupted by " + sim::StopSignalName(sig) +
+                " at t = " + std::to_string(exp.time()) + " s");
   return true;
 }
 
@@ -90,6 +95,50 @@ void RefuseEmptyNames(const CLI::App& app) {
   }
 }
 
+// "wrote OUT/timeseries.csv and OUT/summary.json, ..." naming every file `formsim run` wrote.
+std::string RunWroteLine(const RunOptions& opt, const std::string& out, const ExportStats& st) {
+  std::string line = WroteRunOutputsText(out);
+  if (!opt.exp.frames_dir.empty())
+    sim::AppendSprintf(line, ", %ld frames in %s", st.frames, opt.exp.frames_dir.c_str());
+  if (!opt.exp.plots_dir.empty())
+    sim::AppendSprintf(line, ", %ld figures (%ld files) in %s", st.figures, st.figure_files,
+                       opt.exp.plots_dir.c_str());
+  if (!opt.exp.video.empty() && st.error.empty())
+    sim::AppendSprintf(line, ", %s (%ld frames)", opt.exp.video.c_str(), st.frames);
+  if (!opt.exp.gif.empty() && st.error.empty())
+    sim::AppendSprintf(line, ", %s (%ld frames)", opt.exp.gif.c_str(), st.gif_frames);
+  if (!opt.snapshot.empty() && st.error.empty()) line += ", " + opt.snapshot;
+  return line + "\n";
+}
+
+// Says on stderr why the run did not end well and returns its exit code: 2 bad input or
+// unwritable results, 3 the run stopped early (numerical fault), 4 an export failed (results
+// written), 130 / 143 interrupted (results written).
+int RunExitCode(const sim::Experiment& exp, const ExportStats& st, const std::string& write_error) {
+  int rc = 0;
+  if (!st.error.empty()) {
+    PrintExportFailed(st.error);
+    rc = 4;
+  }
+  if (exp.status() == "numerical_fault") {
+    sim::Print(stderr,
+               "formsim: error: the run stopped at t = %g s: %s; everything up to it was written\n",
+               exp.time(), exp.stop_reason().c_str());
+    rc = 3;
+  } else if (exp.status() == "interrupted") {
+    std::fputs(("formsim: " + exp.stop_reason() +
+                "; the results so far were written and marked interrupted\n")
+                   .c_str(),
+               stderr);
+    rc = 128 + sim::StopSignal();
+  }
+  if (!write_error.empty()) {
+    PrintCliError(write_error);
+    rc = 2;
+  }
+  return rc;
+}
+
 // `formsim run`: the one load path (sim::Session, as the GUI), then the same steps with or
 // without pictures.
 int RunCommand(RunOptions opt) {
@@ -118,7 +167,7 @@ int RunCommand(RunOptions opt) {
   sim::Recorder& rec = session.exp().mutable_recorder();
   rec.StreamTo(sim::CsvPath(out));
   rec.SetHistoryLimit(sim::kRunHistoryRows);
-  InstallStopSignals();
+  sim::InstallStopSignals();
 
   ProgressLine bar(!opt.quiet);
   const auto t0 = std::chrono::steady_clock::now();
@@ -138,9 +187,7 @@ int RunCommand(RunOptions opt) {
           if (!p.status.empty()) {
             bar.Status(p.status);
           } else {
-            char detail[96];
-            std::snprintf(detail, sizeof(detail), "t=%.2f s", p.t);
-            std::string d = detail;
+            std::string d = ProgressTimeText(p.t);
             if (p.frames_total > 0)
               d += "  " + std::to_string(p.frames) + "/" + std::to_string(p.frames_total) +
                    " frames";
@@ -148,16 +195,14 @@ int RunCommand(RunOptions opt) {
           }
           CheckStopSignal(session.exp());
         },
-        write_results);
+        write_results, {}, MakeUiFrames);
   } else {
     sim::Experiment& exp = session.exp();
     const double duration = exp.setup().duration;
     while (!exp.finished()) {
       exp.Step();
       if ((exp.steps() & 63) == 0) {
-        char detail[48];
-        std::snprintf(detail, sizeof(detail), "t=%.2f s", exp.time());
-        bar.Update(exp.time() / duration, detail);
+        bar.Update(exp.time() / duration, ProgressTimeText(exp.time()));
         CheckStopSignal(exp);
       }
     }
@@ -169,46 +214,12 @@ int RunCommand(RunOptions opt) {
 
   if (!opt.quiet) {
     std::cout << exp.SummaryText();
-    std::printf("%ld steps, %.2f s simulated in %.3f s wall (%.0fx real time)\n", exp.steps(),
-                exp.time(), wall, wall > 0 ? exp.time() / wall : 0.0);
-    if (write_error.empty()) {
-      std::printf("wrote %s/timeseries.csv and %s/summary.json", out.c_str(), out.c_str());
-      if (!opt.exp.frames_dir.empty())
-        std::printf(", %ld frames in %s", st.frames, opt.exp.frames_dir.c_str());
-      if (!opt.exp.plots_dir.empty())
-        std::printf(", %ld figures (%ld files) in %s", st.figures, st.figure_files,
-                    opt.exp.plots_dir.c_str());
-      if (!opt.exp.video.empty() && st.error.empty())
-        std::printf(", %s (%ld frames)", opt.exp.video.c_str(), st.frames);
-      if (!opt.exp.gif.empty() && st.error.empty())
-        std::printf(", %s (%ld frames)", opt.exp.gif.c_str(), st.gif_frames);
-      if (!opt.snapshot.empty() && st.error.empty()) std::printf(", %s", opt.snapshot.c_str());
-      std::printf("\n");
-    }
+    sim::Print(stdout, "%ld steps, %.2f s simulated in %.3f s wall (%.0fx real time)\n",
+               exp.steps(), exp.time(), wall, wall > 0 ? exp.time() / wall : 0.0);
+    if (write_error.empty()) std::fputs(RunWroteLine(opt, out, st).c_str(), stdout);
   }
   if (opt.timing && opt.exp.any()) std::fputs(st.Report().c_str(), stderr);
-  // Exit codes: 2 bad input or unwritable results, 3 the run stopped early (numerical fault),
-  // 4 an export failed (results written), 130 / 143 interrupted (results written).
-  int rc = 0;
-  if (!st.error.empty()) {
-    std::fprintf(stderr, "formsim: error: export failed (the results were written): %s\n",
-                 st.error.c_str());
-    rc = 4;
-  }
-  if (exp.status() == "numerical_fault") {
-    std::fprintf(stderr, "formsim: error: the run stopped at t = %g s: %s; everything up to it was written\n",
-                 exp.time(), exp.stop_reason().c_str());
-    rc = 3;
-  } else if (exp.status() == "interrupted") {
-    std::fprintf(stderr, "formsim: %s; the results so far were written and marked interrupted\n",
-                 exp.stop_reason().c_str());
-    rc = 128 + StopSignal();
-  }
-  if (!write_error.empty()) {
-    std::fprintf(stderr, "formsim: error: %s\n", write_error.c_str());
-    rc = 2;
-  }
-  return rc;
+  return RunExitCode(exp, st, write_error);
 }
 
 // `formsim list --names [scenarios|lessons|all]`: bare names, one a line (the bash completion
@@ -218,31 +229,286 @@ int ListNames(const std::string& which) {
     throw std::runtime_error("--names '" + which + "': expected scenarios, lessons or all");
   if (which != "lessons")
     for (const auto& file : sim::ShippedScenarios())
-      std::printf("%s\n", std::filesystem::path(file).stem().c_str());
+      std::fputs((std::filesystem::path(file).stem().string() + "\n").c_str(), stdout);
   if (which != "scenarios")
     for (const auto& file : sim::ShippedLessons())
-      std::printf("%s\n", std::filesystem::path(file).stem().c_str());
+      std::fputs((std::filesystem::path(file).stem().string() + "\n").c_str(), stdout);
   return 0;
 }
 
 int ListCommand() {
   for (const auto& file : sim::ShippedScenarios()) {
     const sim::ScenarioListing s = sim::DescribeScenario(file);
-    std::printf("%-34s %-11s %s\n", s.name.c_str(), s.type.c_str(), s.description.c_str());
+    sim::Print(stdout, "%-34s %-11s %s\n", s.name.c_str(), s.type.c_str(), s.description.c_str());
   }
   // Lessons: scenarios with a text (formsim gui --lesson NAME); run and sweep take them by name.
   // Grouped by the paper they teach (the scenario's type), in the order of the kinds.
   const auto lessons = sim::ShippedLessons();
-  if (!lessons.empty()) std::printf("\nlessons (formsim gui --lesson NAME), by paper:\n");
+  if (!lessons.empty()) std::fputs("\nlessons (formsim gui --lesson NAME), by paper:\n", stdout);
   std::map<std::string, std::vector<std::pair<std::string, std::string>>> by_paper;
   for (const auto& file : lessons) {
     const sim::ScenarioListing l = sim::DescribeLesson(file);
     by_paper[l.type].emplace_back(l.name, l.description);
   }
   for (const auto& [paper, list] : by_paper) {
-    std::printf("  %s:\n", paper.c_str());
-    for (const auto& [stem, title] : list) std::printf("    %-32s %s\n", stem.c_str(), title.c_str());
+    std::fputs(("  " + paper + ":\n").c_str(), stdout);
+    for (const auto& [stem, title] : list)
+      sim::Print(stdout, "    %-32s %s\n", stem.c_str(), title.c_str());
   }
+  return 0;
+}
+
+// The help texts two commands share.
+constexpr const char* kCliOverlayHelp =
+    "Overlays of the world view, comma-separated: slots, control_points, links, measured, "
+    "errors, triangles, velocity, covariance, graph (all, none, default, -NAME removes; "
+    "default: slots,control_points,links,covariance)";
+constexpr const char* kCliThreadsHelp =
+    "Threads for the work inside a step (default: all cores); results are identical for any N";
+
+// The flags of the commands defined in this file (study, reproduce, replay and lessons keep
+// their own), and those commands.
+struct CliFlags {
+  RunOptions run;
+  std::string run_overlay;
+  int threads = 0;  // 0: all cores (run and gui)
+  std::string list_names;
+  bool list_commands = false, list_markdown = false;
+  std::string ref_format = "markdown";
+  std::string icon_svg, icon_png;
+  int icon_px = 256;
+  FiguresOptions figs;
+  GuiOptions gui;
+  std::string gui_size = "1600x900", gui_speed = "1", gui_theme = "light", gui_overlay;
+  CLI::App* run_cmd = nullptr;
+  CLI::App* list_cmd = nullptr;
+  CLI::App* ref_cmd = nullptr;
+  CLI::App* icon_cmd = nullptr;
+  CLI::App* figs_cmd = nullptr;
+  CLI::App* gui_cmd = nullptr;
+};
+
+// `formsim run`'s flags: the run, then its pictures.
+void AddRunCommand(CLI::App& app, CliFlags& f) {
+  RunOptions& run = f.run;
+  CLI::App* cmd = f.run_cmd =
+      app.add_subcommand("run", "Run a scenario headless and write CSV + summary");
+  cmd->add_option("scenario", run.scenario, "Scenario name (see `formsim list`) or YAML path")
+      ->required();
+  cmd->add_option("--seed", run.seed, "Random seed 0 ... 2^64-1 (overrides the scenario's)");
+  cmd->add_option("--set", run.sets, "Override a scenario value: path.to.key=value")->take_all();
+  cmd->add_option("--out", run.out_dir, "Output folder (default out/<scenario>)");
+  cmd->add_option("--max-steps", run.max_steps,
+                  "Allow runs of up to N world steps (default 1e8; longer runs are refused)");
+  cmd->add_flag("--quiet,-q", run.quiet, "Print nothing but errors");
+
+  cmd->add_option("--frames", run.exp.frames_dir, "Write PNG frames frame_00000.png... here");
+  cmd->add_option("--fps", run.exp.fps, "Frames per second of simulated time (default 30)");
+  cmd->add_option("--size", run.size, "Frame size WIDTHxHEIGHT (default 1280x720)");
+  cmd->add_option("--snapshot", run.snapshot,
+                  "Write the final view: F.png, F.svg or F.pdf (format by extension)");
+  cmd->add_option("--plots", run.exp.plots_dir,
+                  "Write every figure into this folder (file = figure id, see --plot-format)");
+  cmd->add_option("--plot-format", run.plot_format,
+                  "Figure formats: any of png,svg,pdf, comma-separated (default png)");
+  cmd->add_option("--plot-size", run.plot_size,
+                  "Figure size WIDTHxHEIGHT in px, cm, mm or in (default 960x600, e.g. "
+                  "8.5cmx6cm)");
+  cmd->add_option("--dpi", run.exp.dpi,
+                  "Pixels per inch of PNG figures and snapshot (default 96: one pixel per "
+                  "px; 300 for print)");
+  cmd->add_option(
+      "--theme", run.theme,
+      std::string("Colours of frames, snapshot and figures: ") + ThemeNames() + " (default light)");
+  cmd->add_option("--titles", run.titles, TitleModeHelp());
+  cmd->add_option("--log-y", run.log_y,
+                  "Figures (ids, comma-separated) drawn with a logarithmic y axis; values "
+                  "<= 0 are left out with a note");
+  cmd->add_option("--video", run.exp.video,
+                  "Write an MP4 video (.mp4, .mkv or .mov; needs ffmpeg on PATH)");
+  cmd->add_option("--gif", run.exp.gif,
+                  "Write a looping animated GIF for slides (needs ffmpeg on PATH)");
+  cmd->add_option("--gif-fps", run.exp.gif_fps, "Frames per second of the GIF (default 15)");
+  cmd->add_option("--gif-width", run.exp.gif_width,
+                  "Width of the GIF in pixels (default 640; height keeps --size's aspect)");
+  cmd->add_flag("--ui", run.exp.ui, "Draw the GUI panels into frames and snapshot");
+  cmd->add_option("--overlay", f.run_overlay, kCliOverlayHelp);
+  cmd->add_flag("--legend", run.exp.legend, "Draw a legend of every mark in the world view");
+  cmd->add_flag("--whole-run", run.exp.whole_run,
+                "Camera keeps everything since the start in view (default: tracks the robots)");
+  cmd->add_flag("--timing", run.timing, "Print where the export time went (stderr)");
+  cmd->add_option("--threads", f.threads, kCliThreadsHelp)->check(CLI::Range(1, 1024));
+}
+
+// `formsim list` and `formsim doctor`, and the hidden `reference` and `icon` the build uses.
+void AddListAndToolCommands(CLI::App& app, CliFlags& f) {
+  f.list_cmd = app.add_subcommand("list", "List the shipped scenarios and lessons");
+  f.list_cmd
+      ->add_option("--names", f.list_names,
+                   "Print bare names only, one a line: scenarios, lessons or all")
+      ->expected(0, 1)
+      ->default_str("all");
+
+  app.add_subcommand("doctor",
+                     "Say where the assets were found and which optional parts (Python module, "
+                     "ffmpeg, NLopt, Cairo, GL renderer, display) are present; exit 1 when "
+                     "something formsim needs is missing");
+  // Hidden (no group): the build makes the man page, the bash completion and the icon with these.
+  f.ref_cmd = app.add_subcommand(
+      "reference", "Print the command-line reference generated from these definitions");
+  f.ref_cmd->group("");
+  f.ref_cmd->add_option("--format", f.ref_format, "man, bash or markdown")->required();
+  f.icon_cmd = app.add_subcommand("icon", "Draw the application icon");
+  f.icon_cmd->group("");
+  f.icon_cmd->add_option("--svg", f.icon_svg, "SVG file");
+  f.icon_cmd->add_option("--png", f.icon_png, "PNG file");
+  f.icon_cmd->add_option("--png-size", f.icon_px, "PNG width and height in pixels");
+}
+
+void AddFiguresCommand(CLI::App& app, CliFlags& f) {
+  FiguresOptions& figs = f.figs;
+  CLI::App* cmd = f.figs_cmd = app.add_subcommand(
+      "figures", "Render every figure of scenarios (default: all shipped) on all cores");
+  cmd->add_option("scenarios", figs.scenarios, "Scenario names or YAML paths");
+  cmd->add_option("--out", figs.out_dir, "Output folder: DIR/<scenario>/<figure>.<format>")
+      ->required();
+  cmd->add_option("--plot-format", figs.formats,
+                  "Formats: any of png,svg,pdf, comma-separated (default png)");
+  cmd->add_option("--plot-size", figs.plot_size,
+                  "Figure size WIDTHxHEIGHT in px, cm, mm or in (default 960x600)");
+  cmd->add_option("--size", figs.size, "World view size WIDTHxHEIGHT (default 1280x720)");
+  cmd->add_option("--dpi", figs.dpi, "Pixels per inch of PNG files (default 96)");
+  cmd->add_option("--theme", figs.theme,
+                  std::string("Colours: ") + ThemeNames() + " (default light)");
+  cmd->add_option("--titles", figs.titles, TitleModeHelp());
+  cmd->add_option("--log-y", figs.log_y,
+                  "Figures (ids, comma-separated) drawn with a logarithmic y axis in every "
+                  "scenario that has them");
+  cmd->add_option("--jobs,-j", figs.jobs, "Scenarios at once (default: one per core)");
+  cmd->add_flag("--quiet,-q", figs.quiet, "Print nothing but errors");
+}
+
+void AddGuiCommand(CLI::App& app, CliFlags& f) {
+  GuiOptions& gui = f.gui;
+  CLI::App* cmd = f.gui_cmd =
+      app.add_subcommand("gui", "Open the interactive window (live tuning)");
+  cmd->add_option("scenario", gui.scenario,
+                  "Scenario name or YAML path (default: first formation_*)");
+  cmd->add_option("--lesson", gui.lesson,
+                  "Open a lesson (assets/lessons/NAME.yaml, see `formsim list`) on its Lesson tab");
+  cmd->add_option("--seed", gui.seed, "Random seed 0 ... 2^64-1 (overrides the scenario's)");
+  cmd->add_option("--set", gui.sets, "Override a scenario value: path.to.key=value")->take_all();
+  cmd->add_option("--size", f.gui_size, "Window size WIDTHxHEIGHT (default 1600x900)");
+  cmd->add_option("--screenshot", gui.screenshot, "PNG written by 's' and after the last frame");
+  cmd->add_option("--exit-after", gui.exit_after, "Exit after N frames");
+  cmd->add_flag("--exit-when-finished", gui.exit_when_finished,
+                "Exit when the run reaches its duration");
+  cmd->add_flag("--paused", gui.paused, "Start paused");
+  cmd->add_option("--speed", f.gui_speed, "Speed: 0.1, 0.25, 0.5, 1, 2, 5, 10 or max");
+  cmd->add_option("--edit", gui.edits, "Scripted edit FRAME:key=value, as if made with a slider")
+      ->take_all();
+  cmd->add_option(
+      "--script", gui.script,
+      "Run scripted actions, one per line: FRAME ACTION [ARGS]. Actions: " + CommandUsageList());
+  CLI::Option* list_opt = cmd->add_flag(
+      "--list-commands", f.list_commands,
+      "Print every command of the window (name, keys, menu path, arguments) and exit");
+  cmd->add_flag("--markdown", f.list_markdown,
+                "With --list-commands: as the Markdown table of docs/window.md")
+      ->needs(list_opt);
+  cmd->add_option("--out", gui.out_dir, "Write timeseries.csv and summary.json here on exit");
+  cmd->add_option("--session", gui.session_file,
+                  "Record the session (edits with their steps, resets, seeds, loads, pins, "
+                  "branches) into this file on exit; replay it with `formsim replay`");
+  cmd->add_option("--theme", f.gui_theme,
+                  std::string("Colours of the panels, world view and plots: ") + ThemeNames() +
+                      " (default light)");
+  cmd->add_option("--overlay", f.gui_overlay, kCliOverlayHelp);
+  cmd->add_flag("--timing", gui.timing, "Print frame-time statistics on exit (stderr)");
+  cmd->add_option("--threads", f.threads, kCliThreadsHelp)->check(CLI::Range(1, 1024));
+}
+
+// --overlay TEXT over the default overlays.
+void ParseOverlayFlag(const std::string& text, std::set<std::string>* out) {
+  *out = DefaultSceneOverlays();
+  if (const std::string err = ParseSceneOverlays(text, out); !err.empty())
+    throw std::runtime_error("--overlay '" + text + "': " + err);
+}
+
+// `formsim reference --format man|bash|markdown`.
+int ReferenceCommand(const CLI::App& app, const std::string& format) {
+  const std::vector<CommandDoc> docs = DescribeCommands(app);
+  const std::string version = FORMSIM_VERSION_NUMBER;
+  if (format == "man")
+    std::fputs(ManPage(docs, version).c_str(), stdout);
+  else if (format == "bash")
+    std::fputs(BashCompletion(docs).c_str(), stdout);
+  else if (format == "markdown")
+    std::fputs(CliMarkdown(docs, version).c_str(), stdout);
+  else
+    throw std::runtime_error("--format '" + format + "': expected man, bash or markdown");
+  return 0;
+}
+
+// `formsim gui`: the window's flags read, then the window (or, with --list-commands, its table).
+int GuiCommand(CliFlags& f) {
+  if (f.list_commands) {
+    std::fputs(f.list_markdown ? CommandTableMarkdown().c_str() : CommandListText().c_str(),
+               stdout);
+    return 0;
+  }
+  GuiOptions& gui = f.gui;
+  ParseSize(f.gui_size, &gui.width, &gui.height, "--size");
+  gui.theme = ParseTheme(f.gui_theme, "--theme");
+  if (f.gui_speed == "max") {
+    gui.speed = 0.0;
+  } else {
+    char* end = nullptr;
+    gui.speed = std::strtod(f.gui_speed.c_str(), &end);
+    if (end == f.gui_speed.c_str() || *end != 0 || !(gui.speed > 0 && gui.speed <= 10))
+      throw std::runtime_error("--speed '" + f.gui_speed + "': expected 0.1 ... 10 or max");
+  }
+  if (!f.gui_overlay.empty()) {
+    ParseOverlayFlag(f.gui_overlay, &gui.overlays);
+    gui.overlays_given = true;
+  }
+  return RunGui(gui);
+}
+
+// The commands other files define, each adding itself to the app.
+struct CliFileCommands {
+  explicit CliFileCommands(CLI::App& app) : study(app), reproduce(app), replay(app), lessons(app) {}
+  StudyCommands study;  // sweep, sweep collect, tune
+  ReproduceCommand reproduce;
+  ReplayCommand replay;
+  LessonsCommand lessons;
+};
+
+// Runs the command given on the command line. Returns its exit code; throws on bad input.
+int RunGivenCommand(const CLI::App& app, CliFlags& f, CliFileCommands& more) {
+  RefuseEmptyNames(app);
+  if (f.threads > 0) sim::ThreadPool::SetDefaultThreads(f.threads);
+  if (f.run_cmd->parsed()) {
+    if (!f.run_overlay.empty()) ParseOverlayFlag(f.run_overlay, &f.run.exp.overlays);
+    return RunCommand(f.run);
+  }
+  if (f.list_cmd->parsed())
+    return f.list_cmd->count("--names") > 0 ? ListNames(f.list_names.empty() ? "all" : f.list_names)
+                                            : ListCommand();
+  if (app.got_subcommand("doctor")) return DoctorCommand();
+  if (f.ref_cmd->parsed()) return ReferenceCommand(app, f.ref_format);
+  if (f.icon_cmd->parsed()) {
+    if (f.icon_svg.empty() && f.icon_png.empty())
+      throw std::runtime_error("icon: give --svg or --png");
+    WriteAppIcon(f.icon_svg, f.icon_png, f.icon_px);
+    return 0;
+  }
+  if (more.study.parsed()) return more.study.Run();
+  if (more.reproduce.parsed()) return more.reproduce.Run();
+  if (more.replay.parsed()) return more.replay.Run();
+  if (more.lessons.parsed()) return more.lessons.Run();
+  if (f.figs_cmd->parsed()) return FiguresCommand(f.figs);
+  if (f.gui_cmd->parsed()) return GuiCommand(f);
   return 0;
 }
 
@@ -253,158 +519,13 @@ int Main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", VersionLine(),
                        "Print the version, the git commit and the build type, and exit");
-
-  RunOptions run;
-  CLI::App* run_cmd = app.add_subcommand("run", "Run a scenario headless and write CSV + summary");
-  run_cmd->add_option("scenario", run.scenario, "Scenario name (see `formsim list`) or YAML path")
-      ->required();
-  run_cmd->add_option("--seed", run.seed, "Random seed 0 ... 2^64-1 (overrides the scenario's)");
-  run_cmd->add_option("--set", run.sets, "Override a scenario value: path.to.key=value")
-      ->take_all();
-  run_cmd->add_option("--out", run.out_dir, "Output folder (default out/<scenario>)");
-  run_cmd->add_option("--max-steps", run.max_steps,
-                      "Allow runs of up to N world steps (default 1e8; longer runs are refused)");
-  run_cmd->add_flag("--quiet,-q", run.quiet, "Print nothing but errors");
-
-  run_cmd->add_option("--frames", run.exp.frames_dir, "Write PNG frames frame_00000.png... here");
-  run_cmd->add_option("--fps", run.exp.fps, "Frames per second of simulated time (default 30)");
-  run_cmd->add_option("--size", run.size, "Frame size WIDTHxHEIGHT (default 1280x720)");
-  run_cmd->add_option("--snapshot", run.snapshot,
-                      "Write the final view: F.png, F.svg or F.pdf (format by extension)");
-  run_cmd->add_option("--plots", run.exp.plots_dir,
-                      "Write every figure into this folder (file = figure id, see --plot-format)");
-  run_cmd->add_option("--plot-format", run.plot_format,
-                      "Figure formats: any of png,svg,pdf, comma-separated (default png)");
-  run_cmd->add_option("--plot-size", run.plot_size,
-                      "Figure size WIDTHxHEIGHT in px, cm, mm or in (default 960x600, e.g. "
-                      "8.5cmx6cm)");
-  run_cmd->add_option("--dpi", run.exp.dpi,
-                      "Pixels per inch of PNG figures and snapshot (default 96: one pixel per "
-                      "px; 300 for print)");
-  run_cmd->add_option(
-      "--theme", run.theme,
-      std::string("Colours of frames, snapshot and figures: ") + ThemeNames() + " (default light)");
-  run_cmd->add_option("--titles", run.titles, TitleModeHelp());
-  run_cmd->add_option("--log-y", run.log_y,
-                      "Figures (ids, comma-separated) drawn with a logarithmic y axis; values "
-                      "<= 0 are left out with a note");
-  run_cmd->add_option("--video", run.exp.video,
-                      "Write an MP4 video (.mp4, .mkv or .mov; needs ffmpeg on PATH)");
-  run_cmd->add_option("--gif", run.exp.gif,
-                      "Write a looping animated GIF for slides (needs ffmpeg on PATH)");
-  run_cmd->add_option("--gif-fps", run.exp.gif_fps, "Frames per second of the GIF (default 15)");
-  run_cmd->add_option("--gif-width", run.exp.gif_width,
-                      "Width of the GIF in pixels (default 640; height keeps --size's aspect)");
-  run_cmd->add_flag("--ui", run.exp.ui, "Draw the GUI panels into frames and snapshot");
-  std::string run_overlay;
-  const std::string overlay_help =
-      "Overlays of the world view, comma-separated: slots, control_points, links, measured, "
-      "errors, triangles, velocity, covariance, graph (all, none, default, -NAME removes; "
-      "default: slots,control_points,links,covariance)";
-  run_cmd->add_option("--overlay", run_overlay, overlay_help);
-  run_cmd->add_flag("--legend", run.exp.legend, "Draw a legend of every mark in the world view");
-  run_cmd->add_flag("--whole-run", run.exp.whole_run,
-                    "Camera keeps everything since the start in view (default: tracks the robots)");
-  run_cmd->add_flag("--timing", run.timing, "Print where the export time went (stderr)");
-  int threads = 0;  // 0: all cores
-  const std::string threads_help =
-      "Threads for the work inside a step (default: all cores); results are identical for any N";
-  run_cmd->add_option("--threads", threads, threads_help)->check(CLI::Range(1, 1024));
-
-  CLI::App* list_cmd = app.add_subcommand("list", "List the shipped scenarios and lessons");
-  std::string list_names;
-  list_cmd
-      ->add_option("--names", list_names,
-                   "Print bare names only, one a line: scenarios, lessons or all")
-      ->expected(0, 1)
-      ->default_str("all");
-
-  app.add_subcommand("doctor",
-                     "Say where the assets were found and which optional parts (Python module, "
-                     "ffmpeg, NLopt, Cairo, GL renderer, display) are present; exit 1 when "
-                     "something formsim needs is missing");
-  // Hidden (no group): the build makes the man page, the bash completion and the icon with these.
-  CLI::App* ref_cmd = app.add_subcommand(
-      "reference", "Print the command-line reference generated from these definitions");
-  ref_cmd->group("");
-  std::string ref_format = "markdown";
-  ref_cmd->add_option("--format", ref_format, "man, bash or markdown")->required();
-  CLI::App* icon_cmd = app.add_subcommand("icon", "Draw the application icon");
-  icon_cmd->group("");
-  std::string icon_svg, icon_png;
-  int icon_px = 256;
-  icon_cmd->add_option("--svg", icon_svg, "SVG file");
-  icon_cmd->add_option("--png", icon_png, "PNG file");
-  icon_cmd->add_option("--png-size", icon_px, "PNG width and height in pixels");
-
-  FiguresOptions figs;
-  CLI::App* figs_cmd = app.add_subcommand(
-      "figures", "Render every figure of scenarios (default: all shipped) on all cores");
-  figs_cmd->add_option("scenarios", figs.scenarios, "Scenario names or YAML paths");
-  figs_cmd->add_option("--out", figs.out_dir, "Output folder: DIR/<scenario>/<figure>.<format>")
-      ->required();
-  figs_cmd->add_option("--plot-format", figs.formats,
-                       "Formats: any of png,svg,pdf, comma-separated (default png)");
-  figs_cmd->add_option("--plot-size", figs.plot_size,
-                       "Figure size WIDTHxHEIGHT in px, cm, mm or in (default 960x600)");
-  figs_cmd->add_option("--size", figs.size, "World view size WIDTHxHEIGHT (default 1280x720)");
-  figs_cmd->add_option("--dpi", figs.dpi, "Pixels per inch of PNG files (default 96)");
-  figs_cmd->add_option("--theme", figs.theme,
-                       std::string("Colours: ") + ThemeNames() + " (default light)");
-  figs_cmd->add_option("--titles", figs.titles, TitleModeHelp());
-  figs_cmd->add_option("--log-y", figs.log_y,
-                       "Figures (ids, comma-separated) drawn with a logarithmic y axis in every "
-                       "scenario that has them");
-  figs_cmd->add_option("--jobs,-j", figs.jobs, "Scenarios at once (default: one per core)");
-  figs_cmd->add_flag("--quiet,-q", figs.quiet, "Print nothing but errors");
-
-  GuiOptions gui;
-  std::string gui_size = "1600x900", gui_speed = "1";
-  CLI::App* gui_cmd = app.add_subcommand("gui", "Open the interactive window (live tuning)");
-  gui_cmd->add_option("scenario", gui.scenario,
-                      "Scenario name or YAML path (default: first formation_*)");
-  gui_cmd->add_option("--lesson", gui.lesson,
-                      "Open a lesson (assets/lessons/NAME.yaml, see `formsim list`) on its Lesson tab");
-  gui_cmd->add_option("--seed", gui.seed, "Random seed 0 ... 2^64-1 (overrides the scenario's)");
-  gui_cmd->add_option("--set", gui.sets, "Override a scenario value: path.to.key=value")
-      ->take_all();
-  gui_cmd->add_option("--size", gui_size, "Window size WIDTHxHEIGHT (default 1600x900)");
-  gui_cmd->add_option("--screenshot", gui.screenshot,
-                      "PNG written by 's' and after the last frame");
-  gui_cmd->add_option("--exit-after", gui.exit_after, "Exit after N frames");
-  gui_cmd->add_flag("--exit-when-finished", gui.exit_when_finished,
-                    "Exit when the run reaches its duration");
-  gui_cmd->add_flag("--paused", gui.paused, "Start paused");
-  gui_cmd->add_option("--speed", gui_speed, "Speed: 0.1, 0.25, 0.5, 1, 2, 5, 10 or max");
-  gui_cmd
-      ->add_option("--edit", gui.edits, "Scripted edit FRAME:key=value, as if made with a slider")
-      ->take_all();
-  gui_cmd->add_option("--script", gui.script,
-                      "Run scripted actions, one per line: FRAME ACTION [ARGS]. Actions: " +
-                          CommandUsageList());
-  bool list_commands = false, list_markdown = false;
-  CLI::Option* list_opt = gui_cmd->add_flag("--list-commands", list_commands,
-                    "Print every command of the window (name, keys, menu path, arguments) and exit");
-  gui_cmd->add_flag("--markdown", list_markdown,
-                    "With --list-commands: as the Markdown table of docs/window.md")
-      ->needs(list_opt);
-  gui_cmd->add_option("--out", gui.out_dir, "Write timeseries.csv and summary.json here on exit");
-  gui_cmd->add_option("--session", gui.session_file,
-                      "Record the session (edits with their steps, resets, seeds, loads, pins, "
-                      "branches) into this file on exit; replay it with `formsim replay`");
-  std::string gui_theme = "light";
-  gui_cmd->add_option("--theme", gui_theme,
-                      std::string("Colours of the panels, world view and plots: ") + ThemeNames() +
-                          " (default light)");
-  std::string gui_overlay;
-  gui_cmd->add_option("--overlay", gui_overlay, overlay_help);
-  gui_cmd->add_flag("--timing", gui.timing, "Print frame-time statistics on exit (stderr)");
-  gui_cmd->add_option("--threads", threads, threads_help)->check(CLI::Range(1, 1024));
-
-  StudyCommands study(app);  // sweep, sweep collect, tune
-  ReproduceCommand reproduce(app);
-  ReplayCommand replay(app);
-  LessonsCommand lessons(app);
+  // The order of the commands in --help, the man page and docs/cli.md.
+  CliFlags flags;
+  AddRunCommand(app, flags);
+  AddListAndToolCommands(app, flags);
+  AddFiguresCommand(app, flags);
+  AddGuiCommand(app, flags);
+  CliFileCommands more(app);
 
   try {
     app.parse(argc, argv);
@@ -412,70 +533,11 @@ int Main(int argc, char** argv) {
     return app.exit(e);
   }
   try {
-    RefuseEmptyNames(app);
-    if (threads > 0) sim::ThreadPool::SetDefaultThreads(threads);
-    auto overlays = [](const std::string& text, std::set<std::string>* out) {
-      *out = DefaultSceneOverlays();
-      if (const std::string err = ParseSceneOverlays(text, out); !err.empty())
-        throw std::runtime_error("--overlay '" + text + "': " + err);
-    };
-    if (run_cmd->parsed()) {
-      if (!run_overlay.empty()) overlays(run_overlay, &run.exp.overlays);
-      return RunCommand(run);
-    }
-    if (list_cmd->parsed())
-      return list_cmd->count("--names") > 0 ? ListNames(list_names.empty() ? "all" : list_names)
-                                             : ListCommand();
-    if (app.got_subcommand("doctor")) return DoctorCommand();
-    if (ref_cmd->parsed()) {
-      const std::vector<CommandDoc> docs = DescribeCommands(app);
-      const std::string version = FORMSIM_VERSION_NUMBER;
-      if (ref_format == "man")
-        std::fputs(ManPage(docs, version).c_str(), stdout);
-      else if (ref_format == "bash")
-        std::fputs(BashCompletion(docs).c_str(), stdout);
-      else if (ref_format == "markdown")
-        std::fputs(CliMarkdown(docs, version).c_str(), stdout);
-      else
-        throw std::runtime_error("--format '" + ref_format + "': expected man, bash or markdown");
-      return 0;
-    }
-    if (icon_cmd->parsed()) {
-      if (icon_svg.empty() && icon_png.empty()) throw std::runtime_error("icon: give --svg or --png");
-      WriteAppIcon(icon_svg, icon_png, icon_px);
-      return 0;
-    }
-    if (study.parsed()) return study.Run();
-    if (reproduce.parsed()) return reproduce.Run();
-    if (replay.parsed()) return replay.Run();
-    if (lessons.parsed()) return lessons.Run();
-    if (figs_cmd->parsed()) return FiguresCommand(figs);
-    if (gui_cmd->parsed() && list_commands) {
-      std::fputs(list_markdown ? CommandTableMarkdown().c_str() : CommandListText().c_str(), stdout);
-      return 0;
-    }
-    if (gui_cmd->parsed()) {
-      ParseSize(gui_size, &gui.width, &gui.height, "--size");
-      gui.theme = ParseTheme(gui_theme, "--theme");
-      if (gui_speed == "max") {
-        gui.speed = 0.0;
-      } else {
-        char* end = nullptr;
-        gui.speed = std::strtod(gui_speed.c_str(), &end);
-        if (end == gui_speed.c_str() || *end != 0 || !(gui.speed > 0 && gui.speed <= 10))
-          throw std::runtime_error("--speed '" + gui_speed + "': expected 0.1 ... 10 or max");
-      }
-      if (!gui_overlay.empty()) {
-        overlays(gui_overlay, &gui.overlays);
-        gui.overlays_given = true;
-      }
-      return RunGui(gui);
-    }
+    return RunGivenCommand(app, flags, more);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "formsim: error: %s\n", e.what());
+    PrintCliError(e.what());
     return 2;
   }
-  return 0;
 }
 
 }  // namespace formsim::app

@@ -14,6 +14,7 @@
 #include "app/render/fonts.hpp"
 #include "app/render/gl_api.hpp"
 #include "app/render/offscreen_context.hpp"
+#include "sim/core/number_format.hpp"
 #include "sim/core/provenance.hpp"
 #include "sim/scenario/asset_dirs.hpp"
 #include "sim/study/tune_plan.hpp"
@@ -29,7 +30,7 @@ namespace {
 
 // One line of the report: "  ok       name          detail".
 void Row(bool ok, const std::string& name, const std::string& detail) {
-  std::printf("  %-8s %-15s %s\n", ok ? "ok" : "missing", name.c_str(), detail.c_str());
+  sim::Print(stdout, "  %-8s %-15s %s\n", ok ? "ok" : "missing", name.c_str(), detail.c_str());
 }
 
 int CountFiles(const fs::path& dir, const std::string& ext) {
@@ -124,16 +125,19 @@ std::string VersionLine() {
 
 int DoctorCommand() {
   int rc = 0;
-  std::printf("%s\n", VersionLine().c_str());
+  std::fputs((VersionLine() + "\n").c_str(), stdout);
   const std::vector<std::string> code = sim::RunningCodeFiles();
   const fs::path program = code.empty() ? fs::path() : fs::path(code.front());
-  std::printf("program          %s\n", program.empty() ? "?" : program.c_str());
+  std::fputs(("program          " + (program.empty() ? "?" : program.string()) + "\n").c_str(),
+             stdout);
 
   const sim::AssetRoot root = sim::FindAssetRoot();
-  std::printf("assets           %s (%s)\n", root.path.c_str(), root.how.c_str());
+  std::fputs(("assets           " + root.path + " (" + root.how + ")\n").c_str(), stdout);
   if (!root.found) {
-    std::printf("  error: no scenarios/ there; install formsim (share/formsim), or set "
-                "FORMSIM_ASSETS to a folder holding scenarios/, lessons/, fuzzy/ and fonts/\n");
+    std::fputs(
+        "  error: no scenarios/ there; install formsim (share/formsim), or set "
+        "FORMSIM_ASSETS to a folder holding scenarios/, lessons/, fuzzy/ and fonts/\n",
+        stdout);
     rc = 1;
   }
   struct Folder {
@@ -146,22 +150,24 @@ int DoctorCommand() {
                           Folder{"fuzzy", ".fll", "rule file(s)"}}) {
     const fs::path dir = sim::AssetDir(f.name);
     const int n = CountFiles(dir, f.ext);
-    std::printf("  %-14s %s (%d %s)\n", f.name, dir.c_str(), n, f.what);
+    sim::Print(stdout, "  %-14s %s (%d %s)\n", f.name, dir.c_str(), n, f.what);
     if (n == 0) rc = 1;
   }
   for (FontRole role : {FontRole::kUi, FontRole::kTitle, FontRole::kMono}) {
     const std::string file = FontSpecOf(role).file;
     const std::string path = FindFont(file);
     if (path.empty()) {
-      std::printf("  %-14s %s: not found in %s or /usr/share/fonts/truetype/dejavu (Debian: "
-                  "fonts-dejavu-core)\n", "fonts", file.c_str(), sim::AssetDir("fonts").c_str());
+      sim::Print(stdout,
+                 "  %-14s %s: not found in %s or /usr/share/fonts/truetype/dejavu (Debian: "
+                 "fonts-dejavu-core)\n",
+                 "fonts", file.c_str(), sim::AssetDir("fonts").c_str());
       rc = 1;
     } else {
-      std::printf("  %-14s %s\n", "fonts", path.c_str());
+      sim::Print(stdout, "  %-14s %s\n", "fonts", path.c_str());
     }
   }
 
-  std::printf("optional parts\n");
+  std::fputs("optional parts\n", stdout);
   try {
     OffscreenContext ctx(16, 16);
     Row(true, "GL renderer", GlRendererText() + " (OSMesa: frames, snapshots, PNG figures)");

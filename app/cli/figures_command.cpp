@@ -13,9 +13,11 @@
 #include <cstring>
 #include <filesystem>
 
+#include "app/cli/cli_messages.hpp"
 #include "app/cli/progress.hpp"
 #include "app/export/export.hpp"
 #include "app/export/figure_requests.hpp"
+#include "sim/core/number_format.hpp"
 #include "sim/core/run_output.hpp"
 #include "sim/core/thread_pool.hpp"
 #include "sim/scenario/scenario_files.hpp"
@@ -142,10 +144,8 @@ void Drain(Job& job) {
   }
 }
 
-}  // namespace
-
-int FiguresCommand(const FiguresOptions& o) {
-  // Every option is checked before anything runs.
+// Every option, checked before anything runs: the export options every scenario shares.
+ExportOptions FiguresExportOptions(const FiguresOptions& o) {
   if (o.out_dir.empty()) throw std::runtime_error("figures: --out DIR is required");
   CheckFolderName(o.out_dir, "--out", "figures go into DIR/<scenario>/");
   ExportOptions opt;
@@ -158,7 +158,12 @@ int FiguresCommand(const FiguresOptions& o) {
   if (!o.log_y.empty()) opt.log_y = ParseFigureNames(o.log_y, "--log-y");
   opt.whole_run = true;  // the world view shows the whole run
   if (o.jobs < 0) throw std::runtime_error("--jobs must be 0 (one per core) or more");
+  return opt;
+}
 
+// One job per scenario. Each is loaded (and stepped once) here, so a bad scenario or bad figure
+// markup fails before anything is drawn; each --log-y name must be a figure of some scenario.
+std::vector<Job> FiguresJobs(const FiguresOptions& o, const ExportOptions& opt) {
   std::vector<Job> jobs;
   std::vector<sim::FigureSpec> all_figures;
   const std::vector<std::string> names =
@@ -171,91 +176,122 @@ int FiguresCommand(const FiguresOptions& o) {
       if (other.name == job.name)
         throw std::runtime_error("figures: two scenarios are called '" + job.name +
                                  "' (their figures would overwrite each other)");
-    // Loaded (and stepped once) here, so a bad scenario or bad figure markup fails before
-    // anything is drawn.
     const std::vector<sim::FigureSpec> figs = ProbeFigures(job.file, {});
     CheckFigureRequests(figs, {});
     all_figures.insert(all_figures.end(), figs.begin(), figs.end());
     jobs.push_back(std::move(job));
   }
-  CheckFigureRequests(all_figures, opt.log_y);  // each --log-y name is a figure of some scenario
+  CheckFigureRequests(all_figures, opt.log_y);
   if (jobs.empty()) throw std::runtime_error("figures: no scenario to draw");
-  sim::PrepareOutputDir(o.out_dir);
-  // Each scenario's outputs are checked (folders, fonts, ffmpeg...) before the first worker.
+  return jobs;
+}
+
+// Each scenario's export options: its figures and world views in DIR/<scenario>/, its outputs
+// checked (folders, fonts, ffmpeg...) before the first worker starts.
+std::vector<ExportOptions> FiguresJobOptions(const std::vector<Job>& jobs, const ExportOptions& opt,
+                                             const std::string& out_dir) {
   std::vector<ExportOptions> job_opts;
   for (const Job& job : jobs) {
     ExportOptions j = opt;
-    j.plots_dir = (fs::path(o.out_dir) / job.name).string();
+    j.plots_dir = (fs::path(out_dir) / job.name).string();
     for (FigureFormat f : opt.plot_formats)
       j.snapshots.push_back(j.plots_dir + "/world." + FormatExtension(f));
     PrepareExport(j);
     job_opts.push_back(std::move(j));
   }
+  return job_opts;
+}
 
-  const int cores = sim::ThreadPool::HardwareThreads();
-  const int max_jobs = o.jobs > 0 ? o.jobs : cores;
-  // The cores are shared out among the running workers: one thread each while there are more
-  // scenarios than cores; the last ones get the cores the finished ones free.
+// Starts `job`'s worker in a child process that reports on a pipe (read without blocking).
+void StartFiguresWorker(Job& job, const ExportOptions& opt, std::atomic<int>& threads) {
+  int fds[2];
+  if (pipe(fds) != 0) throw std::runtime_error("figures: cannot create a pipe");
+  std::fflush(stdout);
+  std::fflush(stderr);
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error("figures: cannot start a worker process");
+  if (pid == 0) {
+    close(fds[0]);
+    const int code = Worker(job, opt, fds[1], threads);
+    close(fds[1]);
+    std::fflush(stdout);
+    std::fflush(stderr);
+    _exit(code);
+  }
+  close(fds[1]);
+  fcntl(fds[0], F_SETFL, fcntl(fds[0], F_GETFL) | O_NONBLOCK);
+  job.pid = pid;
+  job.fd = fds[0];
+}
+
+// Waits for reports (or a worker's end) for up to 0.2 s and reads them. A worker whose reports
+// ended is only waited for: every 2 ms until it has exited.
+void PollFiguresWorkers(std::vector<Job>& jobs, const std::vector<std::size_t>& running) {
+  std::vector<pollfd> pfds;
+  bool exiting = false;
+  for (std::size_t i : running) {
+    if (jobs[i].fd >= 0) pfds.push_back({jobs[i].fd, POLLIN, 0});
+    exiting = exiting || jobs[i].fd < 0;
+  }
+  poll(pfds.data(), pfds.size(), exiting ? 2 : 200);
+  for (const pollfd& p : pfds)
+    if (p.revents & (POLLIN | POLLHUP | POLLERR))
+      for (std::size_t i : running)
+        if (jobs[i].fd == p.fd) Drain(jobs[i]);
+}
+
+// True when `job`'s worker, its reports ended, has exited: its exit code and, when it died of a
+// signal, the signal are taken into the job.
+bool ReapFiguresWorker(Job& job) {
+  int status = 0;
+  if (job.fd >= 0 || waitpid(job.pid, &status, WNOHANG) != job.pid) return false;
+  job.done = true;
+  job.fraction = 1;
+  job.code = WIFEXITED(status) ? WEXITSTATUS(status) : 4;
+  if (!WIFEXITED(status))
+    job.errors += (job.errors.empty() ? "" : "; ") + std::string("the worker died (signal ") +
+                  std::to_string(WIFSIGNALED(status) ? WTERMSIG(status) : 0) + ")";
+  return true;
+}
+
+// The progress line: every scenario counts the same (their costs are not known before they run).
+void ShowFiguresProgress(ProgressLine& bar, const std::vector<Job>& jobs,
+                         const std::vector<std::size_t>& running, std::size_t finished) {
+  double done = 0;
+  long files = 0;
+  for (const Job& j : jobs) done += j.fraction, files += j.files;
+  std::string now;
+  for (std::size_t i : running) now += (now.empty() ? "" : ", ") + jobs[i].name;
+  bar.Update(done / static_cast<double>(jobs.size()),
+             std::to_string(finished) + "/" + std::to_string(jobs.size()) + " scenarios, " +
+                 std::to_string(files) + " files" + (now.empty() ? "" : "  (" + now + ")"));
+}
+
+// Runs every job's worker, at most `max_jobs` at once, until all have exited. The cores are
+// shared out among the running workers: one thread each while there are more scenarios than
+// cores; the last ones get the cores the finished ones free.
+void RunFiguresWorkers(std::vector<Job>& jobs, const std::vector<ExportOptions>& job_opts,
+                       int cores, int max_jobs, ProgressLine& bar) {
   SharedThreads threads(jobs.size());
   auto share_cores = [&](const std::vector<std::size_t>& running, bool queue_empty) {
     const int busy = queue_empty ? static_cast<int>(running.size()) : max_jobs;
     for (std::size_t i : running)
       threads[i].store(std::max(1, cores / std::max(1, busy)), std::memory_order_relaxed);
   };
-  ProgressLine bar(!o.quiet);
-  const auto t0 = std::chrono::steady_clock::now();
   std::size_t next = 0, finished = 0;
   std::vector<std::size_t> running;
   while (finished < jobs.size()) {
     // Start workers while there are free cores.
     while (next < jobs.size() && static_cast<int>(running.size()) < max_jobs) {
-      Job& job = jobs[next];
       std::vector<std::size_t> will_run = running;
       will_run.push_back(next);
       share_cores(will_run, next + 1 == jobs.size());
-      int fds[2];
-      if (pipe(fds) != 0) throw std::runtime_error("figures: cannot create a pipe");
-      std::fflush(stdout);
-      std::fflush(stderr);
-      const pid_t pid = fork();
-      if (pid < 0) throw std::runtime_error("figures: cannot start a worker process");
-      if (pid == 0) {
-        close(fds[0]);
-        const int code = Worker(job, job_opts[next], fds[1], threads[next]);
-        close(fds[1]);
-        std::fflush(stdout);
-        std::fflush(stderr);
-        _exit(code);
-      }
-      close(fds[1]);
-      fcntl(fds[0], F_SETFL, fcntl(fds[0], F_GETFL) | O_NONBLOCK);
-      job.pid = pid;
-      job.fd = fds[0];
+      StartFiguresWorker(jobs[next], job_opts[next], threads[next]);
       running.push_back(next++);
     }
-    // Wait for reports (or a worker's end) for up to 0.2 s.
-    // (A worker whose reports ended is only waited for: every 2 ms until it has exited.)
-    std::vector<pollfd> pfds;
-    bool exiting = false;
-    for (std::size_t i : running) {
-      if (jobs[i].fd >= 0) pfds.push_back({jobs[i].fd, POLLIN, 0});
-      exiting = exiting || jobs[i].fd < 0;
-    }
-    poll(pfds.data(), pfds.size(), exiting ? 2 : 200);
-    for (const pollfd& p : pfds)
-      if (p.revents & (POLLIN | POLLHUP | POLLERR))
-        for (std::size_t i : running)
-          if (jobs[i].fd == p.fd) Drain(jobs[i]);
+    PollFiguresWorkers(jobs, running);
     for (std::size_t k = 0; k < running.size();) {
-      Job& job = jobs[running[k]];
-      int status = 0;
-      if (job.fd < 0 && waitpid(job.pid, &status, WNOHANG) == job.pid) {
-        job.done = true;
-        job.fraction = 1;
-        job.code = WIFEXITED(status) ? WEXITSTATUS(status) : 4;
-        if (!WIFEXITED(status))
-          job.errors += (job.errors.empty() ? "" : "; ") + std::string("the worker died (signal ") +
-                        std::to_string(WIFSIGNALED(status) ? WTERMSIG(status) : 0) + ")";
+      if (ReapFiguresWorker(jobs[running[k]])) {
         ++finished;
         running.erase(running.begin() + static_cast<long>(k));
         if (next == jobs.size()) share_cores(running, true);
@@ -263,30 +299,37 @@ int FiguresCommand(const FiguresOptions& o) {
       }
       ++k;
     }
-    // Every scenario counts the same (their costs are not known before they run).
-    double done = 0;
-    long files = 0;
-    for (const Job& j : jobs) done += j.fraction, files += j.files;
-    std::string now;
-    for (std::size_t i : running) now += (now.empty() ? "" : ", ") + jobs[i].name;
-    bar.Update(done / static_cast<double>(jobs.size()),
-               std::to_string(finished) + "/" + std::to_string(jobs.size()) + " scenarios, " +
-                   std::to_string(files) + " files" + (now.empty() ? "" : "  (" + now + ")"));
+    ShowFiguresProgress(bar, jobs, running, finished);
   }
+}
+
+}  // namespace
+
+int FiguresCommand(const FiguresOptions& o) {
+  // Every option and scenario is checked before anything runs.
+  const ExportOptions opt = FiguresExportOptions(o);
+  std::vector<Job> jobs = FiguresJobs(o, opt);
+  sim::PrepareOutputDir(o.out_dir);
+  const std::vector<ExportOptions> job_opts = FiguresJobOptions(jobs, opt, o.out_dir);
+
+  const int cores = sim::ThreadPool::HardwareThreads();
+  const int max_jobs = o.jobs > 0 ? o.jobs : cores;
+  ProgressLine bar(!o.quiet);
+  const auto t0 = std::chrono::steady_clock::now();
+  RunFiguresWorkers(jobs, job_opts, cores, max_jobs, bar);
   bar.Done();
 
   int rc = 0;
   long files = 0;
   for (const Job& j : jobs) {
     files += j.files;
-    if (!j.errors.empty())
-      std::fprintf(stderr, "formsim: error: %s: %s\n", j.name.c_str(), j.errors.c_str());
+    if (!j.errors.empty()) PrintCliError(j.name + ": " + j.errors);
     rc = std::max(rc, j.code);
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!o.quiet)
-    std::printf("wrote %ld files for %zu scenarios into %s in %.1f s (%d workers)\n", files,
-                jobs.size(), o.out_dir.c_str(), wall, max_jobs);
+    sim::Print(stdout, "wrote %ld files for %zu scenarios into %s in %.1f s (%d workers)\n", files,
+               jobs.size(), o.out_dir.c_str(), wall, max_jobs);
   return rc;
 }
 

@@ -4,6 +4,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "sim/core/number_format.hpp"
 #include "sim/core/task_pool.hpp"
 #include "sim/scenario/scenario.hpp"
 #include "sim/scenario/scenario_files.hpp"
@@ -11,6 +12,14 @@
 #include "sim/study/sweep_spec.hpp"
 
 namespace formsim::app {
+namespace {
+
+// "N checks, H hold, F fail": how `lessons check` and `lessons show` begin their last line.
+std::string LessonTally(int checks, int hold, int fail) {
+  return sim::Sprintf("%d checks, %d hold, %d fail", checks, hold, fail);
+}
+
+}  // namespace
 
 LessonsCommand::LessonsCommand(CLI::App& app) {
   cmd_ = app.add_subcommand("lessons", "Lessons: check that every effect a lesson states happens");
@@ -61,15 +70,18 @@ int LessonsCommand::RunShow() {
     const auto it = shown.find(id);
     return it == shown.end() ? sim::ShownCheck{} : it->second;
   });
-  std::printf("%s\nChecks on seed %llu:\n", text.c_str(),
-              static_cast<unsigned long long>(opt.seeds.front()));
-  for (const auto& r : results) std::printf("  %s\n", sim::FormatCheckResult(r).c_str());
+  sim::Print(stdout, "%s\nChecks on seed %llu:\n", text.c_str(),
+             static_cast<unsigned long long>(opt.seeds.front()));
+  for (const auto& r : results)
+    std::fputs(("  " + sim::FormatCheckResult(r) + "\n").c_str(), stdout);
   int missed = 0;
   for (const auto& r : results) missed += !r.ok() && r.share < 1;
-  std::printf("%d checks, %d hold, %d fail", static_cast<int>(results.size()),
-              static_cast<int>(results.size()) - failed - missed, failed);
-  if (missed) std::printf(", %d miss this seed (each claims a share of the seeds only)", missed);
-  std::printf("\n");
+  const int checks = static_cast<int>(results.size());
+  std::string tally = LessonTally(checks, checks - failed - missed, failed);
+  if (missed)
+    sim::AppendSprintf(tally, ", %d miss this seed (each claims a share of the seeds only)",
+                       missed);
+  std::fputs((tally + "\n").c_str(), stdout);
   return failed ? 1 : 0;
 }
 
@@ -90,9 +102,9 @@ int LessonsCommand::Run() {
   int checks = 0, failed = 0, warned = 0;
   for (const std::string& f : files) {
     const auto results = sim::CheckLesson(f, opt);
-    if (results.empty()) std::printf("%s: no checks\n", f.c_str());
+    if (results.empty()) std::fputs((f + ": no checks\n").c_str(), stdout);
     for (const auto& r : results) {
-      std::printf("%s\n", sim::FormatCheckResult(r).c_str());
+      std::fputs((sim::FormatCheckResult(r) + "\n").c_str(), stdout);
       std::fflush(stdout);
       ++checks;
       if (!r.ok()) ++failed;
@@ -100,13 +112,14 @@ int LessonsCommand::Run() {
     // A check the text says depends on the seed, with the same value on every seed checked.
     const sim::ParsedScenario parsed = sim::ParseScenario(sim::ScenarioSource::FromFile(f), {});
     for (const auto& w : sim::SeedEffectWarnings(parsed.lesson, results)) {
-      std::printf("%s\n", sim::FormatSeedEffectWarning(w).c_str());
+      std::fputs((sim::FormatSeedEffectWarning(w) + "\n").c_str(), stdout);
       ++warned;
     }
   }
-  std::printf("%d checks, %d hold, %d fail", checks, checks - failed, failed);
-  if (warned) std::printf(", %d claim a seed effect their values do not show", warned);
-  std::printf("\n");
+  std::string tally = LessonTally(checks, checks - failed, failed);
+  if (warned)
+    sim::AppendSprintf(tally, ", %d claim a seed effect their values do not show", warned);
+  std::fputs((tally + "\n").c_str(), stdout);
   return failed || warned ? 1 : 0;
 }
 

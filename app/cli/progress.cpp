@@ -38,7 +38,7 @@ bool ProgressLine::Due(bool force) {
 void ProgressLine::Print(const std::string& line) {
   // Pad over a longer previous line; the cursor stays on the line (\r, no newline).
   const std::size_t pad = last_len_ > line.size() ? last_len_ - line.size() : 0;
-  std::fprintf(stderr, "\r%s%s", line.c_str(), std::string(pad, ' ').c_str());
+  std::fputs(("\r" + line + std::string(pad, ' ')).c_str(), stderr);
   std::fflush(stderr);
   last_len_ = line.size();
   shown_ = true;
@@ -50,8 +50,7 @@ void ProgressLine::Update(double fraction, const std::string& detail) {
   const int width = 24, filled = static_cast<int>(fraction * width);
   std::string bar = "[" + std::string(filled, '=') + (filled < width ? ">" : "") +
                     std::string(std::max(0, width - filled - 1), ' ') + "]";
-  char pct[16];
-  std::snprintf(pct, sizeof(pct), " %3d%%  ", static_cast<int>(fraction * 100));
+  const std::string pct = sim::Sprintf(" %3d%%  ", static_cast<int>(fraction * 100));
   const double elapsed = Seconds(std::chrono::steady_clock::now() - start_);
   std::string left = "";
   if (fraction > 0.01 && elapsed > 0.25)  // shown with the first line (after 0.5 s)
@@ -66,7 +65,7 @@ void ProgressLine::Status(const std::string& detail) {
 
 void ProgressLine::Done() {
   if (!enabled_ || !shown_) return;
-  std::fprintf(stderr, "\r%s\r", std::string(last_len_, ' ').c_str());
+  std::fputs(("\r" + std::string(last_len_, ' ') + "\r").c_str(), stderr);
   std::fflush(stderr);
   shown_ = false;
   last_len_ = 0;

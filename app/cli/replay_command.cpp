@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "app/cli/cli_messages.hpp"
 #include "app/cli/progress.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/run_output.hpp"
@@ -76,7 +77,7 @@ int ReplayCommand::Run() {
     if ((++n & 255) == 0)
       bar.Update(static_cast<double>(replay.done()) / static_cast<double>(replay.total()),
                  "event " + std::to_string(replay.done()) + "/" + std::to_string(replay.total()) +
-                     ", t=" + sim::Sprintf("%.2f", replay.session().exp().time()) + " s");
+                     ", " + ProgressTimeText(replay.session().exp().time()));
   sim::Session& s = replay.session();
   sim::WriteRunOutputs(s.exp(), out);
 
@@ -102,29 +103,28 @@ int ReplayCommand::Run() {
           if (!p.status.empty())
             bar.Status(p.status);
           else
-            bar.Update(p.fraction, "pictures: t=" + sim::Sprintf("%.2f", p.t) + " s");
+            bar.Update(p.fraction, "pictures: " + ProgressTimeText(p.t));
         },
         {}, advance);
     if (again.exp().Summary().Dump() != s.exp().Summary().Dump())
-      std::fprintf(stderr, "formsim: warning: the pictures' run differs from the replayed one\n");
+      std::fputs("formsim: warning: the pictures' run differs from the replayed one\n", stderr);
   }
   bar.Done();
   if (!quiet_) {
     std::cout << s.exp().SummaryText();
-    std::printf("replayed %zu events of %s: the last run stopped at step %ld (t = %.2f s)\n",
-                replay.total(), file_.c_str(), s.exp().steps(), s.exp().time());
-    std::printf("wrote %s/timeseries.csv and %s/summary.json", out.c_str(), out.c_str());
+    sim::Print(stdout, "replayed %zu events of %s: the last run stopped at step %ld (t = %.2f s)\n",
+               replay.total(), file_.c_str(), s.exp().steps(), s.exp().time());
+    std::string wrote = WroteRunOutputsText(out);
     if (!exp_.frames_dir.empty())
-      std::printf(", %ld frames in %s", st.frames, exp_.frames_dir.c_str());
+      sim::AppendSprintf(wrote, ", %ld frames in %s", st.frames, exp_.frames_dir.c_str());
     if (!exp_.plots_dir.empty())
-      std::printf(", %ld figures in %s", st.figures, exp_.plots_dir.c_str());
-    if (!exp_.video.empty() && st.error.empty()) std::printf(", %s", exp_.video.c_str());
-    std::printf("\n");
+      sim::AppendSprintf(wrote, ", %ld figures in %s", st.figures, exp_.plots_dir.c_str());
+    if (!exp_.video.empty() && st.error.empty()) wrote += ", " + exp_.video;
+    std::fputs((wrote + "\n").c_str(), stdout);
   }
   int rc = 0;
   if (!st.error.empty()) {
-    std::fprintf(stderr, "formsim: error: export failed (the results were written): %s\n",
-                 st.error.c_str());
+    PrintExportFailed(st.error);
     rc = 4;
   }
   if (s.exp().status() == "numerical_fault") rc = 3;

@@ -4,13 +4,15 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "app/cli/cli_messages.hpp"
 #include "app/cli/progress.hpp"
-#include "app/cli/stop_signal.hpp"
 #include "app/export/figure_data.hpp"
 #include "app/export/figure_export.hpp"
 #include "app/export/figure_titles.hpp"
 #include "app/export/study_figures.hpp"
+#include "sim/core/number_format.hpp"
 #include "sim/core/run_output.hpp"
+#include "sim/core/stop_signal.hpp"
 #include "sim/study/reproduction.hpp"
 #include "sim/study/reproduction_registry.hpp"
 #include "sim/study/sweep_spec.hpp"
@@ -58,7 +60,7 @@ int ReproduceCommand::Run() {
   CheckFolderName(out, "--out", "a folder for the cases' sweeps, tables and figures");
   sim::PrepareOutputDir(out);
 
-  InstallStopSignals();
+  sim::InstallStopSignals();
   sim::TaskPool pool(jobs);
   ProgressLine bar(!quiet_);
   const auto t0 = std::chrono::steady_clock::now();
@@ -69,13 +71,15 @@ int ReproduceCommand::Run() {
                    std::to_string(done) + "/" + std::to_string(total) + " runs" +
                        (failed ? ", " + std::to_string(failed) + " failed" : ""));
       },
-      [] { return StopSignal() != 0; });
+      [] { return sim::StopSignal() != 0; });
   bar.Done();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (StopSignal() != 0) {
-    std::fprintf(stderr, "formsim: reproduce interrupted by %s; the runs so far are in %s\n",
-                 StopSignalName(StopSignal()).c_str(), out.c_str());
-    return 128 + StopSignal();
+  if (sim::StopSignal() != 0) {
+    std::fputs(("formsim: reproduce interrupted by " + sim::StopSignalName(sim::StopSignal()) +
+                "; the runs so far are in " + out + "\n")
+                   .c_str(),
+               stderr);
+    return 128 + sim::StopSignal();
   }
 
   // The tables, printed and written, and each cell with its source.
@@ -101,8 +105,7 @@ int ReproduceCommand::Run() {
         wrote.push_back(f.id + ext);
       }
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "formsim: error: figure %s not written (the tables were): %s\n",
-                   f.id.c_str(), e.what());
+      PrintCliError("figure " + f.id + " not written (the tables were): " + e.what());
       rc = 4;
     }
   }
@@ -110,15 +113,15 @@ int ReproduceCommand::Run() {
   for (const auto& [id, runs] : res.cases)
     for (const sim::SweepRecord& r : runs.records)
       if (r.failed())
-        std::fprintf(stderr, "formsim: case %s, seed %llu: %s%s\n", id.c_str(),
-                     static_cast<unsigned long long>(runs.def.SeedOf(r.run)), r.status.c_str(),
-                     r.message.empty() ? "" : (": " + r.message).c_str());
+        sim::Print(stderr, "formsim: case %s, seed %llu: %s%s\n", id.c_str(),
+                   static_cast<unsigned long long>(runs.def.SeedOf(r.run)), r.status.c_str(),
+                   r.message.empty() ? "" : (": " + r.message).c_str());
   if (res.failed > 0 && rc == 0) rc = 3;
   if (!quiet_) {
     std::size_t runs = 0;
     for (const auto& [id, c] : res.cases) runs += c.records.size();
-    std::fprintf(stderr, "%zu runs of %zu cases in %.1f s wall on %d jobs; wrote %zu files in %s\n",
-                 runs, res.cases.size(), wall, jobs, wrote.size(), out.c_str());
+    sim::Print(stderr, "%zu runs of %zu cases in %.1f s wall on %d jobs; wrote %zu files in %s\n",
+               runs, res.cases.size(), wall, jobs, wrote.size(), out.c_str());
   }
   return rc;
 }

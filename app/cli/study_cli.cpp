@@ -11,16 +11,18 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 
-#include "app/cli/stop_signal.hpp"
+#include "app/cli/cli_messages.hpp"
 #include "app/export/figure_titles.hpp"
 #include "app/export/study_figures.hpp"
 #include "app/export/tune_figures.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/run_output.hpp"
+#include "sim/core/stop_signal.hpp"
 #include "sim/core/wall_clock.hpp"
 #include "sim/scenario/scenario_files.hpp"
 #include "sim/scenario/scenario_save.hpp"
@@ -35,6 +37,7 @@
 namespace fs = std::filesystem;
 
 namespace formsim::app {
+
 namespace {
 
 using sim::WallSeconds;
@@ -55,13 +58,13 @@ class RunsBar {
     std::string left = "…";
     if (done > 0)
       left = sim::FormatClock((now - start_) / static_cast<double>(done) * static_cast<double>(total_ - done));
-    std::fprintf(stderr, "\r[%s%s] %zu/%zu runs, %zu failed, %s left   ",
-                 std::string(filled, '=').c_str(), std::string(width - filled, ' ').c_str(), done,
-                 total_, failed, left.c_str());
+    sim::Print(stderr, "\r[%s%s] %zu/%zu runs, %zu failed, %s left   ",
+               std::string(filled, '=').c_str(), std::string(width - filled, ' ').c_str(), done,
+               total_, failed, left.c_str());
     std::fflush(stderr);
   }
   void Done() {
-    if (enabled_) std::fprintf(stderr, "\r%78s\r", "");
+    if (enabled_) ClearStatusLine();
   }
 
  private:
@@ -103,10 +106,15 @@ std::uint64_t ParseSeedFlag(const std::string& text, const std::string& flag) {
   return v;
 }
 
-std::string Join(const std::vector<std::string>& v, const std::string& sep) {
+std::string JoinWith(const std::vector<std::string>& v, const std::string& sep) {
   std::string out;
   for (const std::string& s : v) out += (out.empty() ? "" : sep) + s;
   return out;
+}
+
+// "wrote A, B, C in OUT": the last line of sweep, sweep collect and tune.
+void PrintStudyWrote(const std::vector<std::string>& files, const std::string& out) {
+  std::fputs(("wrote " + JoinWith(files, ", ") + " in " + out + "\n").c_str(), stdout);
 }
 
 // Tables, ranking and figure of a sweep from its records (a whole sweep, or one shard's part).
@@ -121,10 +129,8 @@ int WriteSweepOutputs(const sim::SweepDefinition& def, const std::vector<sim::Sw
     if (metric.empty()) metric = tables.metrics[sim::DefaultMetric(tables)];
     const int m = tables.MetricIndex(metric);
     if (m < 0) {
-      std::fprintf(stderr,
-                   "formsim: error: --metric '%s': no such metric in the runs (similar: %s); the "
-                   "tables were written\n",
-                   metric.c_str(), sim::SimilarMetrics(tables.metrics, metric).c_str());
+      PrintCliError("--metric '" + metric + "': no such metric in the runs (similar: " +
+                    sim::SimilarMetrics(tables.metrics, metric) + "); the tables were written");
       rc = 2;
     } else {
       const std::string ranking = "ranking_" + metric + ".txt";
@@ -148,15 +154,14 @@ int WriteSweepOutputs(const sim::SweepDefinition& def, const std::vector<sim::Sw
             WritePanelsPng(panels, (fs::path(out) / name).string(), 640, 440, columns);
           wrote.push_back(name);
         } catch (const std::exception& e) {
-          std::fprintf(stderr,
-                       "formsim: error: the figure could not be written (the tables were): %s\n",
-                       e.what());
+          PrintCliError(std::string("the figure could not be written (the tables were): ") +
+                        e.what());
           rc = 4;
         }
       }
     }
   }
-  if (!quiet) std::printf("wrote %s in %s\n", Join(wrote, ", ").c_str(), out.c_str());
+  if (!quiet) PrintStudyWrote(wrote, out);
   return rc;
 }
 
@@ -164,7 +169,8 @@ int WriteSweepOutputs(const sim::SweepDefinition& def, const std::vector<sim::Sw
 void RemoveDamaged(const std::string& out, const std::vector<std::size_t>& runs, bool quiet) {
   for (const std::string& p : sim::RemoveDamagedRecords(out, runs))
     if (!quiet)
-      std::fprintf(stderr, "formsim: %s was cut short (a power cut?); it runs again\n", p.c_str());
+      std::fputs(("formsim: " + p + " was cut short (a power cut?); it runs again\n").c_str(),
+                 stderr);
 }
 
 std::vector<sim::SweepRecord> RecordsOf(const std::string& dir, const sim::SweepDefinition& def,
@@ -179,6 +185,11 @@ std::vector<sim::SweepRecord> RecordsOf(const std::string& dir, const sim::Sweep
 }  // namespace
 
 StudyCommands::StudyCommands(CLI::App& app) {
+  AddSweepCommands(app);
+  AddTuneCommand(app);
+}
+
+void StudyCommands::AddSweepCommands(CLI::App& app) {
   sweep_ = app.add_subcommand("sweep",
                               "Run a scenario for every combination of varied tunables and seeds");
   sweep_->add_option("scenario", scenario_, "Scenario name (see `formsim list`) or YAML path");
@@ -228,7 +239,9 @@ StudyCommands::StudyCommands(CLI::App& app) {
                        "Spread shaded around the mean: sd, ci95 (default) or minmax");
   collect_->add_option("--titles", collect_titles_, TitleModeHelp());
   collect_->add_flag("--quiet,-q", collect_quiet_, "Print nothing but errors");
+}
 
+void StudyCommands::AddTuneCommand(CLI::App& app) {
   tune_ = app.add_subcommand("tune", "Optimise tunables for a metric averaged over seeds (NLopt)");
   tune_->add_option("scenario", tune_scenario_, "Scenario name or YAML path");
   tune_
@@ -288,81 +301,134 @@ int StudyCommands::Run() {
   return Tune();
 }
 
-int StudyCommands::Sweep() {
+// The sweep as its flags plan it, everything refused before anything runs.
+struct StudyCommands::SweepPlan {
+  SweepBand band;
+  TitleMode titles;
+  std::vector<sim::ScenarioSource> sources;
+  std::string file;  ///< the first scenario's
+  sim::SweepDefinition def;
+  std::string out;
+  int shard_k = 1, shard_n = 1;
+  int jobs = 1;
+  std::vector<std::size_t> mine;  ///< the runs of this shard (all of them without --shard)
+};
+
+StudyCommands::SweepPlan StudyCommands::PlanSweep() const {
   if (scenario_.empty() && scenarios_.empty())
     throw std::runtime_error(
         "formsim sweep: give a scenario (or `sweep collect DIR... --out DIR`)");
-  const SweepBand band = ParseSweepBand(band_);  // refused before anything runs
-  const TitleMode titles = ParseTitleMode(titles_, "--titles");
-  const std::vector<sim::ScenarioSource> sources =
-      sim::ReadScenarioSet(scenario_, scenarios_, "formsim sweep");
-  const std::string file = sources.front().file();
+  SweepPlan p;
+  p.band = ParseSweepBand(band_);
+  p.titles = ParseTitleMode(titles_, "--titles");
+  p.sources = sim::ReadScenarioSet(scenario_, scenarios_, "formsim sweep");
+  p.file = p.sources.front().file();
   // Given but empty (`--seeds ''`) is refused, never read as "the scenario's seed".
   const std::vector<std::uint64_t> seeds =
       sweep_->count("--seeds") == 0 ? std::vector<std::uint64_t>{} : sim::ParseSeeds(seeds_);
   if (max_runs_ < 1 || max_runs_ > static_cast<long long>(sim::kMaxSweepRuns))
     throw std::runtime_error("--max-runs " + std::to_string(max_runs_) + ": must be in 1 ... " +
                              std::to_string(sim::kMaxSweepRuns));
-  const bool one_run = sweep_->count("--run") > 0;
-  if (one_run && run_ < 0)
+  if (sweep_->count("--run") > 0 && run_ < 0)
     throw std::runtime_error("--run " + std::to_string(run_) +
                              ": a run number is 0 or more (runs are numbered 0 ... N-1)");
-  const sim::SweepDefinition def = sim::DefineSweep(
-      sources, sim::CliOverrides(sets_, -1), vary_, seeds,
-      ParseSeedFlag(sample_seed_, "--sample-seed"), static_cast<std::size_t>(max_runs_));
-  const std::string out = !out_.empty() ? out_
-                          : sources.size() == 1
-                              ? "out/sweep_" + sim::ScenarioStem(sources[0])
-                              : "out/sweep_" + sim::ScenarioStem(sources[0]) + "_" +
-                                    std::to_string(sources.size()) + "_scenarios";
-  int shard_k = 1, shard_n = 1;
-  if (!shard_.empty()) sim::ParseShard(shard_, &shard_k, &shard_n);
-  const int jobs = CheckJobs(jobs_, "--jobs");
-  const std::vector<std::size_t> mine = sim::ShardRuns(def.runs(), shard_k, shard_n);
+  p.def = sim::DefineSweep(p.sources, sim::CliOverrides(sets_, -1), vary_, seeds,
+                           ParseSeedFlag(sample_seed_, "--sample-seed"),
+                           static_cast<std::size_t>(max_runs_));
+  p.out = !out_.empty()           ? out_
+          : p.sources.size() == 1 ? "out/sweep_" + sim::ScenarioStem(p.sources[0])
+                                  : "out/sweep_" + sim::ScenarioStem(p.sources[0]) + "_" +
+                                        std::to_string(p.sources.size()) + "_scenarios";
+  if (!shard_.empty()) sim::ParseShard(shard_, &p.shard_k, &p.shard_n);
+  p.jobs = CheckJobs(jobs_, "--jobs");
+  p.mine = sim::ShardRuns(p.def.runs(), p.shard_k, p.shard_n);
+  return p;
+}
 
-  if (one_run) {
-    // One job line: this run only, recorded like any other.
-    if (static_cast<std::size_t>(run_) >= def.runs())
-      throw std::runtime_error("--run " + std::to_string(run_) + ": the sweep has runs 0 ... " +
-                               std::to_string(def.runs() - 1));
-    sim::WriteManifest(out, def);
-    const std::size_t r = static_cast<std::size_t>(run_);
-    RemoveDamaged(out, {r}, quiet_);
-    if (sim::PendingRuns(out, {r}).empty()) {
-      if (!quiet_) std::printf("run %zu is recorded already in %s\n", r, out.c_str());
-      return 0;
-    }
-    InstallStopSignals();
-    const auto rec = sim::RunSweepRun(sources, def, r, [] { return StopSignal() != 0; });
-    if (!rec) return 128 + StopSignal();
-    sim::WriteRecord(out, def, *rec);
-    sim::SyncFileSystem(out);
-    if (!quiet_)
-      std::printf("run %zu: %s%s\n", r, rec->status.c_str(),
-                  rec->message.empty() ? "" : (": " + rec->message).c_str());
+int StudyCommands::Sweep() {
+  const SweepPlan plan = PlanSweep();
+  if (sweep_->count("--run") > 0) return SweepOneRun(plan);
+  if (print_jobs_) return PrintSweepJobs(plan);
+  return RunPlannedSweep(plan);
+}
+
+// --run I: one job line, this run only, recorded like any other.
+int StudyCommands::SweepOneRun(const SweepPlan& plan) {
+  const std::string& out = plan.out;
+  if (static_cast<std::size_t>(run_) >= plan.def.runs())
+    throw std::runtime_error("--run " + std::to_string(run_) + ": the sweep has runs 0 ... " +
+                             std::to_string(plan.def.runs() - 1));
+  sim::WriteManifest(out, plan.def);
+  const std::size_t r = static_cast<std::size_t>(run_);
+  RemoveDamaged(out, {r}, quiet_);
+  if (sim::PendingRuns(out, {r}).empty()) {
+    if (!quiet_) sim::Print(stdout, "run %zu is recorded already in %s\n", r, out.c_str());
     return 0;
   }
+  sim::InstallStopSignals();
+  const auto rec =
+      sim::RunSweepRun(plan.sources, plan.def, r, [] { return sim::StopSignal() != 0; });
+  if (!rec) return 128 + sim::StopSignal();
+  sim::WriteRecord(out, plan.def, *rec);
+  sim::SyncFileSystem(out);
+  if (!quiet_)
+    sim::Print(stdout, "run %zu: %s%s\n", r, rec->status.c_str(),
+               rec->message.empty() ? "" : (": " + rec->message).c_str());
+  return 0;
+}
 
-  if (print_jobs_) {
-    sim::WriteManifest(out, def);
-    // The scenarios by absolute path (a list file may change or move; the lines must not).
-    std::string common = ShellWord(SelfExe()) + " sweep";
-    if (sources.size() == 1)
-      common += " " + ShellWord(fs::absolute(file).string());
-    else
-      for (const sim::ScenarioSource& src : sources)
-        common += " --scenario " + ShellWord(fs::absolute(src.file()).string());
-    for (const std::string& v : vary_) common += " --vary " + ShellWord(v);
-    for (const std::string& s : sets_) common += " --set " + ShellWord(s);
-    if (!seeds_.empty()) common += " --seeds " + ShellWord(seeds_);
-    if (def.sample_seed != 1) common += " --sample-seed " + std::to_string(def.sample_seed);
-    if (sweep_->count("--max-runs") > 0) common += " --max-runs " + std::to_string(max_runs_);
-    common += " --out " + ShellWord(fs::absolute(out).string()) + " -q --run ";
-    RemoveDamaged(out, mine, false);
-    for (std::size_t r : sim::PendingRuns(out, mine)) std::printf("%s%zu\n", common.c_str(), r);
-    return 0;
+// --print-jobs: one self-contained command line per pending run of this shard.
+int StudyCommands::PrintSweepJobs(const SweepPlan& plan) {
+  const sim::SweepDefinition& def = plan.def;
+  sim::WriteManifest(plan.out, def);
+  // The scenarios by absolute path (a list file may change or move; the lines must not).
+  std::string common = ShellWord(SelfExe()) + " sweep";
+  if (plan.sources.size() == 1)
+    common += " " + ShellWord(fs::absolute(plan.file).string());
+  else
+    for (const sim::ScenarioSource& src : plan.sources)
+      common += " --scenario " + ShellWord(fs::absolute(src.file()).string());
+  for (const std::string& v : vary_) common += " --vary " + ShellWord(v);
+  for (const std::string& s : sets_) common += " --set " + ShellWord(s);
+  if (!seeds_.empty()) common += " --seeds " + ShellWord(seeds_);
+  if (def.sample_seed != 1) common += " --sample-seed " + std::to_string(def.sample_seed);
+  if (sweep_->count("--max-runs") > 0) common += " --max-runs " + std::to_string(max_runs_);
+  common += " --out " + ShellWord(fs::absolute(plan.out).string()) + " -q --run ";
+  RemoveDamaged(plan.out, plan.mine, false);
+  for (std::size_t r : sim::PendingRuns(plan.out, plan.mine))
+    std::fputs((common + std::to_string(r) + "\n").c_str(), stdout);
+  return 0;
+}
+
+// "sweep of FILE: P points x S seeds = N runs, ..., J jobs" on stdout.
+void StudyCommands::PrintSweepHeader(const SweepPlan& plan, std::size_t pending) const {
+  const sim::SweepDefinition& def = plan.def;
+  std::string line;
+  if (plan.sources.size() == 1) {
+    line = "sweep of " + plan.file + ": ";
+  } else {
+    std::vector<std::string> names;
+    for (const sim::ScenarioSource& src : plan.sources) names.push_back(sim::ScenarioStem(src));
+    line = sim::Sprintf("sweep of %zu scenarios (%s): %zu scenarios x ", plan.sources.size(),
+                        JoinWith(names, ", ").c_str(), plan.sources.size());
   }
+  sim::AppendSprintf(line, "%zu point%s x %zu seed%s = %zu runs", def.points.size(),
+                     def.points.size() == 1 ? "" : "s", def.seeds.size(),
+                     def.seeds.size() == 1 ? "" : "s", def.runs());
+  if (plan.shard_n > 1)
+    sim::AppendSprintf(line, ", shard %d/%d: %zu runs", plan.shard_k, plan.shard_n,
+                       plan.mine.size());
+  if (pending != plan.mine.size())
+    sim::AppendSprintf(line, ", %zu recorded already", plan.mine.size() - pending);
+  sim::AppendSprintf(line, ", %d jobs\n", plan.jobs);
+  std::fputs(line.c_str(), stdout);
+  std::fflush(stdout);
+}
 
+// The runs of this shard not recorded yet, on all cores, then the tables and the figure.
+int StudyCommands::RunPlannedSweep(const SweepPlan& plan) {
+  const sim::SweepDefinition& def = plan.def;
+  const std::string& out = plan.out;
   if (sim::HasManifest(out) && !resume_) {
     sim::WriteManifest(out, def);  // throws, saying how, when it is another sweep
     const std::size_t have =
@@ -372,61 +438,46 @@ int StudyCommands::Sweep() {
         " runs recorded); add --resume to continue it, or choose another --out");
   }
   sim::WriteManifest(out, def);
-  RemoveDamaged(out, mine, quiet_);
-  const std::vector<std::size_t> pending = sim::PendingRuns(out, mine);
-  if (!quiet_) {
-    if (sources.size() == 1) {
-      std::printf("sweep of %s: ", file.c_str());
-    } else {
-      std::vector<std::string> names;
-      for (const sim::ScenarioSource& src : sources) names.push_back(sim::ScenarioStem(src));
-      std::printf("sweep of %zu scenarios (%s): %zu scenarios x ", sources.size(),
-                  Join(names, ", ").c_str(), sources.size());
-    }
-    std::printf("%zu point%s x %zu seed%s = %zu runs", def.points.size(),
-                def.points.size() == 1 ? "" : "s", def.seeds.size(),
-                def.seeds.size() == 1 ? "" : "s", def.runs());
-    if (shard_n > 1) std::printf(", shard %d/%d: %zu runs", shard_k, shard_n, mine.size());
-    if (pending.size() != mine.size())
-      std::printf(", %zu recorded already", mine.size() - pending.size());
-    std::printf(", %d jobs\n", jobs);
-    std::fflush(stdout);
-  }
-  InstallStopSignals();
-  sim::TaskPool pool(jobs);
+  RemoveDamaged(out, plan.mine, quiet_);
+  const std::vector<std::size_t> pending = sim::PendingRuns(out, plan.mine);
+  if (!quiet_) PrintSweepHeader(plan, pending.size());
+  sim::InstallStopSignals();
+  sim::TaskPool pool(plan.jobs);
   RunsBar bar(!quiet_, pending.size());
   const double t0 = WallSeconds();
   const sim::SweepProgress progress = sim::RunSweep(
-      sources, def, pending, pool,
+      plan.sources, def, pending, pool,
       [&](const sim::SweepRecord& rec, const sim::SweepProgress& p) {
         sim::WriteRecord(out, def, rec);
         bar.Update(p.done, p.failed);
       },
-      [] { return StopSignal() != 0; });
+      [] { return sim::StopSignal() != 0; });
   bar.Done();
   sim::SyncFileSystem(out);  // the records, synced together
   const double wall = WallSeconds() - t0;
-  if (StopSignal() != 0) {
-    std::fprintf(stderr,
-                 "formsim: sweep interrupted by %s: %zu of %zu runs recorded in %s; add --resume "
-                 "to finish it\n",
-                 StopSignalName(StopSignal()).c_str(), mine.size() - pending.size() + progress.done,
-                 mine.size(), out.c_str());
-    return 128 + StopSignal();
+  if (sim::StopSignal() != 0) {
+    sim::Print(stderr,
+               "formsim: sweep interrupted by %s: %zu of %zu runs recorded in %s; add --resume "
+               "to finish it\n",
+               sim::StopSignalName(sim::StopSignal()).c_str(),
+               plan.mine.size() - pending.size() + progress.done, plan.mine.size(), out.c_str());
+    return 128 + sim::StopSignal();
   }
   if (!quiet_) {
-    std::printf("%zu runs in %.2f s wall (%.1f ms per run on %d jobs)", progress.done, wall,
-                progress.done ? 1e3 * wall / static_cast<double>(progress.done) : 0.0, jobs);
+    std::string line = sim::Sprintf(
+        "%zu runs in %.2f s wall (%.1f ms per run on %d jobs)", progress.done, wall,
+        progress.done ? 1e3 * wall / static_cast<double>(progress.done) : 0.0, plan.jobs);
     if (progress.failed)
-      std::printf(", %zu failed (status and message in runs.csv)", progress.failed);
-    std::printf("\n");
+      sim::AppendSprintf(line, ", %zu failed (status and message in runs.csv)", progress.failed);
+    std::fputs((line + "\n").c_str(), stdout);
   }
-  const bool whole = shard_n == 1;
-  const int rc = WriteSweepOutputs(def, RecordsOf(out, def, mine), out, metric_, band, titles,
-                                   whole && !no_figures_, quiet_);
+  const bool whole = plan.shard_n == 1;
+  const int rc = WriteSweepOutputs(def, RecordsOf(out, def, plan.mine), out, metric_, plan.band,
+                                   plan.titles, whole && !no_figures_, quiet_);
   if (!whole && !quiet_)
-    std::printf("shard %d/%d done; merge the shards with: formsim sweep collect DIR... --out DIR\n",
-                shard_k, shard_n);
+    sim::Print(stdout,
+               "shard %d/%d done; merge the shards with: formsim sweep collect DIR... --out DIR\n",
+               plan.shard_k, plan.shard_n);
   return rc;
 }
 
@@ -468,7 +519,8 @@ int StudyCommands::Collect() {
     records.push_back(std::move(rec));
   }
   if (!collect_quiet_)
-    std::printf("collected %zu runs from %zu folders\n", records.size(), collect_dirs_.size());
+    sim::Print(stdout, "collected %zu runs from %zu folders\n", records.size(),
+               collect_dirs_.size());
   return WriteSweepOutputs(def, records, collect_out_, collect_metric_, band, titles, true,
                            collect_quiet_);
 }
@@ -531,8 +583,9 @@ class TuneHistoryFile {
     if (e.index <= replayed_ || file_ == nullptr) return;  // on disk already
     ++added_;
     if (std::fputs(row.c_str(), file_) < 0 || std::fflush(file_) != 0) {
-      std::fprintf(stderr, "formsim: error: appending to %s: %s (the whole file is written again "
-                   "at the end)\n", path_.c_str(), std::strerror(errno));
+      const std::string why = std::strerror(errno);
+      PrintCliError("appending to " + path_ + ": " + why +
+                    " (the whole file is written again at the end)");
       std::fclose(file_);
       file_ = nullptr;
     }
@@ -557,74 +610,48 @@ class TuneHistoryFile {
   std::FILE* file_ = nullptr;
 };
 
-}  // namespace
-
-int StudyCommands::Tune() {
-  const TitleMode titles = ParseTitleMode(tune_titles_, "--titles");  // before anything runs
-  sim::TuneRequest request;
-  request.scenario = tune_scenario_;
-  request.scenarios = tune_scenarios_;
-  request.sets = tune_sets_;
-  request.over = over_;
-  request.params = params_;
-  request.metric = tune_metric_;
-  request.constraints = constraints_;
-  if (tune_->count("--seeds") > 0) request.seeds = tune_seeds_;
-  request.budget = budget_;
-  request.algorithm = algorithm_;
-  request.search_seed = ParseSeedFlag(search_seed_, "--search-seed");
-  if (tune_->count("--holdout") > 0) request.holdout = holdout_;
-  // Everything refused before anything runs: the settings, the plan, the holdout seeds.
-  const sim::TuneDefinition def = sim::DefineTune(request);
-  const std::vector<sim::ScenarioSource>& sources = def.sources;
-  const std::string file = sources.front().file();
-  const sim::TuneSettings& s = def.settings;
-  const std::vector<sim::TuneStage>& plan = def.plan;
-  const std::vector<std::uint64_t>& holdout = def.holdout;
-  const int jobs = CheckJobs(tune_jobs_, "--jobs");
-  const std::string out =
-      tune_out_.empty() ? "out/tune_" + fs::path(file).stem().string() : tune_out_;
-  const std::vector<sim::TuneEvaluation> recorded = TuneRecorded(out, sources, s, tune_resume_);
-  sim::PrepareOutputDir(out);
-  sim::WriteFileAtomic((fs::path(out) / "tune.manifest").string(), sim::TuneManifest(sources, s));
-  TuneHistoryFile history((fs::path(out) / "history.csv").string(), s, plan, recorded);
-  if (!tune_quiet_ && !recorded.empty())
-    std::printf("resuming: %zu evaluations recorded in %s are replayed\n", recorded.size(),
-                out.c_str());
-  InstallStopSignals();
-  sim::TaskPool pool(jobs);
-  const bool tty = !tune_quiet_ && isatty(STDERR_FILENO);
+// ", search seed N" when a stage of the plan draws random numbers, else "".
+std::string TuneSeedNote(const sim::TuneDefinition& def) {
   bool random = false;
-  for (const sim::TuneStage& st : plan) random = random || sim::IsRandomMethod(st.method);
-  const std::string seed_note =
-      random ? ", search seed " + std::to_string(s.search_seed) : std::string();
-  if (!tune_quiet_) {
-    std::string what = file;
-    if (sources.size() > 1)
-      what = std::to_string(sources.size()) + " scenarios (" + file + ", ...), " + s.over.Text() +
-             " over them";
-    else if (s.over.kind != sim::TuneOver::Kind::kMean)
-      what += ", " + s.over.Text() + " over the seeds";
-    std::printf("tune %s: %zu tunables, %zu constraint%s, %s%s, %zu seeds, %d jobs\n",
-                what.c_str(), s.params.size(), s.constraints.size(),
-                s.constraints.size() == 1 ? "" : "s", sim::PlanText(plan).c_str(),
-                seed_note.c_str(), s.seeds.size(), jobs);
-    std::fflush(stdout);
-  }
-  const double t0 = WallSeconds();
+  for (const sim::TuneStage& st : def.plan) random = random || sim::IsRandomMethod(st.method);
+  return random ? ", search seed " + std::to_string(def.settings.search_seed) : std::string();
+}
+
+// "tune FILE: N tunables, C constraints, PLAN, S seeds, J jobs" on stdout.
+void PrintTuneHeader(const sim::TuneDefinition& def, const std::string& seed_note, int jobs) {
+  const sim::TuneSettings& s = def.settings;
+  const std::string file = def.sources.front().file();
+  std::string what = file;
+  if (def.sources.size() > 1)
+    what = std::to_string(def.sources.size()) + " scenarios (" + file + ", ...), " + s.over.Text() +
+           " over them";
+  else if (s.over.kind != sim::TuneOver::Kind::kMean)
+    what += ", " + s.over.Text() + " over the seeds";
+  sim::Print(stdout, "tune %s: %zu tunables, %zu constraint%s, %s%s, %zu seeds, %d jobs\n",
+             what.c_str(), s.params.size(), s.constraints.size(),
+             s.constraints.size() == 1 ? "" : "s", sim::PlanText(def.plan).c_str(),
+             seed_note.c_str(), s.seeds.size(), jobs);
+  std::fflush(stdout);
+}
+
+// The search, each evaluation appended to history.csv as it comes (and shown on a terminal).
+// Refused at evaluation 1 (a metric the runs do not have), it leaves no tune to resume.
+sim::TuneResult SearchTune(const sim::TuneDefinition& def, sim::TaskPool& pool,
+                           TuneHistoryFile& history,
+                           const std::vector<sim::TuneEvaluation>& recorded, const std::string& out,
+                           bool tty) {
   sim::TuneResult r;
   try {
     r = sim::RunTune(
-        sources, s, pool,
+        def.sources, def.settings, pool,
         [&](const sim::TuneEvaluation& e, const sim::TuneEvaluation& best) {
           history.Add(e);
           if (tty)
-            std::fprintf(stderr, "\revaluation %zu/%d  objective %-12.6g best %-12.6g", e.index,
-                         s.budget, e.objective, best.objective);
+            sim::Print(stderr, "\revaluation %zu/%d  objective %-12.6g best %-12.6g", e.index,
+                       def.settings.budget, e.objective, best.objective);
         },
-        [] { return StopSignal() != 0; }, recorded);
+        [] { return sim::StopSignal() != 0; }, recorded);
   } catch (...) {
-    // Refused at evaluation 1 (a metric the runs do not have): no tune to resume is left.
     history.Close();
     if (recorded.empty() && history.added() == 0) {
       std::error_code ec;
@@ -633,117 +660,180 @@ int StudyCommands::Tune() {
     }
     throw;
   }
-  if (tty) std::fprintf(stderr, "\r%78s\r", "");
+  if (tty) ClearStatusLine();
+  return r;
+}
+
+// What the steps after the search share: the tune, its result, the flags they name, what was
+// written and the exit code so far.
+struct TuneOutcome {
+  const sim::TuneDefinition& def;
+  const sim::TuneResult& r;
+  const std::string& out;
+  const std::string& metric;      ///< --metric as given
+  const std::string& seeds_flag;  ///< --seeds as given ("": the scenario's seed)
+  const std::string& seed_note;   ///< TuneSeedNote
+  TitleMode titles;
+  bool quiet;
+  std::vector<std::string> wrote = {"history.csv"};
+  int rc = 0;
+};
+
+// best.yaml (the first scenario) and best_<name>.yaml (each other one, with the same values),
+// each headed by a comment saying what it is best at.
+void WriteTuneBestScenarios(TuneOutcome& o) {
+  const sim::TuneSettings& s = o.def.settings;
+  const std::vector<sim::ScenarioSource>& sources = o.def.sources;
+  const sim::TuneEvaluation& best = o.r.history[o.r.best];
+  std::string subject;
+  for (const sim::TuneConstraint& c : s.constraints)
+    subject += (subject.empty() ? " subject to " : ", ") + c.Text();
+  const std::string over = s.over.kind == sim::TuneOver::Kind::kMean ? "mean" : s.over.Text();
+  for (std::size_t i = 0; i < sources.size(); ++i) {
+    const std::string name =
+        i == 0 ? "best.yaml" : "best_" + fs::path(sources[i].file()).stem().string() + ".yaml";
+    const std::string path = (fs::path(o.out) / name).string();
+    std::string note;
+    std::string text =
+        sim::TunedScenarioText(sources[i], sim::TuneOverrides(s, best.values), path, &note);
+    text = "# formsim tune: " + o.metric + " = " + sim::FormatDouble(best.objective) + " (" + over +
+           " over seeds " + (o.seeds_flag.empty() ? std::to_string(s.seeds[0]) : o.seeds_flag) +
+           (sources.size() > 1 ? " of " + std::to_string(sources.size()) + " scenarios" : "") +
+           ")" + subject + ", evaluation " + std::to_string(best.index) + " of " +
+           std::to_string(o.r.history.size()) + ", " + s.algorithm + o.seed_note + "\n" + text;
+    sim::WriteFileAtomic(path, text);
+    o.wrote.push_back(name);
+    if (!note.empty() && !o.quiet) std::fputs(("note: " + note + "\n").c_str(), stdout);
+  }
+}
+
+// No best point: says how close the closest came (exit 3) or that nothing succeeded (exit 2).
+void ReportNoTuneBest(TuneOutcome& o) {
+  const sim::TuneSettings& s = o.def.settings;
+  if (o.r.history.empty() || o.r.history[o.r.best].failed()) {
+    PrintCliError("no evaluation succeeded; no best.yaml (see history.csv)");
+    o.rc = 2;
+    return;
+  }
+  // Runs succeeded, but none met every constraint.
+  const sim::TuneEvaluation& e = o.r.history[o.r.best];
+  std::string broken;
+  for (std::size_t k = 0; k < s.constraints.size(); ++k)
+    if (s.constraints[k].Violation(e.constraint_means[k]) > 0)
+      broken += (broken.empty() ? "" : ", ") + s.constraints[k].path + " = " +
+                sim::FormatSignificant(e.constraint_means[k], 4) + " (wanted " +
+                (s.constraints[k].at_most ? "<= " : ">= ") +
+                sim::FormatDouble(s.constraints[k].bound) + ")";
+  PrintCliError("no evaluation meets every --constraint; no best.yaml. Closest: evaluation " +
+                std::to_string(e.index) + " with " + broken + " (see history.csv)");
+  o.rc = 3;
+}
+
+// A figure (titled as --titles asks); a failed one is reported and the others still written.
+void WriteTuneFigure(TuneOutcome& o, PlotData data, const std::string& name) {
+  try {
+    data.title = TitleFor(data.title, o.titles);
+    WriteFigurePng(data, (fs::path(o.out) / name).string());
+    o.wrote.push_back(name);
+  } catch (const std::exception& e) {
+    PrintCliError(name + " could not be written: " + e.what());
+    o.rc = o.rc ? o.rc : 4;
+  }
+}
+
+// One row of the start-and-best table.
+void PrintTuneRow(const std::string& label, double start, double best) {
+  sim::Print(stdout, "%-40s %14.6g %14.6g\n", label.c_str(), start, best);
+}
+
+// The start and the best (or closest) point side by side: tunables, objective, constraints.
+void PrintTuneTable(const sim::TuneSettings& s, const sim::TuneResult& r, double wall) {
+  const sim::TuneEvaluation& first = r.history.front();
+  const sim::TuneEvaluation& best = r.history[r.best];
+  sim::Print(stdout, "%zu evaluations in %.1f s (%s)\n", r.history.size(), wall,
+             r.stop_reason.c_str());
+  sim::Print(stdout, "%-40s %14s %14s\n", "", "start", r.has_best() ? "best" : "closest");
+  for (std::size_t i = 0; i < s.params.size(); ++i) {
+    const sim::TuneParam& p = s.params[i];
+    auto value = [&p](double v) { return p.discrete() ? p.Text(v) : sim::FormatSignificant(v, 6); };
+    sim::Print(stdout, "%-40s %14s %14s\n", p.key.c_str(), value(first.values[i]).c_str(),
+               value(best.values[i]).c_str());
+  }
+  PrintTuneRow("objective", first.objective, best.objective);
+  for (std::size_t k = 0; k < s.constraints.size(); ++k)
+    PrintTuneRow(s.constraints[k].Text(), first.constraint_means[k], best.constraint_means[k]);
+}
+
+// Held out: the start and the best point on seeds the search never ran (validation.csv, its
+// figure and its summary).
+void ValidateTuneOnHoldout(TuneOutcome& o, sim::TaskPool& pool) {
+  const sim::TuneSettings& s = o.def.settings;
+  const auto v =
+      sim::ValidateTune(o.def.sources, s, o.r.history.front().values, o.r.history[o.r.best].values,
+                        o.def.holdout, pool, [] { return sim::StopSignal() != 0; });
+  if (!v) return;
+  sim::WriteFileAtomic((fs::path(o.out) / "validation.csv").string(), sim::TuneValidationCsv(*v));
+  o.wrote.push_back("validation.csv");
+  WriteTuneFigure(o, TuneValidationFigure(*v, s, o.r, o.metric), "validation.png");
+  if (!o.quiet) std::fputs(sim::TuneValidationText(*v).c_str(), stdout);
+}
+
+}  // namespace
+
+int StudyCommands::Tune() {
+  const TitleMode titles = ParseTitleMode(tune_titles_, "--titles");  // before anything runs
+  // Everything refused before anything runs: the settings, the plan, the holdout seeds.
+  const sim::TuneDefinition def = sim::DefineTune(sim::MakeTuneRequest(
+      tune_scenario_, tune_scenarios_, tune_sets_, over_, params_, tune_metric_, constraints_,
+      tune_->count("--seeds") > 0 ? std::optional<std::string>(tune_seeds_) : std::nullopt, budget_,
+      algorithm_, ParseSeedFlag(search_seed_, "--search-seed"),
+      tune_->count("--holdout") > 0 ? std::optional<std::string>(holdout_) : std::nullopt));
+  const sim::TuneSettings& s = def.settings;
+  const int jobs = CheckJobs(tune_jobs_, "--jobs");
+  const std::string out = tune_out_.empty()
+                              ? "out/tune_" + fs::path(def.sources.front().file()).stem().string()
+                              : tune_out_;
+  const std::vector<sim::TuneEvaluation> recorded = TuneRecorded(out, def.sources, s, tune_resume_);
+  sim::PrepareOutputDir(out);
+  sim::WriteFileAtomic((fs::path(out) / "tune.manifest").string(),
+                       sim::TuneManifest(def.sources, s));
+  TuneHistoryFile history((fs::path(out) / "history.csv").string(), s, def.plan, recorded);
+  if (!tune_quiet_ && !recorded.empty())
+    sim::Print(stdout, "resuming: %zu evaluations recorded in %s are replayed\n", recorded.size(),
+               out.c_str());
+  sim::InstallStopSignals();
+  sim::TaskPool pool(jobs);
+  const std::string seed_note = TuneSeedNote(def);
+  if (!tune_quiet_) PrintTuneHeader(def, seed_note, jobs);
+  const double t0 = WallSeconds();
+  const sim::TuneResult r =
+      SearchTune(def, pool, history, recorded, out, !tune_quiet_ && isatty(STDERR_FILENO));
   const double wall = WallSeconds() - t0;
 
   // history.csv first, whole and synced (the rows were appended as they came): whatever happens
   // next, every evaluation is on disk.
   history.Close();
   sim::WriteFileAtomic((fs::path(out) / "history.csv").string(), sim::TuneHistoryCsv(s, r));
-  std::vector<std::string> wrote = {"history.csv"};
-  int rc = 0;
-  if (r.has_best()) {
-    const sim::TuneEvaluation& best = r.history[r.best];
-    std::string subject;
-    for (const sim::TuneConstraint& c : s.constraints)
-      subject += (subject.empty() ? " subject to " : ", ") + c.Text();
-    const std::string over =
-        s.over.kind == sim::TuneOver::Kind::kMean ? "mean" : s.over.Text();
-    // best.yaml: the first scenario; best_<name>.yaml: each other one, with the same values.
-    for (std::size_t i = 0; i < sources.size(); ++i) {
-      const std::string name =
-          i == 0 ? "best.yaml"
-                 : "best_" + fs::path(sources[i].file()).stem().string() + ".yaml";
-      const std::string path = (fs::path(out) / name).string();
-      std::string note;
-      std::string text =
-          sim::TunedScenarioText(sources[i], sim::TuneOverrides(s, best.values), path, &note);
-      text = "# formsim tune: " + tune_metric_ + " = " + sim::FormatDouble(best.objective) + " (" +
-             over + " over seeds " +
-             (tune_seeds_.empty() ? std::to_string(s.seeds[0]) : tune_seeds_) +
-             (sources.size() > 1 ? " of " + std::to_string(sources.size()) + " scenarios" : "") +
-             ")" + subject + ", evaluation " + std::to_string(best.index) + " of " +
-             std::to_string(r.history.size()) + ", " + s.algorithm + seed_note + "\n" + text;
-      sim::WriteFileAtomic(path, text);
-      wrote.push_back(name);
-      if (!note.empty() && !tune_quiet_) std::printf("note: %s\n", note.c_str());
-    }
-  } else if (!r.history.empty() && !r.history[r.best].failed()) {
-    // Runs succeeded, but none met every constraint: say how close the closest came.
-    const sim::TuneEvaluation& e = r.history[r.best];
-    std::string broken;
-    for (std::size_t k = 0; k < s.constraints.size(); ++k)
-      if (s.constraints[k].Violation(e.constraint_means[k]) > 0)
-        broken += (broken.empty() ? "" : ", ") + s.constraints[k].path + " = " +
-                  sim::FormatSignificant(e.constraint_means[k], 4) + " (wanted " +
-                  (s.constraints[k].at_most ? "<= " : ">= ") +
-                  sim::FormatDouble(s.constraints[k].bound) + ")";
-    std::fprintf(stderr,
-                 "formsim: error: no evaluation meets every --constraint; no best.yaml. Closest: "
-                 "evaluation %zu with %s (see history.csv)\n",
-                 e.index, broken.c_str());
-    rc = 3;
-  } else {
-    std::fprintf(stderr,
-                 "formsim: error: no evaluation succeeded; no best.yaml (see history.csv)\n");
-    rc = 2;
-  }
-  // The figures (titles as --titles asks); a failed one is reported and the others still
-  // written.
-  auto figure = [&](PlotData data, const std::string& name) {
-    try {
-      data.title = TitleFor(data.title, titles);
-      WriteFigurePng(data, (fs::path(out) / name).string());
-      wrote.push_back(name);
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "formsim: error: %s could not be written: %s\n", name.c_str(),
-                   e.what());
-      rc = rc ? rc : 4;
-    }
-  };
-  figure(TuneConvergenceFigure(s, r, tune_metric_), "convergence.png");
-  if (s.params.size() == 2) figure(TuneLandscapeFigure(s, r, tune_metric_), "landscape.png");
-  if (!tune_quiet_ && !r.history.empty()) {
-    const sim::TuneEvaluation& first = r.history.front();
-    const sim::TuneEvaluation& best = r.history[r.best];
-    std::printf("%zu evaluations in %.1f s (%s)\n", r.history.size(), wall, r.stop_reason.c_str());
-    std::printf("%-40s %14s %14s\n", "", "start", r.has_best() ? "best" : "closest");
-    for (std::size_t i = 0; i < s.params.size(); ++i) {
-      const sim::TuneParam& p = s.params[i];
-      std::printf("%-40s %14s %14s\n", p.key.c_str(),
-                  (p.discrete() ? p.Text(first.values[i])
-                                : sim::FormatSignificant(first.values[i], 6)).c_str(),
-                  (p.discrete() ? p.Text(best.values[i])
-                                : sim::FormatSignificant(best.values[i], 6)).c_str());
-    }
-    std::printf("%-40s %14.6g %14.6g\n", "objective", first.objective, best.objective);
-    for (std::size_t k = 0; k < s.constraints.size(); ++k)
-      std::printf("%-40s %14.6g %14.6g\n", s.constraints[k].Text().c_str(),
-                  first.constraint_means[k], best.constraint_means[k]);
-  }
-  // Held out: the start and the best point on seeds the search never ran.
-  if (!holdout.empty() && r.has_best() && StopSignal() == 0) {
-    const auto v = sim::ValidateTune(sources, s, r.history.front().values,
-                                     r.history[r.best].values, holdout, pool,
-                                     [] { return StopSignal() != 0; });
-    if (v) {
-      sim::WriteFileAtomic((fs::path(out) / "validation.csv").string(),
-                           sim::TuneValidationCsv(*v));
-      wrote.push_back("validation.csv");
-      figure(TuneValidationFigure(*v, s, r, tune_metric_), "validation.png");
-      if (!tune_quiet_) std::printf("%s", sim::TuneValidationText(*v).c_str());
-    }
-  }
-  if (!tune_quiet_ && !r.history.empty())
-    std::printf("wrote %s in %s\n", Join(wrote, ", ").c_str(), out.c_str());
-  if (StopSignal() != 0) {
-    std::fprintf(
+  TuneOutcome o{def, r, out, tune_metric_, tune_seeds_, seed_note, titles, tune_quiet_};
+  if (r.has_best())
+    WriteTuneBestScenarios(o);
+  else
+    ReportNoTuneBest(o);
+  WriteTuneFigure(o, TuneConvergenceFigure(s, r, tune_metric_), "convergence.png");
+  if (s.params.size() == 2)
+    WriteTuneFigure(o, TuneLandscapeFigure(s, r, tune_metric_), "landscape.png");
+  if (!tune_quiet_ && !r.history.empty()) PrintTuneTable(s, r, wall);
+  if (!def.holdout.empty() && r.has_best() && sim::StopSignal() == 0)
+    ValidateTuneOnHoldout(o, pool);
+  if (!tune_quiet_ && !r.history.empty()) PrintStudyWrote(o.wrote, out);
+  if (sim::StopSignal() != 0) {
+    sim::Print(
         stderr,
         "formsim: tune interrupted by %s after %zu evaluations; the best so far was written\n",
-        StopSignalName(StopSignal()).c_str(), r.history.size());
-    return 128 + StopSignal();
+        sim::StopSignalName(sim::StopSignal()).c_str(), r.history.size());
+    return 128 + sim::StopSignal();
   }
-  return rc;
+  return o.rc;
 }
 
 }  // namespace formsim::app

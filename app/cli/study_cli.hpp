@@ -5,6 +5,7 @@
 /// (derivative-free optimisation of tunables for a metric averaged over seeds).
 
 #include <CLI/CLI.hpp>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -23,7 +24,18 @@ class StudyCommands {
   int Run();
 
  private:
+  /// `sweep` and `sweep collect` with their flags.
+  void AddSweepCommands(CLI::App& app);
+  /// `tune` with its flags.
+  void AddTuneCommand(CLI::App& app);
+
+  struct SweepPlan;  // the sweep the flags plan (study_cli.cpp)
   int Sweep();
+  SweepPlan PlanSweep() const;
+  int SweepOneRun(const SweepPlan& plan);
+  int PrintSweepJobs(const SweepPlan& plan);
+  void PrintSweepHeader(const SweepPlan& plan, std::size_t pending) const;
+  int RunPlannedSweep(const SweepPlan& plan);
   int Collect();
   int Tune();
 

@@ -2,9 +2,12 @@
 /// \file Headless export for `formsim run`: PNG frames, an MP4 video and a looping GIF while the
 /// run goes on, then a final snapshot (PNG, SVG or PDF) and every figure in the chosen formats,
 /// rendered offscreen (OSMesa) or recorded as vectors, with the GUI's drawing code and theme.
-/// No display needed.
+/// No display needed. The whole interface (--ui) is drawn through UiFrames, which the GUI
+/// implements (app/gui/ui_offscreen.hpp): export knows the renderer, never the window.
 
+#include <cstdint>
 #include <functional>
+#include <memory>
 #include <set>
 #include <string>
 #include <vector>
@@ -17,6 +20,8 @@
 #include "sim/session/session.hpp"
 
 namespace formsim::app {
+
+class OffscreenRenderer;
 
 struct ExportOptions {
   std::string frames_dir;              ///< frame_00000.png ... at `fps`
@@ -69,6 +74,25 @@ struct ExportProgress {
   std::string status;  ///< after the run: "writing v.gif", "figure 3/7" ("" while running)
 };
 
+/// The whole interface around the world view in --ui frames and snapshot, as RunWithExport
+/// needs it: drawn at the session's current step, its camera tracked and refitted.
+class UiFrames {
+ public:
+  virtual ~UiFrames() = default;
+  /// Draws the interface as it stands into `renderer` (its size and scale) and returns the pixels.
+  virtual const std::vector<std::uint8_t>& Render(OffscreenRenderer& renderer) = 0;
+  /// With "whole run" on, adds the experiment's current bounds to the camera's union (a final
+  /// snapshot without frames).
+  virtual void TrackBounds() = 0;
+  /// Fits the camera to the scene at once on the next render.
+  virtual void FitNow() = 0;
+};
+
+/// Makes the interface of `session` set up from `opt` (theme, overlays, legend, whole run).
+/// Called once the renderer's ImGui context exists.
+using UiFramesMaker =
+    std::function<std::unique_ptr<UiFrames>(sim::Session& session, const ExportOptions& opt)>;
+
 /// Parses "1280x720" for `flag`. Throws std::runtime_error naming the flag on malformed or
 /// out-of-range sizes.
 void ParseSize(const std::string& text, int* width, int* height,
@@ -92,10 +116,12 @@ void GifFrameSize(const ExportOptions& opt, int* width, int* height);
 /// reported in ExportStats::error. `progress` is called now and then. `advance`, when given,
 /// makes one step of the run (applying first whatever is due at that step, as a replay does)
 /// and returns false once the run is over; by default the session steps until its experiment
-/// has finished.
+/// has finished. With `opt.ui`, `make_ui` gives the interface drawn into frames and snapshot
+/// (std::invalid_argument without it).
 ExportStats RunWithExport(sim::Session& session, const ExportOptions& opt,
                           const std::function<void(const ExportProgress&)>& progress = {},
                           const std::function<void()>& results_ready = {},
-                          const std::function<bool()>& advance = {});
+                          const std::function<bool()>& advance = {},
+                          const UiFramesMaker& make_ui = {});
 
 }  // namespace formsim::app

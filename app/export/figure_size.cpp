@@ -1,10 +1,10 @@
 #include "app/export/figure_size.hpp"
-#include "sim/core/number_format.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
+
+#include "sim/core/number_format.hpp"
 
 namespace formsim::app {
 namespace {
@@ -77,15 +77,13 @@ FigureSize ParseFigureSize(const std::string& text, const std::string& flag) {
   for (const FigureLength* l : {&size.width, &size.height}) {
     const double px = l->Pixels();
     if (px < kMinLogical - 0.5 || px > kMaxLogical + 0.5) {
-      char buf[200];
       const std::string side =
-          l->unit == "px" ? l->Text() : l->Text() + " (" + sim::FormatSignificant(std::round(px)) + " px)";
-      std::snprintf(buf, sizeof(buf),
-                    "': %s is out of range; each side must be %d ... %d px "
-                    "(%.2f ... %.1f cm)",
-                    side.c_str(), kMinLogical, kMaxLogical, kMinLogical / 96.0 * 2.54,
-                    kMaxLogical / 96.0 * 2.54);
-      throw std::runtime_error(flag + " '" + text + buf);
+          l->unit == "px" ? l->Text()
+                          : l->Text() + " (" + sim::FormatSignificant(std::round(px)) + " px)";
+      const std::string range = sim::Sprintf(
+          "': %s is out of range; each side must be %d ... %d px (%.2f ... %.1f cm)", side.c_str(),
+          kMinLogical, kMaxLogical, kMinLogical / 96.0 * 2.54, kMaxLogical / 96.0 * 2.54);
+      throw std::runtime_error(flag + " '" + text + range);
     }
   }
   return size;
@@ -102,8 +100,8 @@ double ParseDpi(double dpi) {
 void CheckDeviceSize(double width, double height, double dpi, const std::string& what) {
   const long w = std::lround(width * dpi / 96.0), h = std::lround(height * dpi / 96.0);
   if (w > kMaxDevice || h > kMaxDevice)
-    throw std::runtime_error(what + " at --dpi " + sim::FormatSignificant(dpi) + " gives a " + std::to_string(w) +
-                             "x" + std::to_string(h) + " PNG; the limit is " +
+    throw std::runtime_error(what + " at --dpi " + sim::FormatSignificant(dpi) + " gives a " +
+                             std::to_string(w) + "x" + std::to_string(h) + " PNG; the limit is " +
                              std::to_string(kMaxDevice) + " pixels a side (lower --dpi)");
 }
 

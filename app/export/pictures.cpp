@@ -9,7 +9,7 @@
 #include "app/export/pdf_writer.hpp"
 #include "app/export/png_writer.hpp"
 #include "app/export/svg_writer.hpp"
-#include "app/gui/offscreen_renderer.hpp"
+#include "app/render/offscreen_renderer.hpp"
 #include "app/render/theme.hpp"
 #include "app/render/view.hpp"
 #include "app/render/world_view.hpp"

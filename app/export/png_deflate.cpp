@@ -258,6 +258,131 @@ struct BitWriter {
   }
 };
 
+// One item of the code lengths' run-length code: a length 0-15, or 16 (repeat the last 3-6
+// times), 17 (3-10 zeros) or 18 (11-138 zeros) with its extra bits.
+struct ClItem {
+  std::uint8_t sym, extra;
+};
+
+// Order in which the code-length code's lengths are sent, and its symbols' extra bits.
+constexpr std::uint8_t kClOrder[19] = {16, 17, 18, 0, 8,  7, 9,  6, 10, 5,
+                                       11, 4,  12, 3, 13, 2, 14, 1, 15};
+constexpr std::uint8_t kClExtra[19] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 3, 7};
+
+// The Huffman codes of RunDeflater's one block: literal/length and distance codes, and the
+// code-length code that sends their lengths in the block's header (RFC 1951 3.2.7).
+class BlockCodes {
+ public:
+  BlockCodes(const std::uint32_t* freq, std::size_t distance) {
+    ChooseLengths(freq, distance);
+    CodeTheLengths();
+    BuildCodes(len_, hlit_, code_);
+  }
+  // The exact size of the block in bits: the header's from the items, the body's from `freq`.
+  std::uint64_t BlockBits(const std::uint32_t* freq) const;
+  // Block header: final block, dynamic codes, the counts and the code lengths.
+  void WriteHeader(BitWriter& bw) const;
+  // Literal byte (or 256, end of block) `sym`.
+  void AddLiteral(BitWriter& bw, int sym) const { bw.Add(code_[sym], len_[sym]); }
+
+ private:
+  friend struct MatchCodes;
+  void ChooseLengths(const std::uint32_t* freq, std::size_t distance);
+  void CodeTheLengths();
+
+  std::uint8_t len_[286 + 4] = {};  // literal/length code lengths, then the distance code's
+  std::uint16_t code_[286] = {};
+  int hlit_ = 286, hdist_ = 0, hclen_ = 19;
+  std::uint32_t dist_bits_ = 0;  // the distance code sent (1 bit)
+  std::vector<ClItem> items_;
+  std::uint8_t cl_len_[19] = {};
+  std::uint16_t cl_code_[19] = {};
+};
+
+// The literal/length code, then the distance code: distances 1 to 4 are codes 0 to 3 without
+// extra bits; ours and code 0 (or 1) get one bit each, a complete code (decoders need not
+// accept the one-code, one-bit case of RFC 1951 3.2.7), the one sent being ours.
+void BlockCodes::ChooseLengths(const std::uint32_t* freq, std::size_t distance) {
+  BuildLengths(freq, 286, 15, len_);
+  while (hlit_ > 257 && len_[hlit_ - 1] == 0) --hlit_;
+  const int dist_code = static_cast<int>(distance) - 1, other = dist_code == 0 ? 1 : 0;
+  hdist_ = std::max(dist_code, other) + 1;
+  std::fill(len_ + hlit_, len_ + hlit_ + hdist_, 0);
+  len_[hlit_ + dist_code] = len_[hlit_ + other] = 1;
+  dist_bits_ = dist_code > other ? 1 : 0;  // the longer code is 1
+}
+
+// The code lengths, run-length coded with symbols 16, 17 and 18, and the code that sends them.
+void BlockCodes::CodeTheLengths() {
+  const int n_lengths = hlit_ + hdist_;
+  for (int i = 0; i < n_lengths;) {
+    const std::uint8_t v = len_[i];
+    int run = 1;
+    while (i + run < n_lengths && len_[i + run] == v) ++run;
+    i += run;
+    if (v == 0) {
+      for (; run >= 11; run -= std::min(run, 138))
+        items_.push_back({18, static_cast<std::uint8_t>(std::min(run, 138) - 11)});
+      if (run >= 3) {
+        items_.push_back({17, static_cast<std::uint8_t>(run - 3)});
+        run = 0;
+      }
+    } else {
+      items_.push_back({v, 0});
+      --run;
+      for (; run >= 3; run -= std::min(run, 6))
+        items_.push_back({16, static_cast<std::uint8_t>(std::min(run, 6) - 3)});
+    }
+    for (; run > 0; --run) items_.push_back({v, 0});
+  }
+  std::uint32_t cl_freq[19] = {};
+  for (const ClItem& it : items_) ++cl_freq[it.sym];
+  BuildLengths(cl_freq, 19, 7, cl_len_);
+  BuildCodes(cl_len_, 19, cl_code_);
+  while (hclen_ > 4 && cl_len_[kClOrder[hclen_ - 1]] == 0) --hclen_;
+}
+
+std::uint64_t BlockCodes::BlockBits(const std::uint32_t* freq) const {
+  std::uint64_t bits = 3 + 14 + 3 * static_cast<std::uint64_t>(hclen_);
+  for (const ClItem& it : items_) bits += cl_len_[it.sym] + kClExtra[it.sym];
+  for (int s = 0; s < 257; ++s) bits += static_cast<std::uint64_t>(freq[s]) * len_[s];
+  for (int c = 0; c < 29 && 257 + c < hlit_; ++c)
+    bits += static_cast<std::uint64_t>(freq[257 + c]) * (len_[257 + c] + kLenExtra[c] + 1);
+  return bits;
+}
+
+void BlockCodes::WriteHeader(BitWriter& bw) const {
+  bw.Add(1 | (2 << 1), 3);  // final block, dynamic Huffman codes
+  bw.Add(static_cast<std::uint64_t>(hlit_ - 257) | ((hdist_ - 1u) << 5) | ((hclen_ - 4u) << 10),
+         14);
+  bw.Flush();
+  for (int k = 0; k < hclen_; ++k) {
+    bw.Add(cl_len_[kClOrder[k]], 3);
+    bw.Flush();
+  }
+  for (const ClItem& it : items_) {
+    bw.Add(cl_code_[it.sym], cl_len_[it.sym]);
+    bw.Add(it.extra, kClExtra[it.sym]);
+    bw.Flush();
+  }
+}
+
+// A match of each length 3-258: its code, extra bits and the distance code in one word.
+struct MatchCodes {
+  std::uint32_t bits[259] = {};
+  std::uint8_t n[259] = {};
+  explicit MatchCodes(const BlockCodes& c) {
+    for (std::size_t l = 3; l <= 258; ++l) {
+      const int code = LenCode(l);
+      const int s = 257 + code;
+      if (c.len_[s] == 0) continue;  // never sent
+      bits[l] = c.code_[s] | static_cast<std::uint32_t>(l - kLenBase[code]) << c.len_[s] |
+                c.dist_bits_ << (c.len_[s] + kLenExtra[code]);
+      n[l] = static_cast<std::uint8_t>(c.len_[s] + kLenExtra[code] + 1);
+    }
+  }
+};
+
 }  // namespace pngz
 }  // namespace
 
@@ -365,120 +490,37 @@ void RunDeflater::Finish(std::vector<std::uint8_t>& out) {
     tokens_[n_tokens_++] = {pending_lits_, 0};
     pending_lits_ = 0;
   }
-  // The literal/length code, then the distance code: distances 1 to 4 are codes 0 to 3 without
-  // extra bits; ours and code 0 (or 1) get one bit each, a complete code (decoders need not
-  // accept the one-code, one-bit case of RFC 1951 3.2.7), the one sent being ours.
-  std::uint8_t len[286 + 4] = {};
-  pngz::BuildLengths(freq_, 286, 15, len);
-  int hlit = 286;
-  while (hlit > 257 && len[hlit - 1] == 0) --hlit;
-  const int dist_code = static_cast<int>(distance_) - 1, other = dist_code == 0 ? 1 : 0;
-  const int hdist = std::max(dist_code, other) + 1;
-  std::fill(len + hlit, len + hlit + hdist, 0);
-  len[hlit + dist_code] = len[hlit + other] = 1;
-  const std::uint32_t dist_bits = dist_code > other ? 1 : 0;  // the longer code is 1
-  const int n_lengths = hlit + hdist;
-
-  // The code lengths, run-length coded with symbols 16 (repeat the last 3-6 times), 17 (3-10
-  // zeros) and 18 (11-138 zeros).
-  struct ClItem {
-    std::uint8_t sym, extra;
-  };
-  std::vector<ClItem> items;
-  std::uint32_t cl_freq[19] = {};
-  for (int i = 0; i < n_lengths;) {
-    const std::uint8_t v = len[i];
-    int run = 1;
-    while (i + run < n_lengths && len[i + run] == v) ++run;
-    i += run;
-    if (v == 0) {
-      for (; run >= 11; run -= std::min(run, 138))
-        items.push_back({18, static_cast<std::uint8_t>(std::min(run, 138) - 11)});
-      if (run >= 3) {
-        items.push_back({17, static_cast<std::uint8_t>(run - 3)});
-        run = 0;
-      }
-    } else {
-      items.push_back({v, 0});
-      --run;
-      for (; run >= 3; run -= std::min(run, 6))
-        items.push_back({16, static_cast<std::uint8_t>(std::min(run, 6) - 3)});
-    }
-    for (; run > 0; --run) items.push_back({v, 0});
-  }
-  for (const ClItem& it : items) ++cl_freq[it.sym];
-  std::uint8_t cl_len[19];
-  std::uint16_t cl_code[19] = {};
-  pngz::BuildLengths(cl_freq, 19, 7, cl_len);
-  pngz::BuildCodes(cl_len, 19, cl_code);
-  static constexpr std::uint8_t kClOrder[19] = {16, 17, 18, 0, 8,  7, 9,  6, 10, 5,
-                                                11, 4,  12, 3, 13, 2, 14, 1, 15};
-  static constexpr std::uint8_t kClExtra[19] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
-                                                0, 0, 0, 0, 0, 0, 2, 3, 7};
-  int hclen = 19;
-  while (hclen > 4 && cl_len[kClOrder[hclen - 1]] == 0) --hclen;
-
-  std::uint16_t code[286] = {};
-  pngz::BuildCodes(len, hlit, code);
-
-  // The exact size of the block's body from the counts; the header's from the items.
-  std::uint64_t bits = 3 + 14 + 3 * static_cast<std::uint64_t>(hclen);
-  for (const ClItem& it : items) bits += cl_len[it.sym] + kClExtra[it.sym];
-  for (int s = 0; s < 257; ++s) bits += static_cast<std::uint64_t>(freq_[s]) * len[s];
-  for (int c = 0; c < 29 && 257 + c < hlit; ++c)
-    bits += static_cast<std::uint64_t>(freq_[257 + c]) * (len[257 + c] + pngz::kLenExtra[c] + 1);
+  const pngz::BlockCodes codes(freq_, distance_);
   const std::size_t start = out.size();
-  const std::size_t bound = 2 + (bits + 7) / 8 + 4;
+  const std::size_t bound = 2 + (codes.BlockBits(freq_) + 7) / 8 + 4;
   out.resize(start + bound + 8);  // + 8: BitWriter stores whole 64-bit words
 
   std::uint8_t* p = out.data() + start;
   *p++ = 0x78;  // deflate, 32 kB window
   *p++ = 0x01;  // no dictionary, "fastest" (0x7801 is a multiple of 31)
   BitWriter bw{p};
-  bw.Add(1 | (2 << 1), 3);  // final block, dynamic Huffman codes
-  bw.Add(static_cast<std::uint64_t>(hlit - 257) | ((hdist - 1u) << 5) | ((hclen - 4u) << 10), 14);
-  bw.Flush();
-  for (int k = 0; k < hclen; ++k) {
-    bw.Add(cl_len[kClOrder[k]], 3);
-    bw.Flush();
-  }
-  for (const ClItem& it : items) {
-    bw.Add(cl_code[it.sym], cl_len[it.sym]);
-    bw.Add(it.extra, kClExtra[it.sym]);
-    bw.Flush();
-  }
-
-  // A match of each length: its code, extra bits and the distance code in one word.
-  std::uint32_t match_bits[259] = {};
-  std::uint8_t match_n[259] = {};
-  for (std::size_t l = 3; l <= 258; ++l) {
-    const int c = pngz::LenCode(l);
-    const int s = 257 + c;
-    if (len[s] == 0) continue;  // never sent
-    match_bits[l] = code[s] | static_cast<std::uint32_t>(l - pngz::kLenBase[c]) << len[s] |
-                    dist_bits << (len[s] + pngz::kLenExtra[c]);
-    match_n[l] = static_cast<std::uint8_t>(len[s] + pngz::kLenExtra[c] + 1);
-  }
+  codes.WriteHeader(bw);
+  const pngz::MatchCodes matches(codes);
   const std::uint8_t* lit = lits_.data();
   for (std::size_t t = 0; t < n_tokens_; ++t) {
     std::uint32_t k = tokens_[t].lits;
     for (; k >= 3; k -= 3, lit += 3) {  // 3 x 15 bits fit between Flushes
-      bw.Add(code[lit[0]], len[lit[0]]);
-      bw.Add(code[lit[1]], len[lit[1]]);
-      bw.Add(code[lit[2]], len[lit[2]]);
+      codes.AddLiteral(bw, lit[0]);
+      codes.AddLiteral(bw, lit[1]);
+      codes.AddLiteral(bw, lit[2]);
       bw.Flush();
     }
     for (; k > 0; --k, ++lit) {
-      bw.Add(code[*lit], len[*lit]);
+      codes.AddLiteral(bw, *lit);
       bw.Flush();
     }
     if (tokens_[t].run > 0)
       pngz::SplitRun(tokens_[t].run, [&](std::size_t l) {
-        bw.Add(match_bits[l], match_n[l]);
+        bw.Add(matches.bits[l], matches.n[l]);
         bw.Flush();
       });
   }
-  bw.Add(code[256], len[256]);
+  codes.AddLiteral(bw, 256);  // end of block
   p = bw.Finish();
   for (int k = 3; k >= 0; --k) *p++ = static_cast<std::uint8_t>(adler_ >> (8 * k));
   const std::size_t written = static_cast<std::size_t>(p - (out.data() + start));

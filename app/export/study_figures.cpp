@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "app/export/png_writer.hpp"
-#include "app/gui/offscreen_renderer.hpp"
+#include "app/render/offscreen_renderer.hpp"
 #include "control/common/float_limits.hpp"
 #include "sim/core/number_format.hpp"
 

@@ -1,7 +1,6 @@
 #include "app/export/svg_writer.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <map>
 
 #include "app/render/label_markup.hpp"
@@ -21,9 +20,7 @@ std::string SvgHex(sim::Color c) {
   auto byte = [](float v) {
     return static_cast<int>(std::lround(std::fmin(1.f, std::fmax(0.f, v)) * 255));
   };
-  char buf[8];
-  std::snprintf(buf, sizeof(buf), "#%02x%02x%02x", byte(c.r), byte(c.g), byte(c.b));
-  return buf;
+  return sim::Sprintf("#%02x%02x%02x", byte(c.r), byte(c.g), byte(c.b));
 }
 
 std::string Escape(const std::string& s) {
@@ -108,8 +105,8 @@ std::string XmlId(const std::string& raw) {
                     c == '-' || c == '_' || c == '.';
     out += ok ? c : '_';
   }
-  if (out.empty() || !((out[0] >= 'a' && out[0] <= 'z') || (out[0] >= 'A' && out[0] <= 'Z') ||
-                       out[0] == '_'))
+  if (out.empty() ||
+      !((out[0] >= 'a' && out[0] <= 'z') || (out[0] >= 'A' && out[0] <= 'Z') || out[0] == '_'))
     out.insert(out.begin(), '_');
   return out;
 }

@@ -4,21 +4,20 @@
 /// edits, and goes when unpinned or when another scenario is loaded.
 #include "app/gui/compare_panel.hpp"
 
-#include "app/gui/fitted_field.hpp"
-
 #include <imgui.h>
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
 
 #include "app/gui/command_row_makers.hpp"
+#include "app/gui/fitted_field.hpp"
 #include "app/gui/flow_layout.hpp"
 #include "app/gui/history_panel.hpp"
 #include "app/gui/ui.hpp"
 #include "app/render/theme.hpp"
 #include "app/render/world_view.hpp"
 #include "sim/core/background.hpp"
+#include "sim/core/number_format.hpp"
 #include "sim/core/run_output.hpp"
 #include "sim/core/wall_clock.hpp"
 #include "sim/session/session.hpp"
@@ -93,8 +92,7 @@ std::string ComparePanel::CmdPin() {
     ctx_.SetStatus("pin: the run has not started (nothing to keep yet)", true);
     return ctx_.state->status;
   }
-  char origin[64];
-  std::snprintf(origin, sizeof origin, "the run at t = %.2f s", exp.time());
+  const std::string origin = "the run at " + sim::FormatSimTime(exp.time());
   return PinReplay(std::make_shared<sim::ScenarioSource>(ctx_.session().source()), ctx_.session().run_log(),
                    exp.steps(), origin);
 }
@@ -145,7 +143,7 @@ std::string ComparePanel::PinLabel(const PinnedRun& pin) const {
 
 // The History tab's first part: the pinned runs, each with what differs and its unpin button.
 void ComparePanel::DrawPinnedRuns() {
-  ImGui::Text("Pinned runs (%zu)", pins_.size());
+  ImGui::Text("%s", sim::Sprintf("Pinned runs (%zu)", pins_.size()).c_str());
   if (!pins_.empty() && ImGui::BeginTable("pins", 3,
                                           ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg |
                                               ImGuiTableFlags_SizingStretchProp)) {
@@ -157,7 +155,7 @@ void ComparePanel::DrawPinnedRuns() {
     for (const auto& p : pins_) {
       ImGui::TableNextRow();
       ImGui::TableSetColumnIndex(0);
-      ImGui::Text("pin %d", p->id);
+      ImGui::Text("%s", sim::Sprintf("pin %d", p->id).c_str());
       ImGui::TableSetColumnIndex(1);
       const std::string label = PinLabel(*p);
       ImGui::TextWrapped(
@@ -189,10 +187,9 @@ void ComparePanel::Draw(const Fonts&) {
   ImGui::BeginDisabled(pins_.empty());
   if (ImGui::Button("Unpin all")) CmdUnpinAll();
   ImGui::EndDisabled();
-  char pinned[48];
-  std::snprintf(pinned, sizeof pinned, "%zu pinned (History tab)", pins_.size());
-  SameLineIfFits(TextWidth(pinned));
-  ImGui::TextDisabled("%s", pinned);
+  const std::string pinned = std::to_string(pins_.size()) + " pinned (History tab)";
+  SameLineIfFits(TextWidth(pinned.c_str()));
+  ImGui::TextDisabled("%s", pinned.c_str());
 
   // Monte Carlo: the count, Run or Cancel, and a bar that is always there.
   const bool running = mc_.run && !mc_.run->finished();
@@ -200,10 +197,9 @@ void ComparePanel::Draw(const Fonts&) {
   ImGui::BeginDisabled(running);
   ImGui::InputInt("##seeds", &mc_seeds_, 1, 10);
   mc_seeds_ = std::clamp(mc_seeds_, 1, 100000);
-  char run_label[48];
-  std::snprintf(run_label, sizeof run_label, "Run %d seeds", mc_seeds_);
-  SameLineIfFits(ButtonWidth(run_label));
-  if (ImGui::Button(run_label)) CmdSeeds(mc_seeds_);
+  const std::string run_label = "Run " + std::to_string(mc_seeds_) + " seeds";
+  SameLineIfFits(ButtonWidth(run_label.c_str()));
+  if (ImGui::Button(run_label.c_str())) CmdSeeds(mc_seeds_);
   ImGui::EndDisabled();
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip(
@@ -214,18 +210,18 @@ void ComparePanel::Draw(const Fonts&) {
   if (ImGui::Button("Cancel")) CmdCancelSeeds();
   ImGui::EndDisabled();
   float fraction = 0;
-  char bar[160] = "no Monte Carlo yet";
+  std::string bar = "no Monte Carlo yet";
   if (mc_.run) {
     const sim::SweepProgress p = mc_.run->progress();
     fraction = p.total ? static_cast<float>(p.done) / static_cast<float>(p.total) : 1.0f;
-    std::snprintf(bar, sizeof bar, "%zu / %zu seeds%s: %s", p.done, p.total,
-                  running                                    ? ""
-                  : mc_.run->cancelled() && p.done < p.total ? " (cancelled)"
-                                                             : "",
-                  mc_.settings.c_str());
+    bar = sim::Sprintf("%zu / %zu seeds%s: ", p.done, p.total,
+                       running                                    ? ""
+                       : mc_.run->cancelled() && p.done < p.total ? " (cancelled)"
+                                                                  : "") +
+          mc_.settings;
   }
-  ImGui::ProgressBar(fraction, ImVec2(-1, 0), bar);
-  if (mc_.run && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", bar);
+  ImGui::ProgressBar(fraction, ImVec2(-1, 0), bar.c_str());
+  if (mc_.run && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", bar.c_str());
 
   // Undo / redo of edits (Ctrl+Z / Ctrl+Y).
   ImGui::BeginDisabled(!ctx_.session().can_undo());
@@ -241,10 +237,10 @@ void ComparePanel::Draw(const Fonts&) {
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip("Ctrl+Y: %s",
                       ctx_.session().can_redo() ? ctx_.session().RedoText().c_str() : "nothing");
-  char edits[48];
-  std::snprintf(edits, sizeof edits, "%d edits since loading", ctx_.session().accepted_edits());
-  SameLineIfFits(TextWidth(edits));
-  ImGui::TextDisabled("%s", edits);
+  const std::string edits =
+      std::to_string(ctx_.session().accepted_edits()) + " edits since loading";
+  SameLineIfFits(TextWidth(edits.c_str()));
+  ImGui::TextDisabled("%s", edits.c_str());
 
   ImGui::SetNextItemWidth(WidthBeside("Save session"));
   FittedInputText("##session", ctx_.state->session_path, sizeof(ctx_.state->session_path));

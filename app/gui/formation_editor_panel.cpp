@@ -348,7 +348,9 @@ void FormationEditorPanel::Draw(const Fonts&) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Every robot after the root leader is placed on its slot of the shape,\n"
                       "with l-l links wherever a well-shaped triangle exists (else l-φ)");
-  ImGui::TextDisabled("%zu robots; Ctrl+Z undoes a change", exp.world().robots().size());
+  ImGui::TextDisabled(
+      "%s",
+      sim::Sprintf("%zu robots; Ctrl+Z undoes a change", exp.world().robots().size()).c_str());
 }
 
 void FormationEditorPanel::DrawOverWorld(const sim::Experiment& shown, const View& view) {

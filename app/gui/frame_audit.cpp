@@ -4,12 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <map>
 #include <utility>
 
 #include "app/gui/atlas_glyphs.hpp"
 #include "app/render/contrast.hpp"
+#include "sim/core/number_format.hpp"
 
 namespace formsim::app {
 namespace {
@@ -212,10 +212,9 @@ bool CircleHitsBox(ImVec2 c, float r, const ImVec4& b) {
 }
 
 std::string ColourHex(sim::Color c) {
-  char buf[16];
-  std::snprintf(buf, sizeof buf, "#%02x%02x%02x", static_cast<int>(std::lround(c.r * 255)),
-                static_cast<int>(std::lround(c.g * 255)), static_cast<int>(std::lround(c.b * 255)));
-  return buf;
+  return sim::Sprintf("#%02x%02x%02x", static_cast<int>(std::lround(c.r * 255)),
+                      static_cast<int>(std::lround(c.g * 255)),
+                      static_cast<int>(std::lround(c.b * 255)));
 }
 
 }  // namespace

@@ -14,19 +14,19 @@
 
 #include "app/gui/compare_panel.hpp"
 #include "app/gui/gui_loop.hpp"
-#include "app/render/gl_api.hpp"
-#include "app/cli/stop_signal.hpp"
 #include "app/gui/ui.hpp"
+#include "app/render/gl_api.hpp"
 #include "sim/core/bounded_file.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/run_output.hpp"
+#include "sim/core/stop_signal.hpp"
 #include "sim/scenario/scenario_files.hpp"
 
 namespace formsim::app {
 namespace {
 
 void GlfwError(int code, const char* text) {
-  std::fprintf(stderr, "formsim: GLFW error %d: %s\n", code, text);
+  sim::Print(stderr, "formsim: GLFW error %d: %s\n", code, text);
 }
 
 std::string DefaultScenario() {
@@ -79,11 +79,22 @@ struct GlfwSession {
   ~GlfwSession() { glfwTerminate(); }
 };
 
+// What the window wrote when signal `sig` ended it, for stderr.
+std::string InterruptedMessage(int sig, const GuiOptions& opt, bool session_saved) {
+  std::string text = "formsim: window interrupted by " + sim::StopSignalName(sig) + "; ";
+  if (!opt.out_dir.empty()) text += "the results so far were written and marked interrupted";
+  if (session_saved)
+    text += ", the session was saved";
+  else if (opt.session_file.empty())
+    text += "; the session journal is kept for restore";
+  return text + "\n";
+}
+
 }  // namespace
 
 int RunGui(const GuiOptions& opt) {
   // SIGINT, SIGTERM and SIGHUP end the loop at the next frame; what `run` writes is written.
-  InstallStopSignals();
+  sim::InstallStopSignals();
   std::vector<ScriptAction> scripted = ParseEdits(opt.edits);
   if (!opt.script.empty())
     for (auto& a : ReadScript(opt.script)) scripted.push_back(std::move(a));
@@ -123,15 +134,15 @@ int RunGui(const GuiOptions& opt) {
     AppUi& ui = loop.ui();
     while (!glfwWindowShouldClose(window)) {
       glfwPollEvents();
-      if (StopSignal() != 0 || !loop.Frame()) break;
+      if (sim::StopSignal() != 0 || !loop.Frame()) break;
     }
     exit_code = loop.exit_code();
     // A stop signal ends the run as `formsim run` ends it: written, marked interrupted.
-    const int sig = StopSignal();
+    const int sig = sim::StopSignal();
     if (sig != 0) {
       sim::Experiment& exp = ui.session().exp();
-      exp.Interrupt("interrupted by " + StopSignalName(sig) + " at t = " + std::to_string(exp.time()) +
-                    " s (step " + std::to_string(exp.steps()) + ")");
+      exp.Interrupt("interrupted by " + sim::StopSignalName(sig) + " at t = " +
+                    std::to_string(exp.time()) + " s (step " + std::to_string(exp.steps()) + ")");
     }
     if (!opt.out_dir.empty()) {
       sim::WriteRunOutputs(ui.session().exp(), opt.out_dir);
@@ -142,7 +153,7 @@ int RunGui(const GuiOptions& opt) {
       const std::string err = ui.CmdSaveSession(opt.session_file);
       session_saved = err.empty();
       if (!err.empty()) {
-        std::fprintf(stderr, "formsim: %s\n", err.c_str());
+        std::fputs(("formsim: " + err + "\n").c_str(), stderr);
         exit_code = 2;
       }
     }
@@ -151,10 +162,7 @@ int RunGui(const GuiOptions& opt) {
     // offered for restore at the next start.
     ui.CloseJournal(session_saved || (sig == 0 && opt.session_file.empty()));
     if (sig != 0) {
-      std::fprintf(stderr, "formsim: window interrupted by %s; %s%s\n", StopSignalName(sig).c_str(),
-                   opt.out_dir.empty() ? "" : "the results so far were written and marked interrupted",
-                   session_saved ? ", the session was saved"
-                                 : opt.session_file.empty() ? "; the session journal is kept for restore" : "");
+      std::fputs(InterruptedMessage(sig, opt, session_saved).c_str(), stderr);
       exit_code = 128 + sig;
     }
     if (opt.timing) std::fputs(loop.TimingReport().c_str(), stderr);

@@ -88,7 +88,7 @@ GuiLoop::GuiLoop(GLFWwindow* window, std::unique_ptr<sim::Session> session, cons
   {
     std::string warning;
     ui.state().settings = LoadUiSettings(&warning);
-    if (!warning.empty()) std::fprintf(stderr, "formsim: %s\n", warning.c_str());
+    if (!warning.empty()) std::fputs(("formsim: " + warning + "\n").c_str(), stderr);
   }
   if (opt_.overlays_given) ui.state().overlays = opt_.overlays;
   // Crash-safe sessions: an unfinished one (its window gone) is offered, never restored by
@@ -143,8 +143,8 @@ void GuiLoop::RunDueActions() {
       shot_where_ = a.where + " (frame " + std::to_string(a.frame) + "): '" + a.action + "'";
     const std::string err = ui.RunScriptAction(a.action);
     if (!err.empty())
-      std::fprintf(stderr, "formsim: %s (frame %ld): '%s' refused: %s\n", a.where.c_str(), a.frame,
-                   a.action.c_str(), err.c_str());
+      sim::Print(stderr, "formsim: %s (frame %ld): '%s' refused: %s\n", a.where.c_str(), a.frame,
+                 a.action.c_str(), err.c_str());
     if (ticket != 0) {
       // Set at the end of the frame, once a screenshot it asked for is written.
       results_[-ticket] = err;
@@ -248,8 +248,7 @@ void GuiLoop::TakeScreenshot(bool last_frame, bool finished_exit) {
   if (ui.state().screenshot_requested && !ui.state().screenshot_path.empty()) {
     path = ui.state().screenshot_path;  // scripted "screenshot PATH"
   } else if (path.empty() || (ui.state().screenshot_requested && !last_frame && !finished_exit)) {
-    char name[64];
-    std::snprintf(name, sizeof(name), "formsim_screenshot_%03d.png", shot_counter_++);
+    const std::string name = sim::Sprintf("formsim_screenshot_%03d.png", shot_counter_++);
     path = opt_.screenshot.empty() ? name : path;
   }
   const bool scripted_shot = ui.state().screenshot_requested && !shot_where_.empty();
@@ -265,9 +264,9 @@ void GuiLoop::TakeScreenshot(bool last_frame, bool finished_exit) {
     ui.state().status = std::string("screenshot failed: ") + e.what();
     ui.state().status_is_error = true;
     if (scripted_shot)
-      std::fprintf(stderr, "formsim: %s failed: %s\n", shot_where_.c_str(), e.what());
+      std::fputs(("formsim: " + shot_where_ + " failed: " + e.what() + "\n").c_str(), stderr);
     else if (!opt_.screenshot.empty() && (last_frame || finished_exit))
-      std::fprintf(stderr, "formsim: --screenshot %s failed: %s\n", path.c_str(), e.what());
+      std::fputs(("formsim: --screenshot " + path + " failed: " + e.what() + "\n").c_str(), stderr);
     if ((last_frame || finished_exit) && !opt_.screenshot.empty() && !scripted_shot) exit_code_ = 4;
     for (const int t : ran_this_frame_)
       if (results_[-t].empty()) results_[-t] = std::string("screenshot failed: ") + e.what();
@@ -286,14 +285,12 @@ std::string GuiLoop::TimingReport() const {
   };
   std::vector<double> sorted(frame_ms_.begin() + 5, frame_ms_.end());
   std::sort(sorted.begin(), sorted.end());
-  char line[400];
-  std::snprintf(line, sizeof(line),
-                "gui: %zu frames at %dx%d: frame %.1f ms mean, %.1f ms median, %.1f ms p95 "
-                "(sim %.1f, ImGui build %.1f, GL %.1f ms; %.0f draw calls, %.0f triangles)\n",
-                frame_ms_.size(), opt_.width, opt_.height, mean(frame_ms_),
-                sorted[sorted.size() / 2], sorted[sorted.size() * 95 / 100], mean(sim_ms_),
-                mean(ui_ms_), mean(gl_ms_), mean(draw_calls_), mean(triangles_));
-  return line;
+  return sim::Sprintf(
+      "gui: %zu frames at %dx%d: frame %.1f ms mean, %.1f ms median, %.1f ms p95 "
+      "(sim %.1f, ImGui build %.1f, GL %.1f ms; %.0f draw calls, %.0f triangles)\n",
+      frame_ms_.size(), opt_.width, opt_.height, mean(frame_ms_), sorted[sorted.size() / 2],
+      sorted[sorted.size() * 95 / 100], mean(sim_ms_), mean(ui_ms_), mean(gl_ms_),
+      mean(draw_calls_), mean(triangles_));
 }
 
 }  // namespace formsim::app

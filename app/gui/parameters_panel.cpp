@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <map>
 #include <unordered_map>
 
@@ -73,8 +72,8 @@ bool SliderFits(double lo, double hi) {
 // A text field holding `text`; returns what was typed when Enter is pressed ("" else). The
 // session checks it like any edit.
 std::string ValueField(const std::string& text) {
-  char buf[128];
-  std::snprintf(buf, sizeof(buf), "%s", text.c_str());
+  char buf[128] = {};
+  text.copy(buf, sizeof(buf) - 1);  // at most 127 bytes, as the field holds
   if (ImGui::InputText("##v", buf, sizeof(buf),
                        ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_CharsScientific))
     return buf;
@@ -114,14 +113,9 @@ bool EntryRow(ValueEntry& entry) {
   return true;
 }
 
-// One row: label (with unit), widget, and the fixed-width marks column. `shown` is the value to
-// show (the one waiting for a reset, if any). Angles are shown in the unit of the window's
-// setting (app/render/display_unit.hpp); the value stored and edited stays in radians.
-RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks& marks,
-                  bool degrees, ValueEntry& entry) {
-  const DisplayUnit du = p.kind == sim::Param::Kind::kDouble ? ShownUnit(p.tune.unit, degrees)
-                                                              : DisplayUnit{1.0, p.tune.unit, false};
-  RowInput in;
+// The row's label (the tunable's name with its unit, coloured when edited or refused) in the
+// first column, with a tooltip that says everything about the tunable.
+void ParamRowLabel(const sim::Param& p, const DisplayUnit& du, const RowMarks& marks) {
   ImGui::TableNextRow();
   ImGui::TableSetColumnIndex(0);
   ImGui::AlignTextToFramePadding();
@@ -139,112 +133,125 @@ RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks&
   const std::string label = FitMarkupLabel(name, unit, ImGui::GetContentRegionAvail().x);
   MarkupTextItem(label);
   if (colour) ImGui::PopStyleColor();
-  if (ImGui::IsItemHovered()) {
-    std::string tip = label == full ? p.key : MarkupText(full) + "\n" + p.key;
-    if (!p.tune.help.empty()) tip += "\n" + p.tune.help;
-    if (p.kind == sim::Param::Kind::kDouble || p.kind == sim::Param::Kind::kInt)
-      tip += "\nvalid: " + p.tune.ValidityText() +
-             "\ndouble-click or Ctrl+click: type a value (Enter applies, Esc cancels); wheel: "
-             "fine steps";
-    tip += p.tune.live ? "\napplies on the next step" : "\napplies on reset";
-    if (marks.edited) tip += "\nedited: the file has " + marks.loaded + " (↺ reverts)";
-    if (!marks.refusal.empty()) tip += "\n\nlast edit refused: " + marks.refusal;
-    SafeTooltip(tip);  // any length (app/render/long_text.hpp)
+  if (!ImGui::IsItemHovered()) return;
+  std::string tip = label == full ? p.key : MarkupText(full) + "\n" + p.key;
+  if (!p.tune.help.empty()) tip += "\n" + p.tune.help;
+  if (p.kind == sim::Param::Kind::kDouble || p.kind == sim::Param::Kind::kInt)
+    tip += "\nvalid: " + p.tune.ValidityText() +
+           "\ndouble-click or Ctrl+click: type a value (Enter applies, Esc cancels); wheel: "
+           "fine steps";
+  tip += p.tune.live ? "\napplies on the next step" : "\napplies on reset";
+  if (marks.edited) tip += "\nedited: the file has " + marks.loaded + " (↺ reverts)";
+  if (!marks.refusal.empty()) tip += "\n\nlast edit refused: " + marks.refusal;
+  SafeTooltip(tip);  // any length (app/render/long_text.hpp)
+}
+
+// A real tunable's widget: its open value entry, a slider in the unit shown, or a text field
+// when no slider holds the value. Returns the new value as text ("" when unchanged).
+std::string ParamDoubleWidget(const sim::Param& p, const std::string& shown, const DisplayUnit& du,
+                              bool degrees, bool typing, ValueEntry& entry, RowInput& in) {
+  double v = 0;
+  if (!sim::ParseFiniteDouble(shown, &v)) v = p.value;
+  // The declared slider range lies inside the validity; a file value outside the slider
+  // widens it (still valid: the range between two valid values is valid).
+  double lo = std::min(p.slider_min(), v), hi = std::max(p.slider_max(), v);
+  const double k = du.scale;
+  if (typing) {
+    in.entry = EntryRow(entry);
+    return "";
   }
-  ImGui::TableSetColumnIndex(1);
-  ImGui::SetNextItemWidth(-1.0f);
-  ImGui::PushID(p.key.c_str());
-  const std::string& refusal = marks.refusal;
+  if (!SliderFits(lo * k, hi * k)) {
+    // A value beyond any slider (an unbounded tunable edited to 1e308): a text field.
+    const std::string typed = ValueField(sim::FormatDouble(v * k));
+    double t = 0;
+    if (typed.empty()) return "";
+    return k != 1.0 && sim::ParseFiniteDouble(typed, &t) ? sim::FormatDouble(t / k) : typed;
+  }
+  // NoInput: ImGui's own Ctrl+click field would apply every keystroke; ours waits for Enter.
+  ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_NoInput;
+  if (p.tune.log_scale && lo > 0) flags |= ImGuiSliderFlags_Logarithmic;
+  double shown_v = v * k, shown_lo = lo * k, shown_hi = hi * k;
+  // The angle's unit on the slider too ("°/s", "deg²"); '%' never occurs in a unit.
+  // A unit of letters is spaced from the number ("0.3283 deg²"); a degree sign is not ("60°/s").
+  const std::string format =
+      "%.4g" +
+      (du.angle && k != 1.0 ? (du.unit.rfind("°", 0) == 0 ? "" : " ") + du.unit : std::string());
+  const bool changed = ImGui::SliderScalar("##v", ImGuiDataType_Double, &shown_v, &shown_lo,
+                                           &shown_hi, format.c_str(), flags);
+  if (OpensEntry()) {
+    entry.Open(p.key, ParamEntryText(p, shown, degrees));
+    return "";
+  }
   std::string out;
-  if (!refusal.empty()) ImGui::PushStyleColor(ImGuiCol_FrameBg, ImVec4(0.95f, 0.75f, 0.75f, 1));
-  const bool typing = entry.IsOpen(p.key);
+  // A press alone (the first click of a double-click) changes nothing: the value follows
+  // the mouse once it drags.
+  if (changed && ImGui::IsMouseDragging(0) && std::isfinite(shown_v))
+    out = sim::FormatDouble(std::clamp(shown_v / k, lo, hi));
+  if (const int n = WheelNotches(); n != 0 && out.empty()) out = FineStep(p, v, n, k);
+  return out;
+}
+
+// An integer tunable's widget: its open value entry, a slider, or a text field when the range
+// is too wide for ImGui's slider. Returns the new value as text ("" when unchanged).
+std::string ParamIntWidget(const sim::Param& p, const std::string& shown, bool typing,
+                           ValueEntry& entry, RowInput& in) {
+  long long parsed = 0;
+  const long long v = sim::ParseInteger(shown, -2147483647LL, 2147483647LL, &parsed)
+                          ? parsed
+                          : static_cast<long long>(p.value);
+  const long long lo = std::min(static_cast<long long>(std::max(p.slider_min(), -1e9)), v);
+  const long long hi = std::max(static_cast<long long>(std::min(p.slider_max(), 1e9)), v);
+  // ImGui's integer slider asserts beyond half the int range: wider ones are a text field.
+  if (typing) {
+    in.entry = EntryRow(entry);
+    return "";
+  }
+  if (lo < -kIntSliderLimit || hi > kIntSliderLimit || lo >= hi)
+    return ValueField(std::to_string(v));
+  int iv = static_cast<int>(v);
+  const bool changed =
+      ImGui::SliderInt("##v", &iv, static_cast<int>(lo), static_cast<int>(hi), "%d",
+                       ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_NoInput);
+  if (OpensEntry()) {
+    entry.Open(p.key, shown);
+    return "";
+  }
+  std::string out;
+  if (changed && ImGui::IsMouseDragging(0)) out = std::to_string(std::clamp<long long>(iv, lo, hi));
+  if (const int n = WheelNotches(); n != 0 && out.empty())
+    out = FineStep(p, static_cast<double>(v), n, 1.0);
+  return out;
+}
+
+// The widget of tunable `p` by its kind. Returns the new value as text ("" when unchanged).
+std::string ParamWidget(const sim::Param& p, const std::string& shown, const DisplayUnit& du,
+                        bool degrees, bool typing, ValueEntry& entry, RowInput& in) {
   switch (p.kind) {
-    case sim::Param::Kind::kDouble: {
-      double v = 0;
-      if (!sim::ParseFiniteDouble(shown, &v)) v = p.value;
-      // The declared slider range lies inside the validity; a file value outside the slider
-      // widens it (still valid: the range between two valid values is valid).
-      double lo = std::min(p.slider_min(), v), hi = std::max(p.slider_max(), v);
-      const double k = du.scale;
-      if (typing) {
-        in.entry = EntryRow(entry);
-        break;
-      }
-      if (!SliderFits(lo * k, hi * k)) {
-        // A value beyond any slider (an unbounded tunable edited to 1e308): a text field.
-        const std::string typed = ValueField(sim::FormatDouble(v * k));
-        double t = 0;
-        if (!typed.empty())
-          out = k != 1.0 && sim::ParseFiniteDouble(typed, &t) ? sim::FormatDouble(t / k) : typed;
-        break;
-      }
-      // NoInput: ImGui's own Ctrl+click field would apply every keystroke; ours waits for Enter.
-      ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_NoInput;
-      if (p.tune.log_scale && lo > 0) flags |= ImGuiSliderFlags_Logarithmic;
-      double shown_v = v * k, shown_lo = lo * k, shown_hi = hi * k;
-      // The angle's unit on the slider too ("°/s", "deg²"); '%' never occurs in a unit.
-      // A unit of letters is spaced from the number ("0.3283 deg²"); a degree sign is not ("60°/s").
-      const std::string format =
-          "%.4g" + (du.angle && k != 1.0 ? (du.unit.rfind("°", 0) == 0 ? "" : " ") + du.unit
-                                         : std::string());
-      const bool changed = ImGui::SliderScalar("##v", ImGuiDataType_Double, &shown_v, &shown_lo,
-                                               &shown_hi, format.c_str(), flags);
-      if (OpensEntry()) {
-        entry.Open(p.key, ParamEntryText(p, shown, degrees));
-        break;
-      }
-      // A press alone (the first click of a double-click) changes nothing: the value follows
-      // the mouse once it drags.
-      if (changed && ImGui::IsMouseDragging(0) && std::isfinite(shown_v))
-        out = sim::FormatDouble(std::clamp(shown_v / k, lo, hi));
-      if (const int n = WheelNotches(); n != 0 && out.empty()) out = FineStep(p, v, n, k);
-      break;
-    }
-    case sim::Param::Kind::kInt: {
-      long long parsed = 0;
-      const long long v = sim::ParseInteger(shown, -2147483647LL, 2147483647LL, &parsed)
-                              ? parsed
-                              : static_cast<long long>(p.value);
-      const long long lo = std::min(static_cast<long long>(std::max(p.slider_min(), -1e9)), v);
-      const long long hi = std::max(static_cast<long long>(std::min(p.slider_max(), 1e9)), v);
-      // ImGui's integer slider asserts beyond half the int range: wider ones are a text field.
-      if (typing) {
-        in.entry = EntryRow(entry);
-        break;
-      }
-      if (lo < -kIntSliderLimit || hi > kIntSliderLimit || lo >= hi) {
-        out = ValueField(std::to_string(v));
-        break;
-      }
-      int iv = static_cast<int>(v);
-      const bool changed = ImGui::SliderInt("##v", &iv, static_cast<int>(lo), static_cast<int>(hi),
-                                            "%d", ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_NoInput);
-      if (OpensEntry()) {
-        entry.Open(p.key, shown);
-        break;
-      }
-      if (changed && ImGui::IsMouseDragging(0)) out = std::to_string(std::clamp<long long>(iv, lo, hi));
-      if (const int n = WheelNotches(); n != 0 && out.empty())
-        out = FineStep(p, static_cast<double>(v), n, 1.0);
-      break;
-    }
+    case sim::Param::Kind::kDouble:
+      return ParamDoubleWidget(p, shown, du, degrees, typing, entry, in);
+    case sim::Param::Kind::kInt:
+      return ParamIntWidget(p, shown, typing, entry, in);
     case sim::Param::Kind::kBool: {
       bool v = shown == "true";
-      if (ImGui::Checkbox("##v", &v)) out = v ? "true" : "false";
-      break;
+      if (ImGui::Checkbox("##v", &v)) return v ? "true" : "false";
+      return "";
     }
     case sim::Param::Kind::kChoice: {
+      std::string out;
       if (FittedCombo("##v", shown)) {
         for (const auto& c : p.choices)
           if (ImGui::Selectable(c.c_str(), c == shown) && c != shown) out = c;
         ImGui::EndCombo();
       }
-      break;
+      return out;
     }
   }
-  in.held = !typing && ImGui::IsItemActive();
-  if (!refusal.empty()) ImGui::PopStyleColor();
-  // Marks: always the same width, whatever they show.
+  return "";
+}
+
+// The marks column, always the same width whatever it shows: ↺ (revert) when edited, ↻ when
+// waiting for a reset.
+void ParamRowMarks(const RowMarks& marks, RowInput& in) {
   ImGui::TableSetColumnIndex(2);
   if (marks.edited) {
     if (ImGui::SmallButton("↺")) in.revert = true;
@@ -258,8 +265,28 @@ RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks&
     ImGui::TextColored(ImVec4(0.8f, 0.45f, 0.0f, 1.0f), "↻");
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("changed: applies on reset (r)");
   }
+}
+
+// One row: label (with unit), widget, and the fixed-width marks column. `shown` is the value to
+// show (the one waiting for a reset, if any). Angles are shown in the unit of the window's
+// setting (app/render/display_unit.hpp); the value stored and edited stays in radians.
+RowInput ParamRow(const sim::Param& p, const std::string& shown, const RowMarks& marks,
+                  bool degrees, ValueEntry& entry) {
+  const DisplayUnit du = p.kind == sim::Param::Kind::kDouble ? ShownUnit(p.tune.unit, degrees)
+                                                             : DisplayUnit{1.0, p.tune.unit, false};
+  RowInput in;
+  ParamRowLabel(p, du, marks);
+  ImGui::TableSetColumnIndex(1);
+  ImGui::SetNextItemWidth(-1.0f);
+  ImGui::PushID(p.key.c_str());
+  const std::string& refusal = marks.refusal;
+  if (!refusal.empty()) ImGui::PushStyleColor(ImGuiCol_FrameBg, ImVec4(0.95f, 0.75f, 0.75f, 1));
+  const bool typing = entry.IsOpen(p.key);
+  in.value = ParamWidget(p, shown, du, degrees, typing, entry, in);
+  in.held = !typing && ImGui::IsItemActive();
+  if (!refusal.empty()) ImGui::PopStyleColor();
+  ParamRowMarks(marks, in);
   ImGui::PopID();
-  in.value = out;
   return in;
 }
 

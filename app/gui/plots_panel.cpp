@@ -1,9 +1,5 @@
 #include "app/gui/plots_panel.hpp"
 
-#include "app/gui/frame_audit.hpp"
-
-#include "app/gui/flow_layout.hpp"
-
 #include <imgui.h>
 
 #include <algorithm>
@@ -16,11 +12,14 @@
 #include "app/export/figure_export.hpp"
 #include "app/gui/command_row_makers.hpp"
 #include "app/gui/compare_panel.hpp"
+#include "app/gui/flow_layout.hpp"
+#include "app/gui/frame_audit.hpp"
 #include "app/gui/ui.hpp"
 #include "app/render/imgui_canvas.hpp"
 #include "app/render/label_markup.hpp"
 #include "app/render/long_text.hpp"
 #include "app/render/plot_units.hpp"
+#include "sim/core/number_format.hpp"
 #include "sim/core/run_output.hpp"
 #include "sim/session/session.hpp"
 
@@ -139,7 +138,189 @@ struct PlotsPanel::Cache {
   std::vector<sim::FigureSpec> figures;
   Clock::time_point figures_at;
   std::map<std::string, CachedPlot> plots;
+
+  /// Follows run `exp` drawn in `theme_now`: a new run (or the same one reset: fewer rows or
+  /// steps than before) drops everything; new rows refresh the figure list when paused, when
+  /// `every_frame`, else at most every kPlotRefresh.
+  void Follow(const sim::Experiment& exp_now, ThemeId theme_now, bool every_frame,
+              Clock::time_point now) {
+    const std::size_t rows_now = exp_now.recorder().rows_sampled();
+    if (&exp_now != exp || rows_now < rows || exp_now.steps() < steps ||
+        exp_now.setup().file != file || exp_now.setup().name != name || theme_now != theme) {
+      *this = Cache{};
+      theme = theme_now;
+      exp = &exp_now;
+      file = exp_now.setup().file;
+      name = exp_now.setup().name;
+    }
+    // Paused (no step since the last frame): what changed is shown at once.
+    const bool paused = exp_now.steps() == steps;
+    steps = exp_now.steps();
+    const bool new_rows = rows_now != rows || figures.empty();
+    if (new_rows && (paused || every_frame || now - figures_at >= kPlotRefresh)) {
+      // The figure list can change during a run (an estimator switched on adds its figure).
+      figures = exp_now.Figures();
+      figures_at = now;
+      rows = rows_now;
+    }
+  }
 };
+
+namespace {
+
+// The user's choices are kept by figure id.
+bool PlotIsOpen(const std::map<std::string, bool>& closed, const sim::FigureSpec& f) {
+  const auto it = closed.find(f.id);
+  return it == closed.end() || !it->second;
+}
+
+// A toggle for each figure, wrapping.
+void DrawPlotToggles(const std::vector<sim::FigureSpec>& figures,
+                     std::map<std::string, bool>& closed) {
+  for (std::size_t i = 0; i < figures.size(); ++i) {
+    bool open = PlotIsOpen(closed, figures[i]);
+    const std::string id = figures[i].id + "##toggle";
+    if (i > 0) SameLineIfFits(CheckboxWidth(id.c_str()));
+    if (ImGui::Checkbox(id.c_str(), &open)) closed[figures[i].id] = !open;
+  }
+}
+
+// The plots' cells: as many columns as fit at kMinPlotWidth each; up to three rows share the
+// height, more scroll.
+struct PlotGridCells {
+  int cols = 1;
+  float w = 1, h = 0;
+};
+
+PlotGridCells PlotGridFor(int open_count) {
+  PlotGridCells g;
+  const float avail_h = ImGui::GetContentRegionAvail().y;
+  const float gap = ImGui::GetStyle().ItemSpacing.x;
+  const float full_w = ImGui::GetContentRegionAvail().x;
+  g.cols = std::max(1, static_cast<int>((full_w + gap) / (PlotsPanel::kMinPlotWidth + gap)));
+  g.w = std::max(1.0f, std::floor((full_w - static_cast<float>(g.cols - 1) * gap) / g.cols));
+  const int plot_rows = (open_count + g.cols - 1) / g.cols;
+  // Whole pixels, so that each plot's background is a clear (ImGuiCanvas::FillBackground).
+  g.h = std::max(220.0f, plot_rows > 0 ? std::floor(avail_h / std::min(plot_rows, 3)) - 6 : 0);
+  return g;
+}
+
+PlotStyle PlotsPanelStyle(const Theme& theme) {
+  PlotStyle style;
+  style.title_font = FontRole::kLabel;
+  style.label_font = FontRole::kUi;
+  style.tick_font = FontRole::kSmall;
+  style.line_width = 1.6f;
+  style.padding = 6;
+  style.theme = &theme;
+  return style;
+}
+
+// What every plot cell of one frame shares.
+struct PlotsPanelFrame {
+  const sim::Experiment& exp;
+  ComparePanel& compare;
+  ImGuiCanvas& canvas;
+  const PlotStyle& style;
+  const std::string& decoration;  ///< what DecoratePlot adds, the angle unit, the log axes
+  bool degrees;
+  PlotGridCells grid;
+  std::size_t rows;  ///< the recorder's rows the figure list was taken at
+  Clock::time_point figures_at, now;
+};
+
+// Figure `fig` in its cell p0..p1: resolved and drawn (without the cursor, which moves every
+// frame) and kept when anything changed; else the drawing kept is appended again.
+void DrawOrReplayPlot(CachedPlot& plot, const sim::FigureSpec& fig, bool log_y,
+                      const PlotsPanelFrame& f, ImVec2 p0, ImVec2 p1) {
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const bool moved =
+      p0.x != plot.p0.x || p0.y != plot.p0.y || p1.x != plot.p1.x || p1.y != plot.p1.y;
+  const bool stale = !plot.valid || moved || plot.rows != f.rows || plot.at < f.figures_at ||
+                     plot.decoration != f.decoration;
+  if (!stale) {
+    Replay(dl, plot.geometry);
+    return;
+  }
+  plot.data = ResolveFigure(fig, f.exp.recorder());
+  f.compare.DecoratePlot(fig, plot.data);  // pinned runs, Monte Carlo bands
+  ShowPlotInUnits(plot.data, f.degrees);   // angles in the window's unit
+  plot.data.log_y = log_y;
+  plot.decoration = f.decoration;
+  const DrawMark mark = Mark(dl);
+  plot.layout = DrawPlot(f.canvas, p0, p1, plot.data, f.style);
+  plot.geometry = Capture(dl, mark);
+  // A data area under kSmallestPlotPx (in pixels: logical units times the UI scale) grows
+  // its cell from the next frame on.
+  const float want = kSmallestPlotPx / std::max(1.0f, ImGui::GetIO().DisplayFramebufferScale.x) + 1;
+  const float area_h = plot.layout.area_max.y - plot.layout.area_min.y;
+  if (area_h < want) plot.extra_h = std::min(plot.extra_h + want - area_h, 2000.0f);
+  plot.p0 = p0, plot.p1 = p1, plot.rows = f.rows, plot.at = f.now, plot.valid = true;
+}
+
+// The time cursor at `cursor` (nan: none), as DrawPlot draws it.
+void DrawPlotCursor(ImGuiCanvas& canvas, const PlotLayout& L, double cursor, const Theme& theme) {
+  if (std::isfinite(cursor) && cursor >= L.x0 && cursor <= L.x1 && L.x1 > L.x0) {
+    const float x = static_cast<float>(
+        L.area_min.x + (cursor - L.x0) * (L.area_max.x - L.area_min.x) / (L.x1 - L.x0));
+    canvas.PushClip(L.area_min, L.area_max);
+    canvas.Line(ImVec2(x, L.area_min.y), ImVec2(x, L.area_max.y), {theme.cursor, 1.0f});
+    canvas.PopClip();
+  }
+}
+
+// Hovering the plot just drawn shows each series' value under the mouse.
+void PlotHoverTooltip(const PlotData& data, const PlotLayout& L, const Theme& theme) {
+  if (!ImGui::IsItemHovered() || data.equal_aspect) return;
+  const ImVec2 m = ImGui::GetIO().MousePos;
+  if (m.x < L.area_min.x || m.x > L.area_max.x) return;
+  const double x = L.x0 + (m.x - L.area_min.x) / (L.area_max.x - L.area_min.x) * (L.x1 - L.x0);
+  ImGui::BeginTooltip();
+  ImGui::Text("%s", sim::Sprintf("%s = %.4g", MarkupText(data.x_label).c_str(), x).c_str());
+  // At most 40 rows of at most 80 bytes each: a tooltip is one draw list of 16-bit
+  // indices (a swarm's thousand series or a 100,000-character name would abort).
+  int rows = 0, more = 0;
+  for (const auto& s : data.series) {
+    const double y = SampleSeries(s, x);
+    if (std::isfinite(y) && !s.label.empty()) {
+      if (rows >= 40) {
+        ++more;
+        continue;
+      }
+      ++rows;
+      const sim::Color c = theme.Series(s.color, s.style_index, s.dashed).color;
+      ImGui::TextColored(
+          ImVec4(c.r, c.g, c.b, 1), "%s",
+          sim::Sprintf("%s: %.5g", Shorten(MarkupText(s.label), 80).c_str(), y).c_str());
+    }
+  }
+  if (more > 0) ImGui::TextDisabled("%s", sim::Sprintf("... %d more", more).c_str());
+  ImGui::EndTooltip();
+}
+
+// One figure's cell: a time plot's log-y toggle on a line of its own above it (the log-y
+// command), the plot, its time cursor and its tooltip. Nothing is drawn when scrolled away.
+void DrawPlotCell(const PanelContext& ctx, const PlotsPanel& panel, const sim::FigureSpec& fig,
+                  CachedPlot& plot, const PlotsPanelFrame& f) {
+  if (IsTimePlot(fig)) {
+    bool log_y = panel.LogY(fig.id);
+    if (ImGui::Checkbox(("log y##" + fig.id).c_str(), &log_y))
+      ctx.run("log-y " + fig.id + (log_y ? " on" : " off"));
+  }
+  const ImVec2 p0 = ImGui::GetCursorScreenPos();
+  const ImVec2 p1(p0.x + f.grid.w, p0.y + f.grid.h + plot.extra_h);
+  ImGui::Dummy(ImVec2(f.grid.w, f.grid.h + plot.extra_h));
+  if (!ImGui::IsItemVisible()) return;  // scrolled away: skip the work
+  DrawOrReplayPlot(plot, fig, panel.LogY(fig.id), f, p0, p1);
+  const PlotLayout& L = plot.layout;
+  ctx.state->frame_plots.push_back(
+      {fig.id, ImVec4(L.area_min.x, L.area_min.y, L.area_max.x, L.area_max.y)});
+  const double cursor = plot.data.x_is_time ? ctx.shown().time() : std::nan("");
+  DrawPlotCursor(f.canvas, L, cursor, *f.style.theme);
+  PlotHoverTooltip(plot.data, L, *f.style.theme);
+}
+
+}  // namespace
 
 PlotsPanel::PlotsPanel(const PanelContext& ctx) : ctx_(ctx), cache_(std::make_unique<Cache>()) {}
 PlotsPanel::~PlotsPanel() = default;
@@ -148,152 +329,30 @@ void PlotsPanel::Draw(const Fonts& fonts) {
   const sim::Experiment& exp = ctx_.session().exp();
   Cache& cache = *cache_;
   const Clock::time_point now = Clock::now();
-  const std::size_t rows = exp.recorder().rows_sampled();
-  // A new run (or the same one reset: fewer rows or steps than before) drops everything.
-  if (&exp != cache.exp || rows < cache.rows || exp.steps() < cache.steps ||
-      exp.setup().file != cache.file || exp.setup().name != cache.name ||
-      ctx_.state->theme != cache.theme) {
-    cache = Cache{};
-    cache.theme = ctx_.state->theme;
-    cache.exp = &exp;
-    cache.file = exp.setup().file;
-    cache.name = exp.setup().name;
-  }
-  // Paused (no step since the last frame): what changed is shown at once.
-  const bool paused = exp.steps() == cache.steps;
-  cache.steps = exp.steps();
-  const bool new_rows = rows != cache.rows || cache.figures.empty();
-  if (new_rows &&
-      (paused || ctx_.state->plots_every_frame || now - cache.figures_at >= kPlotRefresh)) {
-    // The figure list can change during a run (an estimator switched on adds its figure).
-    cache.figures = exp.Figures();
-    cache.figures_at = now;
-    cache.rows = rows;
-  }
-  ComparePanel* compare = ctx_.Find<ComparePanel>();
+  cache.Follow(exp, ctx_.state->theme, ctx_.state->plots_every_frame, now);
   const auto& figures = cache.figures;
-  // The user's choices are kept by figure id.
-  auto is_open = [&](const sim::FigureSpec& f) {
-    const auto it = closed_.find(f.id);
-    return it == closed_.end() || !it->second;
-  };
   // Toggles for each figure, then the open ones stacked (scrolling when they do not fit).
-  for (std::size_t i = 0; i < figures.size(); ++i) {
-    bool open = is_open(figures[i]);
-    const std::string id = figures[i].id + "##toggle";
-    if (i > 0) SameLineIfFits(CheckboxWidth(id.c_str()));
-    if (ImGui::Checkbox(id.c_str(), &open)) closed_[figures[i].id] = !open;
-  }
+  DrawPlotToggles(figures, closed_);
   ImGui::BeginChild("plot_list", ImVec2(0, 0), false);
   int open_count = 0;
-  for (const auto& f : figures) open_count += is_open(f);
-  const float avail_h = ImGui::GetContentRegionAvail().y;
-  // Plots reflow into as many columns as fit at kMinPlotWidth each; up to three rows share the
-  // height, more scroll.
-  const float gap = ImGui::GetStyle().ItemSpacing.x;
-  const float full_w = ImGui::GetContentRegionAvail().x;
-  const int cols = std::max(1, static_cast<int>((full_w + gap) / (kMinPlotWidth + gap)));
-  const float w = std::max(1.0f, std::floor((full_w - static_cast<float>(cols - 1) * gap) / cols));
-  const int plot_rows = (open_count + cols - 1) / cols;
-  // Whole pixels, so that each plot's background is a clear (ImGuiCanvas::FillBackground).
-  const float h =
-      std::max(220.0f, plot_rows > 0 ? std::floor(avail_h / std::min(plot_rows, 3)) - 6 : 0);
+  for (const auto& f : figures) open_count += PlotIsOpen(closed_, f);
+  const PlotGridCells grid = PlotGridFor(open_count);
   // What DecoratePlot adds: a drawn plot is kept only while it is unchanged.
-  std::string decoration =
-      compare->Decoration() + (ctx_.state->settings.degrees ? "/deg" : "/rad");
+  ComparePanel* compare = ctx_.Find<ComparePanel>();
+  std::string decoration = compare->Decoration() + (ctx_.state->settings.degrees ? "/deg" : "/rad");
   for (const std::string& id : log_y_) decoration += "|log:" + id;
-  PlotStyle style;
-  style.title_font = FontRole::kLabel;
-  style.label_font = FontRole::kUi;
-  style.tick_font = FontRole::kSmall;
-  style.line_width = 1.6f;
-  style.padding = 6;
-  style.theme = &GetTheme(ctx_.state->theme);
+  const PlotStyle style = PlotsPanelStyle(GetTheme(ctx_.state->theme));
   ImGuiCanvas canvas(ImGui::GetWindowDrawList(), fonts);
   canvas.SetWholePixelLines(true);  // the window's level of detail (exported figures keep theirs)
-  auto draw_cell = [&](std::size_t i) {
-    // A time plot's log-y toggle on a line of its own above it (the log-y command).
-    if (IsTimePlot(figures[i])) {
-      bool log_y = LogY(figures[i].id);
-      if (ImGui::Checkbox(("log y##" + figures[i].id).c_str(), &log_y))
-        ctx_.run("log-y " + figures[i].id + (log_y ? " on" : " off"));
-    }
-    CachedPlot& plot = cache.plots[figures[i].id];
-    const ImVec2 p0 = ImGui::GetCursorScreenPos();
-    const ImVec2 p1(p0.x + w, p0.y + h + plot.extra_h);
-    ImGui::Dummy(ImVec2(w, h + plot.extra_h));
-    if (!ImGui::IsItemVisible()) return;  // scrolled away: skip the work
-    ImDrawList* dl = ImGui::GetWindowDrawList();
-    const bool moved = p0.x != plot.p0.x || p0.y != plot.p0.y || p1.x != plot.p1.x || p1.y != plot.p1.y;
-    if (!plot.valid || moved || plot.rows != cache.rows || plot.at < cache.figures_at ||
-        plot.decoration != decoration) {
-      // Resolved and drawn (without the cursor, which moves every frame), and kept.
-      plot.data = ResolveFigure(figures[i], exp.recorder());
-      compare->DecoratePlot(figures[i], plot.data);  // pinned runs, Monte Carlo bands
-      ShowPlotInUnits(plot.data, ctx_.state->settings.degrees);  // angles in the window's unit
-      plot.data.log_y = LogY(figures[i].id);
-      plot.decoration = decoration;
-      const DrawMark mark = Mark(dl);
-      plot.layout = DrawPlot(canvas, p0, p1, plot.data, style);
-      plot.geometry = Capture(dl, mark);
-      // A data area under kSmallestPlotPx (in pixels: logical units times the UI scale) grows
-      // its cell from the next frame on.
-      const float want = kSmallestPlotPx / std::max(1.0f, ImGui::GetIO().DisplayFramebufferScale.x) + 1;
-      const float area_h = plot.layout.area_max.y - plot.layout.area_min.y;
-      if (area_h < want) plot.extra_h = std::min(plot.extra_h + want - area_h, 2000.0f);
-      plot.p0 = p0, plot.p1 = p1, plot.rows = cache.rows, plot.at = now, plot.valid = true;
-    } else {
-      Replay(dl, plot.geometry);
-    }
-    const PlotData& data = plot.data;
-    const PlotLayout& L = plot.layout;
-    ctx_.state->frame_plots.push_back(
-        {figures[i].id, ImVec4(L.area_min.x, L.area_min.y, L.area_max.x, L.area_max.y)});
-    // The time cursor, as DrawPlot draws it.
-    const double cursor = data.x_is_time ? ctx_.shown().time() : std::nan("");
-    if (std::isfinite(cursor) && cursor >= L.x0 && cursor <= L.x1 && L.x1 > L.x0) {
-      const float x = static_cast<float>(L.area_min.x + (cursor - L.x0) *
-                                                              (L.area_max.x - L.area_min.x) /
-                                                              (L.x1 - L.x0));
-      canvas.PushClip(L.area_min, L.area_max);
-      canvas.Line(ImVec2(x, L.area_min.y), ImVec2(x, L.area_max.y), {style.theme->cursor, 1.0f});
-      canvas.PopClip();
-    }
-    // Hovering shows each series' value under the mouse.
-    if (ImGui::IsItemHovered() && !data.equal_aspect) {
-      const ImVec2 m = ImGui::GetIO().MousePos;
-      if (m.x >= L.area_min.x && m.x <= L.area_max.x) {
-        const double x =
-            L.x0 + (m.x - L.area_min.x) / (L.area_max.x - L.area_min.x) * (L.x1 - L.x0);
-        ImGui::BeginTooltip();
-        ImGui::Text("%s = %.4g", MarkupText(data.x_label).c_str(), x);
-        // At most 40 rows of at most 80 bytes each: a tooltip is one draw list of 16-bit
-        // indices (a swarm's thousand series or a 100,000-character name would abort).
-        int rows = 0, more = 0;
-        for (const auto& s : data.series) {
-          const double y = SampleSeries(s, x);
-          if (std::isfinite(y) && !s.label.empty()) {
-            if (rows >= 40) {
-              ++more;
-              continue;
-            }
-            ++rows;
-            const sim::Color c = style.theme->Series(s.color, s.style_index, s.dashed).color;
-            ImGui::TextColored(ImVec4(c.r, c.g, c.b, 1), "%s: %.5g",
-                               Shorten(MarkupText(s.label), 80).c_str(), y);
-          }
-        }
-        if (more > 0) ImGui::TextDisabled("... %d more", more);
-        ImGui::EndTooltip();
-      }
-    }
-  };
+  const PlotsPanelFrame frame{
+      exp,  *compare,   canvas,           style, decoration, ctx_.state->settings.degrees,
+      grid, cache.rows, cache.figures_at, now};
   int cell = 0;
-  for (std::size_t i = 0; i < figures.size(); ++i) {
-    if (!is_open(figures[i])) continue;
-    if (cell++ % cols != 0) ImGui::SameLine();
+  for (const sim::FigureSpec& fig : figures) {
+    if (!PlotIsOpen(closed_, fig)) continue;
+    if (cell++ % grid.cols != 0) ImGui::SameLine();
     ImGui::BeginGroup();
-    draw_cell(i);
+    DrawPlotCell(ctx_, *this, fig, cache.plots[fig.id], frame);
     ImGui::EndGroup();
   }
   ImGui::EndChild();

@@ -1,15 +1,13 @@
 #include "app/gui/run_panel.hpp"
 
-#include "app/gui/flow_layout.hpp"
-
 #include <imgui.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 
 #include "app/gui/command_row_makers.hpp"
+#include "app/gui/flow_layout.hpp"
 #include "app/gui/history_panel.hpp"
 #include "app/gui/lesson_panel.hpp"
 #include "app/gui/timeline_panel.hpp"
@@ -172,9 +170,7 @@ void RunPanel::Advance(double wall_dt) {
       }
       if (ctx_.session().exp().finished()) {
         ctx_.state->playing = false;
-        char buf[64];
-        std::snprintf(buf, sizeof buf, "finished at t = %.2f s", ctx_.session().exp().time());
-        ctx_.SetStatus(buf);
+        ctx_.SetStatus("finished at " + sim::FormatSimTime(ctx_.session().exp().time()));
         ctx_.Find<HistoryPanel>()->NoteRun(ctx_.session().exp().status());
       }
     } catch (const std::exception& e) {
@@ -214,15 +210,15 @@ void RunPanel::Draw(const Fonts&) {
   // Read the experiment after the buttons: a reset above has replaced it.
   const sim::Experiment& exp = ctx_.session().exp();
   const double dur = exp.setup().duration;
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "t = %.2f / %.1f s", exp.time(), dur);
+  const std::string progress = sim::Sprintf("t = %.2f / %.1f s", exp.time(), dur);
   ImGui::ProgressBar(static_cast<float>(std::clamp(exp.time() / dur, 0.0, 1.0)), ImVec2(-1, 0),
-                     buf);
+                     progress.c_str());
   if (const std::string held = HeldText(); !held.empty()) ImGui::TextWrapped("%s", held.c_str());
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
-  ImGui::TextWrapped("%ld steps of %.3g s; last frame: %d steps, sim %.1f ms, frame %.1f ms",
-                     exp.steps(), exp.dt(), steps_last_frame_, sim_ms_,
-                     ctx_.state->frame_ms);
+  ImGui::TextWrapped(
+      "%s", sim::Sprintf("%ld steps of %.3g s; last frame: %d steps, sim %.1f ms, frame %.1f ms",
+                         exp.steps(), exp.dt(), steps_last_frame_, sim_ms_, ctx_.state->frame_ms)
+                .c_str());
   ImGui::PopStyleColor();
 }
 

@@ -4,7 +4,6 @@
 
 #include <imgui.h>
 
-#include <cstdio>
 #include <filesystem>
 #include <memory>
 
@@ -56,9 +55,8 @@ void ScenarioPanel::SyncScenario() {
   for (std::size_t i = 0; i < shipped_.size(); ++i)
     if (fs::path(shipped_[i]).filename() == fs::path(current).filename())
       shipped_index_ = static_cast<int>(i);
-  std::snprintf(open_path_, sizeof open_path_, "%s", current.c_str());
-  std::snprintf(save_path_, sizeof save_path_, "%s",
-                (fs::path(current).stem().string() + "_tuned.yaml").c_str());
+  CopyString(open_path_, sizeof open_path_, current);
+  CopyString(save_path_, sizeof save_path_, fs::path(current).stem().string() + "_tuned.yaml");
 }
 
 std::string ScenarioPanel::CmdReload() {

@@ -1,7 +1,8 @@
 #include "app/gui/speed_meter.hpp"
 
 #include <cmath>
-#include <cstdio>
+
+#include "sim/core/number_format.hpp"
 
 namespace formsim::app {
 
@@ -22,9 +23,7 @@ void SpeedMeter::Add(double wall_dt, double sim_dt, double speed, bool running) 
 
 std::string SpeedMeter::Label() const {
   if (!running_ || wall_ <= 0) return "";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "achieved %.2fx%s", achieved(), behind_ ? ", behind" : "");
-  return buf;
+  return sim::Sprintf("achieved %.2fx%s", achieved(), behind_ ? ", behind" : "");
 }
 
 }  // namespace formsim::app

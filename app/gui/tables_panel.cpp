@@ -189,14 +189,15 @@ void TablesPanel::DrawSummary(const Fonts& fonts) {
   ImGui::PopFont();
   ImGui::Separator();
   const auto& events = exp.events().list();
-  ImGui::Text("%zu events", events.size());
+  ImGui::Text("%s", sim::Sprintf("%zu events", events.size()).c_str());
   ImGuiListClipper clipper;
   clipper.Begin(static_cast<int>(events.size()));
   while (clipper.Step())
     for (int i = clipper.DisplayStart; i < clipper.DisplayEnd; ++i) {
       const auto& e = events[static_cast<std::size_t>(i)];
-      ImGui::Text("%.2f s  %s  %s: %s", e.time, e.kind.c_str(), e.robots.c_str(),
-                  e.message.c_str());
+      ImGui::Text("%s", sim::Sprintf("%.2f s  %s  %s: %s", e.time, e.kind.c_str(), e.robots.c_str(),
+                                     e.message.c_str())
+                            .c_str());
     }
 }
 

@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 
 #include "app/gui/command_row_makers.hpp"
 #include "app/gui/ui.hpp"
+#include "sim/core/number_format.hpp"
 
 // Each row names only the fields it sets; the others keep their defaults on purpose.
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
@@ -71,10 +71,8 @@ std::string TimelinePanel::CmdScrub(double t, bool finish_now) {
   // typed as shown or dragged to, is accepted.
   const double end = std::max(exp.time(), static_cast<double>(exp.steps()) * exp.dt());
   if (!std::isfinite(t) || t < 0 || t > end + std::max(exp.dt(), 1e-6 * end)) {
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "scrub: t = %.6g s is outside the run so far, 0 ... %.6g s",
-                  t, end);
-    const std::string why = buf;
+    const std::string why =
+        sim::Sprintf("scrub: t = %.6g s is outside the run so far, 0 ... %.6g s", t, end);
     ctx_.SetStatus(why, true);
     return why;
   }
@@ -86,12 +84,8 @@ std::string TimelinePanel::CmdScrub(double t, bool finish_now) {
   tl_.run_id = ctx_.session().run_id();
   tl_.target = step;
   if (finish_now) Advance(0);
-  char buf[96];
-  std::snprintf(buf, sizeof buf,
-                "timeline at t = %.2f s (live end %.2f s): play to go on, or "
-                "branch from here",
-                step * exp.dt(), exp.time());
-  ctx_.SetStatus(buf);
+  ctx_.SetStatus("timeline at " + sim::FormatSimTime(step * exp.dt()) + " (live end " +
+                 sim::FormatFixed(exp.time(), 2) + " s): play to go on, or branch from here");
   return "";
 }
 
@@ -117,9 +111,7 @@ std::string TimelinePanel::CmdBranch() {
   }
   tl_ = Timeline();
   ctx_.state->playing = false;
-  char buf[96];
-  std::snprintf(buf, sizeof buf, "branched at t = %.2f s: change the gains, then play", t);
-  ctx_.SetStatus(buf);
+  ctx_.SetStatus("branched at " + sim::FormatSimTime(t) + ": change the gains, then play");
   return "";
 }
 
@@ -150,10 +142,10 @@ void TimelinePanel::Draw(const Fonts&) {
   ImGui::SetNextItemWidth(std::max(40.0f, slider));
   float t = static_cast<float>(tl_.active ? tl_.target * live.dt() : live.time());
   const float end = static_cast<float>(std::max(live.time(), live.dt()));
-  char fmt[64];
-  std::snprintf(fmt, sizeof fmt, tl_.active ? "t = %%.2f s of %.2f" : "t = %%.2f s (live)",
-                live.time());
-  if (ImGui::SliderFloat("##t", &t, 0.0f, end, fmt, ImGuiSliderFlags_AlwaysClamp))
+  // The slider's format: its own value, then the live end as text.
+  const std::string fmt = tl_.active ? "t = %.2f s of " + sim::FormatFixed(live.time(), 2)
+                                     : std::string("t = %.2f s (live)");
+  if (ImGui::SliderFloat("##t", &t, 0.0f, end, fmt.c_str(), ImGuiSliderFlags_AlwaysClamp))
     CmdScrub(t, false);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(

@@ -1,28 +1,27 @@
 #include "app/gui/ui.hpp"
-#include "app/render/imgui_canvas.hpp"
-#include "app/render/long_text.hpp"
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 
-#include "app/gui/formation_editor_panel.hpp"
 #include "app/gui/compare_panel.hpp"
-#include "app/gui/history_panel.hpp"
+#include "app/gui/formation_editor_panel.hpp"
 #include "app/gui/frame_audit.hpp"
+#include "app/gui/history_panel.hpp"
 #include "app/gui/layout_audit.hpp"
-#include "sim/core/json.hpp"
+#include "app/gui/lesson_panel.hpp"
 #include "app/gui/parameters_panel.hpp"
 #include "app/gui/plots_panel.hpp"
 #include "app/gui/run_panel.hpp"
 #include "app/gui/scenario_panel.hpp"
 #include "app/gui/tables_panel.hpp"
-#include "app/gui/lesson_panel.hpp"
 #include "app/gui/timeline_panel.hpp"
 #include "app/gui/view_panel.hpp"
+#include "app/render/imgui_canvas.hpp"
+#include "app/render/long_text.hpp"
+#include "sim/core/json.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/scenario/scenario_files.hpp"
 
@@ -444,28 +443,31 @@ void AppUi::DrawControlPanel(const Fonts& fonts, bool interactive) {
 void AppUi::DrawMessagesSection() {
   const auto& rejected = session_->rejected();
   const auto& events = session_->exp().events().list();
-  char title[64];
-  std::snprintf(title, sizeof(title), "Messages (%zu rejected, %zu events)###messages",
-                rejected.size(), events.size());
+  const std::string title = sim::Sprintf("Messages (%zu rejected, %zu events)###messages",
+                                         rejected.size(), events.size());
   if (!state_.status.empty()) {
     if (state_.status_is_error) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.75f, 0.1f, 0.1f, 1));
     LongTextWrapped("status", state_.status, 600);  // any length (app/render/long_text.hpp)
     if (state_.status_is_error) ImGui::PopStyleColor();
   }
-  if (!ImGui::CollapsingHeader(title, rejected.empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen))
-    return;
+  const ImGuiTreeNodeFlags open = rejected.empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen;
+  if (!ImGui::CollapsingHeader(title.c_str(), open)) return;
   ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.75f, 0.1f, 0.1f, 1));
   for (auto it = rejected.rbegin(); it != rejected.rend() && it - rejected.rbegin() < 8; ++it)
     ImGui::TextWrapped("%s", Shorten(*it, 600).c_str());
   ImGui::PopStyleColor();
   const std::size_t first = events.size() > 12 ? events.size() - 12 : 0;
   for (std::size_t i = events.size(); i-- > first;)
-    ImGui::TextWrapped("%.2f s %s %s: %s", events[i].time, events[i].kind.c_str(),
-                       Shorten(events[i].robots, 200).c_str(), Shorten(events[i].message, 400).c_str());
+    ImGui::TextWrapped("%s",
+                       sim::Sprintf("%.2f s %s %s: %s", events[i].time, events[i].kind.c_str(),
+                                    Shorten(events[i].robots, 200).c_str(),
+                                    Shorten(events[i].message, 400).c_str())
+                           .c_str());
 }
 
 void CopyString(char* dst, std::size_t n, const std::string& s) {
-  std::snprintf(dst, n, "%s", s.c_str());
+  if (n == 0) return;
+  dst[s.copy(dst, n - 1)] = '\0';  // cut to the buffer, always terminated
 }
 
 }  // namespace formsim::app

@@ -8,9 +8,10 @@
 #include <ctime>
 #include <filesystem>
 
-#include "app/render/long_text.hpp"
 #include "app/gui/history_panel.hpp"
 #include "app/gui/ui.hpp"
+#include "app/render/long_text.hpp"
+#include "sim/core/number_format.hpp"
 
 namespace formsim::app {
 namespace {
@@ -167,7 +168,7 @@ void AppUi::DrawRestoreBanner() {
       CmdDiscardSession();
     if (!unfinished_.empty() && unfinished_.size() > 1) {
       ImGui::SameLine();
-      ImGui::TextDisabled("(%zu more)", unfinished_.size() - 1);
+      ImGui::TextDisabled("%s", sim::Sprintf("(%zu more)", unfinished_.size() - 1).c_str());
     }
   }
   ImGui::EndChild();

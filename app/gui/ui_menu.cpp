@@ -3,12 +3,12 @@
 /// when the command cannot run now; the argument dialog of commands that take arguments; the
 /// About box; exporting the figures of the current run.
 #include <algorithm>
-#include <cstdio>
 
 #include "app/export/figure_data.hpp"
 #include "app/export/figure_export.hpp"
 #include "app/gui/run_panel.hpp"
 #include "app/gui/ui.hpp"
+#include "sim/core/number_format.hpp"
 #include "sim/core/run_output.hpp"
 
 namespace formsim::app {
@@ -67,16 +67,14 @@ float AppUi::DrawMenuBar() {
   }
   // The status on the right of the bar: where the window stands, readable at a glance.
   const sim::Experiment& exp = session_->exp();
-  char where[96];
-  std::snprintf(where, sizeof where, "%s  t = %.2f s",
-                state_.playing                 ? "playing"
-                : !run_->HeldText().empty() ? "paused for the prediction"
-                                             : "paused",
-                exp.time());
-  const float w = ImGui::CalcTextSize(where).x;
+  const char* state = state_.playing              ? "playing"
+                      : !run_->HeldText().empty() ? "paused for the prediction"
+                                                  : "paused";
+  const std::string where = std::string(state) + "  " + sim::FormatSimTime(exp.time());
+  const float w = ImGui::CalcTextSize(where.c_str()).x;
   if (ImGui::GetContentRegionAvail().x > w + 20) {
     ImGui::SetCursorPosX(ImGui::GetWindowWidth() - w - 12);
-    ImGui::TextDisabled("%s", where);
+    ImGui::TextDisabled("%s", where.c_str());
   }
   ImGui::EndMainMenuBar();
   return height;
@@ -148,7 +146,7 @@ void AppUi::OpenCommandDialog(const Command& cmd) {
   for (std::size_t i = 0; i < 3; ++i) {
     std::string initial;
     if (i < cmd.args.size() && cmd.args[i].initial) initial = cmd.args[i].initial(*this);
-    std::snprintf(state_.dialog_args[i], sizeof state_.dialog_args[i], "%s", initial.c_str());
+    CopyString(state_.dialog_args[i], sizeof state_.dialog_args[i], initial);
   }
 }
 

@@ -7,8 +7,9 @@
 
 #include "app/gui/parameters_panel.hpp"
 #include "app/gui/tunable_label.hpp"
-#include "app/render/label_markup.hpp"
 #include "app/gui/ui.hpp"
+#include "app/render/label_markup.hpp"
+#include "sim/core/number_format.hpp"
 
 namespace formsim::app {
 namespace {
@@ -52,7 +53,7 @@ std::string AppUi::CmdPalette(const std::string& filter) {
   state_.palette = true;
   state_.palette_focus = true;
   state_.palette_selected = 0;
-  std::snprintf(state_.palette_filter, sizeof state_.palette_filter, "%s", filter.c_str());
+  CopyString(state_.palette_filter, sizeof state_.palette_filter, filter);
   return "";
 }
 
@@ -145,7 +146,8 @@ void AppUi::DrawPalette(ImVec2 display) {
   if (entries.empty())
     ImGui::TextDisabled("nothing matches");
   else if (static_cast<int>(entries.size()) > shown)
-    ImGui::TextDisabled("… %zu more: type more to narrow", entries.size() - shown);
+    ImGui::TextDisabled(
+        "%s", sim::Sprintf("… %zu more: type more to narrow", entries.size() - shown).c_str());
   ImGui::End();
 
   if (escape) {

@@ -26,7 +26,7 @@ void AppUi::StartRecording(const std::vector<sim::Override>& cli, long step) {
 
 void AppUi::SetSessionFile(const std::string& path) {
   session_file_ = path;
-  std::snprintf(state_.session_path, sizeof(state_.session_path), "%s", path.c_str());
+  CopyString(state_.session_path, sizeof(state_.session_path), path);
 }
 
 std::string AppUi::CmdSaveSession(const std::string& path) {

@@ -2,7 +2,6 @@
 /// the mouse: wheel zoom, right/middle-drag pan, left-drag of robots and obstacles while paused.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "app/gui/compare_panel.hpp"
 #include "app/gui/timeline_panel.hpp"
@@ -10,6 +9,7 @@
 #include "app/render/imgui_canvas.hpp"
 #include "app/render/long_text.hpp"
 #include "app/render/world_view.hpp"
+#include "sim/core/number_format.hpp"
 
 namespace formsim::app {
 
@@ -112,9 +112,8 @@ void AppUi::DrawWorldMouse(const View& view) {
   if (ImGui::IsMouseReleased(ImGuiMouseButton_Left)) state_.drag_name.clear();
   if (hovered) {
     const Vec2 m = view.ToWorld(io.MousePos);
-    char buf[64];
-    std::snprintf(buf, sizeof(buf), "x %.3f m, y %.3f m", m.x, m.y);
-    const ImVec2 ext = ImGui::CalcTextSize(buf);
+    const std::string readout = sim::Sprintf("x %.3f m, y %.3f m", m.x, m.y);
+    const ImVec2 ext = ImGui::CalcTextSize(readout.c_str());
     const ImVec2 at = CoordinateReadoutPos(view, ext, world_report_.scale_bar_box,
                                            state_.legend ? world_report_.legend_box : ImVec4());
     // On the theme's backdrop, as the view's labels are: readable over grid lines and trails.
@@ -122,7 +121,7 @@ void AppUi::DrawWorldMouse(const View& view) {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     dl->AddRectFilled(ImVec2(at.x - 3, at.y - 1), ImVec2(at.x + ext.x + 3, at.y + ext.y + 1),
                       ToImColor(th.backdrop.WithAlpha(0.85f)), 2.0f);
-    dl->AddText(at, ToImColor(th.text), buf);
+    dl->AddText(at, ToImColor(th.text), readout.c_str());
   }
 }
 
@@ -175,9 +174,7 @@ void AppUi::DrawWorldWindow(ImVec2 pos, ImVec2 size, const Fonts& fonts, bool in
   compare_->AddWorldOverlays(opt);  // the pins, faded
   const sim::Experiment& shown = ShownExperiment();
   if (&shown != &session_->exp()) {
-    char note[64];
-    std::snprintf(note, sizeof note, "(timeline; live end %.2f s)", session_->exp().time());
-    opt.time_note = note;
+    opt.time_note = sim::Sprintf("(timeline; live end %.2f s)", session_->exp().time());
   }
   ImGuiCanvas canvas(ImGui::GetWindowDrawList(), fonts);
   canvas.SetWholePixelLines(opt.level_of_detail);

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "app/render/display_unit.hpp"
 #include "app/render/long_text.hpp"
@@ -15,7 +14,7 @@ namespace formsim::app {
 void ValueEntry::Open(const std::string& key, const std::string& text) {
   key_ = key;
   opened_ = text;
-  std::snprintf(buf_, sizeof buf_, "%s", text.c_str());
+  buf_[text.copy(buf_, sizeof buf_ - 1)] = '\0';  // cut to the field, always terminated
   focus_ = true;
   refusal_.clear();
 }

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <functional>
 
 #include "app/gui/command_row_makers.hpp"
@@ -229,11 +228,18 @@ void ViewPanel::DrawPresentationBar(ImVec2 min, ImVec2 max) {
   ImGui::End();
 }
 
-std::vector<Command> ViewPanel::Rows() {
+namespace {
+
+ViewPanel* ViewPanelOf(AppUi& ui) {
+  return ui.Find<ViewPanel>();
+}
+
+// screenshot, present, frame-formation: the window as a whole (its picture, presentation mode,
+// the camera framing the formation).
+void AddViewWindowRows(std::vector<Command>& t) {
   using namespace rows;
   using Src = CommandSource;
-  auto panel = [](AppUi& ui) { return ui.Find<ViewPanel>(); };
-  std::vector<Command> t;
+  auto panel = ViewPanelOf;
   auto row = [&t](Command c) { t.push_back(std::move(c)); };
   row({.name = "screenshot",
        .args = {Optional(Text("PATH", "a PNG file to write"))},
@@ -265,6 +271,14 @@ std::vector<Command> ViewPanel::Rows() {
              ui.state().camera.Fit();
              return std::string();
            }});
+}
+
+// theme, ui-scale, angle-unit, overlay, legend: how things are drawn.
+void AddViewLookRows(std::vector<Command>& t) {
+  using namespace rows;
+  using Src = CommandSource;
+  auto panel = ViewPanelOf;
+  auto row = [&t](Command c) { t.push_back(std::move(c)); };
   row({.name = "theme",
        .args = {Initial(
            Choice("NAME", ThemeList()),
@@ -315,6 +329,13 @@ std::vector<Command> ViewPanel::Rows() {
        .checked = [](const AppUi& ui) { return ui.state().legend; },
        .run = [panel](AppUi& ui, const CommandArgs& a,
                       Src) { return panel(ui)->CmdLegend(a.On(0)); }});
+}
+
+// follow, fit: where the camera looks.
+void AddViewCameraRows(std::vector<Command>& t) {
+  using namespace rows;
+  using Src = CommandSource;
+  auto row = [&t](Command c) { t.push_back(std::move(c)); };
   row({.name = "follow",
        .args = {Initial(
            Offer(Text("ROBOT", "a robot's name, or nobody", ArgType::kChoice), RobotNames),
@@ -343,6 +364,14 @@ std::vector<Command> ViewPanel::Rows() {
          ui.state().follow = -1;
          return std::string();
        }});
+}
+
+// tab, help: which tab is in front, the keys' overlay.
+void AddViewNavigationRows(std::vector<Command>& t) {
+  using namespace rows;
+  using Src = CommandSource;
+  auto panel = ViewPanelOf;
+  auto row = [&t](Command c) { t.push_back(std::move(c)); };
   row({.name = "tab",
        .args = {Choice("NAME", {"controls", "lesson", "plots", "tables", "history", "summary"})},
        .menu = "View/Show tab",
@@ -366,6 +395,16 @@ std::vector<Command> ViewPanel::Rows() {
        .checked = [](const AppUi& ui) { return ui.state().help; },
        .run = [panel](AppUi& ui, const CommandArgs& a,
                       Src) { return panel(ui)->CmdHelp(a.On(0)); }});
+}
+
+}  // namespace
+
+std::vector<Command> ViewPanel::Rows() {
+  std::vector<Command> t;
+  AddViewWindowRows(t);
+  AddViewLookRows(t);
+  AddViewCameraRows(t);
+  AddViewNavigationRows(t);
   return t;
 }
 

@@ -43,7 +43,9 @@ class Canvas {
   virtual void FillRect(ImVec2 min, ImVec2 max, sim::Color color, float rounding = 0) = 0;
   /// An opaque background under everything drawn after it: the same pixels as FillRect, which a
   /// GL canvas may produce more cheaply (a scissored clear instead of a shaded quad).
-  virtual void FillBackground(ImVec2 min, ImVec2 max, sim::Color color) { FillRect(min, max, color); }
+  virtual void FillBackground(ImVec2 min, ImVec2 max, sim::Color color) {
+    FillRect(min, max, color);
+  }
   /// Rectangle outline drawn inside [min, max].
   virtual void StrokeRect(ImVec2 min, ImVec2 max, sim::Color color, float width,
                           float rounding = 0) = 0;
@@ -83,8 +85,9 @@ class Canvas {
   virtual void Text(ImVec2 pos, FontRole font, sim::Color color, const std::string& text) = 0;
   /// Text rotated 90° counter-clockwise (reads bottom to top), centred on `center`: the usual
   /// y-axis label.
-  virtual void TextVertical(ImVec2 center, FontRole font, sim::Color color,
-                            const std::string& text) = 0;
+  void TextVertical(ImVec2 center, FontRole font, sim::Color color, const std::string& text) {
+    DrawVertical(center, font, color, text, TextSize(font, text), false);
+  }
   /// Width and line height of `text` in `font`, logical pixels.
   virtual ImVec2 TextSize(FontRole font, const std::string& text) const = 0;
   /// A label written with markup (label_markup.hpp), placed like Text. By default its Unicode
@@ -93,9 +96,8 @@ class Canvas {
     Text(pos, font, color, MarkupText(markup));
   }
   /// A markup label placed like TextVertical.
-  virtual void LabelVertical(ImVec2 center, FontRole font, sim::Color color,
-                             const std::string& markup) {
-    TextVertical(center, font, color, MarkupText(markup));
+  void LabelVertical(ImVec2 center, FontRole font, sim::Color color, const std::string& markup) {
+    DrawVertical(center, font, color, markup, LabelSize(font, markup), true);
   }
   /// Width and line height of a markup label as Label draws it.
   virtual ImVec2 LabelSize(FontRole font, const std::string& markup) const {
@@ -113,6 +115,12 @@ class Canvas {
     const ImVec2 p[2] = {a, b};
     Polyline(p, 2, stroke);
   }
+
+ protected:
+  /// What TextVertical and LabelVertical draw once measured: `text` (markup when `markup`), its
+  /// line box `ext` centred on `center`, rotated 90° counter-clockwise about it.
+  virtual void DrawVertical(ImVec2 center, FontRole font, sim::Color color, const std::string& text,
+                            ImVec2 ext, bool markup) = 0;
 };
 
 }  // namespace formsim::app

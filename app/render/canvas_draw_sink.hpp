@@ -67,6 +67,8 @@ class CanvasDrawSink : public sim::DrawSink {
 
   /// Screen boxes (x0, y0, x1, y1) no label may cover: the robots' bodies.
   void SetKeepClear(std::vector<ImVec4> boxes) { keep_clear_ = std::move(boxes); }
+  /// One more box the labels keep off (before FlushLabels).
+  void KeepClear(const ImVec4& box) { keep_clear_.push_back(box); }
   /// Places and draws the queued labels: by role (names, links, values), each at its own spot
   /// when that is free, else at the first free spot around its anchor with a thin leader line,
   /// else not at all (at this zoom). Free: covering no placed label and no keep-clear box.

@@ -78,9 +78,10 @@ Fonts LoadFonts(float scale) {
   f.scale = scale;
   const std::string regular = FindFont(FontSpecOf(FontRole::kUi).file);
   if (regular.empty()) {
-    std::fprintf(stderr,
-                 "formsim: warning: DejaVuSans.ttf not found (install fonts-dejavu-core); using "
-                 "ImGui's default font, Greek letters will not render\n");
+    std::fputs(
+        "formsim: warning: DejaVuSans.ttf not found (install fonts-dejavu-core); using "
+        "ImGui's default font, Greek letters will not render\n",
+        stderr);
     ImFontConfig cfg;
     cfg.SizePixels = 13.0f * scale;
     ImFont* def = io.Fonts->AddFontDefault(&cfg);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
-#include <functional>
 #include <vector>
 
 #include "app/render/gl_api.hpp"
@@ -304,23 +303,20 @@ void ImGuiCanvas::Text(ImVec2 pos, FontRole font, sim::Color color, const std::s
                ToImColor(color), text.c_str());
 }
 
-// ImGui has no rotated text, so the glyph vertices are rotated after AddText.
-void ImGuiCanvas::DrawRotated(ImVec2 center, const std::function<void()>& draw) {
+void ImGuiCanvas::DrawVertical(ImVec2 center, FontRole font, sim::Color color,
+                               const std::string& text, ImVec2 ext, bool markup) {
   dl_->PushClipRect(ImVec2(-1e5f, -1e5f), ImVec2(1e5f, 1e5f), false);  // no culling before rotating
   const int v0 = dl_->VtxBuffer.Size;
-  draw();
+  const ImVec2 flat(center.x - ext.x / 2, center.y - ext.y / 2);
+  if (markup)
+    Label(flat, font, color, text);
+  else
+    Text(flat, font, color, text);
   for (int i = v0; i < dl_->VtxBuffer.Size; ++i) {
     const ImVec2 p = dl_->VtxBuffer[i].pos;
     dl_->VtxBuffer[i].pos = ImVec2(center.x + (p.y - center.y), center.y - (p.x - center.x));
   }
   dl_->PopClipRect();
-}
-
-void ImGuiCanvas::TextVertical(ImVec2 center, FontRole font, sim::Color color,
-                               const std::string& text) {
-  const ImVec2 ext = TextSize(font, text);
-  DrawRotated(center,
-              [&] { Text(ImVec2(center.x - ext.x / 2, center.y - ext.y / 2), font, color, text); });
 }
 
 float MarkupRunsWidth(ImFont* f, float size, const std::string& markup) {
@@ -354,15 +350,8 @@ ImVec2 ImGuiCanvas::LabelSize(FontRole font, const std::string& markup) const {
 
 void ImGuiCanvas::Label(ImVec2 pos, FontRole font, sim::Color color, const std::string& markup) {
   ImFont* f = fonts_.Get(font);
-  DrawMarkupRuns(dl_, f, f->FontSize / fonts_.scale, pos, ToImColor(color), markup, fonts_.scale, true);
-}
-
-void ImGuiCanvas::LabelVertical(ImVec2 center, FontRole font, sim::Color color,
-                                const std::string& markup) {
-  const ImVec2 ext = LabelSize(font, markup);
-  DrawRotated(center, [&] {
-    Label(ImVec2(center.x - ext.x / 2, center.y - ext.y / 2), font, color, markup);
-  });
+  DrawMarkupRuns(dl_, f, f->FontSize / fonts_.scale, pos, ToImColor(color), markup, fonts_.scale,
+                 true);
 }
 
 void ImGuiCanvas::PushClip(ImVec2 min, ImVec2 max) {

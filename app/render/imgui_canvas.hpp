@@ -6,7 +6,6 @@
 #include <imgui.h>
 
 #include <cstdint>
-#include <functional>
 
 #include "app/render/canvas.hpp"
 #include "app/render/fonts.hpp"
@@ -20,7 +19,6 @@ void DrawMarkupRuns(ImDrawList* dl, ImFont* f, float size, ImVec2 pos, ImU32 col
                     const std::string& markup, float snap, bool snap_x);
 /// The width DrawMarkupRuns takes for `markup` in `f` at `size`.
 float MarkupRunsWidth(ImFont* f, float size, const std::string& markup);
-
 
 inline ImU32 ToImColor(sim::Color c) {
   return ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, c.a));
@@ -48,16 +46,12 @@ class ImGuiCanvas : public Canvas {
   void FillCircle(ImVec2 center, float radius, sim::Color color) override;
   void StrokeCircle(ImVec2 center, float radius, sim::Color color, float width) override;
   void Text(ImVec2 pos, FontRole font, sim::Color color, const std::string& text) override;
-  void TextVertical(ImVec2 center, FontRole font, sim::Color color,
-                    const std::string& text) override;
+  float FontSize(FontRole font) const override;
   ImVec2 TextSize(FontRole font, const std::string& text) const override;
   /// Markup: Unicode scripts where the atlas has them, other scripts smaller on a shifted
   /// baseline (label_markup.hpp's AtlasRuns).
   void Label(ImVec2 pos, FontRole font, sim::Color color, const std::string& markup) override;
-  void LabelVertical(ImVec2 center, FontRole font, sim::Color color,
-                     const std::string& markup) override;
   ImVec2 LabelSize(FontRole font, const std::string& markup) const override;
-  float FontSize(FontRole font) const override;
   void PushClip(ImVec2 min, ImVec2 max) override;
   void PopClip() override;
   void Clip(ImVec2& min, ImVec2& max) const override {
@@ -65,7 +59,7 @@ class ImGuiCanvas : public Canvas {
     max = dl_->GetClipRectMax();
   }
 
- /// FillBackground as a clear (true) or always as a quad (false: a draw list that is not rendered
+  /// FillBackground as a clear (true) or always as a quad (false: a draw list that is not rendered
   /// by the GL backend, or kept and appended again later).
   void SetClearBackgrounds(bool on) { clear_backgrounds_ = on; }
   /// Strokes on whole pixels (the window's level of detail): at a one-to-one framebuffer scale a
@@ -80,8 +74,10 @@ class ImGuiCanvas : public Canvas {
   float StrokeWidth(float width) const;
   bool clear_backgrounds_ = true;
   bool whole_pixel_lines_ = false;
-  /// Runs `draw`, then turns what it added 90° counter-clockwise about `center`.
-  void DrawRotated(ImVec2 center, const std::function<void()>& draw);
+  /// Draws the text flat (Text or Label), then turns the vertices it added 90°
+  /// counter-clockwise about `center`: ImGui has no rotated text.
+  void DrawVertical(ImVec2 center, FontRole font, sim::Color color, const std::string& text,
+                    ImVec2 ext, bool markup) override;
   void DashedPolyline(const ImVec2* pts, int n, ImU32 col, float width, const LineDash& dash);
   ImDrawList* dl_;
   const Fonts& fonts_;

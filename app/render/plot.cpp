@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "app/render/plot_frame.hpp"
 #include "app/render/plot_log_scale.hpp"
+#include "sim/core/number_format.hpp"
 
 namespace formsim::app {
 
@@ -66,9 +66,7 @@ std::string FormatTick(double value, double step, int exponent) {
   const double scale = std::pow(10.0, -exponent);
   const double v = value * scale, st = step * scale;
   const int decimals = std::max(0, static_cast<int>(-std::floor(std::log10(st) + 1e-9)));
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "%.*f", std::min(decimals, 8), std::abs(v));
-  std::string s = buf;
+  std::string s = sim::FormatFixed(std::abs(v), std::min(decimals, 8));
   const bool zero = std::abs(v) < 0.5 * std::pow(10.0, -decimals);
   if (v < 0 && !zero) s = "−" + s;  // typographic minus
   return s;

@@ -1,10 +1,10 @@
 #include "app/render/plot_log_scale.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
 #include "control/common/float_limits.hpp"
+#include "sim/core/number_format.hpp"
 
 namespace formsim::app {
 namespace {
@@ -82,9 +82,7 @@ std::string SuperscriptInt(long e) {
 
 std::string DecadeLabel(double k, double step) {
   if (step >= 1 && std::abs(k - std::round(k)) < 1e-9) return "10" + SuperscriptInt(std::lround(k));
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.3g", std::pow(10.0, k));
-  return buf;
+  return sim::FormatSignificant(std::pow(10.0, k), 3);
 }
 
 }  // namespace formsim::app

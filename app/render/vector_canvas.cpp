@@ -93,8 +93,8 @@ void VectorCanvas::Text(ImVec2 pos, FontRole font, sim::Color color, const std::
   op.text = text;
 }
 
-void VectorCanvas::AddVertical(ImVec2 center, FontRole font, sim::Color color,
-                               const std::string& text, ImVec2 ext, bool markup) {
+void VectorCanvas::DrawVertical(ImVec2 center, FontRole font, sim::Color color,
+                                const std::string& text, ImVec2 ext, bool markup) {
   if (text.empty() || color.a <= 0) return;
   VectorOp& op = Add(VectorOp::Kind::kText, color);
   // The baseline start before rotating, then the rotation about the centre.
@@ -106,20 +106,10 @@ void VectorCanvas::AddVertical(ImVec2 center, FontRole font, sim::Color color,
   op.markup = markup;
 }
 
-void VectorCanvas::TextVertical(ImVec2 center, FontRole font, sim::Color color,
-                                const std::string& text) {
-  AddVertical(center, font, color, text, TextSize(font, text), false);
-}
-
 void VectorCanvas::Label(ImVec2 pos, FontRole font, sim::Color color, const std::string& markup) {
   if (markup.empty() || color.a <= 0) return;
   Text(pos, font, color, markup);
   fig_.ops.back().markup = true;
-}
-
-void VectorCanvas::LabelVertical(ImVec2 center, FontRole font, sim::Color color,
-                                 const std::string& markup) {
-  AddVertical(center, font, color, markup, LabelSize(font, markup), true);
 }
 
 ImVec2 VectorCanvas::LabelSize(FontRole font, const std::string& markup) const {

@@ -59,12 +59,8 @@ class VectorCanvas : public Canvas {
   void FillCircle(ImVec2 center, float radius, sim::Color color) override;
   void StrokeCircle(ImVec2 center, float radius, sim::Color color, float width) override;
   void Text(ImVec2 pos, FontRole font, sim::Color color, const std::string& text) override;
-  void TextVertical(ImVec2 center, FontRole font, sim::Color color,
-                    const std::string& text) override;
   ImVec2 TextSize(FontRole font, const std::string& text) const override;
   void Label(ImVec2 pos, FontRole font, sim::Color color, const std::string& markup) override;
-  void LabelVertical(ImVec2 center, FontRole font, sim::Color color,
-                     const std::string& markup) override;
   ImVec2 LabelSize(FontRole font, const std::string& markup) const override;
   void PushClip(ImVec2 min, ImVec2 max) override;
   void PopClip() override;
@@ -76,8 +72,8 @@ class VectorCanvas : public Canvas {
  private:
   VectorOp& Add(VectorOp::Kind kind, sim::Color color);
   /// A text op rotated 90° counter-clockwise about `center`, `ext` its measured size.
-  void AddVertical(ImVec2 center, FontRole font, sim::Color color, const std::string& text,
-                   ImVec2 ext, bool markup);
+  void DrawVertical(ImVec2 center, FontRole font, sim::Color color, const std::string& text,
+                    ImVec2 ext, bool markup) override;
   VectorFigure fig_;
   /// The figure's rectangle, then each pushed clip intersected with the one before.
   std::vector<ImVec4> clips_;

@@ -104,125 +104,175 @@ Layout Measure(Canvas& cv, const std::vector<CanvasDrawSink::LegendEntry>& entri
   return l;
 }
 
-}  // namespace
+using LegendEntries = std::vector<CanvasDrawSink::LegendEntry>;
 
-void DrawWorldLegend(Canvas& cv, const View& view, const Theme& th,
-                     const std::vector<CanvasDrawSink::LegendEntry>& entries,
-                     const LegendAvoid& avoid, LegendState* state, double clock, float top_reserved,
-                     float bottom_reserved) {
-  if (entries.empty()) return;
-  const FontRole f = FontRole::kSmall;
-  const bool collapsed = state != nullptr && state->collapsed;
-  const std::string title = collapsed ? "legend  +" : "legend  -";
-  const float title_w = cv.TextSize(f, title).x;
-  const float max_area = kLegendMaxShare * view.width() * view.height();
-  const int n = static_cast<int>(entries.size());
-  auto fits = [&](const Layout& l) {
-    return l.w * l.h <= max_area &&
-           l.w <= std::min(view.width() - 50, l.columns == 2 ? 0.6f * view.width() : 1e9f) &&
-           l.h <= view.height() - top_reserved - bottom_reserved;
-  };
+// Where in the view a legend may go, and what it would cover there.
+class LegendSpace {
+ public:
+  LegendSpace(Canvas& cv, const View& view, const LegendEntries& entries, const LegendAvoid& avoid,
+              bool collapsed, float title_w, float top_reserved, float bottom_reserved)
+      : cv_(cv),
+        view_(view),
+        entries_(entries),
+        avoid_(avoid),
+        collapsed_(collapsed),
+        title_w_(title_w),
+        top_reserved_(top_reserved),
+        bottom_reserved_(bottom_reserved),
+        max_area_(kLegendMaxShare * view.width() * view.height()) {}
+
+  // The largest area the legend takes (kLegendMaxShare of the view's).
+  float MaxArea() const { return max_area_; }
+
+  // The layout of the first `shown` entries in `columns` (0 entries or `collapsed`: the tab).
+  Layout Measure(int shown, int columns, bool collapsed) const {
+    return app::Measure(cv_, entries_, shown, columns, collapsed, title_w_);
+  }
+
+  // Within the largest share of the view, its width (two columns in 60% of it) and the height
+  // left between the reserved bands.
+  bool Fits(const Layout& l) const {
+    return l.w * l.h <= max_area_ &&
+           l.w <= std::min(view_.width() - 50, l.columns == 2 ? 0.6f * view_.width() : 1e9f) &&
+           l.h <= view_.height() - top_reserved_ - bottom_reserved_;
+  }
+
   // The layouts that fit, fullest first: every entry in two columns where that fits in 60% of
   // the view's width, else in one; then fewer entries, the rest counted in a last line. Folded
-  // (by a click): the title tab alone. Nothing fits: the title tab alone.
-  std::vector<Layout> layouts;
-  auto add_layouts = [&] {
+  // (by a click): the title tab alone. Nothing fits: none.
+  std::vector<Layout> Candidates() const {
+    std::vector<Layout> layouts;
+    const int n = static_cast<int>(entries_.size());
     for (int shown = n; shown >= 1; --shown)
       for (int columns : {2, 1}) {
         if (columns == 2 && shown < 4) continue;
-        const Layout l = Measure(cv, entries, shown, columns, collapsed, title_w);
-        if (!fits(l)) continue;
+        const Layout l = Measure(shown, columns, collapsed_);
+        if (!Fits(l)) continue;
         layouts.push_back(l);
-        if (collapsed) return;  // folded: every layout is the same title tab
+        if (collapsed_) return layouts;  // folded: every layout is the same title tab
       }
     // Last, the title tab alone: where every fuller layout would cover a robot in every corner,
     // the legend folds rather than hide one.
-    const Layout tab = Measure(cv, entries, 0, 1, true, title_w);
-    if (!layouts.empty() && fits(tab)) layouts.push_back(tab);
-  };
-  const float x_left = view.min.x + 40;
-  const float y_top = view.min.y + top_reserved;
-  auto corner_min = [&](const Layout& l, int c) {
-    return ImVec2((c % 2 == 0) ? x_left : view.max.x - 10 - l.w,
-                  c < 2 ? y_top : view.max.y - bottom_reserved - l.h);
-  };
-  // Robots whose bodies reach under the box, and trail points inside it.
-  auto robots_under = [&](ImVec2 lo, ImVec2 hi) {
+    const Layout tab = Measure(0, 1, true);
+    if (!layouts.empty() && Fits(tab)) layouts.push_back(tab);
+    return layouts;
+  }
+
+  // The top left of `l` in corner `c` (0 top left, 1 top right, 2 bottom left, 3 bottom right).
+  ImVec2 CornerMin(const Layout& l, int c) const {
+    return ImVec2((c % 2 == 0) ? view_.min.x + 40 : view_.max.x - 10 - l.w,
+                  c < 2 ? view_.min.y + top_reserved_ : view_.max.y - bottom_reserved_ - l.h);
+  }
+
+  // Robots whose bodies reach under the box [lo, hi].
+  long long RobotsUnder(ImVec2 lo, ImVec2 hi) const {
     long long count = 0;
-    for (std::size_t i = 0; i < avoid.bodies.size(); ++i) {
-      const ImVec2 p = avoid.bodies[i];
-      const float r = i < avoid.body_radii.size() ? avoid.body_radii[i] : 0.0f;
+    for (std::size_t i = 0; i < avoid_.bodies.size(); ++i) {
+      const ImVec2 p = avoid_.bodies[i];
+      const float r = i < avoid_.body_radii.size() ? avoid_.body_radii[i] : 0.0f;
       count += p.x + r >= lo.x && p.x - r <= hi.x && p.y + r >= lo.y && p.y - r <= hi.y;
     }
     return count;
-  };
-  auto trail_points_in = [&](ImVec2 lo, ImVec2 hi) {
+  }
+
+  // Robots under `l` placed in corner `c`.
+  long long RobotsUnder(const Layout& l, int c) const {
+    const ImVec2 lo = CornerMin(l, c);
+    return RobotsUnder(lo, ImVec2(lo.x + l.w, lo.y + l.h));
+  }
+
+  // Trail points inside the box [lo, hi].
+  long long TrailPointsIn(ImVec2 lo, ImVec2 hi) const {
     long long count = 0;
-    for (const ImVec2& p : avoid.trails)
+    for (const ImVec2& p : avoid_.trails)
       count += p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y;
     return count;
-  };
-  int corner = state != nullptr ? state->corner : -1;
-  bool due = LegendCornerDue(state, clock);
-  Layout l;
-  bool have = false;
-  // Between choices, the layout chosen with the corner while the entries, the fold and the fit
-  // stay as they were.
-  if (!due && state->entries == n && state->chosen_collapsed == collapsed && state->shown >= 0 &&
-      state->shown <= n) {
-    l = Measure(cv, entries, state->shown, state->columns, collapsed || state->shown == 0, title_w);
-    have = fits(l) || state->shown == 0;
-    // A robot driven under the kept legend: the corner is chosen anew now, not a second later.
-    const ImVec2 lo = corner_min(l, corner);
-    if (have && robots_under(lo, ImVec2(lo.x + l.w, lo.y + l.h)) > 0) due = true, have = false;
   }
-  if (!have) {
-    add_layouts();
-    if (layouts.empty()) {
-      l = Measure(cv, entries, 0, 1, true, title_w);  // the title tab alone
-      if (l.w * l.h > max_area) return;
-      layouts.push_back(l);
-    }
-    // The fullest layout with a corner that covers no robot; else the one covering the fewest
-    // (the fuller on a tie). Between choices the corner stays and only the layout is chosen so.
-    // Its corner: the fewest robots, then the fewest trail points (a robot outweighs any number
-    // of them: a thousand robots' trails put tens of thousands in a corner); on a tie the
-    // current one, then bottom left, bottom right, top right, top left.
-    const std::vector<int> order =
-        due ? std::vector<int>{corner, 2, 3, 1, 0} : std::vector<int>{corner};
-    std::size_t pick = 0;
-    long long fewest = -1;
-    for (std::size_t k = 0; k < layouts.size() && fewest != 0; ++k) {
-      long long least = -1;
-      for (int c : order) {
-        if (c < 0) continue;
-        const ImVec2 lo = corner_min(layouts[k], c);
-        const long long r = robots_under(lo, ImVec2(lo.x + layouts[k].w, lo.y + layouts[k].h));
-        if (least < 0 || r < least) least = r;
-      }
-      if (fewest < 0 || least < fewest) fewest = least, pick = k;
-    }
-    l = layouts[pick];
-    if (due) {
-      long long best_robots = -1, best_trails = -1;
-      for (int c : order) {
-        if (c < 0) continue;
-        const ImVec2 lo = corner_min(l, c), hi(lo.x + l.w, lo.y + l.h);
-        const long long r = robots_under(lo, hi);
-        if (best_robots >= 0 && r > best_robots) continue;
-        const long long t = trail_points_in(lo, hi);
-        if (best_robots < 0 || r < best_robots || t < best_trails)
-          best_robots = r, best_trails = t, corner = c;
-      }
-    }
-    if (state != nullptr) {
-      if (due) state->corner = corner, state->chosen_at = clock;
-      state->shown = l.rows == 0 ? 0 : l.shown, state->columns = l.columns;
-      state->chosen_collapsed = collapsed, state->entries = n;
-    }
+
+ private:
+  Canvas& cv_;
+  const View& view_;
+  const LegendEntries& entries_;
+  const LegendAvoid& avoid_;
+  bool collapsed_;
+  float title_w_, top_reserved_, bottom_reserved_;
+  float max_area_;
+};
+
+// Between choices, the layout chosen with the corner while the entries, the fold and the fit
+// stay as they were: true and `*l` when there is one. A robot driven under it makes the corner
+// `*due` now, not a second later.
+bool KeptLegendLayout(const LegendSpace& space, const LegendState* state, int n, bool collapsed,
+                      bool* due, Layout* l) {
+  if (*due || state->entries != n || state->chosen_collapsed != collapsed || state->shown < 0 ||
+      state->shown > n)
+    return false;
+  *l = space.Measure(state->shown, state->columns, collapsed || state->shown == 0);
+  if (!space.Fits(*l) && state->shown != 0) return false;
+  if (space.RobotsUnder(*l, state->corner) > 0) {
+    *due = true;
+    return false;
   }
-  const bool title_only = l.rows == 0;
-  const ImVec2 lo = corner_min(l, corner), hi(lo.x + l.w, lo.y + l.h);
+  return true;
+}
+
+// The corner of `order` for `l` under the fewest robots, then the fewest trail points (a robot
+// outweighs any number of them: a thousand robots' trails put tens of thousands in a corner);
+// on a tie the earlier in `order`. `current` when `order` names none.
+int QuietestLegendCorner(const LegendSpace& space, const Layout& l, const std::vector<int>& order,
+                         int current) {
+  int corner = current;
+  long long best_robots = -1, best_trails = -1;
+  for (int c : order) {
+    if (c < 0) continue;
+    const ImVec2 lo = space.CornerMin(l, c), hi(lo.x + l.w, lo.y + l.h);
+    const long long r = space.RobotsUnder(lo, hi);
+    if (best_robots >= 0 && r > best_robots) continue;
+    const long long t = space.TrailPointsIn(lo, hi);
+    if (best_robots < 0 || r < best_robots || t < best_trails)
+      best_robots = r, best_trails = t, corner = c;
+  }
+  return corner;
+}
+
+// Chooses the layout into `*l` and, when `due`, its corner into `*corner`; false when not even
+// the title tab fits. The fullest layout with a corner that covers no robot; else the one
+// covering the fewest (the fuller on a tie). Between choices the corner stays and only the
+// layout is chosen so. A corner is chosen among the current one, then bottom left, bottom
+// right, top right, top left.
+bool ChooseLegendLayout(const LegendSpace& space, bool due, int* corner, Layout* l) {
+  std::vector<Layout> layouts = space.Candidates();
+  if (layouts.empty()) {
+    const Layout tab = space.Measure(0, 1, true);  // the title tab alone
+    if (tab.w * tab.h > space.MaxArea()) return false;
+    layouts.push_back(tab);
+  }
+  const std::vector<int> order =
+      due ? std::vector<int>{*corner, 2, 3, 1, 0} : std::vector<int>{*corner};
+  std::size_t pick = 0;
+  long long fewest = -1;
+  for (std::size_t k = 0; k < layouts.size() && fewest != 0; ++k) {
+    long long least = -1;
+    for (int c : order) {
+      if (c < 0) continue;
+      const long long r = space.RobotsUnder(layouts[k], c);
+      if (least < 0 || r < least) least = r;
+    }
+    if (fewest < 0 || least < fewest) fewest = least, pick = k;
+  }
+  *l = layouts[pick];
+  if (due) *corner = QuietestLegendCorner(space, *l, order, *corner);
+  return true;
+}
+
+// The box at `lo` with its title tab, then the entries (a sample and a label each) column by
+// column and the count of those left out. `state` (may be null) learns where the box and its
+// tab are.
+void DrawLegendBox(Canvas& cv, const Theme& th, const LegendEntries& entries, const Layout& l,
+                   ImVec2 lo, const std::string& title, LegendState* state) {
+  const FontRole f = FontRole::kSmall;
+  const int n = static_cast<int>(entries.size());
+  const ImVec2 hi(lo.x + l.w, lo.y + l.h);
   cv.FillRect(lo, hi, th.backdrop.WithAlpha(0.88f), 3.0f);
   cv.StrokeRect(lo, hi, th.legend_border, 1.0f, 3.0f);
   cv.Text(ImVec2(lo.x + kPad, lo.y + 2), f, th.text, title);
@@ -231,7 +281,7 @@ void DrawWorldLegend(Canvas& cv, const View& view, const Theme& th,
     state->toggle_max = ImVec2(hi.x, lo.y + l.row_h);
     state->box_min = lo, state->box_max = hi;
   }
-  if (title_only) return;
+  if (l.rows == 0) return;  // the title tab alone
   const int rows_per_col = (l.shown + l.columns - 1) / l.columns;
   for (int i = 0; i < l.shown; ++i) {
     const auto& e = entries[static_cast<std::size_t>(i)];
@@ -245,6 +295,57 @@ void DrawWorldLegend(Canvas& cv, const View& view, const Theme& th,
     const float y = lo.y + l.row_h + kTitleGap + rows_per_col * l.row_h;
     cv.Text(ImVec2(lo.x + kPad, y + 1), f, th.coordinates, MoreText(n - l.shown));
   }
+}
+
+}  // namespace
+
+WorldLegendPlan PlanWorldLegend(Canvas& cv, const View& view, const LegendEntries& entries,
+                                const LegendAvoid& avoid, LegendState* state, double clock,
+                                float top_reserved, float bottom_reserved) {
+  WorldLegendPlan plan;
+  if (entries.empty()) return plan;
+  const bool collapsed = state != nullptr && state->collapsed;
+  plan.title = collapsed ? "legend  +" : "legend  -";
+  const LegendSpace space(cv, view, entries, avoid, collapsed,
+                          cv.TextSize(FontRole::kSmall, plan.title).x, top_reserved,
+                          bottom_reserved);
+  const int n = static_cast<int>(entries.size());
+  int corner = state != nullptr ? state->corner : -1;
+  bool due = LegendCornerDue(state, clock);
+  Layout l;
+  if (!KeptLegendLayout(space, state, n, collapsed, &due, &l)) {
+    if (!ChooseLegendLayout(space, due, &corner, &l)) return plan;
+    if (state != nullptr) {
+      if (due) state->corner = corner, state->chosen_at = clock;
+      state->shown = l.rows == 0 ? 0 : l.shown, state->columns = l.columns;
+      state->chosen_collapsed = collapsed, state->entries = n;
+    }
+  }
+  plan.drawn = true;
+  plan.lo = space.CornerMin(l, corner);
+  plan.hi = ImVec2(plan.lo.x + l.w, plan.lo.y + l.h);
+  plan.columns = l.columns, plan.rows = l.rows, plan.shown = l.shown;
+  plan.col_w = l.col_w, plan.row_h = l.row_h, plan.w = l.w, plan.h = l.h;
+  return plan;
+}
+
+void DrawPlannedWorldLegend(Canvas& cv, const Theme& th, const LegendEntries& entries,
+                            const WorldLegendPlan& plan, LegendState* state) {
+  if (!plan.drawn) return;
+  Layout l;
+  l.columns = plan.columns, l.rows = plan.rows, l.shown = plan.shown;
+  l.col_w = plan.col_w, l.row_h = plan.row_h;
+  l.w = plan.w, l.h = plan.h;
+  DrawLegendBox(cv, th, entries, l, plan.lo, plan.title, state);
+}
+
+void DrawWorldLegend(Canvas& cv, const View& view, const Theme& th, const LegendEntries& entries,
+                     const LegendAvoid& avoid, LegendState* state, double clock, float top_reserved,
+                     float bottom_reserved) {
+  DrawPlannedWorldLegend(
+      cv, th, entries,
+      PlanWorldLegend(cv, view, entries, avoid, state, clock, top_reserved, bottom_reserved),
+      state);
 }
 
 }  // namespace formsim::app

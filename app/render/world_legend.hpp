@@ -4,6 +4,7 @@
 /// corner that covers the fewest robots and trail points (re-chosen at most once a second, and
 /// at once when a robot comes under it).
 
+#include <string>
 #include <vector>
 
 #include "app/render/canvas.hpp"
@@ -44,6 +45,27 @@ struct LegendAvoid {
   /// under the legend, not only its centre.
   std::vector<float> body_radii;
 };
+
+/// Where this frame's legend goes, chosen before the scene's labels are placed so that they keep
+/// off it (PlanWorldLegend), and drawn after them (DrawPlannedWorldLegend).
+struct WorldLegendPlan {
+  bool drawn = false;  ///< false: no entries, or nowhere to put it
+  ImVec2 lo, hi;       ///< its box on screen
+  int columns = 1, rows = 0, shown = 0;
+  float col_w = 0, row_h = 0, w = 0, h = 0;
+  std::string title;  ///< "legend  -" or "legend  +" (folded)
+};
+
+/// Chooses the place of the legend of `entries` in `view`, away from `avoid`, and records the
+/// choice in `state` (may be null: a fresh choice), as DrawWorldLegend does, without drawing.
+WorldLegendPlan PlanWorldLegend(Canvas& cv, const View& view,
+                                const std::vector<CanvasDrawSink::LegendEntry>& entries,
+                                const LegendAvoid& avoid, LegendState* state, double clock,
+                                float top_reserved, float bottom_reserved);
+/// Draws the legend `plan` placed; `state` (may be null) learns its box and title tab.
+void DrawPlannedWorldLegend(Canvas& cv, const Theme& theme,
+                            const std::vector<CanvasDrawSink::LegendEntry>& entries,
+                            const WorldLegendPlan& plan, LegendState* state);
 
 /// Draws the legend of `entries` in `view`, placed away from `avoid`. `state` (may be null: a
 /// fresh choice) keeps the corner for a second of `clock` and says whether it is collapsed.

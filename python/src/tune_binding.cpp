@@ -89,20 +89,9 @@ void BindTune(py::module_& m) {
          const std::vector<std::string>& constraints, const std::optional<std::string>& seeds,
          int budget, const std::string& method, std::uint64_t search_seed,
          const std::optional<std::string>& holdout, int jobs) {
-        sim::TuneRequest r;
-        r.scenario = scenario;
-        r.scenarios = scenarios;
-        r.sets = sets;
-        r.over = over;
-        r.params = params;
-        r.metric = metric;
-        r.constraints = constraints;
-        r.seeds = seeds;
-        r.budget = budget;
-        r.algorithm = method;
-        r.search_seed = search_seed;
-        r.holdout = holdout;
-        return Tune(r, jobs);
+        return Tune(sim::MakeTuneRequest(scenario, scenarios, sets, over, params, metric,
+                                         constraints, seeds, budget, method, search_seed, holdout),
+                    jobs);
       },
       py::arg("scenario"), py::arg("scenarios"), py::arg("sets"), py::arg("over"),
       py::arg("params"), py::arg("metric"), py::arg("constraints"), py::arg("seeds"),

@@ -1,6 +1,7 @@
 #include "sim/study/tune_request.hpp"
 
 #include <stdexcept>
+#include <utility>
 
 #include "sim/study/scenario_set.hpp"
 #include "sim/study/sweep_spec.hpp"
@@ -37,6 +38,28 @@ TuneDefinition DefineTune(const TuneRequest& request) {
     CheckHoldout(d.holdout, s.seeds);
   }
   return d;
+}
+
+TuneRequest MakeTuneRequest(std::string scenario, std::vector<std::string> scenarios,
+                            std::vector<std::string> sets, std::string over,
+                            std::vector<std::string> params, std::string metric,
+                            std::vector<std::string> constraints, std::optional<std::string> seeds,
+                            int budget, std::string algorithm, std::uint64_t search_seed,
+                            std::optional<std::string> holdout) {
+  TuneRequest r;
+  r.scenario = std::move(scenario);
+  r.scenarios = std::move(scenarios);
+  r.sets = std::move(sets);
+  r.over = std::move(over);
+  r.params = std::move(params);
+  r.metric = std::move(metric);
+  r.constraints = std::move(constraints);
+  r.seeds = std::move(seeds);
+  r.budget = budget;
+  r.algorithm = std::move(algorithm);
+  r.search_seed = search_seed;
+  r.holdout = std::move(holdout);
+  return r;
 }
 
 }  // namespace formsim::sim

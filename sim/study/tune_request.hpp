@@ -43,4 +43,13 @@ struct TuneDefinition {
 /// std::runtime_error), before anything runs.
 TuneDefinition DefineTune(const TuneRequest& request);
 
+/// A request from the flags' values, in the order of TuneRequest's fields: the one place that
+/// says which value goes where, for `formsim tune`'s flags and formsim.tune's arguments alike.
+TuneRequest MakeTuneRequest(std::string scenario, std::vector<std::string> scenarios,
+                            std::vector<std::string> sets, std::string over,
+                            std::vector<std::string> params, std::string metric,
+                            std::vector<std::string> constraints, std::optional<std::string> seeds,
+                            int budget, std::string algorithm, std::uint64_t search_seed,
+                            std::optional<std::string> holdout);
+
 }  // namespace formsim::sim

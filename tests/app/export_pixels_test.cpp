@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "app/export/png_writer.hpp"
-#include "app/gui/offscreen_renderer.hpp"
+#include "app/render/offscreen_renderer.hpp"
 #include "sim/session/session.hpp"
 #include "tests/app/test_util.hpp"
 

@@ -12,7 +12,7 @@
 
 #include "app/export/png_writer.hpp"
 #include "app/export/study_figures.hpp"
-#include "app/gui/offscreen_renderer.hpp"
+#include "app/render/offscreen_renderer.hpp"
 #include "sim/study/sweep.hpp"
 #include "tests/app/test_util.hpp"
 

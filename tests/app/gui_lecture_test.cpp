@@ -168,7 +168,9 @@ TEST(GuiLecture, EveryTabIsReachableInEveryLayout) {
     AppUi& ui = w.ui();
     ASSERT_EQ(ui.RunScriptAction("lesson lphi_time_constant"), "") << l.name;
     for (const char* tab : {"controls", "lesson", "plots", "tables", "history", "summary"}) {
-      if (l.present) ASSERT_EQ(ui.RunScriptAction("present on"), "");
+      if (l.present) {
+        ASSERT_EQ(ui.RunScriptAction("present on"), "");
+      }
       LectureFrames(w, 2);
       EXPECT_EQ(ui.RunScriptAction(std::string("tab ") + tab), "") << l.name << " " << tab;
       LectureFrames(w, 3);

@@ -148,7 +148,9 @@ TEST_P(LayoutReport, NothingCutOverlappingSmallOrFaintAndTheWorldViewTakesItsSha
   EXPECT_EQ(r["window"][0].as<int>(), size.width);
   EXPECT_EQ(r["window"][1].as<int>(), size.height);
   EXPECT_EQ(r["ui_scale"].as<double>(), std::stod(size.scale));
-  if (present) EXPECT_EQ(r["layout"].as<std::string>(), "presentation");
+  if (present) {
+    EXPECT_EQ(r["layout"].as<std::string>(), "presentation");
+  }
   ExpectNothingALecturerWouldMeet(r);
   // Item 2: at least half the window's area outside presentation mode, 80 % in it.
   const double share = r["world_view_share"].as<double>();

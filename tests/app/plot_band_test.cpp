@@ -10,7 +10,7 @@
 
 #include "app/export/figure_export.hpp"
 #include "app/export/video_writer.hpp"
-#include "app/gui/offscreen_renderer.hpp"
+#include "app/render/offscreen_renderer.hpp"
 #include "app/render/plot.hpp"
 #include "app/render/theme.hpp"
 #include "app/render/vector_canvas.hpp"

@@ -13,7 +13,7 @@
 
 #include "app/export/png_deflate.hpp"
 #include "app/export/png_writer.hpp"
-#include "app/gui/offscreen_renderer.hpp"
+#include "app/render/offscreen_renderer.hpp"
 #include "sim/session/session.hpp"
 #include "tests/app/test_util.hpp"
 

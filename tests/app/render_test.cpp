@@ -7,8 +7,8 @@
 
 #include "app/export/export.hpp"
 #include "app/export/figure_data.hpp"
-#include "app/gui/offscreen_renderer.hpp"
 #include "app/export/png_writer.hpp"
+#include "app/render/offscreen_renderer.hpp"
 #include "sim/session/session.hpp"
 #include "tests/app/test_util.hpp"
 

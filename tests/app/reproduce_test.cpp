@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "app/export/figure_data.hpp"
-#include "app/gui/offscreen_renderer.hpp"
+#include "app/render/offscreen_renderer.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/core/recorder.hpp"
 #include "sim/study/reproduction.hpp"

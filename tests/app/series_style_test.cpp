@@ -8,7 +8,7 @@
 #include <set>
 #include <utility>
 
-#include "app/gui/offscreen_renderer.hpp"
+#include "app/render/offscreen_renderer.hpp"
 #include "app/render/plot.hpp"
 #include "app/render/theme.hpp"
 #include "app/render/vector_canvas.hpp"

@@ -8,9 +8,9 @@
 #include <fstream>
 #include <map>
 
-#include "app/gui/offscreen_renderer.hpp"
 #include "app/export/study_figures.hpp"
 #include "app/export/tune_figures.hpp"
+#include "app/render/offscreen_renderer.hpp"
 #include "sim/core/number_format.hpp"
 #include "sim/study/sweep.hpp"
 #include "tests/app/test_util.hpp"

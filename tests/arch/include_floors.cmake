@@ -1,7 +1,11 @@
 # The direction of dependencies (docs/architecture.md), checked on every #include:
 #   control knows nothing of sim or app; sim knows nothing of app;
 #   sim's shared floors: core <- scenario <- session, study; the kinds (sim/<kind>) sit above all four;
-#   app/render (canvas, plots, themes, GL) knows nothing of the window, export or the CLI;
+#   app's own layers: render <- export <- gui <- cli, each including only the folders to its
+#   left: app/render (canvas, plots, themes, GL, the offscreen renderer) knows nothing of export,
+#   the window or the CLI; app/export (figures, writers, frame export) nothing of the window or
+#   the CLI (it draws the interface through its UiFrames interface); app/gui nothing of the CLI
+#   (the stop signal both use is sim/core's); app/web is an outer shell and may use them all;
 #   the Python module (python/) uses sim and app/export's in-memory pictures only: no window,
 #   GL, ImGui or CLI header (app/export/pictures.hpp hides them).
 # Run: cmake -DSOURCE_DIR=<repo> -P include_floors.cmake. Fails listing every offending line.
@@ -32,6 +36,8 @@ set(_rules
   "sim/session;sim/(study|${_kind_alt})/"
   "sim/study;sim/(session|${_kind_alt})/"
   "app/render;app/(gui|export|cli)/"
+  "app/export;app/(gui|cli)/"
+  "app/gui;app/cli/"
   "python;app/(render|gui|cli|backends)/|app/export/([a-oq-z]|p[^i])")
 
 set(_bad)

@@ -8,7 +8,10 @@ label and table formatters): only they may call the printf family (printf, fprin
 snprintf, vprintf, vfprintf, vsprintf, vsnprintf, dprintf, asprintf, with or without std::) or
 {fmt} (fmt::). Reads every .cpp and .hpp below ROOT/{app,sim,control,python} with comments and
 string literals blanked; prints each call found elsewhere as "file:line: CALL" and exits 1 if
-there is one.
+there is one. Dear ImGui's text calls (ImGui::Text, TextWrapped, TextDisabled, TextColored,
+SetTooltip, BulletText) format printf-style too: a format string of theirs with a number
+conversion (%d, %.2f, %zu ...) counts as such a call; "%s" of a formatted string does not.
+A widget's own display format (SliderFloat's "%.2f") is the widget's, not text, and is left.
 """
 import os
 import re
@@ -17,6 +20,9 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from function_length import blank_literals  # noqa: E402
 
+IMGUI_TEXT = re.compile(r'ImGui::(?:Text|TextWrapped|TextDisabled|TextColored|SetTooltip|BulletText)'
+                        r'\((?:[^;"()]|\([^;()]*\))*?"((?:[^"\\\n]|\\.)*)"', re.S)
+NUMBER_CONVERSION = re.compile(r"%[-+ #0-9.*]*(?:hh|h|ll|l|z|j|t|L)?[dfFgGeEiuxXoc]")
 CALL = re.compile(r"(?<![\w.>])(?:std::)?(v?s?n?printf|v?fprintf|dprintf|v?asprintf)\s*\(|\bfmt::\w+")
 
 
@@ -33,7 +39,13 @@ def main(argv):
                 if "format" in f:
                     continue
                 p = os.path.join(dirpath, f)
-                code = blank_literals(open(p, encoding="utf-8", errors="replace").read())
+                text = open(p, encoding="utf-8", errors="replace").read()
+                for m in IMGUI_TEXT.finditer(text):
+                    if NUMBER_CONVERSION.search(m.group(1).replace("%%", "")):
+                        line = text.count("\n", 0, m.start()) + 1
+                        bad.append(f"{os.path.relpath(p, root)}:{line}: ImGui text with "
+                                   f"\"{m.group(1)}\"")
+                code = blank_literals(text)
                 for n, line in enumerate(code.split("\n"), 1):
                     for m in CALL.finditer(line):
                         bad.append(f"{os.path.relpath(p, root)}:{n}: {m.group(0).rstrip('( ')}")

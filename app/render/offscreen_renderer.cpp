@@ -1,9 +1,8 @@
-#include "app/gui/offscreen_renderer.hpp"
+#include "app/render/offscreen_renderer.hpp"
 
 #include <chrono>
 #include <cmath>
 
-#include "app/gui/ui.hpp"
 #include "app/render/imgui_canvas.hpp"
 #include "app/render/world_view.hpp"
 #include "sim/core/wall_clock.hpp"
@@ -78,14 +77,12 @@ const std::vector<std::uint8_t>& OffscreenRenderer::RenderWorldAs(const sim::Exp
   return End(theme_.background);
 }
 
-const std::vector<std::uint8_t>& OffscreenRenderer::RenderUi(AppUi& ui) {
+const std::vector<std::uint8_t>& OffscreenRenderer::RenderImGuiFrame(
+    const std::function<void(ImVec2 display, const Fonts& fonts)>& build) {
   Begin();
-  ui.Draw(ImVec2(static_cast<float>(logical_w_), static_cast<float>(logical_h_)), layer_.fonts(),
-          false);
+  build(ImVec2(static_cast<float>(logical_w_), static_cast<float>(logical_h_)), layer_.fonts());
   const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
-  const std::vector<std::uint8_t>& pixels = End({bg.x, bg.y, bg.z, 1.0f});
-  ui.AfterRender();
-  return pixels;
+  return End({bg.x, bg.y, bg.z, 1.0f});
 }
 
 const std::vector<std::uint8_t>& OffscreenRenderer::RenderFigure(const PlotData& data, int width,

@@ -1,9 +1,9 @@
-#include "app/cli/stop_signal.hpp"
+#include "sim/core/stop_signal.hpp"
 
 #include <atomic>
 #include <csignal>
 
-namespace formsim::app {
+namespace formsim::sim {
 namespace {
 
 std::atomic<int> g_signal{0};
@@ -32,4 +32,4 @@ std::string StopSignalName(int sig) {
   return sig == SIGHUP ? "SIGHUP" : "SIGTERM";
 }
 
-}  // namespace formsim::app
+}  // namespace formsim::sim

@@ -1,10 +1,13 @@
 #pragma once
-/// \file Headless rendering: an OSMesa context plus the ImGui layer, drawing the world view, the
-/// whole interface or a figure into an RGBA buffer through exactly the code the GUI uses.
-/// Sizes are logical pixels; the buffer is `scale` times larger (PNG at a chosen dpi).
+/// \file Headless rendering: an OSMesa context plus the ImGui layer, drawing the world view, a
+/// figure or any ImGui frame (the whole interface, drawn by the layer above) into an RGBA buffer
+/// through exactly the code the GUI uses. Sizes are logical pixels; the buffer is `scale` times
+/// larger (PNG at a chosen dpi).
+
+#include <imgui.h>
 
 #include <cstdint>
-#include <string>
+#include <functional>
 #include <set>
 #include <string>
 #include <vector>
@@ -18,8 +21,6 @@
 #include "sim/core/experiment.hpp"
 
 namespace formsim::app {
-
-class AppUi;
 
 /// Wall-clock seconds spent per phase (for --timing).
 struct RenderTimes {
@@ -40,8 +41,10 @@ class OffscreenRenderer {
   /// The world view of `exp` with `view` as it is (already framed).
   const std::vector<std::uint8_t>& RenderWorldAs(const sim::Experiment& exp, const View& view,
                                                  const std::string& caption);
-  /// The whole interface, as in the GUI window, without input.
-  const std::vector<std::uint8_t>& RenderUi(AppUi& ui);
+  /// One ImGui frame that `build` draws (windows and panels) on a screen of the frame's logical
+  /// size; the background is the style's window colour as `build` leaves it.
+  const std::vector<std::uint8_t>& RenderImGuiFrame(
+      const std::function<void(ImVec2 display, const Fonts& fonts)>& build);
   /// One figure as a paper-style picture of `width` x `height` logical pixels.
   const std::vector<std::uint8_t>& RenderFigure(const PlotData& data, int width, int height);
 
