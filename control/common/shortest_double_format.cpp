@@ -89,38 +89,16 @@ char* ToCharsText(char* first, bool negative, const char* digits, int exponent, 
 }
 
 char* WriteShortestDoubleByFmt(char* first, char* last, double v) {
-  // {fmt}'s shortest round-trip text ("0.1", "1e-09", "1.7976931348623157e+308", "-0"), read
-  // back into its digits and the exponent of the first of them.
-  char text[40];
-  char* end = fmt::format_to(text, FMT_COMPILE("{}"), v);
-  *end = '\0';  // std::atoi reads the exponent up to here
-  const char* p = text;
-  const bool negative = *p == '-';
-  if (negative) ++p;
-  char digits[24];
-  int n = 0;
-  int point = -1;  // digits before the decimal point, once it is seen
-  int lead = 0;    // leading zeros skipped
-  for (; p < end && *p != 'e'; ++p) {
-    if (*p == '.') {
-      point = n + lead;
-    } else if (n == 0 && *p == '0') {
-      ++lead;
-    } else {
-      digits[n++] = *p;
-    }
-  }
-  const int whole_digits = point < 0 ? n + lead : point;
-  int exponent = whole_digits - 1 - lead;
-  if (p < end) exponent += std::atoi(p + 1);
-  while (n > 1 && digits[n - 1] == '0') --n;
-  if (n == 0) {
-    digits[n++] = '0';
-    exponent = 0;
-  }
-  digits[n] = '\0';
   (void)last;
-  return ToCharsText(first, negative, digits, exponent, v);
+  const bool negative = std::signbit(v);
+  if (v == 0) return ToCharsText(first, negative, "0", 0, v);
+  // {fmt}'s Dragonbox: the shortest significand that reads back to `v` (trailing zeros
+  // removed) and its power of ten. Called directly, not through fmt::format("{}"), whose text
+  // would only be taken apart again: the page writes every CSV cell through here.
+  const auto d = fmt::detail::dragonbox::to_decimal(std::fabs(v));
+  const fmt::format_int significand(d.significand);
+  return ToCharsText(first, negative, significand.c_str(),
+                     d.exponent + static_cast<int>(significand.size()) - 1, v);
 }
 
 bool ReadWholeDouble(const char* first, const char* last, double* out) {
