@@ -91,6 +91,13 @@ char* ToCharsText(char* first, bool negative, const char* digits, int exponent, 
 char* WriteShortestDoubleByFmt(char* first, char* last, double v) {
   (void)last;
   const bool negative = std::signbit(v);
+  if (!std::isfinite(v)) {
+    // As std::to_chars: "inf", "-inf", "nan" or "-nan" (Dragonbox takes finite values only).
+    const char* word = std::isnan(v) ? (negative ? "-nan" : "nan") : (negative ? "-inf" : "inf");
+    const std::size_t n = std::strlen(word);
+    std::memcpy(first, word, n);
+    return first + n;
+  }
   if (v == 0) return ToCharsText(first, negative, "0", 0, v);
   // {fmt}'s Dragonbox: the shortest significand that reads back to `v` (trailing zeros
   // removed) and its power of ten. Called directly, not through fmt::format("{}"), whose text

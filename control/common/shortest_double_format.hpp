@@ -20,8 +20,8 @@ namespace formsim::control {
 /// fixed form with every digit exact). Returns the end of the text (at most 24 characters).
 char* ToCharsText(char* first, bool negative, const char* digits, int exponent, double v);
 
-/// std::to_chars(first, last, v)'s text for a finite `v` made from {fmt}'s shortest digits
-/// (Dragonbox; the page's way). `last - first` must be at least 24. Allocates nothing.
+/// std::to_chars(first, last, v)'s text for `v` made from {fmt}'s shortest digits
+/// (Dragonbox; the page's way); "inf", "-inf", "nan" or "-nan" as to_chars for the others. `last - first` must be at least 24. Allocates nothing.
 char* WriteShortestDoubleByFmt(char* first, char* last, double v);
 
 /// Writes `v` (finite) as std::to_chars(first, last, v) does: the shortest digits that read

@@ -107,6 +107,12 @@ TEST(ShortestDouble, WriteShortestDoubleIsToChars) {
   }
 }
 
+TEST(ShortestDouble, NotFiniteIsToCharsText) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (double v : {inf, -inf, nan, -nan}) EXPECT_EQ(ByFormsim(v), ByToChars(v));
+}
+
 TEST(ShortestDouble, ReadsAsFromCharsDoes) {
   auto read = [](const std::string& s) {
     double v = -12345;
